@@ -1,0 +1,94 @@
+// Rayshade noise (Skinner & Kolb, noise.c of Rayshade 4.0) in double precision,
+// with its analytic gradient and the cheaper variants the hardware may use.
+// Paper: Hart et al. 1999, section 2.1.3; DESIGN.md section 2 "Noise".
+//
+// n(p) = sum over the 8 corners c of the lattice cell of p of
+//            w_c(p) * (0.5 R[m_c] + R[m_c+1] dx + R[m_c+2] dy + R[m_c+3] dz),
+// with d = p - c, m_c the hashed corner index and w_c = product of SCURVE(u) or 1 - SCURVE(u).
+//
+// Domain: Rayshade adds 1e6 and truncates with (int), so it is only defined for
+// p + 1e6 in [0, 2^31 - 1) per coordinate. The hash reads only the low 12 (or 8) bits of
+// the lattice index, so n is exactly periodic with period 4096 in each coordinate; outside
+// Rayshade's range we reduce the offset coordinate by that period (exact fmod), which is
+// the periodic continuation (no UB, and the gradient stays the gradient). Inside the range
+// the result is Rayshade's bit for bit. A non-finite coordinate gives n = 0, grad = 0.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+
+#include <glm/vec3.hpp>
+
+namespace pst {
+
+// Interpolation of the eight lattice corners.
+enum class NoiseInterp {
+    SCurve,  // Rayshade: weights SCURVE(u) = u^2 (3 - 2u)
+    Linear,  // reduced hardware: tri-linear weights u
+};
+
+// What each lattice corner contributes.
+enum class NoiseCorner {
+    ValueGradient,  // Rayshade: 0.5 R[m] + R[m+1] dx + R[m+2] dy + R[m+3] dz
+    ValueOnly,      // 0.5 R[m]
+};
+
+// How a lattice point (ix, iy, iz) becomes the value-table index m.
+enum class NoiseHash {
+    Rayshade4096,  // T[T[T[ix&0xfff]^(iy&0xfff)]^(iz&0xfff)] & 0xff, T a 4096-entry permutation
+    Perm256,       // P[P[P[ix&0xff]^(iy&0xff)]^(iz&0xff)], P a 256-entry permutation (8-bit ROM)
+};
+// Why Perm256: each of the three chained lookups per corner is then a 256x8 ROM (2 kbit)
+// instead of a 4096x12 ROM (48 kbit); m is the 8-bit permutation output directly. The
+// noise then repeats every 256 lattice cells instead of 4096. P is built like Rayshade's
+// table: a fresh srand48(1) stream, for i = 255 down to 1 swap P[i], P[(int)(drand48()*256)].
+
+struct NoiseOptions {
+    NoiseInterp interp = NoiseInterp::SCurve;
+    NoiseCorner corner = NoiseCorner::ValueGradient;
+    NoiseHash hash = NoiseHash::Rayshade4096;
+};
+
+// Parse/print the enum names used in scene files ("scurve", "linear", "value_gradient",
+// "value", "rayshade", "perm256"). Parsing returns false on an unknown name.
+bool parseNoiseInterp(const std::string& name, NoiseInterp* out);
+bool parseNoiseCorner(const std::string& name, NoiseCorner* out);
+bool parseNoiseHash(const std::string& name, NoiseHash* out);
+const char* toString(NoiseInterp v);
+const char* toString(NoiseCorner v);
+const char* toString(NoiseHash v);
+
+// The tables of Rayshade's NoiseInit(), built once on first use (thread-safe). The
+// srand48(1)/drand48() stream is reproduced with erand48 on a private state, so building
+// the tables neither reads nor disturbs the global drand48 state.
+struct NoiseTables {
+    static constexpr int kHashSize = 4096;   // Rayshade's hashTable
+    static constexpr int kValueSize = 267;   // Rayshade's RTable (MAXSIZE)
+    static constexpr int kPermSize = 256;    // the Perm256 variant
+    // Rayshade's lattice offset: Noise3 adds 1e6 so that (int) truncation floors.
+    static constexpr double kLatticeOffset = 1000000.0;
+
+    std::array<uint16_t, kHashSize> hash;   // srand48(1) shuffle of 0..4095
+    std::array<double, kValueSize> value;   // R[i] = Crc16(0.12345 i x3) * 2/65536 - 1
+    std::array<uint8_t, kPermSize> perm;    // shuffle of 0..255 (see noise.cpp)
+
+    static const NoiseTables& get();
+};
+
+// CRC-16/ARC (reflected polynomial 0xA001, initial 0) as Rayshade's Crc16().
+uint16_t crc16(const uint8_t* bytes, size_t count);
+
+// Value-table index m (0..255) of lattice point (ix, iy, iz), where ix is the lattice index
+// after Rayshade's offset, i.e. (int)(x + 1e6) = floor(x) + 1000000. Any int is accepted
+// (only the low 12 or 8 bits are used).
+int noiseHash(int ix, int iy, int iz, NoiseHash hash);
+
+// n(p) and, if grad != nullptr, its analytic gradient dn/dp (not Rayshade's DNoise3, which is
+// not a gradient). With default options this equals Rayshade's Noise3 bit for bit (for
+// p > -1e6, see "Domain" above). |n| <= 3.5 always (ValueGradient; 0.5 for ValueOnly).
+// The gradient is exact inside a cell; on a lattice plane it is the one-sided derivative
+// from the cell above (SCURVE noise is C1 there, Linear noise only C0).
+double noise(const glm::dvec3& p, const NoiseOptions& opt = {}, glm::dvec3* grad = nullptr);
+
+}  // namespace pst

@@ -1,0 +1,100 @@
+#include "imageio.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+
+#include <OpenImageIO/imagebuf.h>
+#include <OpenImageIO/imagebufalgo.h>
+
+namespace pst {
+namespace fs = std::filesystem;
+namespace {
+
+OIIO::ImageBuf toBuf(const Image& img) {
+    OIIO::ImageSpec spec(img.width, img.height, img.channels, OIIO::TypeDesc::FLOAT);
+    OIIO::ImageBuf buf(spec);
+    buf.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, img.data.data());
+    return buf;
+}
+
+// A temporary name in the same folder that keeps the extension (OIIO picks the format by it).
+std::string tempName(const std::string& path) {
+    fs::path p(path);
+    return (p.parent_path() / ("." + p.stem().string() + ".tmp" + p.extension().string())).string();
+}
+
+void commit(const std::string& tmp, const std::string& path) {
+    std::error_code ec;
+    fs::rename(tmp, path, ec);
+    if (ec) {
+        fs::remove(tmp, ec);
+        throw std::runtime_error(path + ": cannot write (" + ec.message() + ")");
+    }
+}
+
+}  // namespace
+
+void writeImage(const Image& img, const std::string& path, Tone tone) {
+    const std::string ext = fs::path(path).extension().string();
+    Image out = img;
+    if (tone == Tone::FilterWidth && ext != ".exr") {
+        // Fig. 9c: widths from one entry (black) to 256 entries (white), on a log scale.
+        for (float& v : out.data) v = float(std::clamp(std::log2(std::max(double(v), 1.0)) / 8.0, 0.0, 1.0));
+    }
+    OIIO::ImageBuf buf = toBuf(out);
+    const std::string tmp = tempName(path);
+    const bool ok = ext == ".exr" ? buf.write(tmp, OIIO::TypeDesc::FLOAT)
+                                  : buf.write(tmp, OIIO::TypeDesc::UINT8);
+    if (!ok) {
+        std::error_code ec;
+        fs::remove(tmp, ec);
+        throw std::runtime_error(path + ": cannot write image: " + buf.geterror());
+    }
+    commit(tmp, path);
+}
+
+Image readImage(const std::string& path) {
+    OIIO::ImageBuf buf(path);
+    if (!buf.read(0, 0, true, OIIO::TypeDesc::FLOAT))
+        throw std::runtime_error(path + ": cannot read image: " + buf.geterror());
+    const auto& spec = buf.spec();
+    Image img(spec.width, spec.height, spec.nchannels);
+    buf.get_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, img.data.data());
+    return img;
+}
+
+ImageDiff compareRgb(const Image& a, const Image& b) {
+    if (a.width != b.width || a.height != b.height || a.channels < 3 || b.channels < 3)
+        throw std::runtime_error("compareRgb: images differ in size or have fewer than 3 channels");
+    OIIO::ImageBuf A = toBuf(a), B = toBuf(b);
+    OIIO::ROI roi = A.roi();
+    roi.chbegin = 0;
+    roi.chend = 3;
+    auto r = OIIO::ImageBufAlgo::compare(A, B, 1e30f, 1e30f, roi);
+    ImageDiff d;
+    d.meanError = r.meanerror;
+    d.rmsError = r.rms_error;
+    d.maxError = r.maxerror;
+    d.psnr = r.PSNR;
+    return d;
+}
+
+void writeTextFile(const std::string& path, const std::string& text) {
+    const std::string tmp = tempName(path);
+    {
+        std::ofstream out(tmp, std::ios::binary);
+        out << text;
+        if (!out.flush()) {
+            std::error_code ec;
+            fs::remove(tmp, ec);
+            throw std::runtime_error(path + ": cannot write");
+        }
+    }
+    commit(tmp, path);
+}
+
+}  // namespace pst

@@ -1,0 +1,394 @@
+// Scene and texture files: TOML parsed by toml++, checked field by field.
+#include "scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <glm/gtc/matrix_transform.hpp>
+#include <toml++/toml.h>
+
+namespace pst {
+namespace {
+
+// Error reporting: every message is "file:line: field: what".
+struct Ctx {
+    std::string file;
+
+    [[noreturn]] void fail(const toml::node* n, const std::string& field,
+                           const std::string& what) const {
+        std::ostringstream os;
+        os << file;
+        if (n && n->source().begin.line > 0) os << ":" << n->source().begin.line;
+        os << ": " << field << ": " << what;
+        throw InputError(os.str());
+    }
+};
+
+std::string join(const std::string& path, const std::string& key) {
+    return path.empty() ? key : path + "." + key;
+}
+
+// Unknown keys are errors, so a typo does not silently fall back to a default.
+void checkKeys(const Ctx& c, const toml::table& t, const std::string& path,
+               std::initializer_list<const char*> allowed) {
+    for (auto&& [k, v] : t) {
+        bool ok = false;
+        for (const char* a : allowed) ok = ok || k.str() == a;
+        if (!ok) {
+            std::string list;
+            for (const char* a : allowed) list += std::string(list.empty() ? "" : ", ") + a;
+            c.fail(&v, join(path, std::string(k.str())), "unknown key (expected one of: " + list + ")");
+        }
+    }
+}
+
+double asNumber(const Ctx& c, const toml::node& n, const std::string& field) {
+    double v;
+    if (auto i = n.as_integer()) v = static_cast<double>(i->get());
+    else if (auto f = n.as_floating_point()) v = f->get();
+    else c.fail(&n, field, "expected a number");
+    if (!std::isfinite(v)) c.fail(&n, field, "NaN and infinite numbers are not allowed");
+    return v;
+}
+
+const toml::node* find(const toml::table& t, const char* key) { return t.get(key); }
+
+double getNumber(const Ctx& c, const toml::table& t, const std::string& path, const char* key,
+                 double def) {
+    const toml::node* n = find(t, key);
+    return n ? asNumber(c, *n, join(path, key)) : def;
+}
+
+double requireNumber(const Ctx& c, const toml::table& t, const std::string& path, const char* key) {
+    const toml::node* n = find(t, key);
+    if (!n) c.fail(&t, join(path, key), "missing");
+    return asNumber(c, *n, join(path, key));
+}
+
+int getInt(const Ctx& c, const toml::table& t, const std::string& path, const char* key, int def,
+           int lo, int hi) {
+    const toml::node* n = find(t, key);
+    if (!n) return def;
+    auto i = n->as_integer();
+    if (!i) c.fail(n, join(path, key), "expected an integer");
+    if (i->get() < lo || i->get() > hi)
+        c.fail(n, join(path, key),
+               "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "] (got " +
+                   std::to_string(i->get()) + ")");
+    return static_cast<int>(i->get());
+}
+
+std::vector<double> asNumbers(const Ctx& c, const toml::node& n, const std::string& field,
+                              size_t minCount, size_t maxCount) {
+    auto a = n.as_array();
+    if (!a) c.fail(&n, field, "expected an array of numbers");
+    if (a->size() < minCount || a->size() > maxCount) {
+        std::string want = minCount == maxCount ? std::to_string(minCount)
+                                                : std::to_string(minCount) + " to " + std::to_string(maxCount);
+        c.fail(&n, field, "expected " + want + " numbers, got " + std::to_string(a->size()));
+    }
+    std::vector<double> out;
+    for (size_t i = 0; i < a->size(); ++i)
+        out.push_back(asNumber(c, *a->get(i), field + "[" + std::to_string(i) + "]"));
+    return out;
+}
+
+glm::dvec3 getVec3(const Ctx& c, const toml::table& t, const std::string& path, const char* key,
+                   glm::dvec3 def) {
+    const toml::node* n = find(t, key);
+    if (!n) return def;
+    auto v = asNumbers(c, *n, join(path, key), 3, 3);
+    return {v[0], v[1], v[2]};
+}
+
+// A number (uniform) or a 3-vector.
+glm::dvec3 getScale(const Ctx& c, const toml::table& t, const std::string& path, const char* key) {
+    const toml::node* n = find(t, key);
+    if (!n) return glm::dvec3(1.0);
+    if (n->is_array()) return getVec3(c, t, path, key, glm::dvec3(1.0));
+    return glm::dvec3(asNumber(c, *n, join(path, key)));
+}
+
+glm::dvec4 getColor(const Ctx& c, const toml::table& t, const std::string& path, const char* key,
+                    glm::dvec4 def) {
+    const toml::node* n = find(t, key);
+    if (!n) return def;
+    auto v = asNumbers(c, *n, join(path, key), 3, 4);
+    return {v[0], v[1], v[2], v.size() == 4 ? v[3] : 1.0};
+}
+
+std::string getString(const Ctx& c, const toml::table& t, const std::string& path, const char* key,
+                      const std::string& def) {
+    const toml::node* n = find(t, key);
+    if (!n) return def;
+    auto s = n->as_string();
+    if (!s) c.fail(n, join(path, key), "expected a string");
+    return s->get();
+}
+
+const toml::table& requireTable(const Ctx& c, const toml::table& t, const std::string& path,
+                                const char* key) {
+    const toml::node* n = find(t, key);
+    if (!n) c.fail(&t, join(path, key), "missing table");
+    if (!n->is_table()) c.fail(n, join(path, key), "expected a table");
+    return *n->as_table();
+}
+
+// Enum fields go through the model's own parsers, so the names live in one place.
+template <typename E>
+E getEnum(const Ctx& c, const toml::table& t, const std::string& path, const char* key, E def,
+          bool (*parse)(const std::string&, E*), const char* choices) {
+    const toml::node* n = find(t, key);
+    if (!n) return def;
+    std::string s = getString(c, t, path, key, "");
+    E out;
+    if (!parse(s, &out)) c.fail(n, join(path, key), "unknown value '" + s + "' (expected " + choices + ")");
+    return out;
+}
+
+// --- Colour map: a ramp of keys [position, r, g, b(, a)] sampled into N entries ----------
+ColorMap parseColorMap(const Ctx& c, const toml::table& t, const std::string& path) {
+    checkKeys(c, t, path, {"size", "wrap", "interp", "ramp"});
+    const int n = getInt(c, t, path, "size", 256, 1, 1 << 16);
+    if (n & (n - 1)) c.fail(find(t, "size"), join(path, "size"), "must be a power of two (got " + std::to_string(n) + ")");
+    WrapMode wrap = getEnum(c, t, path, "wrap", WrapMode::Mod, parseWrapMode, "mod or clamp");
+    std::string interp = getString(c, t, path, "interp", "linear");
+    if (interp != "linear" && interp != "step")
+        c.fail(find(t, "interp"), join(path, "interp"), "unknown value '" + interp + "' (expected linear or step)");
+
+    const toml::node* rn = find(t, "ramp");
+    if (!rn) c.fail(&t, join(path, "ramp"), "missing");
+    auto ra = rn->as_array();
+    if (!ra || ra->empty()) c.fail(rn, join(path, "ramp"), "expected a non-empty array of [position, r, g, b(, a)]");
+    std::vector<std::pair<double, glm::dvec4>> keys;
+    for (size_t i = 0; i < ra->size(); ++i) {
+        std::string f = join(path, "ramp") + "[" + std::to_string(i) + "]";
+        auto v = asNumbers(c, *ra->get(i), f, 4, 5);
+        if (v[0] < 0.0 || v[0] > 1.0) c.fail(ra->get(i), f, "position must be in [0, 1]");
+        if (!keys.empty() && v[0] < keys.back().first)
+            c.fail(ra->get(i), f, "positions must not decrease");
+        keys.push_back({v[0], {v[1], v[2], v[3], v.size() == 5 ? v[4] : 1.0}});
+    }
+    // Entry i takes the ramp at its centre (i + 0.5) / N.
+    std::vector<glm::dvec4> entries(n);
+    for (int i = 0; i < n; ++i) {
+        double x = (i + 0.5) / n;
+        size_t k = 0;
+        while (k + 1 < keys.size() && keys[k + 1].first <= x) ++k;
+        if (x < keys[0].first || k + 1 == keys.size() || interp == "step") {
+            entries[i] = x < keys[0].first ? keys[0].second : keys[k].second;
+        } else {
+            double span = keys[k + 1].first - keys[k].first;
+            double a = span > 0 ? (x - keys[k].first) / span : 0.0;
+            entries[i] = keys[k].second * (1.0 - a) + keys[k + 1].second * a;
+        }
+    }
+    return ColorMap(std::move(entries), wrap);
+}
+
+// --- Texture block (eq. 1): quadric, octaves, noise variant, filter, colour map -----------
+Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string& path) {
+    checkKeys(c, t, path, {"quadric", "octaves", "noise", "filter", "norm", "colormap"});
+    Texture tex;
+    if (const toml::node* qn = find(t, "quadric")) {
+        const std::string qp = join(path, "quadric");
+        auto qt = qn->as_table();
+        if (!qt) c.fail(qn, qp, "expected a table of coefficients A..J (eq. 3)");
+        checkKeys(c, *qt, qp, {"A", "B", "C", "D", "E", "F", "G", "H", "I", "J"});
+        Quadric& q = tex.quadric;
+        double* coef[] = {&q.A, &q.B, &q.C, &q.D, &q.E, &q.F, &q.G, &q.H, &q.I, &q.J};
+        const char* names[] = {"A", "B", "C", "D", "E", "F", "G", "H", "I", "J"};
+        for (int i = 0; i < 10; ++i) *coef[i] = getNumber(c, *qt, qp, names[i], 0.0);
+    }
+    if (const toml::node* on = find(t, "octaves")) {
+        auto oa = on->as_array();
+        if (!oa) c.fail(on, join(path, "octaves"), "expected an array of tables ([[...octaves]])");
+        for (size_t i = 0; i < oa->size(); ++i) {
+            std::string op = join(path, "octaves") + "[" + std::to_string(i) + "]";
+            auto ot = oa->get(i)->as_table();
+            if (!ot) c.fail(oa->get(i), op, "expected a table");
+            checkKeys(c, *ot, op, {"amplitude", "scale", "matrix", "offset"});
+            Octave o;
+            o.amplitude = requireNumber(c, *ot, op, "amplitude");
+            if (find(*ot, "scale") && find(*ot, "matrix"))
+                c.fail(find(*ot, "matrix"), join(op, "matrix"), "give either scale or matrix, not both");
+            glm::dvec3 sc = getScale(c, *ot, op, "scale");
+            o.M = glm::dmat3(sc.x, 0, 0, 0, sc.y, 0, 0, 0, sc.z);
+            if (const toml::node* mn = find(*ot, "matrix")) {
+                // Rows as written: matrix = [[m00, m01, m02], [m10, ...], ...]; GLM is M[col][row].
+                auto ma = mn->as_array();
+                if (!ma || ma->size() != 3) c.fail(mn, join(op, "matrix"), "expected 3 rows of 3 numbers");
+                for (int r = 0; r < 3; ++r) {
+                    auto row = asNumbers(c, *ma->get(r), join(op, "matrix") + "[" + std::to_string(r) + "]", 3, 3);
+                    for (int col = 0; col < 3; ++col) o.M[col][r] = row[col];
+                }
+            }
+            o.offset = getVec3(c, *ot, op, "offset", glm::dvec3(0.0));
+            tex.octaves.push_back(o);
+        }
+    }
+    if (const toml::node* nn = find(t, "noise")) {
+        const std::string np = join(path, "noise");
+        auto nt = nn->as_table();
+        if (!nt) c.fail(nn, np, "expected a table");
+        checkKeys(c, *nt, np, {"interp", "corner", "hash"});
+        tex.noise.interp = getEnum(c, *nt, np, "interp", tex.noise.interp, parseNoiseInterp, "scurve or linear");
+        tex.noise.corner = getEnum(c, *nt, np, "corner", tex.noise.corner, parseNoiseCorner, "value_gradient or value");
+        tex.noise.hash = getEnum(c, *nt, np, "hash", tex.noise.hash, parseNoiseHash, "rayshade or perm256");
+    }
+    tex.filter = getEnum(c, t, path, "filter", tex.filter, parseFilterKind, "none, mip, mip_linear, sat or box");
+    tex.norm = getEnum(c, t, path, "norm", tex.norm, parseGradNorm, "euclid, max_half_min or l1");
+    tex.clut = parseColorMap(c, requireTable(c, t, path, "colormap"), join(path, "colormap"));
+    return tex;
+}
+
+// --- Objects: a mesh, its placement, its texture space ------------------------------------
+glm::dmat4 placement(const Ctx& c, const toml::table& t, const std::string& path,
+                     const char* scaleKey, const char* rotateKey, const char* translateKey) {
+    glm::dvec3 sc = getScale(c, t, path, scaleKey);
+    glm::dvec3 rot = getVec3(c, t, path, rotateKey, glm::dvec3(0.0));
+    glm::dvec3 tr = getVec3(c, t, path, translateKey, glm::dvec3(0.0));
+    // Applied in the order scale, rotate about x, then y, then z, translate.
+    glm::dmat4 m = glm::translate(glm::dmat4(1.0), tr);
+    m = glm::rotate(m, glm::radians(rot.z), glm::dvec3(0, 0, 1));
+    m = glm::rotate(m, glm::radians(rot.y), glm::dvec3(0, 1, 0));
+    m = glm::rotate(m, glm::radians(rot.x), glm::dvec3(1, 0, 0));
+    return glm::scale(m, sc);
+}
+
+SceneObject parseObject(const Ctx& c, const toml::table& t, const std::string& path,
+                        const std::map<std::string, int>& textureIndex) {
+    checkKeys(c, t, path, {"mesh", "texture", "layer", "subdiv", "slices", "stacks", "major_radius",
+                           "minor_radius", "segments", "half_size", "divisions", "scale", "rotate",
+                           "translate", "tex_scale", "tex_rotate", "tex_offset"});
+    SceneObject o;
+    const std::string kind = getString(c, t, path, "mesh", "");
+    Mesh mesh;
+    if (kind == "teapot") {
+        mesh = makeTeapot(getInt(c, t, path, "subdiv", 4, 1, 64));
+    } else if (kind == "cube") {
+        mesh = makeCube();
+    } else if (kind == "sphere") {
+        mesh = makeSphere(getInt(c, t, path, "slices", 24, 3, 1024), getInt(c, t, path, "stacks", 12, 2, 1024));
+    } else if (kind == "torus") {
+        int seg = getInt(c, t, path, "segments", 32, 3, 1024);
+        mesh = makeTorus(getNumber(c, t, path, "major_radius", 1.0), getNumber(c, t, path, "minor_radius", 0.4),
+                         seg, std::max(3, seg / 2));
+    } else if (kind == "plane") {
+        double hs = getNumber(c, t, path, "half_size", 1.0);
+        if (hs <= 0) c.fail(find(t, "half_size"), join(path, "half_size"), "must be positive");
+        mesh = makePlane(hs, getInt(c, t, path, "divisions", 1, 1, 1024));
+    } else {
+        c.fail(find(t, "mesh") ? find(t, "mesh") : &t, join(path, "mesh"),
+               "unknown mesh '" + kind + "' (expected teapot, cube, sphere, torus or plane)");
+    }
+    o.name = kind;
+    const std::string texName = getString(c, t, path, "texture", "");
+    auto it = textureIndex.find(texName);
+    if (it == textureIndex.end())
+        c.fail(find(t, "texture") ? find(t, "texture") : &t, join(path, "texture"),
+               "no texture named '" + texName + "' in [textures]");
+    o.texture = it->second;
+    o.layer = getInt(c, t, path, "layer", 0, 0, 15);
+    // Solid texture space: s = tex_rotate(tex_scale * object position) + tex_offset.
+    glm::dmat4 texMap = placement(c, t, path, "tex_scale", "tex_rotate", "tex_offset");
+    o.mesh = mesh.transformed(placement(c, t, path, "scale", "rotate", "translate"), texMap);
+    return o;
+}
+
+toml::table parseToml(const std::string& text, const std::string& path) {
+    try {
+        return toml::parse(text, path);
+    } catch (const toml::parse_error& e) {
+        std::ostringstream os;
+        os << path << ":" << e.source().begin.line << ":" << e.source().begin.column << ": "
+           << e.description();
+        throw InputError(os.str());
+    }
+}
+
+std::string readFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path + ": cannot open file");
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+}
+
+}  // namespace
+
+int Scene::layers() const {
+    int n = 1;
+    for (const auto& o : objects) n = std::max(n, o.layer + 1);
+    return n;
+}
+
+Scene parseScene(const std::string& text, const std::string& path, int width, int height) {
+    const Ctx c{path};
+    toml::table root = parseToml(text, path);
+    checkKeys(c, root, "", {"title", "image", "camera", "textures", "objects"});
+    Scene sc;
+    sc.path = path;
+    sc.title = getString(c, root, "", "title", path);
+
+    const toml::table& img = requireTable(c, root, "", "image");
+    checkKeys(c, img, "image", {"width", "height", "background"});
+    sc.camera.width = width > 0 ? width : getInt(c, img, "image", "width", 512, 1, 16384);
+    sc.camera.height = height > 0 ? height : getInt(c, img, "image", "height", 512, 1, 16384);
+    sc.background = getColor(c, img, "image", "background", sc.background);
+
+    const toml::table& cam = requireTable(c, root, "", "camera");
+    checkKeys(c, cam, "camera", {"eye", "target", "up", "fovy", "near"});
+    sc.camera.eye = getVec3(c, cam, "camera", "eye", sc.camera.eye);
+    sc.camera.target = getVec3(c, cam, "camera", "target", sc.camera.target);
+    sc.camera.up = getVec3(c, cam, "camera", "up", sc.camera.up);
+    sc.camera.fovyDeg = getNumber(c, cam, "camera", "fovy", sc.camera.fovyDeg);
+    sc.camera.nearPlane = getNumber(c, cam, "camera", "near", sc.camera.nearPlane);
+    if (sc.camera.fovyDeg <= 0 || sc.camera.fovyDeg >= 180)
+        c.fail(find(cam, "fovy"), "camera.fovy", "must be in (0, 180) degrees");
+    if (sc.camera.nearPlane <= 0) c.fail(find(cam, "near"), "camera.near", "must be positive");
+    if (glm::length(sc.camera.target - sc.camera.eye) == 0.0)
+        c.fail(&cam, "camera.target", "must differ from camera.eye");
+    if (glm::length(glm::cross(sc.camera.target - sc.camera.eye, sc.camera.up)) == 0.0)
+        c.fail(&cam, "camera.up", "must not be parallel to the view direction");
+
+    std::map<std::string, int> textureIndex;
+    const toml::table& texs = requireTable(c, root, "", "textures");
+    for (auto&& [k, v] : texs) {
+        std::string tp = "textures." + std::string(k.str());
+        if (!v.is_table()) c.fail(&v, tp, "expected a table");
+        Texture tex = parseTextureTable(c, *v.as_table(), tp);
+        tex.name = std::string(k.str());
+        textureIndex[tex.name] = static_cast<int>(sc.textures.size());
+        sc.textures.push_back(std::move(tex));
+    }
+
+    const toml::node* on = find(root, "objects");
+    if (!on || !on->is_array_of_tables())
+        c.fail(on ? on : &root, "objects", "expected one or more [[objects]] tables");
+    auto oa = on->as_array();
+    for (size_t i = 0; i < oa->size(); ++i)
+        sc.objects.push_back(parseObject(c, *oa->get(i)->as_table(),
+                                         "objects[" + std::to_string(i) + "]", textureIndex));
+    return sc;
+}
+
+Scene loadScene(const std::string& path, int width, int height) {
+    return parseScene(readFile(path), path, width, height);
+}
+
+Texture parseTexture(const std::string& text, const std::string& path) {
+    const Ctx c{path};
+    toml::table root = parseToml(text, path);
+    Texture tex = parseTextureTable(c, root, "");
+    tex.name = path;
+    return tex;
+}
+
+Texture loadTexture(const std::string& path) { return parseTexture(readFile(path), path); }
+
+}  // namespace pst

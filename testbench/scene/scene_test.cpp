@@ -1,0 +1,148 @@
+// Scene and texture files: every paper scene parses; bad input names file, line and field.
+#include "scene.h"
+
+#include <cstdlib>
+#include <filesystem>
+
+#include <gtest/gtest.h>
+
+namespace pst {
+namespace {
+
+std::string sourceDir() {
+    const char* d = std::getenv("PST_SOURCE_DIR");
+    return d ? d : PST_SOURCE_DIR_DEFAULT;
+}
+
+const char* kMinimal = R"(
+[image]
+width = 32
+height = 16
+[camera]
+eye = [0.0, 0.0, 5.0]
+[textures.t]
+quadric = { A = 1.0 }
+colormap = { size = 4, wrap = "clamp", ramp = [[0.0, 0, 0, 0], [1.0, 1, 1, 1]] }
+[[textures.t.octaves]]
+amplitude = 0.5
+scale = [2.0, 3.0, 4.0]
+offset = [1.0, 2.0, 3.0]
+[[objects]]
+mesh = "cube"
+texture = "t"
+)";
+
+// Expects parseScene to fail with a message containing every fragment of `parts`.
+void expectError(const std::string& text, std::initializer_list<const char*> parts) {
+    try {
+        parseScene(text, "bad.toml");
+        FAIL() << "no error for:\n" << text;
+    } catch (const InputError& e) {
+        for (const char* p : parts) EXPECT_NE(std::string(e.what()).find(p), std::string::npos)
+            << "message '" << e.what() << "' lacks '" << p << "'";
+    }
+}
+
+TEST(Scene, MinimalParses) {
+    Scene s = parseScene(kMinimal, "min.toml");
+    EXPECT_EQ(s.camera.width, 32);
+    EXPECT_EQ(s.camera.height, 16);
+    ASSERT_EQ(s.textures.size(), 1u);
+    const Texture& t = s.textures[0];
+    EXPECT_EQ(t.quadric.A, 1.0);
+    ASSERT_EQ(t.octaves.size(), 1u);
+    EXPECT_EQ(t.octaves[0].M[1][1], 3.0);
+    EXPECT_EQ(t.octaves[0].M[0][1], 0.0);
+    EXPECT_EQ(t.octaves[0].offset, glm::dvec3(1.0, 2.0, 3.0));
+    EXPECT_EQ(t.clut.size(), 4);
+    EXPECT_EQ(t.clut.wrap(), WrapMode::Clamp);
+    // Entry i samples the ramp at (i + 0.5) / N.
+    EXPECT_DOUBLE_EQ(t.clut.entries()[0].r, 0.125);
+    EXPECT_DOUBLE_EQ(t.clut.entries()[3].g, 0.875);
+    ASSERT_EQ(s.objects.size(), 1u);
+    EXPECT_EQ(s.objects[0].mesh.positions.size(), s.objects[0].mesh.texcoords.size());
+}
+
+TEST(Scene, SizeOverride) {
+    Scene s = parseScene(kMinimal, "min.toml", 64, 48);
+    EXPECT_EQ(s.camera.width, 64);
+    EXPECT_EQ(s.camera.height, 48);
+}
+
+TEST(Scene, MatrixIsRowsAsWritten) {
+    std::string text = kMinimal;
+    text.replace(text.find("scale = [2.0, 3.0, 4.0]"), 23, "matrix = [[1, 2, 3], [4, 5, 6], [7, 8, 9]]");
+    Scene s = parseScene(text, "m.toml");
+    const glm::dmat3& M = s.textures[0].octaves[0].M;
+    EXPECT_EQ(M[1][0], 2.0);  // row 0, column 1
+    EXPECT_EQ(M[0][1], 4.0);  // row 1, column 0
+}
+
+TEST(Scene, EveryPaperSceneParses) {
+    const char* names[] = {"wood_teapot", "marble", "seascape", "fire", "planet", "moonrise",
+                           "zoneplate", "wood_torus"};
+    for (const char* n : names) {
+        SCOPED_TRACE(n);
+        Scene s = loadScene(sourceDir() + "/scenes/" + n + ".toml");
+        EXPECT_FALSE(s.objects.empty());
+        EXPECT_FALSE(s.textures.empty());
+    }
+    EXPECT_EQ(loadScene(sourceDir() + "/scenes/zoneplate.toml").camera.width, 256);
+}
+
+TEST(Scene, ErrorsNameFileLineAndField) {
+    std::string t = kMinimal;
+    // Bad value: line of the offending key.
+    std::string bad = t;
+    bad.replace(bad.find("size = 4"), 8, "size = 6");
+    expectError(bad, {"bad.toml:9:", "textures.t.colormap.size", "power of two"});
+    bad = t;
+    bad.replace(bad.find("amplitude = 0.5"), 15, "amplitude = nan");
+    expectError(bad, {"bad.toml:11:", "textures.t.octaves[0].amplitude", "NaN"});
+    bad = t;
+    bad.replace(bad.find("amplitude = 0.5"), 15, "amplitude = inf");
+    expectError(bad, {"bad.toml:11:", "amplitude", "infinite"});
+    bad = t;
+    bad.replace(bad.find("mesh = \"cube\""), 13, "mesh = \"dodecahedron\"");
+    expectError(bad, {"bad.toml:15:", "objects[0].mesh", "unknown mesh"});
+    bad = t;
+    bad.replace(bad.find("texture = \"t\""), 13, "texture = \"u\"");
+    expectError(bad, {"bad.toml:16:", "objects[0].texture", "no texture named 'u'"});
+    bad = t;
+    bad.replace(bad.find("amplitude = 0.5"), 15, "amplitud = 0.5");
+    expectError(bad, {"bad.toml:11:", "amplitud", "unknown key"});
+    bad = t;
+    bad.replace(bad.find("eye = [0.0, 0.0, 5.0]"), 21, "eye = [0.0, 5.0]");
+    expectError(bad, {"bad.toml:6:", "camera.eye", "expected 3 numbers"});
+    // Syntax error from toml++, with the line.
+    expectError("[image]\nwidth = = 3\n", {"bad.toml:2:"});
+    expectError(std::string(kMinimal) + "\n[[objects]]\nmesh = \"cube\"\ntexture = \"t\"\nfilter = 3\n",
+                {"bad.toml:21:", "objects[1].filter", "unknown key"});
+}
+
+TEST(Scene, TextureBlockFile) {
+    const std::string text = R"(
+quadric = { A = 50.0, E = 50.0 }
+filter = "box"
+norm = "l1"
+noise = { interp = "linear", corner = "value", hash = "perm256" }
+colormap = { size = 2, wrap = "mod", interp = "step", ramp = [[0.0, 0, 0, 0], [0.5, 1, 1, 1]] }
+)";
+    Texture t = parseTexture(text, "tex.toml");
+    EXPECT_EQ(t.filter, FilterKind::Box);
+    EXPECT_EQ(t.norm, GradNorm::L1);
+    EXPECT_EQ(t.noise.interp, NoiseInterp::Linear);
+    EXPECT_EQ(t.noise.corner, NoiseCorner::ValueOnly);
+    EXPECT_EQ(t.noise.hash, NoiseHash::Perm256);
+    EXPECT_EQ(t.clut.entries()[0], glm::dvec4(0, 0, 0, 1));
+    EXPECT_EQ(t.clut.entries()[1], glm::dvec4(1, 1, 1, 1));
+    try {
+        parseTexture("filter = \"gauss\"\n", "tex.toml");
+        FAIL();
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("tex.toml:1: filter: unknown value 'gauss'"), std::string::npos) << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace pst
