@@ -6,6 +6,20 @@
 // Screen convention: pixel (x, y) covers [x, x+1) x [y, y+1), y = 0 is the top row, the
 // default sample point is the pixel centre (x + 0.5, y + 0.5). dsdy is the derivative with
 // respect to y growing downward.
+//
+// Conventions (rasterizer.cpp):
+// - Viewport: x_screen = (ndc.x + 1) / 2 * width, y_screen = (1 - ndc.y) / 2 * height.
+// - Near clipping in homogeneous space at w = nearPlane (w = -z_eye); texcoords are carried
+//   linearly, which is exact there. No far plane.
+// - Fill rule: top-left. A sample exactly on an edge belongs to the triangle below a
+//   horizontal edge and to the triangle right of any other edge. Edge functions are evaluated
+//   with the edge's endpoints in a canonical order, so triangles sharing an edge get exactly
+//   opposite values: no cracks and no double coverage, for any winding.
+// - Depth: eye-space distance along the view axis, w = -z_eye, interpolated perspective-
+//   correctly (1/w is affine in screen space). The z-buffer keeps the strictly nearer sample;
+//   on an exact tie the fragment drawn first stays.
+// - s = N / D with N = sum l_i s_i / w_i, D = sum l_i / w_i (l_i screen barycentrics), and
+//   ds/dx = (N_x - s D_x) / D exactly at the sample point (likewise ds/dy).
 #pragma once
 
 #include <cstdint>
@@ -83,7 +97,8 @@ void rasterize(const Camera& camera, const Mesh& mesh, int objectId, FragmentBuf
 // The scan conversion under rasterize(), without any depth test: calls `visit` once for each
 // (triangle, pixel) whose sample point the triangle covers, with the fragment's depth, s and
 // Jacobian (object = objectId). Near clipping, the fill rule and the sample points are those
-// of rasterize(), so on a closed or tiled surface every sample is visited exactly once.
+// of rasterize(), so where triangles tile a surface (sharing edges and vertices), each
+// sample the surface covers is visited exactly once: no cracks, no double hits.
 using FragmentVisitor = std::function<void(const Fragment& frag)>;
 void scanMesh(const Camera& camera, const Mesh& mesh, int objectId, const FragmentVisitor& visit,
               const SampleOffset& offset = pixelCentre());
