@@ -6,6 +6,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include <glm/common.hpp>
+
 namespace pst {
 
 bool parseWrapMode(const std::string& name, WrapMode* out) {

@@ -44,7 +44,8 @@ glm::dvec4 bruteBox(const std::vector<glm::dvec4>& e, WrapMode wrap, double f, d
 // Sat: loop sum of entries lo+1..hi over hi - lo (entry hi if empty).
 glm::dvec4 bruteSat(const std::vector<glm::dvec4>& e, WrapMode wrap, double f, double w) {
     const double n = double(e.size()), u = f * n, W = w * n;
-    const long long lo = (long long)std::floor(u - 0.5 * W), hi = (long long)std::floor(u + 0.5 * W);
+    const long long lo = (long long)std::floor(u - 0.5 * W);
+    const long long hi = (long long)std::floor(u + 0.5 * W);
     if (hi == lo) return entry(e, hi, wrap);
     glm::dvec4 sum(0.0);
     for (long long i = lo + 1; i <= hi; ++i) sum += entry(e, i, wrap);
@@ -198,7 +199,7 @@ TEST(ColorMap, FiltersMatchBruteForce) {
             glm::dvec4 mean(0.0);
             for (const auto& c : e) mean += c / double(n);
             int cases[6] = {};  // W<1, W in [1,N), W>=N, past upper, past lower, past both
-            for (int k = 0; k < 3000; ++k) {
+            for (int k = 0; k < 20000; ++k) {
                 // f: mostly near [0, 1], sometimes far outside.
                 double f;
                 switch (k % 8) {
@@ -232,7 +233,9 @@ TEST(ColorMap, FiltersMatchBruteForce) {
                 expectNear(m.filter(f, w, FilterKind::Box), m.filterBox(f, w), 0, "dispatch", f, w);
             }
             for (int c = 0; c < 6; ++c)  // (W in [1, N) is empty for N = 1)
-                if (!(c == 1 && n == 1)) EXPECT_GT(cases[c], 20) << "case " << c << " N " << n;
+                if (!(c == 1 && n == 1)) {
+                    EXPECT_GT(cases[c], 100) << "case " << c << " N " << n;
+                }
         }
 }
 
@@ -277,7 +280,9 @@ TEST(ColorMap, DegenerateInputs) {
         }
         EXPECT_EQ(m.sample(nan), m.sample(0.0));
         EXPECT_EQ(m.sample(inf), m.at(wrap == WrapMode::Clamp ? 7 : 0));
-        if (wrap == WrapMode::Clamp) EXPECT_EQ(m.sample(-inf), e[0]);
+        if (wrap == WrapMode::Clamp) {
+            EXPECT_EQ(m.sample(-inf), e[0]);
+        }
     }
 }
 

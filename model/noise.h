@@ -70,7 +70,10 @@ struct NoiseTables {
     static constexpr double kLatticeOffset = 1000000.0;
 
     std::array<uint16_t, kHashSize> hash;   // srand48(1) shuffle of 0..4095
-    std::array<double, kValueSize> value;   // R[i] = Crc16(0.12345 i x3) * 2/65536 - 1
+    // R[i] = Crc16(0.12345 i x3) * 2/65536 - 1 = k/32768 - 1: exactly a signed 1.15
+    // fixed-point number. Where x = p + 1e6 >= 2^19 (a 2^-33 grid), every corner bracket
+    // 0.5 R + R dx + ... is exact in double; only the weights and the corner sum round.
+    std::array<double, kValueSize> value;
     std::array<uint8_t, kPermSize> perm;    // shuffle of 0..255 (see noise.cpp)
 
     static const NoiseTables& get();

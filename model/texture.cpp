@@ -49,7 +49,8 @@ const char* toString(GradNorm v) {
 }
 
 double evalF(const Texture& tex, const glm::dvec3& s, glm::dvec3* gradS) {
-    // Eq. 1: f = q(s) + sum_i a_i n(M_i s + o_i); eq. 10, 12: grad f = grad q + sum a_i M_i^T grad n.
+    // Eq. 1: f = q(s) + sum_i a_i n(M_i s + o_i);
+    // eq. 10, 12: grad_s f = grad q + sum_i a_i M_i^T grad n.
     double f = tex.quadric.value(s);
     glm::dvec3 g = gradS ? tex.quadric.gradient(s) : glm::dvec3(0.0);
     for (const Octave& o : tex.octaves) {

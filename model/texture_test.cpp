@@ -1,1 +1,208 @@
-// placeholder: being written
+// Tests of the texture function, its gradient (eq. 10-12) and the filter width.
+#include "texture.h"
+
+#include <cmath>
+#include <random>
+
+#include <gtest/gtest.h>
+
+namespace pst {
+namespace {
+
+Quadric fullQuadric() {
+    Quadric q;
+    q.A = 1.5; q.B = -0.7; q.C = 0.3; q.D = 2.1; q.E = -0.9;
+    q.F = 0.45; q.G = -1.3; q.H = 0.8; q.I = 0.6; q.J = -0.25;
+    return q;
+}
+
+Texture testTexture(const NoiseOptions& opt) {
+    Texture tex;
+    tex.quadric = fullQuadric();
+    tex.noise = opt;
+    double amp = 0.8, freq = 1.7;
+    for (int i = 0; i < 4; ++i) {
+        Octave o;
+        o.amplitude = amp;
+        // A rotation-ish, non-symmetric matrix scaled by the octave frequency.
+        o.M = freq * glm::dmat3(glm::dvec3(0.9, 0.3, -0.2 + 0.1 * i),   // column 0
+                                glm::dvec3(-0.25, 1.1, 0.4),           // column 1
+                                glm::dvec3(0.15 * i, -0.35, 0.95));    // column 2
+        o.offset = glm::dvec3(3.1 * i - 2.0, -1.7 * i, 0.37 + i);
+        tex.octaves.push_back(o);
+        amp *= 0.5;
+        freq *= 2.03;
+    }
+    return tex;
+}
+
+TEST(Texture, QuadricMatchesMatrixForm) {
+    const Quadric q = fullQuadric();
+    const glm::dmat4 Q = q.matrix();
+    // Eq. 4 layout (symmetric, GLM column-major m[col][row]).
+    EXPECT_EQ(Q[0][0], q.A); EXPECT_EQ(Q[1][0], q.B); EXPECT_EQ(Q[2][0], q.C);
+    EXPECT_EQ(Q[3][0], q.D); EXPECT_EQ(Q[1][1], q.E); EXPECT_EQ(Q[2][1], q.F);
+    EXPECT_EQ(Q[3][1], q.G); EXPECT_EQ(Q[2][2], q.H); EXPECT_EQ(Q[3][2], q.I);
+    EXPECT_EQ(Q[3][3], q.J);
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 4; ++r) EXPECT_EQ(Q[c][r], Q[r][c]);
+    std::mt19937_64 rng(1);
+    std::uniform_real_distribution<double> d(-3.0, 3.0);
+    for (int k = 0; k < 200; ++k) {
+        const glm::dvec3 s(d(rng), d(rng), d(rng));
+        const glm::dvec4 h(s, 1.0);
+        EXPECT_NEAR(q.value(s), glm::dot(h, Q * h), 1e-12);  // eq. 3 == eq. 4
+        // Gradient against central differences (q is quadratic: FD is exact up to rounding).
+        const glm::dvec3 g = q.gradient(s);
+        for (int a = 0; a < 3; ++a) {
+            glm::dvec3 sp = s, sm = s;
+            sp[a] += 1e-4;
+            sm[a] -= 1e-4;
+            EXPECT_NEAR(g[a], (q.value(sp) - q.value(sm)) / 2e-4, 1e-8);
+        }
+    }
+    // Linear terms are kept (eq. 11 as printed would drop them): grad at 0 is 2 (D, G, I).
+    EXPECT_EQ(q.gradient(glm::dvec3(0.0)), 2.0 * glm::dvec3(q.D, q.G, q.I));
+}
+
+// True if any octave's lattice coordinate is within `margin` of a lattice plane.
+bool nearLatticePlane(const Texture& tex, const glm::dvec3& s, double margin) {
+    for (const Octave& o : tex.octaves) {
+        const glm::dvec3 p = o.M * s + o.offset;
+        for (int a = 0; a < 3; ++a)
+            if (std::abs(p[a] - std::round(p[a])) < margin) return true;
+    }
+    return false;
+}
+
+TEST(Texture, GradientMatchesFiniteDifferences) {
+    std::mt19937_64 rng(2);
+    std::uniform_real_distribution<double> d(-4.0, 4.0);
+    // h = 1e-5: the noise input is rounded to the 2^-33 grid of x = p + 1e6, so a smaller
+    // step loses digits; the truncation error h^2 f'''/6 is still ~1e-8.
+    const double h = 1e-5;
+    for (NoiseInterp in : {NoiseInterp::SCurve, NoiseInterp::Linear})
+        for (NoiseCorner co : {NoiseCorner::ValueGradient, NoiseCorner::ValueOnly})
+            for (NoiseHash ha : {NoiseHash::Rayshade4096, NoiseHash::Perm256}) {
+                const Texture tex = testTexture({in, co, ha});
+                int tested = 0;
+                for (int k = 0; k < 2000; ++k) {
+                    const glm::dvec3 s(d(rng), d(rng), d(rng));
+                    // Keep the stencil inside one cell of every octave (Linear is only C0).
+                    if (nearLatticePlane(tex, s, 100 * h)) continue;
+                    ++tested;
+                    glm::dvec3 g;
+                    const double f = evalF(tex, s, &g);
+                    // f itself is eq. 1 written out.
+                    double expect = tex.quadric.value(s);
+                    for (const Octave& o : tex.octaves)
+                        expect += o.amplitude * noise(o.M * s + o.offset, tex.noise);
+                    ASSERT_NEAR(f, expect, 1e-12);
+                    EXPECT_EQ(evalF(tex, s), f);
+                    for (int a = 0; a < 3; ++a) {
+                        glm::dvec3 sp = s, sm = s;
+                        sp[a] += h;
+                        sm[a] -= h;
+                        const double fd = (evalF(tex, sp) - evalF(tex, sm)) / (2 * h);
+                        ASSERT_NEAR(g[a], fd, 1e-5 * std::max(1.0, std::abs(fd)))
+                            << toString(in) << " " << toString(co) << " " << toString(ha)
+                            << " s = " << s.x << " " << s.y << " " << s.z << " axis " << a;
+                    }
+                }
+                EXPECT_GT(tested, 1000);
+            }
+}
+
+TEST(Texture, FilterWidthNorms) {
+    const glm::dvec3 g(1.0, -2.0, 3.0), dsdx(1.0, 0.0, 0.0), dsdy(0.0, -1.0, -1.0);
+    // gx = 1, gy = 2 - 3 = -1.
+    EXPECT_DOUBLE_EQ(filterWidth(g, dsdx, dsdy, GradNorm::Euclid), std::sqrt(2.0));
+    EXPECT_DOUBLE_EQ(filterWidth(g, dsdx, dsdy, GradNorm::MaxHalfMin), 1.5);
+    EXPECT_DOUBLE_EQ(filterWidth(g, dsdx, dsdy, GradNorm::L1), 2.0);
+    const glm::dvec3 ex(0.0, 0.0, -1.0), ey(0.5, 0.0, 0.0);  // gx = -3, gy = 0.5
+    EXPECT_DOUBLE_EQ(filterWidth(g, ex, ey, GradNorm::Euclid), std::sqrt(9.25));
+    EXPECT_DOUBLE_EQ(filterWidth(g, ex, ey, GradNorm::MaxHalfMin), 3.25);
+    EXPECT_DOUBLE_EQ(filterWidth(g, ex, ey, GradNorm::L1), 3.5);
+    // The approximations bound the exact norm: |g| <= max + min/2 <= L1 (<= sqrt2 |g|).
+    std::mt19937_64 rng(3);
+    std::normal_distribution<double> d;
+    for (int k = 0; k < 1000; ++k) {
+        const glm::dvec3 gs(d(rng), d(rng), d(rng)), a(d(rng), d(rng), d(rng)),
+            b(d(rng), d(rng), d(rng));
+        const double e = filterWidth(gs, a, b, GradNorm::Euclid);
+        const double m = filterWidth(gs, a, b, GradNorm::MaxHalfMin);
+        const double l = filterWidth(gs, a, b, GradNorm::L1);
+        EXPECT_LE(e, m * (1 + 1e-12));
+        EXPECT_LE(m, l * (1 + 1e-12));
+        EXPECT_LE(l, std::sqrt(2.0) * e * (1 + 1e-12));
+    }
+}
+
+TEST(Texture, ZonePlate) {
+    // Eq. 16: f = 50 s^2 + 50 t^2; section 3.4: grad = (100 s, 100 t), ds/dx = dt/dy = 1/256,
+    // filter width (100 s + 100 t) / 256 with the L1 norm.
+    Texture tex;
+    tex.quadric.A = 50;
+    tex.quadric.E = 50;
+    tex.norm = GradNorm::L1;
+    std::vector<glm::dvec4> zebra;
+    for (int i = 0; i < 16; ++i) zebra.push_back(glm::dvec4(i % 2, i % 2, i % 2, 1));
+    tex.clut = ColorMap(zebra, WrapMode::Mod);
+    tex.filter = FilterKind::Box;
+    const glm::dvec3 dsdx(1.0 / 256, 0, 0), dsdy(0, 1.0 / 256, 0);
+    for (double s : {0.1, 0.5, 0.9})
+        for (double t : {0.2, 0.7}) {
+            const TextureSample r = shade(tex, glm::dvec3(s, t, 0.3), dsdx, dsdy);
+            EXPECT_NEAR(r.f, 50 * s * s + 50 * t * t, 1e-12);
+            EXPECT_NEAR(r.gradS.x, 100 * s, 1e-12);
+            EXPECT_NEAR(r.gradS.y, 100 * t, 1e-12);
+            EXPECT_EQ(r.gradS.z, 0.0);
+            EXPECT_NEAR(r.filterWidth, (100 * s + 100 * t) / 256, 1e-12);
+            EXPECT_EQ(r.rgba, tex.clut.filterBox(r.f, r.filterWidth));
+            // The wide filter averages the zebra to grey.
+            if (r.filterWidth * 16 > 8) {
+                EXPECT_NEAR(r.rgba.r, 0.5, 0.05);
+            }
+        }
+}
+
+TEST(Texture, ShadeUsesTheGivenFilter) {
+    Texture tex = testTexture({});
+    std::mt19937_64 rng(4);
+    tex.clut = ColorMap([&] {
+        std::vector<glm::dvec4> e(64);
+        std::uniform_real_distribution<double> d(0, 1);
+        for (auto& c : e) c = glm::dvec4(d(rng), d(rng), d(rng), 1);
+        return e;
+    }(), WrapMode::Clamp);
+    tex.norm = GradNorm::MaxHalfMin;
+    const glm::dvec3 s(0.3, -1.2, 2.5), dsdx(0.01, 0.002, 0), dsdy(-0.003, 0.004, 0.02);
+    for (FilterKind k : {FilterKind::None, FilterKind::MipNearest, FilterKind::MipLinear,
+                         FilterKind::Sat, FilterKind::Box}) {
+        tex.filter = k;
+        const TextureSample a = shade(tex, s, dsdx, dsdy);
+        const TextureSample b = shade(tex, s, dsdx, dsdy, k);
+        glm::dvec3 g;
+        EXPECT_EQ(a.f, evalF(tex, s, &g));
+        EXPECT_EQ(a.gradS, g);
+        EXPECT_EQ(a.filterWidth, filterWidth(g, dsdx, dsdy, GradNorm::MaxHalfMin));
+        EXPECT_EQ(a.rgba, tex.clut.filter(a.f, a.filterWidth, k));
+        EXPECT_EQ(b.rgba, a.rgba);
+    }
+    EXPECT_EQ(shade(tex, s, dsdx, dsdy, FilterKind::None).rgba,
+              tex.clut.sample(evalF(tex, s)));
+}
+
+TEST(Texture, GradNormNamesRoundTrip) {
+    for (GradNorm v : {GradNorm::Euclid, GradNorm::MaxHalfMin, GradNorm::L1}) {
+        GradNorm r;
+        ASSERT_TRUE(parseGradNorm(toString(v), &r));
+        EXPECT_EQ(r, v);
+    }
+    EXPECT_STREQ(toString(GradNorm::MaxHalfMin), "max_half_min");
+    GradNorm r;
+    EXPECT_FALSE(parseGradNorm("l2", &r));
+}
+
+}  // namespace
+}  // namespace pst

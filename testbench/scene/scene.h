@@ -8,6 +8,7 @@
 
 #include <glm/vec4.hpp>
 
+#include "input_error.h"
 #include "mesh.h"
 #include "rasterizer.h"
 #include "texture.h"
@@ -19,12 +20,6 @@ class table;
 }  // namespace toml
 
 namespace pst {
-
-// A user-input error: "file:line: field: what is wrong".
-class InputError : public std::runtime_error {
-public:
-    using std::runtime_error::runtime_error;
-};
 
 struct SceneObject {
     std::string name;   // mesh kind and index, for messages
