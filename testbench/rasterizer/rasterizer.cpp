@@ -100,7 +100,9 @@ bool before(const glm::dvec2& a, const glm::dvec2& b) {
 // value is the exact negative: every sample is strictly inside one of them or on the edge.
 // On the edge (E == 0) the top-left rule picks one: with a before b, dy > 0 or (dy == 0,
 // dx > 0); the triangle owns the edge if it lies right of a non-horizontal edge (sign < 0,
-// a left edge) or below a horizontal one (sign > 0, a top edge).
+// a left edge) or below a horizontal one (sign > 0, a top edge). At a shared vertex E is
+// exactly 0 (dx * dy - dy * dx) as long as the compiler does not contract it into an FMA
+// (x86-64 without -march=...: it cannot); the fill-rule tests would catch that.
 struct Edge {
     double ax, ay, dx, dy, sign;
     bool ownsTies;
@@ -116,7 +118,9 @@ struct Edge {
         sign = swapped ? -orientation : orientation;
         ownsTies = dy > 0.0 ? sign < 0.0 : sign > 0.0;
     }
-    double operator()(double px, double py) const { return sign * (dx * (py - ay) - dy * (px - ax)); }
+    double operator()(double px, double py) const {
+        return sign * (dx * (py - ay) - dy * (px - ax));
+    }
     bool covers(double e) const { return e > 0.0 || (e == 0.0 && ownsTies); }
     // Screen-space slopes of E.
     double slopeX() const { return -sign * dy; }

@@ -53,7 +53,8 @@ Mesh planeZ0(double halfSize, int n) {
     return makePlane(halfSize, n).transformed(model, model);
 }
 
-FragmentBuffer render(const Camera& cam, const Mesh& mesh, const SampleOffset& off = pixelCentre()) {
+FragmentBuffer render(const Camera& cam, const Mesh& mesh,
+                      const SampleOffset& off = pixelCentre()) {
     FragmentBuffer fb(cam.width, cam.height);
     rasterize(cam, mesh, 0, fb, nullptr, off);
     return fb;
@@ -67,7 +68,9 @@ bool finite(const glm::dvec3& v) {
     return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
 }
 
-double maxAbs(const glm::dvec3& v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+double maxAbs(const glm::dvec3& v) {
+    return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+}
 
 // World-space ray through screen point (sx, sy), built from the camera's definition by hand
 // (not from view()/projection()): direction with unit component along the view axis.
@@ -96,9 +99,11 @@ TEST(Rasterizer, JacobianMatchesCentralDifferences) {
     Camera cam = makeCamera({0.7, 1.6, 3.5}, {0.0, -0.2, 0.0}, 160, 120);
     Mesh mesh = makePlane(2.5, 4).transformed(tiltedModel(), skewTexture());
     const double h = 1e-3;
-    FragmentBuffer c = render(cam, mesh), xp = render(cam, mesh, shifted(h, 0.0)),
-                   xm = render(cam, mesh, shifted(-h, 0.0)), yp = render(cam, mesh, shifted(0.0, h)),
-                   ym = render(cam, mesh, shifted(0.0, -h));
+    FragmentBuffer c = render(cam, mesh);
+    FragmentBuffer xp = render(cam, mesh, shifted(h, 0.0));
+    FragmentBuffer xm = render(cam, mesh, shifted(-h, 0.0));
+    FragmentBuffer yp = render(cam, mesh, shifted(0.0, h));
+    FragmentBuffer ym = render(cam, mesh, shifted(0.0, -h));
     int checked = 0;
     for (int y = 0; y < cam.height; ++y)
         for (int x = 0; x < cam.width; ++x) {
@@ -451,7 +456,8 @@ TEST(Rasterizer, FillRuleTiesOnEdgesAndVertex) {
             scanMesh(cam, one, 0, [&](const Fragment& f) {
                 if (f.x == sx && f.y == sy) {
                     ++hits;
-                    found = (fan.positions[tri[0]] + fan.positions[tri[1]] + fan.positions[tri[2]]) / 3.0;
+                    const auto& p = fan.positions;
+                    found = (p[tri[0]] + p[tri[1]] + p[tri[2]]) / 3.0;
                 }
             }, corner);
         }
@@ -490,6 +496,17 @@ TEST(Rasterizer, FastEnoughAt512) {
                 teapot.triangles.size(), tTeapot, tGround);
     EXPECT_LT(tTeapot, 0.1);
     EXPECT_LT(tGround, 0.1);
+    // The teapot fills a good part of the frame, with finite values in front of the camera.
+    FragmentBuffer fb = render(teapotCam, teapot);
+    int covered = 0;
+    for (const Fragment& f : fb.fragments()) {
+        if (f.object < 0) continue;
+        ++covered;
+        ASSERT_TRUE(finite(f.s) && finite(f.dsdx) && finite(f.dsdy));
+        ASSERT_GT(f.depth, 5.0);
+        ASSERT_LT(f.depth, 13.0);
+    }
+    EXPECT_GT(covered, 512 * 512 / 5);
 }
 
 }  // namespace
