@@ -3,8 +3,12 @@
 //   pst eval              texture block + fragment file -> f, grad_s f, w, filtered RGBA
 //   pst fragments SCENE   the rasterizer's fragment stream as a fragment file
 //   pst compare A B       RMS / PSNR between two images
-// Exit status: 0 success, 1 failure while running, 2 bad input or usage.
+//   pst render SCENE --profile P   the same scene through the RTL (and golden) model of profile P
+//   pst regress           every scene x every profile through the RTL; non-zero exit on any mismatch
+// Exit status: 0 success, 1 failure (including RTL mismatches), 2 bad input or usage.
+#include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -14,7 +18,10 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
+#include "driver.h"
+#include "fixed.h"
 #include "fragments.h"
+#include "hwrender.h"
 #include "imageio.h"
 #include "render.h"
 #include "scene.h"
@@ -44,6 +51,113 @@ std::function<void(const std::string&, double)> progressPrinter(const std::strin
         }
         last = stage;
     };
+}
+
+// Hardware-model options shared by render --profile, regress and eval --model.
+struct HwArgs {
+    std::vector<std::string> profiles;
+    std::string model = "rtl";      // rtl | golden
+    SimOptions sim;
+    std::string trace;
+};
+
+std::string sourceDir() {
+    const char* d = std::getenv("PST_SOURCE_DIR");
+    return d ? d : PST_SOURCE_DIR_DEFAULT;
+}
+
+Profile profileByName(const std::string& name) { return loadProfile(profilePath(name, sourceDir())); }
+
+nlohmann::json hwJson(const std::string& scene, const Profile& p, const std::string& model,
+                      const HwRenderResult& r, int w, int h) {
+    nlohmann::json j;
+    j["scene"] = scene;
+    j["profile"] = p.name;
+    j["model"] = model;
+    j["width"] = w;
+    j["height"] = h;
+    j["fragments"] = r.fragments;
+    j["passed"] = r.passed;
+    j["mismatches"] = r.mismatches;
+    j["pixels_checked"] = r.pixels;
+    j["cycles"] = r.cycles;
+    j["cycles_per_pixel"] = r.cyclesPerPixel;
+    j["seconds"] = {{"rtl", r.rtlSeconds}, {"golden", r.goldenSeconds}, {"reference", r.referenceSeconds}};
+    auto rate = [&](double sec) { return sec > 0 ? double(r.fragments) / sec : 0.0; };
+    j["pixels_per_second"] = {{"rtl", rate(r.rtlSeconds)}, {"golden", rate(r.goldenSeconds)},
+                              {"reference", rate(r.referenceSeconds)}};
+    j["vs_reference"] = {{"max_lsb", r.vsReference.maxLsb}, {"rms", r.vsReference.rms},
+                         {"psnr", r.vsReference.psnr}, {"within_1lsb_percent", r.vsReference.within1Lsb}};
+    j["notes"] = r.notes;
+    return j;
+}
+
+int runHardwareRender(const RenderArgs& a, const HwArgs& hw) {
+    const int w = a.size ? a.size : a.width, h = a.size ? a.size : a.height;
+    Scene scene = loadScene(a.scene, w, h);
+    const std::string stem = fs::path(a.scene).stem().string();
+    int rc = 0;
+    for (const std::string& name : hw.profiles) {
+        const Profile p = profileByName(name);
+        const fs::path dir = a.outDir.empty() ? fs::path("out") / stem / p.name
+                                              : (hw.profiles.size() > 1 ? fs::path(a.outDir) / p.name : fs::path(a.outDir));
+        std::unique_ptr<RtlModel> rtl;
+        if (hw.model == "rtl") {
+            SimOptions so = hw.sim;
+            if (!hw.trace.empty()) so.traceFile = hw.trace;
+            rtl = makeRtlModel(p.name, so);
+        }
+        HwRenderOptions ho;
+        ho.progress = progressPrinter(stem + "/" + p.name, a.quiet);
+        HwRenderResult r = renderHardware(scene, p, rtl.get(), ho);
+        fs::create_directories(dir);
+        writeImage(r.hardware, (dir / (hw.model + ".png")).string());
+        writeImage(r.reference, (dir / "reference.png").string());
+        writeImage(r.difference, (dir / "difference.png").string());
+        writeTextFile((dir / "summary.json").string(),
+                      hwJson(a.scene, p, hw.model, r, scene.camera.width, scene.camera.height).dump(2) + "\n");
+        std::cout << stem << " [" << p.name << ", " << hw.model << "]: " << r.fragments << " fragments";
+        if (rtl) std::cout << ", " << r.mismatches << " mismatches, " << r.cyclesPerPixel << " cycles/pixel";
+        std::cout << ", PSNR vs reference " << r.vsReference.psnr << " dB, " << r.vsReference.within1Lsb
+                  << "% within 1 LSB -> " << dir.string() << "\n";
+        for (const auto& n : r.notes) std::cout << "  note: " << n << "\n";
+        if (rtl && !r.passed) {
+            std::cout << r.scoreboard;
+            rc = 1;
+        }
+    }
+    return rc;
+}
+
+int runRegress(const std::vector<std::string>& scenes, int size, const HwArgs& hw, const std::string& outPath,
+               bool quiet) {
+    nlohmann::json all = nlohmann::json::array();
+    int failures = 0;
+    std::printf("%-14s %-8s %9s %10s %8s %9s %10s %12s\n", "scene", "profile", "pixels", "mismatch", "PSNR",
+                "<=1LSB%", "cyc/pixel", "rtl px/s");
+    for (const std::string& path : scenes) {
+        Scene scene = loadScene(path, size, size);
+        const std::string stem = fs::path(path).stem().string();
+        for (const std::string& name : hw.profiles) {
+            const Profile p = profileByName(name);
+            auto rtl = makeRtlModel(p.name, hw.sim);
+            HwRenderOptions ho;
+            if (!quiet) ho.progress = {};
+            HwRenderResult r = renderHardware(scene, p, rtl.get(), ho);
+            std::printf("%-14s %-8s %9lld %10zu %8.2f %9.2f %10.3f %12.0f\n", stem.c_str(), p.name.c_str(),
+                        r.fragments, r.mismatches, r.vsReference.psnr, r.vsReference.within1Lsb, r.cyclesPerPixel,
+                        r.rtlSeconds > 0 ? double(r.fragments) / r.rtlSeconds : 0.0);
+            std::fflush(stdout);
+            if (!r.passed) {
+                ++failures;
+                std::cout << r.scoreboard;
+            }
+            all.push_back(hwJson(path, p, "rtl", r, scene.camera.width, scene.camera.height));
+        }
+    }
+    if (!outPath.empty()) writeTextFile(outPath, all.dump(2) + "\n");
+    std::printf("%s: %zu runs, %d failed\n", failures ? "FAILED" : "PASSED", all.size(), failures);
+    return failures ? 1 : 0;
 }
 
 int runRender(const RenderArgs& a) {
@@ -94,13 +208,50 @@ int runRender(const RenderArgs& a) {
 }
 
 int runEval(const std::string& texPath, const std::string& fragPath, const std::string& outPath,
-            const std::string& filterName) {
+            const std::string& filterName, const std::string& model, const HwArgs& hw) {
     Texture tex = loadTexture(texPath);
     FilterKind kind = tex.filter;
     if (!filterName.empty() && !parseFilterKind(filterName, &kind))
         throw InputError("--filter: unknown filter '" + filterName + "' (expected none, mip, mip_linear, sat or box)");
     const auto frags = loadFragments(fragPath);
     std::ostringstream os;
+    if (model != "reference") {
+        // The hardware models: same columns, from the fixed-point values.
+        if (hw.profiles.size() != 1) throw InputError("--profile: eval takes exactly one profile");
+        const Profile p = profileByName(hw.profiles[0]);
+        tex.filter = kind;
+        TextureProgram prog = programTexture(p, tex);
+        std::vector<FragmentFx> in;
+        for (size_t i = 0; i < frags.size(); ++i)
+            in.push_back(quantizeFragment(p, uint32_t(i), frags[i].s, frags[i].dsdx, frags[i].dsdy));
+        GoldenPipeline golden(p);
+        for (const auto& [a, d] : prog.writes) golden.write(a, d);
+        std::vector<PixelFx> out;
+        for (const auto& f : in) out.push_back(golden.eval(f));
+        if (model == "rtl") {
+            auto rtl = makeRtlModel(p.name, hw.sim);
+            rtl->write(prog.writes);
+            std::vector<PixelFx> got = rtl->run(in, prog.activeOctaves);
+            size_t bad = 0;
+            for (size_t i = 0; i < got.size(); ++i) bad += !(got[i] == out[i]);
+            if (bad) std::cerr << "warning: rtl differs from golden at " << bad << " of " << got.size() << " fragments\n";
+            out = got;
+        }
+        os << "# f  df/ds df/dt df/dr  w  r g b a   (texture " << texPath << ", profile " << p.name << ", model "
+           << model << ", filter code " << prog.filterKind << ")\n";
+        char buf[512];
+        for (const auto& px : out) {
+            const glm::dvec4 c = unpackRgba(p, px.rgba);
+            std::snprintf(buf, sizeof buf, "%.17g  %.17g %.17g %.17g  %.17g  %.17g %.17g %.17g %.17g\n",
+                          fx::toDouble(px.f, p.f.fracBits), fx::toDouble(px.grad[0], p.grad.fracBits),
+                          fx::toDouble(px.grad[1], p.grad.fracBits), fx::toDouble(px.grad[2], p.grad.fracBits),
+                          fx::toDouble(px.w, p.widthFrac) / p.clutSize(), c.r, c.g, c.b, c.a);
+            os << buf;
+        }
+        if (outPath.empty() || outPath == "-") std::cout << os.str();
+        else writeTextFile(outPath, os.str());
+        return 0;
+    }
     os << "# f  df/ds df/dt df/dr  w  r g b a   (texture " << texPath << ", filter " << toString(kind) << ")\n";
     char buf[512];
     for (const auto& fr : frags) {
@@ -152,12 +303,41 @@ int main(int argc, char** argv) {
     render->add_option("-j,--threads", ra.threads, "Threads (default: all cores)")->check(CLI::Range(0, 256));
     render->add_flag("-q,--quiet", ra.quiet, "No progress on stderr");
 
-    std::string texPath, fragPath, evalOut, filterName;
+    HwArgs hw;
+    auto addSimOptions = [&hw](CLI::App* sc) {
+        sc->add_option("--sim-seed", hw.sim.seed, "Seed of the random input gaps and output stalls");
+        sc->add_option("--gap-rate", hw.sim.inputGapRate, "Probability of an idle input cycle")->check(CLI::Range(0.0, 0.95));
+        sc->add_option("--stall-rate", hw.sim.outputStallRate, "Probability of out_ready low in a cycle")->check(CLI::Range(0.0, 0.95));
+        sc->add_option("--timeout", hw.sim.timeoutCycles, "Cycle limit of one stream (0 = automatic)");
+    };
+    render->add_option("--profile", hw.profiles, "Hardware profile(s): full, reduced or a profile file; renders through the RTL");
+    render->add_option("--model", hw.model, "Hardware model for --profile: rtl or golden")->check(CLI::IsMember({"rtl", "golden"}));
+    render->add_option("--trace", hw.trace, "FST waveform of the RTL run (off unless given)");
+    render->add_option("--trace-start", hw.sim.traceStart, "First traced cycle");
+    render->add_option("--trace-end", hw.sim.traceEnd, "Last traced cycle");
+    addSimOptions(render);
+
+    std::string texPath, fragPath, evalOut, filterName, evalModel = "reference";
     auto* eval = app.add_subcommand("eval", "Evaluate a texture at the fragments of a fragment file");
     eval->add_option("-t,--texture", texPath, "Texture block (TOML, the keys of [textures.NAME])")->required()->check(CLI::ExistingFile);
     eval->add_option("-f,--fragments", fragPath, "Fragment file: s t r ds/dx dt/dx dr/dx ds/dy dt/dy dr/dy per line")->required()->check(CLI::ExistingFile);
     eval->add_option("-o,--out", evalOut, "Output file (default stdout)");
     eval->add_option("--filter", filterName, "Override the texture's filter: none, mip, mip_linear, sat, box");
+    eval->add_option("--model", evalModel, "reference (double), golden (fixed point) or rtl (verilated)")
+        ->check(CLI::IsMember({"reference", "golden", "rtl"}));
+    eval->add_option("--profile", hw.profiles, "Hardware profile for --model golden|rtl");
+
+    std::vector<std::string> regScenes;
+    int regSize = 64;
+    std::string regOut;
+    bool regQuiet = false;
+    auto* regress = app.add_subcommand("regress", "Every scene through every profile's RTL, checked against the golden model");
+    regress->add_option("scenes", regScenes, "Scene files (default: scenes/*.toml)")->check(CLI::ExistingFile);
+    regress->add_option("--size", regSize, "Square image size")->check(CLI::Range(1, 4096));
+    regress->add_option("--profile", hw.profiles, "Profiles (default: every verilated profile)");
+    regress->add_option("-o,--out", regOut, "JSON summary file");
+    regress->add_flag("-q,--quiet", regQuiet, "No progress");
+    addSimOptions(regress);
 
     std::string fragScene, fragOut;
     int fragSize = 0, fragLayer = 0;
@@ -179,8 +359,20 @@ int main(int argc, char** argv) {
         return rc == 0 ? 0 : 2;
     }
     try {
-        if (*render) return runRender(ra);
-        if (*eval) return runEval(texPath, fragPath, evalOut, filterName);
+        if (*render) return hw.profiles.empty() ? runRender(ra) : runHardwareRender(ra, hw);
+        if (*eval) {
+            if (evalModel != "reference" && hw.profiles.empty()) hw.profiles = {"full"};
+            return runEval(texPath, fragPath, evalOut, filterName, evalModel, hw);
+        }
+        if (*regress) {
+            if (hw.profiles.empty()) hw.profiles = rtlProfiles();
+            if (regScenes.empty()) {
+                for (const auto& e : fs::directory_iterator(fs::path(sourceDir()) / "scenes"))
+                    if (e.path().extension() == ".toml") regScenes.push_back(e.path().string());
+                std::sort(regScenes.begin(), regScenes.end());
+            }
+            return runRegress(regScenes, regSize, hw, regOut, regQuiet);
+        }
         if (*frag) return runFragments(fragScene, fragSize, fragLayer, fragOut);
         if (*cmp) return runCompare(cmpA, cmpB);
     } catch (const InputError& e) {

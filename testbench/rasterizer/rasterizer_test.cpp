@@ -471,31 +471,12 @@ TEST(Rasterizer, FillRuleTiesOnEdgesAndVertex) {
     EXPECT_LT(c.y, 0.0);
 }
 
-// ---- Speed --------------------------------------------------------------------------------
+// ---- A full-size frame -------------------------------------------------------------------
 
-double secondsToRasterize(const Camera& cam, const Mesh& mesh) {
-    double best = 1e9;
-    for (int rep = 0; rep < 3; ++rep) {
-        FragmentBuffer fb(cam.width, cam.height);
-        auto t0 = std::chrono::steady_clock::now();
-        rasterize(cam, mesh, 0, fb);
-        std::chrono::duration<double> dt = std::chrono::steady_clock::now() - t0;
-        best = std::min(best, dt.count());
-    }
-    return best;
-}
-
-TEST(Rasterizer, FastEnoughAt512) {
+// (Timings live in the benchmark, testbench/rasterizer/rasterizer_bench.cpp.)
+TEST(Rasterizer, TeapotAt512IsFiniteAndFillsTheFrame) {
     Camera teapotCam = makeCamera({0.0, 4.0, 8.0}, {0.2, 1.4, 0.0}, 512, 512);
     Mesh teapot = makeTeapot(6);
-    Camera groundCam = makeCamera({0.0, 1.0, 0.0}, {0.0, 0.8, -10.0}, 512, 512);
-    Mesh ground = makePlane(1000.0, 1);
-    double tTeapot = secondsToRasterize(teapotCam, teapot);
-    double tGround = secondsToRasterize(groundCam, ground);
-    std::printf("512x512: teapot (%zu triangles) %.4f s, ground plane %.4f s\n",
-                teapot.triangles.size(), tTeapot, tGround);
-    EXPECT_LT(tTeapot, 0.1);
-    EXPECT_LT(tGround, 0.1);
     // The teapot fills a good part of the frame, with finite values in front of the camera.
     FragmentBuffer fb = render(teapotCam, teapot);
     int covered = 0;

@@ -1,0 +1,60 @@
+// Golden (bit-accurate) model of the arithmetic stages of docs/HARDWARE.md:
+//   stage 3  quadric            rtl/pst_quadric.sv        quadricFx
+//   stage 4  octave term        rtl/pst_octave_term.sv    octaveTermFx
+//            accumulation       rtl/pst_top.sv            accumulateF / accumulateGrad
+//   stage 5  filter width       rtl/pst_filter_width.sv   filterWidthFx
+//            integer sqrt       rtl/pst_isqrt.sv          isqrtFx
+// Same steps and rounding as the RTL, bit for bit. Every value is a sign-extended integer of
+// its format (value = integer / 2^frac); products and sums are exact in fx::i128 (the bit
+// budget of each step is written next to it in arith_fx.cpp).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "fixed.h"
+#include "profile.h"
+
+namespace pst {
+
+// Stage 3. s: 3 x Coord; coef: A..J of eq. 3 (Quadric format).
+//   v = (Q [s 1])_xyz exact (QuadricFrac + CoordFrac fraction bits),
+//   q = s . v + (D s + G t + I r + J) exact (QuadricFrac + 2 CoordFrac) = eq. 3,
+//   *q = sat_F(floor(q to FFrac)),  gradq[k] = sat_Grad(floor(2 v_k to GradFrac)).
+void quadricFx(const Profile& p, const int64_t s[3], const int64_t coef[10], int64_t* q, int64_t gradq[3]);
+
+// Stage 4, one octave. n: Q4.NoiseOutFrac; g: 3 x Q6.NoiseOutFrac; a: Amplitude;
+// gm: 9 x GradMatrix, row-major GM = a M^T (gm[3 r + c]).
+//   *fterm = sat_F(floor(a n to FFrac)),  gterm[r] = sat_Grad(floor(sum_c gm[3r+c] g[c] to GradFrac)).
+void octaveTermFx(const Profile& p, int64_t n, const int64_t g[3], int64_t a, const int64_t gm[9],
+                  int64_t* fterm, int64_t gterm[3]);
+
+// Stage 4, the accumulation (done by the integrator, pst_top): the exact sum of q and the
+// active octaves' terms (wide enough for 16 terms), saturated once at the end.
+//   accumulateF    = sat_F(q + sum terms)
+//   accumulateGrad = sat_Grad(gradq_k + sum terms_k), one component.
+int64_t accumulateF(const Profile& p, int64_t q, const std::vector<int64_t>& terms);
+int64_t accumulateGrad(const Profile& p, int64_t gradq, const std::vector<int64_t>& terms);
+
+// Stage 5. grad: 3 x Grad; j: 6 x Jacobian (ds/dx, dt/dx, dr/dx, ds/dy, dt/dy, dr/dy).
+//   gx = grad . dsdx, gy = grad . dsdy exact (GradFrac + JacobianFrac),
+//   Wx = floor(gx N to WidthFrac) (N = 2^Log2Clut: a shift), Wy likewise,
+//   ax = min(|Wx|, WMax), ay = min(|Wy|, WMax)   (WMax = 2^WW - 1, WW = Log2Clut + 2 + WidthFrac:
+//        every norm is >= max(ax, ay), so this clamp never changes the saturated result and
+//        keeps the square root's input at 2 WW + 1 bits),
+//   norm by p.filterNorm: Euclid isqrt(ax^2 + ay^2); MaxHalfMin max + floor(min / 2); L1 ax + ay,
+//   W = min(norm, WMax): unsigned, Log2Clut + 2 integer bits, WidthFrac fraction bits.
+int64_t filterWidthFx(const Profile& p, const int64_t grad[3], const int64_t j[6]);
+
+// floor(sqrt(x)) by the digit-by-digit (restoring) method of rtl/pst_isqrt.sv, two input bits
+// per step from the top. x < 2^126.
+uint64_t isqrtFx(unsigned __int128 x);
+
+// Shared step: floor(v / 2^sh) (sh < 0: exact v * 2^-sh), saturated to a signed `bits`-bit
+// number: what the RTL does with a wide exact value and its format.
+int64_t shiftSatSigned(fx::i128 v, int sh, int bits);
+
+// Width of the W format (unsigned): Log2Clut + 2 + WidthFrac.
+inline int widthBits(const Profile& p) { return p.widthIntBits() + p.widthFrac; }
+
+}  // namespace pst

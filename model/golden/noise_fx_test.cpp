@@ -1,0 +1,261 @@
+// Tests of the golden octave transform and noise unit (noise_fx.h) against the double
+// reference (model/noise.h): same hash indices, exact ROM values, and errors within the bounds
+// derived from the formats (noiseFxErrorBound, derivation in noise_fx.cpp).
+#include "noise_fx.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <random>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "fixed.h"
+#include "noise.h"
+#include "profile.h"
+
+namespace pst {
+namespace {
+
+std::string sourceDir() {
+    if (const char* env = std::getenv("PST_SOURCE_DIR")) return env;
+#ifdef PST_SOURCE_DIR_DEFAULT
+    return PST_SOURCE_DIR_DEFAULT;
+#else
+    return ".";
+#endif
+}
+
+Profile profile(const char* name) { return loadProfile(sourceDir() + "/rtl/configs/" + name + ".toml"); }
+
+// The noise unit's input for a point p: s = quantize(p) (Coord), M = identity, o = 0, through
+// octaveTransformFx. Also returns the exact point the unit sees (pq) and its lattice cell.
+struct UnitInput {
+    int lat[3];
+    int64_t frac[3];
+    double pq[3];
+    int64_t cell[3];  // floor(pq)
+};
+
+UnitInput unitInput(const Profile& prof, const double p[3]) {
+    UnitInput in;
+    int64_t s[3], M[9] = {}, o[3] = {0, 0, 0};
+    for (int k = 0; k < 3; ++k) s[k] = fx::quantize(p[k], prof.coord.intBits, prof.coord.fracBits);
+    for (int k = 0; k < 3; ++k) M[4 * k] = fx::quantize(1.0, prof.matrix.intBits, prof.matrix.fracBits);
+    octaveTransformFx(prof, s, M, o, in.lat, in.frac);
+    for (int k = 0; k < 3; ++k) {
+        in.cell[k] = int64_t(fx::floorShift(s[k], prof.coord.fracBits));
+        in.pq[k] = double(in.cell[k]) + std::ldexp(double(in.frac[k]), -prof.noiseLatticeFrac);
+    }
+    return in;
+}
+
+TEST(NoiseFx, ValueRomIsTheReferenceTable) {
+    const auto& R = NoiseTables::get().value;
+    Profile prof = profile("full");
+    for (int vf : {15, 11, 7, 1}) {
+        prof.noiseValueFrac = vf;
+        for (int i = 0; i < NoiseTables::kValueSize; ++i) {
+            const double v16 = R[i] * 32768.0;
+            ASSERT_EQ(v16, std::floor(v16)) << "R[" << i << "] is not Q1.15";
+            EXPECT_EQ(noiseValueRom(prof, i), int64_t(std::floor(std::ldexp(R[i], vf)))) << "i " << i;
+        }
+    }
+}
+
+TEST(NoiseFx, OctaveTransformMatchesLongDouble) {
+    // acc is at most ~60 bits: exact in long double (64-bit mantissa on x86-64).
+    static_assert(std::numeric_limits<long double>::digits >= 64, "needs x87 long double");
+    for (const char* name : {"full", "reduced"}) {
+        const Profile prof = profile(name);
+        std::mt19937_64 rng(11);
+        auto rnd = [&](const FixedFormat& f) {
+            return fx::wrapSigned(int64_t(rng()), f.width());
+        };
+        for (int it = 0; it < 20000; ++it) {
+            int64_t s[3], M[9], o[3];
+            for (auto& v : s) v = rnd(prof.coord);
+            for (auto& v : M) v = rnd(prof.matrix);
+            for (auto& v : o) v = rnd(prof.offset);
+            int lat[3];
+            int64_t frac[3];
+            octaveTransformFx(prof, s, M, o, lat, frac);
+            for (int r = 0; r < 3; ++r) {
+                long double p = std::ldexp((long double)o[r], -prof.offset.fracBits);
+                for (int j = 0; j < 3; ++j)
+                    p += std::ldexp((long double)M[3 * r + j] * (long double)s[j],
+                                    -(prof.matrix.fracBits + prof.coord.fracBits));
+                const long double scaled = std::floor(std::ldexp(p, prof.noiseLatticeFrac));
+                const long double ip = std::floor(std::ldexp(scaled, -prof.noiseLatticeFrac));
+                const int64_t f = int64_t(scaled - std::ldexp(ip, prof.noiseLatticeFrac));
+                const int64_t L = ((int64_t(std::fmod(ip, 4096.0L)) + 576) % 4096 + 4096) % 4096;
+                ASSERT_EQ(frac[r], f) << name << " it " << it << " r " << r;
+                ASSERT_EQ(lat[r], L) << name << " it " << it << " r " << r;
+            }
+        }
+    }
+}
+
+TEST(NoiseFx, HashIsTheReferenceHash) {
+    for (const char* name : {"full", "reduced"}) {
+        for (NoiseHash hash : {NoiseHash::Rayshade4096, NoiseHash::Perm256}) {
+            Profile prof = profile(name);
+            prof.noise.hash = hash;
+            std::mt19937_64 rng(5);
+            // Beyond +-2048 too: the lattice index wraps at 4096 (perm256 at 256).
+            std::uniform_real_distribution<double> coord(-50.0, 50.0), wide(-500.0, 500.0);
+            for (int it = 0; it < 10000; ++it) {
+                double p[3];
+                for (double& c : p) c = it % 2 ? coord(rng) : wide(rng);
+                const UnitInput in = unitInput(prof, p);
+                int64_t n, g[3];
+                NoiseFxTrace tr;
+                noiseFx(prof, in.lat, in.frac, &n, g, &tr);
+                for (int k = 0; k < 3; ++k) ASSERT_EQ(in.lat[k], int((in.cell[k] + 1000000) & 0xfff));
+                for (int c = 0; c < 8; ++c) {
+                    const int ix = int(in.cell[0]) + 1000000 + (c & 1);
+                    const int iy = int(in.cell[1]) + 1000000 + ((c >> 1) & 1);
+                    const int iz = int(in.cell[2]) + 1000000 + ((c >> 2) & 1);
+                    ASSERT_EQ(tr.m[c], noiseHash(ix, iy, iz, hash)) << name << " corner " << c;
+                }
+            }
+        }
+    }
+}
+
+TEST(NoiseFx, HashOfLatticeIndexWraps) {
+    // lat is the lattice index mod 4096 (mod 256 for perm256 after & 0xff): corner + 1 of
+    // 4095 is 0 (and of 255 is 256 -> 0 for perm256), as noiseHash of the unwrapped index.
+    const Profile prof = profile("full");
+    std::mt19937 rng(3);
+    for (NoiseHash hash : {NoiseHash::Rayshade4096, NoiseHash::Perm256}) {
+        Profile p = prof;
+        p.noise.hash = hash;
+        for (int it = 0; it < 5000; ++it) {
+            int lat[3];
+            for (int& l : lat) {
+                const int pick = int(rng() % 8);
+                l = pick == 0 ? 4095 : pick == 1 ? 255 : pick == 2 ? 0 : int(rng() % 4096);
+            }
+            const int64_t frac[3] = {0, 1, 2};
+            int64_t n, g[3];
+            NoiseFxTrace tr;
+            noiseFx(p, lat, frac, &n, g, &tr);
+            for (int c = 0; c < 8; ++c)
+                ASSERT_EQ(tr.m[c], noiseHash(lat[0] + (c & 1), lat[1] + ((c >> 1) & 1), lat[2] + (c >> 2), hash));
+        }
+    }
+}
+
+TEST(NoiseFx, LatticePointIsHalfR) {
+    // u = 0: every weight is 0, n = 0.5 R[m] of corner 0 exactly (when OF >= VF + 1),
+    // and the gradient is (R[m+1], R[m+2], R[m+3]) (plus 0 from ds = 0 for scurve).
+    const Profile prof = profile("full");
+    const auto& R = NoiseTables::get().value;
+    for (int L : {0, 1, 575, 576, 4095}) {
+        const int lat[3] = {L, (L * 7) & 4095, (L * 13 + 5) & 4095};
+        const int64_t frac[3] = {0, 0, 0};
+        int64_t n, g[3];
+        NoiseFxTrace tr;
+        noiseFx(prof, lat, frac, &n, g, &tr);
+        EXPECT_EQ(fx::toDouble(n, prof.noiseOutFrac), 0.5 * R[tr.m[0]]);
+        for (int k = 0; k < 3; ++k) EXPECT_EQ(fx::toDouble(g[k], prof.noiseOutFrac), R[tr.m[0] + 1 + k]);
+    }
+}
+
+// Golden against noise(p_q) (the point the unit sees: arithmetic error only) and against
+// noise(p) (plus the input quantization p - p_q), over 10k random points in [-50, 50]^3.
+void checkAgainstReference(const Profile& prof, const std::string& label) {
+    const NoiseFxErrorBound bound = noiseFxErrorBound(prof);
+    std::mt19937_64 rng(1234);
+    std::uniform_real_distribution<double> coord(-50.0, 50.0);
+    double maxV = 0, maxG = 0, maxVp = 0, maxGp = 0, sumV2 = 0;
+    int gradSkipped = 0;
+    const int count = 10000;
+    for (int it = 0; it < count; ++it) {
+        double p[3];
+        for (double& c : p) c = coord(rng);
+        const UnitInput in = unitInput(prof, p);
+        int64_t n, g[3];
+        noiseFx(prof, in.lat, in.frac, &n, g);
+        const double nf = fx::toDouble(n, prof.noiseOutFrac);
+        double gf[3];
+        for (int k = 0; k < 3; ++k) gf[k] = fx::toDouble(g[k], prof.noiseOutFrac);
+
+        glm::dvec3 gq, gp;
+        const double nq = noise(glm::dvec3(in.pq[0], in.pq[1], in.pq[2]), prof.noise, &gq);
+        const double np = noise(glm::dvec3(p[0], p[1], p[2]), prof.noise, &gp);
+
+        const double ev = std::fabs(nf - nq);
+        sumV2 += ev * ev;
+        maxV = std::max(maxV, ev);
+        ASSERT_LE(ev, bound.value) << label << " p = " << p[0] << " " << p[1] << " " << p[2];
+        for (int k = 0; k < 3; ++k) {
+            const double eg = std::fabs(gf[k] - gq[k]);
+            maxG = std::max(maxG, eg);
+            ASSERT_LE(eg, bound.grad) << label << " axis " << k << " p = " << p[0] << " " << p[1] << " " << p[2];
+        }
+
+        // Input quantization: |n(p) - n(p_q)| <= gMax sum |dp|; the gradient moves by at most
+        // hessianRow max|dp| inside one cell (scurve's gradient is continuous across cells;
+        // linear's is not, so its gradient is compared only when p and p_q share the cell).
+        double sumDp = 0, maxDp = 0;
+        bool sameCell = true;
+        for (int k = 0; k < 3; ++k) {
+            const double dp = std::fabs(p[k] - in.pq[k]);
+            sumDp += dp;
+            maxDp = std::max(maxDp, dp);
+            sameCell = sameCell && std::floor(p[k]) == double(in.cell[k]);
+        }
+        const double evp = std::fabs(nf - np);
+        maxVp = std::max(maxVp, evp);
+        ASSERT_LE(evp, bound.value + bound.gradMax * sumDp) << label;
+        if (prof.noise.interp == NoiseInterp::SCurve || sameCell) {
+            for (int k = 0; k < 3; ++k) {
+                const double eg = std::fabs(gf[k] - gp[k]);
+                maxGp = std::max(maxGp, eg);
+                ASSERT_LE(eg, bound.grad + bound.hessianRow * maxDp) << label << " axis " << k;
+            }
+        } else {
+            ++gradSkipped;
+        }
+    }
+    std::printf("[ noise_fx ] %-44s |n-n(pq)| max %.3g rms %.3g (bound %.3g); |g-g(pq)| max %.3g (bound %.3g); "
+                "vs n(p): max %.3g, grad %.3g%s\n",
+                label.c_str(), maxV, std::sqrt(sumV2 / count), bound.value, maxG, bound.grad, maxVp, maxGp,
+                gradSkipped ? (" (" + std::to_string(gradSkipped) + " cell-crossing grads skipped)").c_str() : "");
+}
+
+TEST(NoiseFx, FullProfileTracksReference) {
+    const Profile prof = profile("full");
+    const NoiseFxErrorBound b = noiseFxErrorBound(prof);
+    // The derived bounds for the full formats: about 1.1e-3 (value) and 4e-3 (gradient).
+    EXPECT_LT(b.value, 1.2e-3);
+    EXPECT_LT(b.grad, 1e-2);
+    checkAgainstReference(prof, "full");
+}
+
+TEST(NoiseFx, ReducedProfileTracksReference) {
+    const Profile prof = profile("reduced");
+    checkAgainstReference(prof, "reduced");
+}
+
+// Every interpolation / corner / hash variant with each profile's formats.
+TEST(NoiseFx, VariantsTrackReference) {
+    for (const char* name : {"full", "reduced"}) {
+        for (NoiseInterp interp : {NoiseInterp::SCurve, NoiseInterp::Linear})
+            for (NoiseCorner corner : {NoiseCorner::ValueGradient, NoiseCorner::ValueOnly})
+                for (NoiseHash hash : {NoiseHash::Rayshade4096, NoiseHash::Perm256}) {
+                    Profile prof = profile(name);
+                    prof.noise = {interp, corner, hash};
+                    checkAgainstReference(prof, std::string(name) + " formats " + toString(interp) + "/" +
+                                                    toString(corner) + "/" + toString(hash));
+                }
+    }
+}
+
+}  // namespace
+}  // namespace pst

@@ -1,0 +1,129 @@
+#include "pipeline.h"
+
+#include <sstream>
+
+#include "arith_fx.h"
+#include "clut_filter_fx.h"
+#include "fixed.h"
+#include "noise_fx.h"
+
+namespace pst {
+
+const char* toString(Stage s) {
+    switch (s) {
+        case Stage::Transform: return "octave transform (lattice index, fraction)";
+        case Stage::Noise: return "noise (value, gradient)";
+        case Stage::Quadric: return "quadric (q, grad q)";
+        case Stage::Accumulate: return "octave accumulation (f, grad f)";
+        case Stage::FilterWidth: return "filter width (W)";
+        case Stage::ClutFilter: return "colour-table filter (RGBA)";
+        default: return "none";
+    }
+}
+
+GoldenPipeline::GoldenPipeline(const Profile& profile)
+    : profile_(profile), oct_(profile.octaves), clut_(std::make_unique<ClutFilterFx>(profile)) {}
+GoldenPipeline::~GoldenPipeline() = default;
+GoldenPipeline::GoldenPipeline(const GoldenPipeline& o)
+    : profile_(o.profile_), fault_(o.fault_), ctrl_(o.ctrl_), active_(o.active_), oct_(o.oct_),
+      clut_(std::make_unique<ClutFilterFx>(*o.clut_)) {
+    std::copy(o.quad_, o.quad_ + 10, quad_);
+}
+GoldenPipeline& GoldenPipeline::operator=(const GoldenPipeline& o) {
+    if (this != &o) *this = GoldenPipeline(o);
+    return *this;
+}
+
+// Register map of docs/HARDWARE.md; signed fields are the low bits of the word, sign-extended.
+void GoldenPipeline::write(uint16_t addr, uint32_t data) {
+    const Profile& p = profile_;
+    if (addr == 0x0000) {
+        ctrl_ = data & 7u;  // [0] clamp, [2:1] filter kind
+    } else if (addr == 0x0001) {
+        const int bits = [&] { int b = 0; while ((1 << b) < p.octaves + 1) ++b; return b; }();
+        active_ = int(fx::wrapUnsigned(data, bits));  // the RTL keeps $clog2(Octaves + 1) bits
+    } else if (addr >= 0x0010 && addr < 0x001a) {
+        quad_[addr - 0x0010] = fx::wrapSigned(data, p.quadric.width());
+    } else if (addr >= 0x0100 && addr < 0x0100 + 32 * p.octaves) {
+        Octave& o = oct_[(addr - 0x0100) / 32];
+        const int k = (addr - 0x0100) % 32;
+        if (k < 9) o.m[k] = fx::wrapSigned(data, p.matrix.width());
+        else if (k < 12) o.o[k - 9] = fx::wrapSigned(data, p.offset.width());
+        else if (k == 12) o.a = fx::wrapSigned(data, p.amplitude.width());
+        else if (k < 22) o.gm[k - 13] = fx::wrapSigned(data, p.gradMatrix.width());
+    }
+    clut_->write(addr, data);  // decodes the table ranges itself
+}
+
+PixelFx GoldenPipeline::eval(const FragmentFx& fr, StageTrace* trace) const {
+    const Profile& p = profile_;
+    StageTrace local;
+    StageTrace& t = trace ? *trace : local;
+    t = StageTrace();
+    t.octaves = std::min(active_, p.octaves);
+    auto bump = [&](Stage s) { return fault_ == s ? 1 : 0; };
+
+    // Stage 3: quadric (independent of the octaves).
+    quadricFx(p, fr.s, quad_, &t.q, t.gradq);
+    t.q = fx::wrapSigned(t.q + bump(Stage::Quadric), p.f.width());
+
+    // Stages 1, 2, 4: per octave transform, noise, term; then the accumulation.
+    fx::i128 fsum = t.q;
+    fx::i128 gsum[3] = {t.gradq[0], t.gradq[1], t.gradq[2]};
+    for (int i = 0; i < t.octaves; ++i) {
+        const Octave& o = oct_[i];
+        octaveTransformFx(p, fr.s, o.m, o.o, t.lat[i], t.frac[i]);
+        if (i == 0 && fault_ == Stage::Transform)
+            t.frac[i][0] = int64_t(fx::wrapUnsigned(t.frac[i][0] + 1, p.noiseLatticeFrac));
+        noiseFx(p, t.lat[i], t.frac[i], &t.n[i], t.g[i]);
+        if (i == 0) t.n[i] += bump(Stage::Noise);
+        octaveTermFx(p, t.n[i], t.g[i], o.a, o.gm, &t.fterm[i], t.gterm[i]);
+        fsum += t.fterm[i];
+        for (int k = 0; k < 3; ++k) gsum[k] += t.gterm[i][k];
+    }
+    t.f = fx::satSigned(fsum, p.f.width());
+    if (fault_ == Stage::Accumulate) t.f = fx::wrapSigned(t.f + 1, p.f.width());
+    for (int k = 0; k < 3; ++k) t.grad[k] = fx::satSigned(gsum[k], p.grad.width());
+
+    // Stage 5: filter width.
+    t.w = filterWidthFx(p, t.grad, fr.j);
+    if (fault_ == Stage::FilterWidth) t.w = int64_t(fx::wrapUnsigned(t.w + 1, p.widthIntBits() + p.widthFrac));
+
+    // Stage 6: colour-table filter.
+    t.rgba = clut_->filter(t.f, t.w, (ctrl_ & 1u) != 0, int((ctrl_ >> 1) & 3u));
+    if (fault_ == Stage::ClutFilter) t.rgba ^= 1u;
+
+    PixelFx px;
+    px.tag = fr.tag;
+    px.rgba = t.rgba;
+    px.f = t.f;
+    for (int k = 0; k < 3; ++k) px.grad[k] = t.grad[k];
+    px.w = t.w;
+    return px;
+}
+
+std::string StageTrace::describe(const Profile& p) const {
+    std::ostringstream os;
+    for (int i = 0; i < octaves; ++i) {
+        os << "  octave " << i << ": lattice (" << lat[i][0] << ", " << lat[i][1] << ", " << lat[i][2]
+           << ") frac (" << frac[i][0] << ", " << frac[i][1] << ", " << frac[i][2] << ")  n " << n[i]
+           << " (" << fx::toDouble(n[i], p.noiseOutFrac) << ")  g (" << g[i][0] << ", " << g[i][1] << ", "
+           << g[i][2] << ")  fterm " << fterm[i] << "\n";
+    }
+    os << "  quadric: q " << q << " (" << fx::toDouble(q, p.f.fracBits) << ")  grad q (" << gradq[0]
+       << ", " << gradq[1] << ", " << gradq[2] << ")\n";
+    os << "  accumulate: f " << f << " (" << fx::toDouble(f, p.f.fracBits) << ")  grad (" << grad[0]
+       << ", " << grad[1] << ", " << grad[2] << ")\n";
+    os << "  filter width: W " << w << " (" << fx::toDouble(w, p.widthFrac) << " entries)\n";
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "0x%08x", rgba);
+    os << "  colour-table filter: RGBA " << buf << "\n";
+    return os.str();
+}
+
+bool operator==(const PixelFx& a, const PixelFx& b) {
+    return a.tag == b.tag && a.rgba == b.rgba && a.f == b.f && a.grad[0] == b.grad[0] &&
+           a.grad[1] == b.grad[1] && a.grad[2] == b.grad[2] && a.w == b.w;
+}
+
+}  // namespace pst

@@ -1,0 +1,53 @@
+// A hardware profile (rtl/configs/NAME.toml): the widths and choices of one build of the
+// pipeline. The RTL gets the same numbers as -G parameters through scripts/profile.py.
+#pragma once
+
+#include <string>
+
+#include "noise.h"
+#include "texture.h"
+
+namespace pst {
+
+// A signed two's-complement format: `intBits` integer bits including the sign, `fracBits`
+// fraction bits; value = integer / 2^fracBits.
+struct FixedFormat {
+    int intBits = 0;
+    int fracBits = 0;
+    int width() const { return intBits + fracBits; }
+};
+
+struct Profile {
+    std::string name;
+    std::string path;
+
+    // [pipeline]
+    int octaves = 8;        // K noise terms held
+    int noiseUnits = 8;     // noise units in parallel
+    int log2Clut = 8;       // N = 2^log2Clut colour-table entries
+    int colourBits = 8;     // bits per RGBA channel
+    // [noise]
+    NoiseOptions noise;
+    int noiseValueFrac = 15;    // R table fraction bits
+    int noiseLatticeFrac = 16;  // fraction bits of T_i s into the noise unit
+    int noiseOutFrac = 16;      // noise value and gradient fraction bits
+    // [filter]
+    GradNorm filterNorm = GradNorm::Euclid;
+    int filterRecipFrac = 18;
+    // [formats]
+    FixedFormat coord, jacobian, matrix, offset, amplitude, gradMatrix, quadric, f, grad;
+    int widthFrac = 8;
+
+    int clutSize() const { return 1 << log2Clut; }
+    int cyclesPerOctavePass() const { return (octaves + noiseUnits - 1) / noiseUnits; }
+    // W = w N in entries: unsigned, log2Clut + 2 integer bits, widthFrac fraction bits.
+    int widthIntBits() const { return log2Clut + 2; }
+};
+
+// Reads and checks a profile; throws InputError naming file, line and field.
+Profile loadProfile(const std::string& path);
+Profile parseProfile(const std::string& text, const std::string& path);
+// "full" -> <source>/rtl/configs/full.toml; a path is used as it is.
+std::string profilePath(const std::string& nameOrPath, const std::string& sourceDir);
+
+}  // namespace pst

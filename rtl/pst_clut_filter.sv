@@ -1,0 +1,354 @@
+// pst_clut_filter: stage 6 of docs/HARDWARE.md, the colour-table filter of Hart et al. 1999
+// section 3.3 (colour-table MIP map, summed-area colour table eq. 13-15 with every edge case).
+// Mirrored bit for bit by model/golden/clut_filter_fx.cpp; the double reference whose
+// semantics this approximates is model/colormap.cpp (filterSat, filterMip).
+//
+// Parameters (profile keys, rtl/configs/NAME.toml, through scripts/profile.py):
+//   FInt, FFrac      format of f (QFInt.FFrac, signed): width of f_i and of the window ends.
+//   Log2Clut         N = 2^Log2Clut table entries (1..11, the register map's ranges): RAM
+//                    depths, MIP levels, SAT and count widths, W's integer bits (Log2Clut + 2).
+//   ColourBits       bits per RGBA channel (1..8): RAM widths, output width.
+//   WidthFrac        fraction bits of W: window-end precision and the MIP blend weight.
+//   FilterRecipFrac  RF, fraction bits of the SAT reciprocal ROM: the division's precision.
+//
+// Tables: RAMs written through the register port (clk_i, we_i, addr_i, wdata_i); other
+// addresses are ignored. Reads are combinational (a later revision may register them).
+//   0x1000 + e      clut[e], e < N: RGBA packed, ColourBits each, R at bit 0
+//   0x2000 + 4e + c csat[e] channel c: sum of clut[0..e] channel c, ColourBits + Log2Clut bits
+//   0x4000 + e      MIP levels 1..Log2Clut concatenated: level k entry j at N - (N >> (k-1)) + j
+//                   (entry N-1 is writable and never read)
+//
+// Arithmetic (f_i = f 2^FFrac signed, w_i = W 2^WidthFrac unsigned with W < 4N; u = f N):
+//   P = max(WidthFrac + 1, FFrac - Log2Clut): u and W/2 are exact at P fraction bits.
+//   iu = floor(u) (FInt + Log2Clut bits, exact, no saturation needed);
+//   pidx = clamp ? clamp(iu, 0, N-1) : iu mod N (low Log2Clut bits).
+//   kind 0 (none): clut[pidx].
+//   kind 1, 2 (MIP): W < 1 gives clut[pidx] (the point sample). Otherwise Lw = position of the
+//     leading one of floor(W) (= floor(lg W), 0..Log2Clut+1), Lc = min(Lw, Log2Clut);
+//     a = level Lc entry pidx >> Lc (level 0 = clut; level Log2Clut = the single mean entry),
+//     b = level min(Lc+1, Log2Clut) entry pidx >> min(Lc+1, Log2Clut) (index by the shifted
+//     point index = the paper's clut_i[f / 2^i], extended by mod/clamp at the level's size);
+//     t = 0 for kind 1 or Lw >= Log2Clut, else t = W / 2^Lw - 1 = the bits of W below its
+//     leading one, exact at TFrac = Log2Clut - 1 + WidthFrac bits. This is the LINEAR
+//     approximation of lg W - Lw (the reference blends with lg W - Lw; they differ by at most
+//     0.0861 |b - a|, the maximum of lg(1+x) - x).
+//     channel = (a 2^TFrac + (b - a) t + 2^(TFrac-1)) >> TFrac (round half up; kind 1 = a).
+//   kind 3 (SAT): lo = floor(u - W/2), hi = floor(u + W/2) (exact at P bits); the window
+//     covers entries lo+1..hi; count = hi - lo <= ceil(W) <= 4N (CountBits). There is no
+//     W < 1 special case (as in the reference filterSat): W = 0 gives count 0 = clut[floor(u)],
+//     0 < W < 1 gives entry hi = floor(u + W/2) or the mean of two entries.
+//     mod:   [mean]   W >= N: (csat[N-1] + N/2) >> Log2Clut (the paper's "w >= N" rule;
+//                     same as the reference);
+//            [entry]  count = 0: clut[hi mod N];
+//            [inside] / [wrap] with hm = hi mod N, lm = lo mod N:
+//                     sum = csat[hm] - csat[lm] + (hm <= lm ? csat[N-1] : 0). hm > lm is the
+//                     whole-window-inside case (eq. 15); hm <= lm is either of the paper's two
+//                     mod edge cases (csat[f+w/2-N] + csat[N-1] - csat[f-w/2-1] and
+//                     csat[f+w/2] + csat[N-1] - csat[N+f-w/2-1]), one formula in modular
+//                     indices; lm = N-1 stands for csat[-1] = 0; count = N (hm = lm) is the
+//                     whole table. count <= N here because W < N.
+//     clamp: [entry]  count = 0, or lo >= N-1 (window entirely past the top), or hi < 0
+//                     (entirely past the bottom): clut[clamp(hi, 0, N-1)];
+//            [inside] csat[hi] - csat[lo] (csat[-1] = 0);
+//            [above]  hi >= N:  (hi - (N-1)) clut[N-1] + csat[N-1] - csat[lo];
+//            [below]  lo < -1:  -(lo+1) clut[0] + csat[hi];
+//            [both]   both extension terms: -(lo+1) clut[0] + csat[N-1] + (hi - (N-1)) clut[N-1].
+//                     lo and hi may lie anywhere in f's range (they are exact at IW bits) and
+//                     need no clamping: the windows entirely outside are the [entry] case, and
+//                     every extension count used is <= count <= 4N (below: -(lo+1) <= hi - lo
+//                     as hi >= 0; above: hi - (N-1) <= hi - lo as lo <= N-2), so the counts
+//                     are taken exactly at CountBits bits. Results are exact sums for any f.
+//     Sums are held at SumBits = ColourBits + Log2Clut + 2 bits (enough for tables built by
+//     the driver; arbitrary RAM contents wrap, and the golden model wraps the same way).
+//     channel = min(2^ColourBits - 1, (sum recip[count] + 2^(RF-1)) >> RF),
+//     recip[c] = round(2^RF / c) (ROM, c = 1..4N). Error against the exact sum / count:
+//     <= 1/2 + (sum / count) |c recip[c] - 2^RF| / 2^RF (final rounding + reciprocal).
+`default_nettype none
+
+module pst_clut_filter #(
+  parameter int FInt            = 12,
+  parameter int FFrac           = 20,
+  parameter int Log2Clut        = 8,
+  parameter int ColourBits      = 8,
+  parameter int WidthFrac       = 8,
+  parameter int FilterRecipFrac = 18,
+  localparam int FW  = FInt + FFrac,              // f
+  localparam int WW  = Log2Clut + 2 + WidthFrac,  // W = w N in entries, < 4N
+  localparam int CB4 = 4 * ColourBits             // packed RGBA
+) (
+  input  logic           clk_i,
+  // Table write port (register map; other addresses are ignored).
+  input  logic           we_i,
+  input  logic [15:0]    addr_i,
+  input  logic [31:0]    wdata_i,
+  // Filter input: colour index f, width W, wrap mode (0 mod, 1 clamp), kind.
+  input  logic [FW-1:0]  f_i,
+  input  logic [WW-1:0]  w_i,
+  input  logic           clamp_i,
+  input  logic [1:0]     kind_i,
+  output logic [CB4-1:0] rgba_o
+);
+
+  // ---------------------------------------------------------------------------------------
+  // Derived widths
+  // ---------------------------------------------------------------------------------------
+  localparam int N         = 1 << Log2Clut;
+  localparam int CB        = ColourBits;
+  localparam int RF        = FilterRecipFrac;
+  // Common fraction bits of u = f N and W/2 (both exact there).
+  localparam int P         = (WidthFrac + 1 > FFrac - Log2Clut) ? WidthFrac + 1 : FFrac - Log2Clut;
+  localparam int UShift    = Log2Clut - FFrac + P;   // f -> u at P bits: left shift (>= 0)
+  localparam int HShift    = P - WidthFrac - 1;      // W -> W/2 at P bits: left shift (>= 0)
+  localparam int UW        = FW + UShift;            // u at P bits, signed
+  localparam int HW        = WW + HShift;            // W/2 at P bits, unsigned
+  localparam int EW        = ((UW > HW + 1) ? UW : HW + 1) + 1;  // u -+ W/2, signed, no overflow
+  localparam int IUW       = UW - P;                 // floor(u) = FInt + Log2Clut bits, signed
+  localparam int IW        = EW - P;                 // lo, hi, signed
+  localparam int CountBits = Log2Clut + 3;           // count <= ceil(W) <= 4N
+  localparam int SatBits   = ColourBits + Log2Clut;  // csat[N-1] <= N (2^CB - 1)
+  localparam int SumBits   = ColourBits + Log2Clut + 2;  // sum <= count (2^CB - 1) < 4N 2^CB
+  localparam int RecipBits = FilterRecipFrac + 1;    // recip[1] = 2^RF
+  localparam int ProdBits  = SumBits + RecipBits;    // sum * recip, exact
+  localparam int QBits     = ProdBits - FilterRecipFrac + 1;  // rounded quotient (+1: carry)
+  localparam int TFrac     = Log2Clut - 1 + WidthFrac;  // blend weight: W / 2^Lw - 1, exact for Lw < Log2Clut
+  localparam int AccW      = ColourBits + TFrac + 2;   // a 2^TFrac + (b - a) t, signed
+  localparam int LW        = $clog2(Log2Clut + 2);      // level / leading-one index 0..Log2Clut+1
+  localparam int RomDepth  = 4 * N + 1;                // recip[0..4N]
+  localparam logic [CB-1:0] MaxC = {CB{1'b1}};
+
+  // ---------------------------------------------------------------------------------------
+  // Table RAMs and the write decoder
+  // ---------------------------------------------------------------------------------------
+  logic [CB4-1:0]     clut_q [N];
+  logic [SatBits-1:0] sat_q  [4*N];   // index {e, c}
+  logic [CB4-1:0]     mip_q  [N];
+
+  logic sel_clut, sel_sat, sel_mip;
+  assign sel_clut = addr_i[15:Log2Clut]   == (16 - Log2Clut)'(16'h1000 >> Log2Clut);
+  assign sel_sat  = addr_i[15:Log2Clut+2] == (14 - Log2Clut)'(16'h2000 >> (Log2Clut + 2));
+  assign sel_mip  = addr_i[15:Log2Clut]   == (16 - Log2Clut)'(16'h4000 >> Log2Clut);
+
+  // Data bits above the RAM widths are ignored (used only when ColourBits = 8).
+  logic unused_wdata;
+  assign unused_wdata = ^wdata_i;
+
+  always_ff @(posedge clk_i) begin
+    if (we_i && sel_clut) clut_q[addr_i[Log2Clut-1:0]] <= wdata_i[CB4-1:0];
+    if (we_i && sel_sat)  sat_q[addr_i[Log2Clut+1:0]]  <= wdata_i[SatBits-1:0];
+    if (we_i && sel_mip)  mip_q[addr_i[Log2Clut-1:0]]  <= wdata_i[CB4-1:0];
+  end
+
+  // Reciprocal ROM: recip[c] = round(2^RF / c) = floor((2^(RF+1) + c) / 2c); recip[0] unused.
+  logic [RomDepth*RecipBits-1:0] recip_rom;
+  // Two nested loops of at most 64 and (4N+64)/64 iterations: Verilator limits one loop's unrolling.
+  for (genvar hi_c = 0; hi_c < (RomDepth + 63) / 64; hi_c++) begin : g_recip
+    for (genvar lo_c = 0; lo_c < 64; lo_c++) begin : g_entry
+      localparam int C = hi_c * 64 + lo_c;
+      if (C == 0) begin : g_zero
+        assign recip_rom[0 +: RecipBits] = '0;
+      end else if (C < RomDepth) begin : g_rom
+        assign recip_rom[C*RecipBits +: RecipBits] =
+            RecipBits'(((64'd1 << (RF + 1)) + 64'(C)) / 64'(2 * C));
+      end
+    end
+  end
+
+  // ---------------------------------------------------------------------------------------
+  // u = f N, point index
+  // ---------------------------------------------------------------------------------------
+  logic signed [UW-1:0]  u_p;    // u at P fraction bits
+  logic signed [IUW-1:0] iu;     // floor(u)
+  logic [Log2Clut-1:0]   pidx;   // point index (mod / clamp)
+
+  assign u_p = UW'($signed(f_i)) <<< UShift;
+  assign iu  = IUW'(u_p >>> P);
+
+  always_comb begin
+    if (!clamp_i) begin
+      pidx = iu[Log2Clut-1:0];
+    end else if (iu < 0) begin
+      pidx = '0;
+    end else if (iu > $signed(IUW'(N - 1))) begin
+      pidx = '1;
+    end else begin
+      pidx = iu[Log2Clut-1:0];
+    end
+  end
+
+  // ---------------------------------------------------------------------------------------
+  // SAT window ends and indices
+  // ---------------------------------------------------------------------------------------
+  logic [HW-1:0]          hw_p;        // W/2 at P fraction bits
+  logic signed [EW-1:0]   lo_p, hi_p;  // u -+ W/2
+  logic signed [IW-1:0]   lo, hi;      // floor of them
+  logic [CountBits-1:0]   count;
+  logic [Log2Clut-1:0]    hm, lm;      // hi, lo mod N
+  logic [Log2Clut-1:0]    hidx;        // clamp: clamp(hi, 0, N-1); mod: hi mod N
+  logic                   w_ge_n;      // W >= N
+  logic                   mod_wrap;    // mod: window wraps (hm <= lm)
+  logic                   cl_entry;    // clamp: window sees one entry
+  logic                   cl_below, cl_above;
+  logic [CountBits-1:0]   nb, na;      // clamp: extension counts below / above
+
+  assign hw_p = HW'(w_i) << HShift;
+  assign lo_p = EW'(u_p) - $signed(EW'(hw_p));
+  assign hi_p = EW'(u_p) + $signed(EW'(hw_p));
+  assign lo   = IW'(lo_p >>> P);
+  assign hi   = IW'(hi_p >>> P);
+  assign count = CountBits'(hi - lo);
+  assign hm   = hi[Log2Clut-1:0];
+  assign lm   = lo[Log2Clut-1:0];
+  assign w_ge_n   = |w_i[WW-1:WidthFrac+Log2Clut];
+  assign mod_wrap = hm <= lm;
+
+  always_comb begin
+    if (!clamp_i) begin
+      hidx = hm;
+    end else if (hi < 0) begin
+      hidx = '0;
+    end else if (hi > $signed(IW'(N - 1))) begin
+      hidx = '1;
+    end else begin
+      hidx = hm;
+    end
+  end
+
+  assign cl_entry = (count == '0) || (lo >= $signed(IW'(N - 1))) || (hi < 0);
+  assign cl_below = lo < $signed(IW'(-1));
+  assign cl_above = hi > $signed(IW'(N - 1));
+  assign nb = cl_below ? CountBits'(~lo) : '0;                      // -(lo + 1)
+  assign na = cl_above ? CountBits'(hi - $signed(IW'(N - 1))) : '0;  // hi - (N - 1)
+
+  // ---------------------------------------------------------------------------------------
+  // Table reads
+  // ---------------------------------------------------------------------------------------
+  logic [Log2Clut-1:0] clut_addr;
+  logic [CB4-1:0]      clut_e, clut_first, clut_last;
+  assign clut_addr  = (kind_i == 2'd3) ? hidx : pidx;
+  assign clut_e     = clut_q[clut_addr];
+  assign clut_first = clut_q[0];
+  assign clut_last  = clut_q[N-1];
+
+  // MIP level selection: leading one of floor(W).
+  logic [Log2Clut+1:0] w_int;
+  logic [LW-1:0]       lw, lc, lb;
+  logic                mip_point;
+  assign w_int     = w_i[WW-1:WidthFrac];
+  assign mip_point = (w_int == '0);
+  always_comb begin
+    lw = '0;
+    for (int i = 0; i < Log2Clut + 2; i++) begin
+      if (w_int[i]) lw = LW'(i);
+    end
+  end
+  assign lc = (lw > LW'(Log2Clut)) ? LW'(Log2Clut) : lw;
+  assign lb = (lc >= LW'(Log2Clut)) ? LW'(Log2Clut) : lc + LW'(1);
+
+  // Level k >= 1 entry j lives at N - (N >> (k-1)) + j = 2N - (2N >> k) + j.
+  logic [Log2Clut-1:0] base_a, base_b;   // < N - 1
+  logic [Log2Clut-1:0] mip_addr_a, mip_addr_b;
+  logic [CB4-1:0]      lev_a, lev_b;
+  assign base_a     = Log2Clut'((Log2Clut + 2)'(2 * N) - ((Log2Clut + 2)'(2 * N) >> lc));
+  assign base_b     = Log2Clut'((Log2Clut + 2)'(2 * N) - ((Log2Clut + 2)'(2 * N) >> lb));
+  assign mip_addr_a = base_a + (pidx >> lc);
+  assign mip_addr_b = base_b + (pidx >> lb);
+  assign lev_a      = (lc == '0) ? clut_e : mip_q[mip_addr_a];
+  assign lev_b      = mip_q[mip_addr_b];
+
+  // Blend weight: the bits of W below its leading one, left-aligned to TFrac bits.
+  logic [TFrac-1:0] t;
+  always_comb begin
+    t = '0;
+    if (kind_i == 2'd2 && lw < LW'(Log2Clut)) begin
+      t = TFrac'(TFrac'(w_i) << (LW'(Log2Clut - 1) - lw));
+    end
+  end
+
+  // SAT reads: csat at the high end (hidx), the low end (lo mod N) and N-1.
+  logic [4*SatBits-1:0] csat_h, csat_l, csat_last;
+  for (genvar c = 0; c < 4; c++) begin : g_sat_rd
+    assign csat_h[c*SatBits +: SatBits]    = sat_q[{hidx, 2'(c)}];
+    assign csat_l[c*SatBits +: SatBits]    = sat_q[{lm, 2'(c)}];
+    assign csat_last[c*SatBits +: SatBits] = sat_q[{Log2Clut'(N - 1), 2'(c)}];
+  end
+
+  logic [RecipBits-1:0] recip;
+  assign recip = recip_rom[count*RecipBits +: RecipBits];
+
+  // ---------------------------------------------------------------------------------------
+  // Per channel: MIP blend, SAT sum and division, output select
+  // ---------------------------------------------------------------------------------------
+  for (genvar c = 0; c < 4; c++) begin : g_ch
+    logic [CB-1:0]           ca, cb, first, last;
+    logic [SatBits-1:0]      sh, sl, sn;
+    logic signed [CB:0]      d;       // b - a
+    logic signed [AccW-1:0]  acc;     // a 2^TFrac + (b - a) t + 2^(TFrac-1)
+    logic [CB-1:0]           mip_ch;
+    logic [SumBits-1:0]      sum_mod, sum_cl, sum;
+    logic [ProdBits-1:0]     prod;
+    logic [QBits-1:0]        quo;
+    logic [CB-1:0]           mean;    // <= 2^CB - 1: a mean of CB-bit entries
+    logic [CB-1:0]           div_ch, sat_ch, out_ch;
+
+    assign ca    = lev_a[c*CB +: CB];
+    assign cb    = lev_b[c*CB +: CB];
+    assign first = clut_first[c*CB +: CB];
+    assign last  = clut_last[c*CB +: CB];
+    assign sh    = csat_h[c*SatBits +: SatBits];
+    assign sl    = csat_l[c*SatBits +: SatBits];
+    assign sn    = csat_last[c*SatBits +: SatBits];
+
+    // MIP: round half up of lerp(a, b, t); the result lies between a and b.
+    assign d      = $signed({1'b0, cb}) - $signed({1'b0, ca});
+    assign acc    = ($signed(AccW'(ca)) <<< TFrac) + AccW'(d) * $signed(AccW'(t)) +
+                    $signed(AccW'(1) <<< (TFrac - 1));
+    assign mip_ch = CB'(acc >>> TFrac);
+
+    // SAT sums (all terms non-negative; see the header).
+    assign sum_mod = SumBits'(sh) + (mod_wrap ? SumBits'(sn) : '0) - SumBits'(sl);
+    assign sum_cl  = SumBits'(nb) * SumBits'(first) + SumBits'(sh) -
+                     ((lo < 0) ? '0 : SumBits'(sl)) + SumBits'(na) * SumBits'(last);
+    assign sum     = clamp_i ? sum_cl : sum_mod;
+
+    assign prod   = ProdBits'(sum) * ProdBits'(recip);
+    assign quo    = QBits'((prod + (ProdBits'(1) << (RF - 1))) >> RF);
+    assign div_ch = (quo > QBits'(MaxC)) ? MaxC : quo[CB-1:0];
+    assign mean   = CB'(((SatBits + 1)'(sn) + (SatBits + 1)'(N / 2)) >> Log2Clut);
+
+    always_comb begin
+      if (!clamp_i && w_ge_n) begin
+        sat_ch = mean;
+      end else if (clamp_i ? cl_entry : (count == '0)) begin
+        sat_ch = clut_e[c*CB +: CB];
+      end else begin
+        sat_ch = div_ch;
+      end
+      unique case (kind_i)
+        2'd0:         out_ch = clut_e[c*CB +: CB];
+        2'd1, 2'd2:   out_ch = mip_point ? clut_e[c*CB +: CB] : mip_ch;
+        default:      out_ch = sat_ch;
+      endcase
+    end
+
+    assign rgba_o[c*CB +: CB] = out_ch;
+  end
+
+  // Assertions
+`ifndef SYNTHESIS
+  initial begin
+    if (Log2Clut < 1 || Log2Clut > 11) $error("pst_clut_filter: Log2Clut must be 1..11");
+    if (ColourBits < 1 || ColourBits > 8) $error("pst_clut_filter: ColourBits must be 1..8");
+    if (FilterRecipFrac < 1 || FilterRecipFrac > 40) $error("pst_clut_filter: FilterRecipFrac must be 1..40");
+    if (TFrac < 1) $error("pst_clut_filter: Log2Clut - 1 + WidthFrac must be >= 1");
+  end
+  // The window is never wider than ceil(W) <= 4N entries (the ROM's depth).
+  assert property (@(posedge clk_i) (kind_i == 2'd3) |-> (count <= CountBits'(4 * N)));
+  // The point index is inside the table in clamp mode whatever f is.
+  assert property (@(posedge clk_i) (clamp_i && iu < 0) |-> (pidx == '0));
+  // In mod mode below W = N the window covers at most N entries.
+  assert property (@(posedge clk_i) (kind_i == 2'd3 && !clamp_i && !w_ge_n) |-> (count <= CountBits'(N)));
+`endif
+
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,105 @@
+// Filter width (stage 5 of docs/HARDWARE.md): W = |grad_x f| N in colour-table entries
+// (section 3.2: grad_x f = (grad_s f)^T ds/dx). Combinational. Golden model: filterWidthFx in
+// model/golden/arith_fx.cpp (same steps, bit for bit).
+//
+//   gx = grad . dsdx, gy = grad . dsdy        exact, GradFrac + JacobianFrac fraction bits
+//   Wx = floor(gx N to WidthFrac)             N = 2^Log2Clut: part of the shift; Wy likewise
+//   ax = min(|Wx|, WMax), ay = min(|Wy|, WMax)    WMax = 2^WW - 1 (the W format's maximum).
+//        Every norm below is >= max(ax, ay), so a clamped operand already means W = WMax:
+//        the clamp never changes the result, and it keeps the square root's input at
+//        2 WW + 1 bits however large gx is.
+//   norm (FilterNorm): 0 euclid        floor(sqrt(ax^2 + ay^2))  (pst_isqrt of the exact sum)
+//                      1 max_half_min  max(ax, ay) + floor(min(ax, ay) / 2)
+//                      2 l1            ax + ay
+//   w_o = min(norm, WMax): unsigned, Log2Clut + 2 integer bits, WidthFrac fraction bits.
+//
+// Parameters:
+//   GradInt, GradFrac           grad_i component format (grad_s f).
+//   JacobianInt, JacobianFrac   j_i entry format (ds/dx, ds/dy).
+//   Log2Clut                    N = 2^Log2Clut entries: the scale to entries and W's range.
+//   WidthFrac                   fraction bits of W.
+//   FilterNorm                  which norm is built (0 euclid, 1 max_half_min, 2 l1).
+`default_nettype none
+
+module pst_filter_width #(
+  parameter int GradInt      = 16,
+  parameter int GradFrac     = 16,
+  parameter int JacobianInt  = 8,
+  parameter int JacobianFrac = 24,
+  parameter int Log2Clut     = 8,
+  parameter int WidthFrac    = 8,
+  parameter int FilterNorm   = 0,
+  // Derived widths (not profile keys).
+  localparam int GW = GradInt + GradFrac,           // one grad_i component
+  localparam int JW = JacobianInt + JacobianFrac,   // one j_i entry
+  localparam int WW = Log2Clut + 2 + WidthFrac      // W = w N in entries, < 4N
+) (
+  input  logic [3*GW-1:0] grad_i,   // element k at [k*GW +: GW]
+  input  logic [6*JW-1:0] j_i,      // ds/dx, dt/dx, dr/dx, ds/dy, dt/dy, dr/dy
+  output logic [WW-1:0]   w_o
+);
+
+  // gx: three GW x JW products, |sum| <= 3 * 2^(GW+JW-2) < 2^(GW+JW): GW + JW + 1 bits, plus
+  // one so that negating the most negative value cannot overflow.
+  localparam int XW   = GW + JW + 2;
+  // Shift from GradFrac + JacobianFrac fraction bits to W's WidthFrac, times N (negative =
+  // left shift).
+  localparam int Sh   = GradFrac + JacobianFrac - Log2Clut - WidthFrac;
+  localparam int ShR  = (Sh > 0) ? Sh : 0;
+  localparam int ShL  = (Sh < 0) ? -Sh : 0;
+  // Shifted width: room for the left shift and at least one bit above W for the clamp.
+  localparam int SW   = (XW + ShL > WW) ? XW + ShL : WW + 1;
+  localparam int SqW  = 2 * WW + 1;   // ax^2 + ay^2 <= 2 (2^WW - 1)^2 < 2^(2 WW + 1)
+  localparam logic [WW-1:0] WMax = '1;
+
+  // Steps 1-3 per direction d (0: x with dsdx = j[0..2], 1: y with dsdy = j[3..5]).
+  logic [2*WW-1:0] aw;   // a_d at [d*WW +: WW]
+  for (genvar d = 0; d < 2; d++) begin : g_dir
+    logic signed [XW-1:0] gd;
+    logic signed [SW-1:0] wd, absd;
+    assign gd = XW'($signed(grad_i[0*GW +: GW])) * XW'($signed(j_i[(3*d+0)*JW +: JW])) +
+                XW'($signed(grad_i[1*GW +: GW])) * XW'($signed(j_i[(3*d+1)*JW +: JW])) +
+                XW'($signed(grad_i[2*GW +: GW])) * XW'($signed(j_i[(3*d+2)*JW +: JW]));
+    assign wd   = (SW'(gd) <<< ShL) >>> ShR;        // floor(g N to WidthFrac)
+    assign absd = wd[SW-1] ? -wd : wd;              // |W_d|, no overflow (XW has a spare bit)
+    assign aw[d*WW +: WW] = (absd[SW-1:WW] != '0) ? WMax : absd[WW-1:0];
+  end
+
+  logic [WW-1:0] ax, ay;
+  assign ax = aw[0*WW +: WW];
+  assign ay = aw[1*WW +: WW];
+
+  // Step 4: the norm (at most WW + 1 bits), then saturate to WW bits.
+  logic [WW:0] nrm;
+  if (FilterNorm == 0) begin : g_euclid
+    logic [SqW-1:0] sumsq;
+    logic [WW:0]    root;   // pst_isqrt: ceil(SqW / 2) = WW + 1 bits
+    assign sumsq = SqW'(ax) * SqW'(ax) + SqW'(ay) * SqW'(ay);
+    pst_isqrt #(.InWidth(SqW)) u_isqrt (.x_i (sumsq), .y_o (root));
+    assign nrm = root;
+  end else if (FilterNorm == 1) begin : g_max_half_min
+    logic [WW-1:0] amax, amin;
+    assign amax = (ax >= ay) ? ax : ay;
+    assign amin = (ax >= ay) ? ay : ax;
+    assign nrm  = (WW + 1)'(amax) + ((WW + 1)'(amin) >> 1);
+  end else begin : g_l1
+    assign nrm = (WW + 1)'(ax) + (WW + 1)'(ay);
+  end
+  assign w_o = nrm[WW] ? WMax : nrm[WW-1:0];
+
+  // Assertions
+`ifndef SYNTHESIS
+  initial begin
+    assert (FilterNorm >= 0 && FilterNorm <= 2)
+      else $error("pst_filter_width: FilterNorm must be 0 (euclid), 1 (max_half_min) or 2 (l1)");
+  end
+  // W is at least the larger component and at most their sum (every norm).
+  always_comb begin
+    assert (w_o >= ax && w_o >= ay && (WW + 1)'(w_o) <= (WW + 1)'(ax) + (WW + 1)'(ay))
+      else $error("pst_filter_width: W outside [max(|Wx|, |Wy|), |Wx| + |Wy|]");
+  end
+`endif
+
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,121 @@
+// One lattice corner of the noise unit (part of rtl/pst_noise.sv, stage 2 of
+// docs/HARDWARE.md): the corner's value and gradient as a lerp-tree leaf node.
+// Combinational. Golden: pst::noiseFx (model/golden/noise_fx.cpp).
+//
+// Corner = bx + 2 by + 4 bz selects the corner of the cell (x fastest, Rayshade's order).
+// In: R[m], R[m+1], R[m+2], R[m+3] (Q1.VF, VF = NoiseValueFrac) and the fractions u (LF =
+// NoiseLatticeFrac bits per axis). d_k = u_k - b_k in [-1, 1) is LF+1 bits signed: for
+// b_k = 1 its bit pattern is {1, u_k} (u - 1 in two's complement), so no subtractor.
+//   NoiseCorner = 0 (value_gradient, Rayshade):
+//     v = R[m] 2^(LF-1) + R[m+1] d_x + R[m+2] d_y + R[m+3] d_z
+//         exact at VF + LF fraction bits: |R d| <= 1 (VF + LF + 2 bits each), |v| <= 3.5
+//         (ExW = 3 + VF + LF bits); three (VF+1) x (LF+1) multipliers.
+//     gradient (R[m+1], R[m+2], R[m+3]).
+//   NoiseCorner = 1 (value): v = R[m] 2^(LF-1) (0.5 R[m]); gradient 0 (R[m+1..3] unused).
+// Out: node = (floor(v to NodeFrac), floor(R[m+1..3] to NodeFrac)): v Q3.NodeFrac, gradient
+// Q5.NodeFrac (the width every lerp-tree node uses for derivatives).
+//
+// Ports:
+//   r_i    [4*RW-1:0]  R[m+k] at [k*RW +: RW], RW = NoiseValueFrac + 1, signed
+//   u_i    [3*LF-1:0]  u per axis, unsigned
+//   node_o [NodeW-1:0] v at [0 +: VW], d/dp_k at [VW + k*GW +: GW] (VW = 3 + NodeFrac,
+//                      GW = 5 + NodeFrac, NodeW = VW + 3 GW), signed
+`default_nettype none
+
+module pst_noise_corner #(
+  parameter int NoiseCorner = 0,
+  parameter int NoiseValueFrac = 15,
+  parameter int NoiseLatticeFrac = 16,
+  parameter int NodeFrac = 20,
+  parameter int Corner = 0,
+  localparam int RW = NoiseValueFrac + 1,   // Q1.VF value-table entry
+  localparam int LF = NoiseLatticeFrac,     // fraction bits of u
+  localparam int VW = 3 + NodeFrac,         // node value Q3.NodeFrac: |v| <= 3.5
+  localparam int GW = 5 + NodeFrac,         // node derivative Q5.NodeFrac: |g| < 16
+  localparam int NodeW = VW + 3 * GW
+) (
+  input  wire logic [4*RW-1:0] r_i,
+  input  wire logic [3*LF-1:0] u_i,
+  output logic [NodeW-1:0]     node_o
+);
+
+  localparam int VF = NoiseValueFrac;
+  // Exact corner value: 3 integer bits (|v| <= 3.5), VF + LF fraction bits.
+  localparam int ExW = 3 + VF + LF;
+  // R d: (VF+1) x (LF+1) signed, |R d| <= 1 needs VF + LF + 2 bits.
+  localparam int PW = VF + LF + 2;
+  // Floor of v from VF + LF to NodeFrac fraction bits (< 0: exact left shift).
+  localparam int VShift = VF + LF - NodeFrac;
+  // R from VF to NodeFrac fraction bits (< 0: exact left shift).
+  localparam int GShift = VF - NodeFrac;
+
+  // 0.5 R[m] = R[m] << (LF - 1) at VF + LF fraction bits, sign-extended to ExW.
+  logic signed [ExW-1:0] half_r0;
+  if (LF > 1) begin : g_half_shift
+    assign half_r0 = {{3{r_i[RW-1]}}, r_i[0 +: RW], {(LF-1){1'b0}}};
+  end else begin : g_half_noshift
+    assign half_r0 = {{3{r_i[RW-1]}}, r_i[0 +: RW]};
+  end
+
+  logic signed [ExW-1:0] v_exact;
+
+  if (NoiseCorner == 0) begin : g_value_gradient
+    logic [3*PW-1:0] prod;  // R[m+1+k] * d_k at [k*PW +: PW], exact
+    for (genvar k = 0; k < 3; k++) begin : g_axis
+      localparam logic CornerBit = 1'((Corner >> k) & 1);
+      logic signed [PW-1:0] r_ext, d_ext;
+      // d_k = u_k - b_k: {b_k, u_k} is its (LF+1)-bit two's complement.
+      assign d_ext = {{(PW-LF-1){CornerBit}}, CornerBit, u_i[k*LF +: LF]};
+      assign r_ext = {{(PW-RW){r_i[(k+2)*RW-1]}}, r_i[(k+1)*RW +: RW]};
+      assign prod[k*PW +: PW] = r_ext * d_ext;
+
+      // Gradient component k: R[m+1+k] brought to Q5.NodeFrac.
+      if (GShift > 0) begin : g_grad_floor
+        assign node_o[VW + k*GW +: GW] = {{4{r_i[(k+2)*RW-1]}}, r_i[(k+1)*RW + GShift +: RW - GShift]};
+        logic unused_low;
+        assign unused_low = ^r_i[(k+1)*RW +: GShift];
+      end else if (GShift < 0) begin : g_grad_shift
+        assign node_o[VW + k*GW +: GW] = {{4{r_i[(k+2)*RW-1]}}, r_i[(k+1)*RW +: RW], {(-GShift){1'b0}}};
+      end else begin : g_grad_same
+        assign node_o[VW + k*GW +: GW] = {{4{r_i[(k+2)*RW-1]}}, r_i[(k+1)*RW +: RW]};
+      end
+    end
+    assign v_exact = half_r0
+                   + {{(ExW-PW){prod[PW-1]}}, prod[0 +: PW]}
+                   + {{(ExW-PW){prod[2*PW-1]}}, prod[PW +: PW]}
+                   + {{(ExW-PW){prod[3*PW-1]}}, prod[2*PW +: PW]};
+  end else begin : g_value
+    assign v_exact = half_r0;
+    assign node_o[NodeW-1:VW] = '0;
+    logic unused_value_only;
+    assign unused_value_only = ^{r_i[4*RW-1:RW], u_i};
+  end
+
+  // Corner value to Q3.NodeFrac.
+  if (VShift > 0) begin : g_v_floor
+    assign node_o[0 +: VW] = v_exact[VShift +: VW];
+    logic unused_v_low;
+    assign unused_v_low = ^v_exact[VShift-1:0];
+  end else if (VShift < 0) begin : g_v_shift
+    assign node_o[0 +: VW] = {v_exact, {(-VShift){1'b0}}};
+  end else begin : g_v_same
+    assign node_o[0 +: VW] = v_exact;
+  end
+
+  // Assertions
+`ifndef SYNTHESIS
+  initial begin
+    if (Corner < 0 || Corner > 7) $error("pst_noise_corner: Corner must be 0..7");
+    if (LF < 1) $error("pst_noise_corner: NoiseLatticeFrac must be >= 1");
+  end
+  // |v| <= 3.5: the exact value never reaches the Q3 range limits.
+  always_comb begin
+    assert (v_exact <= $signed({3'b011, 1'b1, {(ExW-4){1'b0}}}) &&
+            v_exact >= -$signed({3'b011, 1'b1, {(ExW-4){1'b0}}}))
+      else $error("pst_noise_corner: |v| > 3.5");
+  end
+`endif
+
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,68 @@
+// Interpolation weight of one axis of the noise unit (part of rtl/pst_noise.sv, stage 2 of
+// docs/HARDWARE.md). Combinational. Golden: pst::noiseFx (model/golden/noise_fx.cpp).
+//
+// In: u, the unsigned NoiseLatticeFrac-bit (LF) fraction of the lattice cell (U = u 2^LF).
+// Out: s = weight of the upper corner and ds = ds/du, both unsigned at LF fraction bits.
+//   NoiseInterp = 0 (scurve, Rayshade's SCURVE(u) = u^2 (3 - 2u)):
+//     u2 = floor(U * U / 2^LF)                      LF x LF multiplier, LF bits kept
+//     s  = floor(u2 * (3 * 2^LF - 2U) / 2^LF)        LF x (LF+2) multiplier; s < 2^LF
+//     ds = 6 * (U - u2)                              = 6 u (1 - u) reusing u2: shift-and-add,
+//                                                    no third multiplier. U >= u2 always;
+//                                                    max(U - u2) = 2^(LF-2) so ds <= 1.5.
+//     Errors: s in (s_true - 4 LSB, s_true], ds in [ds_true, ds_true + 6 LSB).
+//   NoiseInterp = 1 (linear): s = u, ds = 1 (= 2^LF; the lerp then uses b - a directly).
+//
+// Ports:
+//   u_i  [LF-1:0]   unsigned fraction
+//   s_o  [LF-1:0]   weight, unsigned, LF fraction bits (< 1)
+//   ds_o [LF+1:0]   derivative, unsigned, LF fraction bits; two integer bits: <= 1.5 for
+//                   LF >= 2, 3 at LF = 1, and 1 (= 2^LF) for linear
+`default_nettype none
+
+module pst_noise_weight #(
+  parameter int NoiseInterp = 0,
+  parameter int NoiseLatticeFrac = 16,
+  localparam int LF = NoiseLatticeFrac  // fraction bits of u, s, ds
+) (
+  input  wire logic [LF-1:0] u_i,
+  output logic [LF-1:0]      s_o,
+  output logic [LF+1:0]      ds_o
+);
+
+  if (NoiseInterp == 0) begin : g_scurve
+    logic [2*LF-1:0] uu;          // U * U, exact
+    logic [LF-1:0]   u2;          // floor(u^2), LF fraction bits
+    logic [LF+1:0]   three_m_2u;  // 3 - 2u in (1, 3], LF fraction bits
+    logic [2*LF+1:0] su;          // u2 * (3 - 2u), exact, 2 LF fraction bits
+    logic [LF+2:0]   ds6;         // 6 (U - u2): 3 bits above LF for the x6
+
+    assign uu = {{LF{1'b0}}, u_i} * {{LF{1'b0}}, u_i};
+    assign u2 = uu[LF +: LF];
+    assign three_m_2u = {2'b11, {LF{1'b0}}} - {1'b0, u_i, 1'b0};
+    assign su = {{(LF+2){1'b0}}, u2} * {{LF{1'b0}}, three_m_2u};
+    assign s_o = su[LF +: LF];
+    assign ds6 = {2'b00, u_i - u2, 1'b0} + {1'b0, u_i - u2, 2'b00};
+    assign ds_o = ds6[LF+1:0];
+
+    logic unused_bits;
+    assign unused_bits = ^{uu[LF-1:0], su[LF-1:0], su[2*LF+1:2*LF], ds6[LF+2]};
+
+  end else begin : g_linear
+    assign s_o = u_i;
+    assign ds_o = {2'b01, {LF{1'b0}}};
+  end
+
+  // Assertions
+`ifndef SYNTHESIS
+  if (NoiseInterp == 0) begin : g_assert_scurve
+    always_comb begin
+      assert (g_scurve.su[2*LF+1:2*LF] == 2'b00) else $error("pst_noise_weight: s >= 1");
+      assert (g_scurve.ds6[LF+2] == 1'b0) else $error("pst_noise_weight: ds overflow");
+      assert (u_i >= g_scurve.u2) else $error("pst_noise_weight: u < u^2");
+    end
+  end
+`endif
+
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,115 @@
+// Stage 1 of the texture pipeline (docs/HARDWARE.md): the octave transform p = M s + o of
+// one noise octave, reduced to what the noise unit needs (lattice index mod 4096 and fraction).
+// Combinational. Golden model: pst::octaveTransformFx (model/golden/noise_fx.cpp).
+//
+// Arithmetic, per axis r (exact until the floor):
+//   acc_r = sum_j M[r][j] * s[j] + (o[r] << (MatrixFrac + CoordFrac - OffsetFrac))
+//           at AccFrac = MatrixFrac + CoordFrac fraction bits (three signed products + offset),
+//   p_r   = floor(acc_r to NoiseLatticeFrac fraction bits)  (= acc_r >>> (AccFrac - LF)),
+//   frac  = p_r mod 2^NoiseLatticeFrac (unsigned fraction u of the lattice cell),
+//   lat   = (floor(p_r) + 576) mod 4096: Rayshade adds 1e6 before truncating and hashes
+//           only the low 12 bits of the lattice index; 1e6 mod 4096 = 576. The wrap is exact
+//           for the noise (period 4096), so the integer bits above bit AccFrac + 11 are
+//           never needed: the sums are kept exact anyway (AccW bits) for clarity.
+//
+// Parameters (names as scripts/profile.py derives them from rtl/configs/NAME.toml):
+//   CoordInt, CoordFrac     s, t, r format Q(CoordInt).(CoordFrac)
+//   MatrixInt, MatrixFrac   M entries Q(MatrixInt).(MatrixFrac)
+//   OffsetInt, OffsetFrac   o entries Q(OffsetInt).(OffsetFrac)
+//   NoiseLatticeFrac        fraction bits of u handed to the noise unit (LF)
+// Requires MatrixFrac + CoordFrac >= NoiseLatticeFrac and >= OffsetFrac (asserted).
+//
+// Ports:
+//   s_i    3 x CW signed, element k at [k*CW +: CW]
+//   m_i    9 x MW signed, row-major: element 3*r + c at [(3*r+c)*MW +: MW]
+//   o_i    3 x OW signed
+//   lat_o  3 x 12-bit lattice index (after the +576 offset, mod 4096)
+//   frac_o 3 x NoiseLatticeFrac-bit unsigned fraction
+`default_nettype none
+
+module pst_octave_transform #(
+  parameter int CoordInt = 12,
+  parameter int CoordFrac = 20,
+  parameter int MatrixInt = 8,
+  parameter int MatrixFrac = 16,
+  parameter int OffsetInt = 13,
+  parameter int OffsetFrac = 16,
+  parameter int NoiseLatticeFrac = 16,
+  // Derived widths (do not override).
+  localparam int CW = CoordInt + CoordFrac,   // s element width
+  localparam int MW = MatrixInt + MatrixFrac, // M element width
+  localparam int OW = OffsetInt + OffsetFrac, // o element width
+  localparam int LF = NoiseLatticeFrac
+) (
+  input  wire logic [3*CW-1:0] s_i,
+  input  wire logic [9*MW-1:0] m_i,
+  input  wire logic [3*OW-1:0] o_i,
+  output logic [35:0]          lat_o,
+  output logic [3*LF-1:0]      frac_o
+);
+
+  // Fraction bits of the exact sum (products M s).
+  localparam int AccFrac = MatrixFrac + CoordFrac;
+  // Left shift bringing o to AccFrac fraction bits.
+  localparam int OffShift = AccFrac - OffsetFrac;
+  // A signed MW x CW product needs MW + CW bits.
+  localparam int ProdW = MW + CW;
+  // Three products (+2 bits) and the shifted offset (OW + OffShift bits), plus one carry bit.
+  localparam int SumW = ((ProdW + 2 > OW + OffShift) ? ProdW + 2 : OW + OffShift) + 1;
+  // The lattice index is bits [AccFrac +: 12]: make sure they exist (sign-extended).
+  localparam int AccW = (SumW > AccFrac + 12) ? SumW : AccFrac + 12;
+  // Offset of Rayshade's 1e6 lattice shift modulo 4096.
+  localparam logic [11:0] LatticeOffset = 12'd576;
+
+  for (genvar r = 0; r < 3; r++) begin : g_axis
+    logic [3*ProdW-1:0]      prod;  // three exact products, j at [j*ProdW +: ProdW]
+    logic signed [AccW-1:0]  off_ext;
+    logic signed [AccW-1:0]  acc;
+
+    for (genvar j = 0; j < 3; j++) begin : g_term
+      logic signed [ProdW-1:0] m_ext, s_ext;
+      // Operands sign-extended to the product width: the product is exact in ProdW bits.
+      assign m_ext = {{CW{m_i[(3*r+j)*MW + MW-1]}}, m_i[(3*r+j)*MW +: MW]};
+      assign s_ext = {{MW{s_i[j*CW + CW-1]}}, s_i[j*CW +: CW]};
+      assign prod[j*ProdW +: ProdW] = m_ext * s_ext;
+    end
+
+    if (OffShift > 0) begin : g_off_shift
+      assign off_ext = {{(AccW-OW-OffShift){o_i[r*OW + OW-1]}}, o_i[r*OW +: OW], {OffShift{1'b0}}};
+    end else begin : g_off_noshift
+      assign off_ext = {{(AccW-OW){o_i[r*OW + OW-1]}}, o_i[r*OW +: OW]};
+    end
+
+    assign acc = {{(AccW-ProdW){prod[ProdW-1]}}, prod[0 +: ProdW]}
+               + {{(AccW-ProdW){prod[2*ProdW-1]}}, prod[ProdW +: ProdW]}
+               + {{(AccW-ProdW){prod[3*ProdW-1]}}, prod[2*ProdW +: ProdW]}
+               + off_ext;
+
+    // floor to LF fraction bits, then split: the low LF bits are u, the next 12 the lattice.
+    assign frac_o[r*LF +: LF] = acc[AccFrac-LF +: LF];
+    assign lat_o[r*12 +: 12]  = acc[AccFrac +: 12] + LatticeOffset;
+
+    // Bits below the LF fraction and above the 12-bit lattice index do not reach the noise.
+    logic unused_acc;
+    if (AccFrac - LF > 0 && AccW > AccFrac + 12) begin : g_unused_both
+      assign unused_acc = ^{acc[AccFrac-LF-1:0], acc[AccW-1:AccFrac+12]};
+    end else if (AccFrac - LF > 0) begin : g_unused_low
+      assign unused_acc = ^acc[AccFrac-LF-1:0];
+    end else if (AccW > AccFrac + 12) begin : g_unused_high
+      assign unused_acc = ^acc[AccW-1:AccFrac+12];
+    end else begin : g_unused_none
+      assign unused_acc = 1'b0;
+    end
+  end
+
+  // Assertions
+`ifndef SYNTHESIS
+  initial begin
+    if (AccFrac < NoiseLatticeFrac) $error("MatrixFrac + CoordFrac must be >= NoiseLatticeFrac");
+    if (OffShift < 0) $error("MatrixFrac + CoordFrac must be >= OffsetFrac");
+  end
+`endif
+
+endmodule
+
+`default_nettype wire

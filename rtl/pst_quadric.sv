@@ -1,0 +1,109 @@
+// Quadric (stage 3 of docs/HARDWARE.md): q(s) of eq. 3 and its gradient 2 (Q [s 1])_xyz
+// (eq. 11 with the linear terms D, G, I kept). Combinational. Golden model: quadricFx in
+// model/golden/arith_fx.cpp (same steps, bit for bit).
+//
+//   Q = [A B C D; B E F G; C F H I; D G I J]   (eq. 4, coef_i = A..J)
+//   v = (Q [s 1])_xyz            exact, QuadricFrac + CoordFrac fraction bits
+//   q = s . v + ((D s + G t + I r) << CoordFrac) + (J << 2 CoordFrac)
+//                                exact, QuadricFrac + 2 CoordFrac fraction bits (= eq. 3)
+//   q_o     = sat_F(floor(q to FFrac))
+//   gradq_o = sat_Grad(floor(2 v to GradFrac)), per component
+// floor = arithmetic shift right (a left shift, exact, if the target has more fraction bits);
+// sat = clamp to the signed output width.
+//
+// Parameters:
+//   CoordInt, CoordFrac       s_i format (signed, Int bits include the sign): the multiplier
+//                             widths and the exact-value fraction bits.
+//   QuadricInt, QuadricFrac   coefficient format of coef_i.
+//   FInt, FFrac               q_o format (the colour index f): where q is floored and clamped.
+//   GradInt, GradFrac         gradq_o component format.
+`default_nettype none
+
+module pst_quadric #(
+  parameter int CoordInt    = 12,
+  parameter int CoordFrac   = 20,
+  parameter int QuadricInt  = 8,
+  parameter int QuadricFrac = 16,
+  parameter int FInt        = 12,
+  parameter int FFrac       = 20,
+  parameter int GradInt     = 16,
+  parameter int GradFrac    = 16,
+  // Derived widths (not profile keys).
+  localparam int CW = CoordInt + CoordFrac,       // one texture coordinate
+  localparam int QW = QuadricInt + QuadricFrac,   // one coefficient
+  localparam int FW = FInt + FFrac,               // q_o
+  localparam int GW = GradInt + GradFrac          // one gradq_o component
+) (
+  input  logic [3*CW-1:0]  s_i,      // s, t, r; element k at [k*CW +: CW]
+  input  logic [10*QW-1:0] coef_i,   // A..J; element k at [k*QW +: QW]
+  output logic [FW-1:0]    q_o,
+  output logic [3*GW-1:0]  gradq_o   // element k at [k*GW +: GW]
+);
+
+  // v: three products of at most 2^(QW+CW-2) each plus D << CoordFrac (at most 2^(QW+CW-2)
+  // as CoordInt >= 1): |v| <= 2^(QW+CW) -> QW + CW + 1 bits signed.
+  localparam int VW  = QW + CW + 1;
+  // q: s . v < 3 * 2^(CW-1) * 2^(QW+CW) and the linear part < 2^(QW+2CW-1): |q| < 2^(QW+2CW+2).
+  localparam int QXW = QW + 2 * CW + 3;
+  // Shifts from the exact fraction bits to the output formats (negative = left shift).
+  localparam int QSh  = QuadricFrac + 2 * CoordFrac - FFrac;
+  localparam int GSh  = QuadricFrac + CoordFrac - GradFrac;
+  localparam int QShR = (QSh > 0) ? QSh : 0;
+  localparam int QShL = (QSh < 0) ? -QSh : 0;
+  localparam int GShR = (GSh > 0) ? GSh : 0;
+  localparam int GShL = (GSh < 0) ? -GSh : 0;
+  // Shifted widths: room for the left shift and for the output's sign check.
+  localparam int QSW = (QXW + QShL > FW) ? QXW + QShL : FW + 1;
+  localparam int GSW = (VW + 1 + GShL > GW) ? VW + 1 + GShL : GW + 1;
+
+  // The coefficients A..J of eq. 3 and the coordinates s, t, r as signed values.
+  logic signed [QW-1:0] ca, cb, cc, cd, ce, cf, cg, ch, ci, cj;
+  logic signed [CW-1:0] s0, s1, s2;
+  assign {cj, ci, ch, cg, cf, ce, cd, cc, cb, ca} = coef_i;
+  assign {s2, s1, s0} = s_i;
+
+  // Step 1: v = (Q [s 1])_xyz at QuadricFrac + CoordFrac; rows of Q: (A B C D), (B E F G),
+  // (C F H I).
+  logic signed [VW-1:0] v0, v1, v2;
+  assign v0 = VW'(ca) * VW'(s0) + VW'(cb) * VW'(s1) + VW'(cc) * VW'(s2) + (VW'(cd) <<< CoordFrac);
+  assign v1 = VW'(cb) * VW'(s0) + VW'(ce) * VW'(s1) + VW'(cf) * VW'(s2) + (VW'(cg) <<< CoordFrac);
+  assign v2 = VW'(cc) * VW'(s0) + VW'(cf) * VW'(s1) + VW'(ch) * VW'(s2) + (VW'(ci) <<< CoordFrac);
+
+  // Step 2: q = s . v + ((D s + G t + I r) << CoordFrac) + (J << 2 CoordFrac).
+  logic signed [QXW-1:0] sv, lin, qx;
+  assign sv  = QXW'(s0) * QXW'(v0) + QXW'(s1) * QXW'(v1) + QXW'(s2) * QXW'(v2);
+  assign lin = QXW'(cd) * QXW'(s0) + QXW'(cg) * QXW'(s1) + QXW'(ci) * QXW'(s2);
+  assign qx  = sv + (lin <<< CoordFrac) + (QXW'(cj) <<< (2 * CoordFrac));
+
+  // Step 3: floor to FFrac, saturate to FW bits: in range iff the bits above FW-1 all equal
+  // the sign.
+  logic signed [QSW-1:0] qs;
+  assign qs = (QSW'(qx) <<< QShL) >>> QShR;
+  always_comb begin
+    if (qs[QSW-1:FW-1] == '0 || qs[QSW-1:FW-1] == '1) q_o = qs[FW-1:0];
+    else q_o = {qs[QSW-1], {(FW-1){~qs[QSW-1]}}};
+  end
+
+  // grad q = 2 v, floor to GradFrac, saturate to GW bits.
+  logic [3*VW-1:0] v;   // v_r at [r*VW +: VW]
+  assign v = {v2, v1, v0};
+  for (genvar r = 0; r < 3; r++) begin : g_grad
+    logic signed [GSW-1:0] gs;
+    assign gs = ((GSW'($signed(v[r*VW +: VW])) <<< 1) <<< GShL) >>> GShR;
+    always_comb begin
+      if (gs[GSW-1:GW-1] == '0 || gs[GSW-1:GW-1] == '1) gradq_o[r*GW +: GW] = gs[GW-1:0];
+      else gradq_o[r*GW +: GW] = {gs[GSW-1], {(GW-1){~gs[GSW-1]}}};
+    end
+  end
+
+  // Assertions
+`ifndef SYNTHESIS
+  initial begin
+    assert (CoordInt >= 1 && QuadricInt >= 1 && FInt >= 1 && GradInt >= 1)
+      else $error("pst_quadric: every format needs its sign bit (Int >= 1)");
+  end
+`endif
+
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,440 @@
+// pst_top: the procedural solid-texturing pipeline of Hart et al. 1999 (docs/HARDWARE.md).
+//
+//   fragment (tag, s, J) -> [A] -> octave stage (quadric, NoiseUnits x {octave transform,
+//   noise, octave term}, accumulation over ceil(Octaves / NoiseUnits) passes) -> [B] ->
+//   filter width -> [C] -> colour-table filter -> [D] -> (tag, RGBA, f, grad, W)
+//
+// [A]..[D] are pst_pipe_reg stages (valid/ready, ready[i] = ready[i+1] | ~valid[i+1]).
+//
+// Parameters (all from the profile, rtl/configs/NAME.toml, through scripts/profile.py):
+//   Octaves, NoiseUnits   K noise terms held; units evaluated per pass. Octaves / NoiseUnits
+//                         passes per fragment: 1 = one fragment per clock.
+//   Log2Clut, ColourBits  colour table of 2^Log2Clut entries, ColourBits per channel.
+//   Noise*                noise unit variant and precision (see pst_noise).
+//   FilterNorm, FilterRecipFrac   |grad| approximation; SAT reciprocal precision.
+//   <Format>Int/Frac      every number format (docs/HARDWARE.md).
+//
+// Register writes (reg_we_i) are legal only while idle_o is high: the driver drains the
+// pipeline before it changes the texture, as a driver between two objects would.
+`default_nettype none
+
+module pst_top #(
+  parameter int Octaves          = 8,
+  parameter int NoiseUnits       = 8,
+  parameter int Log2Clut         = 8,
+  parameter int ColourBits       = 8,
+  parameter int NoiseInterp      = 0,
+  parameter int NoiseCorner      = 0,
+  parameter int NoiseHash        = 0,
+  parameter int NoiseValueFrac   = 15,
+  parameter int NoiseLatticeFrac = 16,
+  parameter int NoiseOutFrac     = 16,
+  parameter int FilterNorm       = 0,
+  parameter int FilterRecipFrac  = 18,
+  parameter int CoordInt         = 12,
+  parameter int CoordFrac        = 20,
+  parameter int JacobianInt      = 8,
+  parameter int JacobianFrac     = 24,
+  parameter int MatrixInt        = 8,
+  parameter int MatrixFrac       = 16,
+  parameter int OffsetInt        = 13,
+  parameter int OffsetFrac       = 16,
+  parameter int AmplitudeInt     = 2,
+  parameter int AmplitudeFrac    = 16,
+  parameter int GradMatrixInt    = 8,
+  parameter int GradMatrixFrac   = 16,
+  parameter int QuadricInt       = 8,
+  parameter int QuadricFrac      = 16,
+  parameter int FInt             = 12,
+  parameter int FFrac            = 20,
+  parameter int GradInt          = 16,
+  parameter int GradFrac         = 16,
+  parameter int WidthFrac        = 8,
+  parameter bit DebugProbes      = 1'b1,
+  // Derived widths (not profile keys).
+  localparam int CW  = CoordInt + CoordFrac,         // one texture coordinate
+  localparam int JW  = JacobianInt + JacobianFrac,   // one Jacobian entry
+  localparam int FW  = FInt + FFrac,                 // f
+  localparam int GW  = GradInt + GradFrac,           // one grad_s f component
+  localparam int WW  = Log2Clut + 2 + WidthFrac,     // W = w N in entries, < 4N
+  localparam int CB4 = 4 * ColourBits                // packed RGBA
+) (
+  input  logic              clk_i,
+  input  logic              rst_ni,
+  // Register write port (docs/HARDWARE.md register map)
+  input  logic              reg_we_i,
+  input  logic [15:0]       reg_addr_i,
+  input  logic [31:0]       reg_wdata_i,
+  output logic              idle_o,
+  // Fragments in
+  input  logic              frag_valid_i,
+  output logic              frag_ready_o,
+  input  logic [31:0]       frag_tag_i,
+  input  logic [3*CW-1:0]   frag_s_i,
+  input  logic [6*JW-1:0]   frag_j_i,
+  // Colours out
+  output logic              out_valid_o,
+  input  logic              out_ready_i,
+  output logic [31:0]       out_tag_o,
+  output logic [CB4-1:0]    out_rgba_o,
+  output logic [FW-1:0]     out_f_o,
+  output logic [3*GW-1:0]   out_grad_o,
+  output logic [WW-1:0]     out_w_o,
+  // Debug probes of the octave stage (the fragment in [A], this pass): the harness samples
+  // them every cycle so the scoreboard can name the first stage that differs. Tied to zero
+  // when DebugProbes = 0 (synthesis).
+  output logic                          probe_valid_o,
+  output logic [31:0]                   probe_tag_o,
+  output logic [7:0]                    probe_pass_o,
+  output logic [FW-1:0]                 probe_q_o,
+  output logic [NoiseUnits*36-1:0]      probe_lat_o,
+  output logic [NoiseUnits*3*NoiseLatticeFrac-1:0] probe_frac_o,
+  output logic [NoiseUnits*(4+NoiseOutFrac)-1:0]   probe_n_o,
+  output logic [NoiseUnits*3*(6+NoiseOutFrac)-1:0] probe_g_o
+);
+
+  localparam int MW  = MatrixInt + MatrixFrac;       // one M_i entry
+  localparam int OW  = OffsetInt + OffsetFrac;       // one o_i entry
+  localparam int AW  = AmplitudeInt + AmplitudeFrac; // a_i
+  localparam int GMW = GradMatrixInt + GradMatrixFrac;  // one a_i M_i^T entry
+  localparam int QW  = QuadricInt + QuadricFrac;     // one quadric coefficient
+  localparam int LF  = NoiseLatticeFrac;
+  localparam int NW  = 4 + NoiseOutFrac;             // noise value Q4.NoiseOutFrac
+  localparam int NGW = 6 + NoiseOutFrac;             // noise gradient Q6.NoiseOutFrac
+  localparam int Passes    = Octaves / NoiseUnits;   // octave passes per fragment
+  localparam int PassBits  = (Passes > 1) ? $clog2(Passes) : 1;
+  localparam int OctBits   = $clog2(Octaves + 1);    // active octave count 0..Octaves
+  // Guard bits: the accumulators add q and up to Octaves terms without overflow.
+  localparam int AccGuard  = $clog2(Octaves + 1) + 1;
+  localparam int FAccW     = FW + AccGuard;
+  localparam int GAccW     = GW + AccGuard;
+
+  // ---------------------------------------------------------------------------------------
+  // Registers: control, quadric, octaves (written only while idle)
+  // ---------------------------------------------------------------------------------------
+  logic [2:0]         ctrl_q;      // [0] clamp, [2:1] filter kind
+  logic [OctBits-1:0] active_q;    // active octaves
+  logic [10*QW-1:0]   quad_q;      // A..J
+  logic [9*MW-1:0]    oct_m_q  [Octaves];
+  logic [3*OW-1:0]    oct_o_q  [Octaves];
+  logic [AW-1:0]      oct_a_q  [Octaves];
+  logic [9*GMW-1:0]   oct_gm_q [Octaves];
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      ctrl_q   <= '0;
+      active_q <= '0;
+      quad_q   <= '0;
+    end else if (reg_we_i) begin
+      if (reg_addr_i == 16'h0000) ctrl_q <= reg_wdata_i[2:0];
+      if (reg_addr_i == 16'h0001) active_q <= reg_wdata_i[OctBits-1:0];
+      for (int k = 0; k < 10; k++) begin
+        if (reg_addr_i == 16'h0010 + 16'(k)) quad_q[k*QW +: QW] <= reg_wdata_i[QW-1:0];
+      end
+    end
+  end
+
+  // Octave registers: 0x0100 + 32 i + k (no reset: the driver writes every octave it enables).
+  always_ff @(posedge clk_i) begin
+    if (reg_we_i) begin
+      for (int i = 0; i < Octaves; i++) begin
+        for (int k = 0; k < 9; k++) begin
+          if (reg_addr_i == 16'h0100 + 16'(32 * i + k)) oct_m_q[i][k*MW +: MW] <= reg_wdata_i[MW-1:0];
+          if (reg_addr_i == 16'h0100 + 16'(32 * i + 13 + k)) begin
+            oct_gm_q[i][k*GMW +: GMW] <= reg_wdata_i[GMW-1:0];
+          end
+        end
+        for (int k = 0; k < 3; k++) begin
+          if (reg_addr_i == 16'h0100 + 16'(32 * i + 9 + k)) oct_o_q[i][k*OW +: OW] <= reg_wdata_i[OW-1:0];
+        end
+        if (reg_addr_i == 16'h0100 + 16'(32 * i + 12)) oct_a_q[i] <= reg_wdata_i[AW-1:0];
+      end
+    end
+  end
+
+  // ---------------------------------------------------------------------------------------
+  // [A] fragment register
+  // ---------------------------------------------------------------------------------------
+  localparam int AWidth = 32 + 3 * CW + 6 * JW;
+  logic              a_valid, a_ready;
+  logic [AWidth-1:0] a_data;
+
+  pst_pipe_reg #(.Width(AWidth)) u_reg_a (
+    .clk_i, .rst_ni,
+    .valid_i (frag_valid_i), .ready_o (frag_ready_o),
+    .data_i  ({frag_j_i, frag_s_i, frag_tag_i}),
+    .valid_o (a_valid), .ready_i (a_ready), .data_o (a_data)
+  );
+
+  logic [31:0]     a_tag;
+  logic [3*CW-1:0] a_s;
+  logic [6*JW-1:0] a_j;
+  assign {a_j, a_s, a_tag} = a_data;
+
+  // ---------------------------------------------------------------------------------------
+  // Octave stage: quadric + NoiseUnits octave lanes, Passes passes per fragment
+  // ---------------------------------------------------------------------------------------
+  logic [PassBits-1:0] pass_q, pass_d;
+  logic signed [FAccW-1:0] facc_q, facc_d;
+  logic [3*GAccW-1:0]      gacc_q, gacc_d;
+
+  logic [FW-1:0]   q;
+  logic [3*GW-1:0] gradq;
+
+  pst_quadric #(
+    .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
+    .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
+  ) u_quadric (
+    .s_i (a_s), .coef_i (quad_q), .q_o (q), .gradq_o (gradq)
+  );
+
+  logic [FW-1:0]   fterm [NoiseUnits];
+  logic [3*GW-1:0] gterm [NoiseUnits];
+
+  for (genvar u = 0; u < NoiseUnits; u++) begin : g_lane
+    // Octave index of this lane in this pass.
+    logic [OctBits:0] oct_idx;
+    logic             lane_on;
+    logic [35:0]      lat;
+    logic [3*LF-1:0]  frac;
+    logic [NW-1:0]    n;
+    logic [3*NGW-1:0] g;
+    logic [FW-1:0]    fterm_raw;
+    logic [3*GW-1:0]  gterm_raw;
+
+    if (Passes > 1) begin : g_shared
+      assign oct_idx = (OctBits + 1)'(pass_q) * (OctBits + 1)'(NoiseUnits) + (OctBits + 1)'(u);
+    end else begin : g_parallel
+      assign oct_idx = (OctBits + 1)'(u);
+    end
+    assign lane_on = oct_idx < {1'b0, active_q};
+
+    // The register arrays are indexed by the octave of this pass (a constant when Passes = 1).
+    logic [9*MW-1:0]  m_sel;
+    logic [3*OW-1:0]  o_sel;
+    logic [AW-1:0]    a_sel;
+    logic [9*GMW-1:0] gm_sel;
+    always_comb begin
+      m_sel  = oct_m_q[u];
+      o_sel  = oct_o_q[u];
+      a_sel  = oct_a_q[u];
+      gm_sel = oct_gm_q[u];
+      for (int p = 1; p < Passes; p++) begin
+        if (32'(pass_q) == p) begin
+          m_sel  = oct_m_q[p * NoiseUnits + u];
+          o_sel  = oct_o_q[p * NoiseUnits + u];
+          a_sel  = oct_a_q[p * NoiseUnits + u];
+          gm_sel = oct_gm_q[p * NoiseUnits + u];
+        end
+      end
+    end
+
+    pst_octave_transform #(
+      .CoordInt(CoordInt), .CoordFrac(CoordFrac), .MatrixInt(MatrixInt), .MatrixFrac(MatrixFrac),
+      .OffsetInt(OffsetInt), .OffsetFrac(OffsetFrac), .NoiseLatticeFrac(NoiseLatticeFrac)
+    ) u_transform (
+      .s_i (a_s), .m_i (m_sel), .o_i (o_sel), .lat_o (lat), .frac_o (frac)
+    );
+
+    pst_noise #(
+      .NoiseInterp(NoiseInterp), .NoiseCorner(NoiseCorner), .NoiseHash(NoiseHash),
+      .NoiseValueFrac(NoiseValueFrac), .NoiseLatticeFrac(NoiseLatticeFrac),
+      .NoiseOutFrac(NoiseOutFrac)
+    ) u_noise (
+      .lat_i (lat), .frac_i (frac), .n_o (n), .grad_o (g)
+    );
+
+    pst_octave_term #(
+      .NoiseOutFrac(NoiseOutFrac), .AmplitudeInt(AmplitudeInt), .AmplitudeFrac(AmplitudeFrac),
+      .GradMatrixInt(GradMatrixInt), .GradMatrixFrac(GradMatrixFrac), .FInt(FInt),
+      .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
+    ) u_term (
+      .n_i (n), .g_i (g), .a_i (a_sel), .gm_i (gm_sel), .fterm_o (fterm_raw), .gterm_o (gterm_raw)
+    );
+
+    assign fterm[u] = lane_on ? fterm_raw : '0;
+    assign gterm[u] = lane_on ? gterm_raw : '0;
+
+    if (DebugProbes) begin : g_probe
+      assign probe_lat_o[u*36 +: 36]          = lat;
+      assign probe_frac_o[u*3*LF +: 3*LF]     = frac;
+      assign probe_n_o[u*NW +: NW]            = n;
+      assign probe_g_o[u*3*NGW +: 3*NGW]      = g;
+    end else begin : g_no_probe
+      assign probe_lat_o[u*36 +: 36]          = '0;
+      assign probe_frac_o[u*3*LF +: 3*LF]     = '0;
+      assign probe_n_o[u*NW +: NW]            = '0;
+      assign probe_g_o[u*3*NGW +: 3*NGW]      = '0;
+    end
+  end
+
+  assign probe_valid_o = DebugProbes & a_valid;
+  assign probe_tag_o   = DebugProbes ? a_tag : '0;
+  assign probe_pass_o  = DebugProbes ? 8'(pass_q) : '0;
+  assign probe_q_o     = DebugProbes ? q : '0;
+
+  // Accumulation: the first pass starts from q, later passes from the accumulators.
+  logic signed [FAccW-1:0] fsum;
+  logic [3*GAccW-1:0]      gsum;
+  logic                    last_pass;
+  logic [FW-1:0]           f_sat;
+  logic [3*GW-1:0]         grad_sat;
+
+  localparam logic signed [FAccW-1:0] FMax = FAccW'({1'b0, {(FW-1){1'b1}}});
+  localparam logic signed [FAccW-1:0] FMin = -FMax - 1;
+  localparam logic signed [GAccW-1:0] GMax = GAccW'({1'b0, {(GW-1){1'b1}}});
+  localparam logic signed [GAccW-1:0] GMin = -GMax - 1;
+
+  always_comb begin
+    logic signed [GAccW-1:0] gc;
+    fsum = (pass_q == '0) ? FAccW'($signed(q)) : facc_q;
+    for (int u = 0; u < NoiseUnits; u++) fsum = fsum + FAccW'($signed(fterm[u]));
+    for (int k = 0; k < 3; k++) begin
+      gc = (pass_q == '0) ? GAccW'($signed(gradq[k*GW +: GW])) : $signed(gacc_q[k*GAccW +: GAccW]);
+      for (int u = 0; u < NoiseUnits; u++) gc = gc + GAccW'($signed(gterm[u][k*GW +: GW]));
+      gsum[k*GAccW +: GAccW] = gc;
+      // Saturate to the Grad format.
+      if (gc > GMax) grad_sat[k*GW +: GW] = GW'(GMax);
+      else if (gc < GMin) grad_sat[k*GW +: GW] = GW'(GMin);
+      else grad_sat[k*GW +: GW] = GW'(gc);
+    end
+    // Saturate to the F format.
+    if (fsum > FMax) f_sat = FW'(FMax);
+    else if (fsum < FMin) f_sat = FW'(FMin);
+    else f_sat = FW'(fsum);
+  end
+
+  assign last_pass = (32'(pass_q) == Passes - 1);
+
+  // [B] register: tag, J, f, grad
+  localparam int BWidth = 32 + 6 * JW + FW + 3 * GW;
+  logic              b_in_valid, b_in_ready;
+  logic              b_valid, b_ready;
+  logic [BWidth-1:0] b_data;
+
+  assign b_in_valid = a_valid & last_pass;
+  assign a_ready    = last_pass & b_in_ready;
+
+  always_comb begin
+    pass_d = pass_q;
+    facc_d = facc_q;
+    gacc_d = gacc_q;
+    if (a_valid) begin
+      if (!last_pass) begin
+        pass_d = pass_q + 1'b1;
+        facc_d = fsum;
+        gacc_d = gsum;
+      end else if (b_in_ready) begin
+        pass_d = '0;
+      end
+    end
+  end
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      pass_q <= '0;
+      facc_q <= '0;
+      gacc_q <= '0;
+    end else begin
+      pass_q <= pass_d;
+      facc_q <= facc_d;
+      gacc_q <= gacc_d;
+    end
+  end
+
+  pst_pipe_reg #(.Width(BWidth)) u_reg_b (
+    .clk_i, .rst_ni,
+    .valid_i (b_in_valid), .ready_o (b_in_ready),
+    .data_i  ({grad_sat, f_sat, a_j, a_tag}),
+    .valid_o (b_valid), .ready_i (b_ready), .data_o (b_data)
+  );
+
+  logic [31:0]     b_tag;
+  logic [6*JW-1:0] b_j;
+  logic [FW-1:0]   b_f;
+  logic [3*GW-1:0] b_grad;
+  assign {b_grad, b_f, b_j, b_tag} = b_data;
+
+  // ---------------------------------------------------------------------------------------
+  // Filter width -> [C]
+  // ---------------------------------------------------------------------------------------
+  logic [WW-1:0] b_w;
+
+  pst_filter_width #(
+    .GradInt(GradInt), .GradFrac(GradFrac), .JacobianInt(JacobianInt),
+    .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac),
+    .FilterNorm(FilterNorm)
+  ) u_width (
+    .grad_i (b_grad), .j_i (b_j), .w_o (b_w)
+  );
+
+  localparam int CWidth = 32 + FW + 3 * GW + WW;
+  logic              c_valid, c_ready;
+  logic [CWidth-1:0] c_data;
+
+  pst_pipe_reg #(.Width(CWidth)) u_reg_c (
+    .clk_i, .rst_ni,
+    .valid_i (b_valid), .ready_o (b_ready),
+    .data_i  ({b_w, b_grad, b_f, b_tag}),
+    .valid_o (c_valid), .ready_i (c_ready), .data_o (c_data)
+  );
+
+  logic [31:0]     c_tag;
+  logic [FW-1:0]   c_f;
+  logic [3*GW-1:0] c_grad;
+  logic [WW-1:0]   c_w;
+  assign {c_w, c_grad, c_f, c_tag} = c_data;
+
+  // ---------------------------------------------------------------------------------------
+  // Colour-table filter -> [D] -> out
+  // ---------------------------------------------------------------------------------------
+  logic [CB4-1:0] c_rgba;
+
+  pst_clut_filter #(
+    .FInt(FInt), .FFrac(FFrac), .Log2Clut(Log2Clut), .ColourBits(ColourBits),
+    .WidthFrac(WidthFrac), .FilterRecipFrac(FilterRecipFrac)
+  ) u_clut (
+    .clk_i,
+    .we_i    (reg_we_i),
+    .addr_i  (reg_addr_i),
+    .wdata_i (reg_wdata_i),
+    .f_i     (c_f),
+    .w_i     (c_w),
+    .clamp_i (ctrl_q[0]),
+    .kind_i  (ctrl_q[2:1]),
+    .rgba_o  (c_rgba)
+  );
+
+  localparam int DWidth = 32 + CB4 + FW + 3 * GW + WW;
+  logic [DWidth-1:0] d_data;
+
+  pst_pipe_reg #(.Width(DWidth)) u_reg_d (
+    .clk_i, .rst_ni,
+    .valid_i (c_valid), .ready_o (c_ready),
+    .data_i  ({c_w, c_grad, c_f, c_rgba, c_tag}),
+    .valid_o (out_valid_o), .ready_i (out_ready_i), .data_o (d_data)
+  );
+
+  assign {out_w_o, out_grad_o, out_f_o, out_rgba_o, out_tag_o} = d_data;
+
+  assign idle_o = ~(a_valid | b_valid | c_valid | out_valid_o);
+
+  // Assertions
+`ifndef SYNTHESIS
+  // Registers change only between objects, with the pipeline drained.
+  assert property (@(posedge clk_i) disable iff (!rst_ni) reg_we_i |-> idle_o);
+  // The driver keeps an offered fragment until it is taken (an assumption on the source).
+  assert property (@(posedge clk_i) disable iff (!rst_ni)
+                   (frag_valid_i && !frag_ready_o) |=> (frag_valid_i && $stable(frag_tag_i)));
+  // The pass counter stays within the octave passes.
+  assert property (@(posedge clk_i) disable iff (!rst_ni) 32'(pass_q) < Passes);
+  // Profile consistency.
+  initial begin
+    assert (Octaves % NoiseUnits == 0) else $fatal(1, "NoiseUnits must divide Octaves");
+    assert (Octaves <= 16) else $fatal(1, "at most 16 octaves (register map)");
+  end
+`endif
+
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,26 @@
+# The Verilator harness: pst_top verilated once per profile (prefix Vpst_top_<profile>) into
+# one library, pst_rtl, with makeRtlModel(name) choosing among them.
+file(GLOB PST_RTL_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/rtl/*.sv)
+
+set(PST_RTL_REGISTRY_DECLS "")
+set(PST_RTL_REGISTRY_CASES "")
+set(PST_RTL_REGISTRY_NAMES "")
+set(PST_RTL_GEN_SOURCES "")
+foreach(p ${PST_PROFILES})
+  set(PST_P ${p})
+  set(PST_PROFILE_PATH ${PROJECT_SOURCE_DIR}/rtl/configs/${p}.toml)
+  configure_file(${CMAKE_CURRENT_SOURCE_DIR}/rtl_model_profile.cpp.in
+                 ${CMAKE_CURRENT_BINARY_DIR}/rtl_model_${p}.cpp @ONLY)
+  list(APPEND PST_RTL_GEN_SOURCES ${CMAKE_CURRENT_BINARY_DIR}/rtl_model_${p}.cpp)
+  string(APPEND PST_RTL_REGISTRY_DECLS "std::unique_ptr<RtlModel> makeRtlModel_${p}(const SimOptions&);\n")
+  string(APPEND PST_RTL_REGISTRY_CASES "    if (name == \"${p}\") return makeRtlModel_${p}(o);\n")
+  string(APPEND PST_RTL_REGISTRY_NAMES "\"${p}\", ")
+endforeach()
+configure_file(${CMAKE_CURRENT_SOURCE_DIR}/rtl_registry.cpp.in ${CMAKE_CURRENT_BINARY_DIR}/rtl_registry.cpp @ONLY)
+
+add_library(pst_rtl STATIC ${PST_RTL_GEN_SOURCES} ${CMAKE_CURRENT_BINARY_DIR}/rtl_registry.cpp)
+target_include_directories(pst_rtl PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
+target_link_libraries(pst_rtl PUBLIC pst_golden)
+foreach(p ${PST_PROFILES})
+  pst_verilate(pst_rtl TOP pst_top PROFILE ${p} PREFIX Vpst_top_${p} SOURCES ${PST_RTL_SOURCES})
+endforeach()

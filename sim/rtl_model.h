@@ -1,0 +1,58 @@
+// The verilated pipeline behind one interface, whatever the profile: register writes, a
+// fragment stream in, pixels out, cycles counted. One verilated model per profile
+// (Vpst_top_<profile>); makeRtlModel picks it by name.
+#pragma once
+
+#include <cstdint>
+#include <array>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "pipeline.h"
+
+namespace pst {
+
+// The run controller's settings (after lowRISC's VerilatorSimCtrl).
+struct SimOptions {
+    uint64_t seed = 1;              // random gaps and stalls
+    uint64_t timeoutCycles = 0;     // 0 = derived from the work given (generous)
+    std::string traceFile;          // FST waveform; empty = tracing off
+    uint64_t traceStart = 0;        // first and last cycle traced
+    uint64_t traceEnd = UINT64_MAX;
+    double inputGapRate = 0.0;      // probability that the driver idles a cycle
+    double outputStallRate = 0.0;   // probability that the monitor holds out_ready low
+};
+
+// What the octave-stage probes showed for one fragment (per active octave), for the
+// scoreboard's stage localization.
+struct ProbeFx {
+    int64_t q = 0;
+    std::vector<std::array<int, 3>> lat;
+    std::vector<std::array<int64_t, 3>> frac;
+    std::vector<int64_t> n;
+    std::vector<std::array<int64_t, 3>> g;
+};
+
+class RtlModel {
+public:
+    virtual ~RtlModel() = default;
+    virtual const std::string& profile() const = 0;
+    virtual void reset() = 0;
+    // Waits until the pipeline is idle, then writes one register per cycle.
+    virtual void write(const std::vector<std::pair<uint16_t, uint32_t>>& writes) = 0;
+    // Streams `frags` through the pipeline and returns the pixels in the order they came out.
+    // Throws std::runtime_error on timeout. Probes are recorded by tag when `probes` is given.
+    virtual std::vector<PixelFx> run(const std::vector<FragmentFx>& frags, int activeOctaves,
+                                     std::map<uint32_t, ProbeFx>* probes = nullptr) = 0;
+    virtual uint64_t cycles() const = 0;       // since construction
+    virtual uint64_t busyCycles() const = 0;   // cycles spent inside run()
+};
+
+std::unique_ptr<RtlModel> makeRtlModel(const std::string& profile, const SimOptions& options = {});
+// The profiles compiled into this build.
+std::vector<std::string> rtlProfiles();
+
+}  // namespace pst

@@ -1,0 +1,227 @@
+// The Verilator harness of pst_top, templated on the verilated class of one profile:
+//   Dut      thin wrapper: clock, reset, tick, FST tracing in a cycle window
+//   Driver   offers fragments on the valid/ready input, with random idle cycles
+//   Monitor  takes pixels from the output, with random back-pressure; samples the probes
+// (after Verilator's examples and lowRISC's VerilatorSimCtrl / dv drivers and monitors).
+#pragma once
+
+#include <array>
+#include <deque>
+#include <random>
+#include <stdexcept>
+#include <string>
+
+#include <verilated.h>
+#include <verilated_fst_c.h>
+
+#include "fixed.h"
+#include "rtl_model.h"
+
+namespace pst {
+namespace port {
+
+// Bit-field access for any verilated port type: CData/SData/IData/QData or VlWide<N>.
+template <typename T>
+void set(T& p, int lsb, int width, uint64_t v) {
+    for (int b = 0; b < width; ++b) {
+        const T bit = T(1) << (lsb + b);
+        p = ((v >> b) & 1) ? (p | bit) : (p & ~bit);
+    }
+}
+template <std::size_t N>
+void set(VlWide<N>& p, int lsb, int width, uint64_t v) {
+    for (int b = 0; b < width; ++b) {
+        const int i = lsb + b;
+        const uint32_t bit = 1u << (i % 32);
+        p[i / 32] = ((v >> b) & 1) ? (p[i / 32] | bit) : (p[i / 32] & ~bit);
+    }
+}
+template <typename T>
+uint64_t get(const T& p, int lsb, int width) {
+    return (uint64_t(p) >> lsb) & (width >= 64 ? ~uint64_t(0) : (uint64_t(1) << width) - 1);
+}
+template <std::size_t N>
+uint64_t get(const VlWide<N>& p, int lsb, int width) {
+    uint64_t v = 0;
+    for (int b = 0; b < width; ++b) {
+        const int i = lsb + b;
+        v |= uint64_t((p[i / 32] >> (i % 32)) & 1u) << b;
+    }
+    return v;
+}
+template <typename T>
+int64_t getSigned(const T& p, int lsb, int width) {
+    return fx::wrapSigned(fx::i128(get(p, lsb, width)), width);
+}
+
+}  // namespace port
+
+template <typename Top>
+class RtlModelImpl final : public RtlModel {
+public:
+    RtlModelImpl(std::string profileName, const Profile& prof, const SimOptions& opt)
+        : name_(std::move(profileName)), p_(prof), opt_(opt), rng_(opt.seed) {
+        ctx_.randReset(0);
+        ctx_.traceEverOn(!opt_.traceFile.empty());
+        top_ = std::make_unique<Top>(&ctx_, "pst_top");
+        if (!opt_.traceFile.empty()) {
+            trace_ = std::make_unique<VerilatedFstC>();
+            top_->trace(trace_.get(), 99);
+        }
+        reset();
+    }
+    ~RtlModelImpl() override {
+        if (trace_) trace_->close();
+        top_->final();
+    }
+
+    const std::string& profile() const override { return name_; }
+    uint64_t cycles() const override { return cycle_; }
+    uint64_t busyCycles() const override { return busy_; }
+
+    void reset() override {
+        top_->clk_i = 0;
+        top_->rst_ni = 0;
+        top_->reg_we_i = 0;
+        top_->frag_valid_i = 0;
+        top_->out_ready_i = 0;
+        for (int i = 0; i < 3; ++i) tick();
+        top_->rst_ni = 1;
+        tick();
+    }
+
+    void write(const std::vector<std::pair<uint16_t, uint32_t>>& writes) override {
+        waitIdle();
+        for (const auto& [addr, data] : writes) {
+            top_->reg_we_i = 1;
+            top_->reg_addr_i = addr;
+            top_->reg_wdata_i = data;
+            tick();
+        }
+        top_->reg_we_i = 0;
+    }
+
+    std::vector<PixelFx> run(const std::vector<FragmentFx>& frags, int activeOctaves,
+                             std::map<uint32_t, ProbeFx>* probes) override {
+        std::vector<PixelFx> out;
+        out.reserve(frags.size());
+        const uint64_t start = cycle_;
+        const uint64_t limit = opt_.timeoutCycles ? opt_.timeoutCycles
+                                                  : 1000 + 64 * uint64_t(frags.size()) * p_.cyclesPerOctavePass();
+        std::bernoulli_distribution gap(opt_.inputGapRate), stall(opt_.outputStallRate);
+        size_t next = 0;
+        bool offering = false;
+        while (out.size() < frags.size()) {
+            if (cycle_ - start > limit)
+                throw std::runtime_error("rtl " + name_ + ": timeout after " + std::to_string(limit) +
+                                         " cycles with " + std::to_string(out.size()) + " of " +
+                                         std::to_string(frags.size()) + " pixels out");
+            // Driver: a fragment once offered stays offered until it is taken.
+            if (!offering && next < frags.size() && !gap(rng_)) {
+                drive(frags[next]);
+                offering = true;
+            }
+            top_->frag_valid_i = offering;
+            // Monitor: random back-pressure.
+            top_->out_ready_i = !stall(rng_);
+            top_->eval();
+            const bool fragTaken = offering && top_->frag_ready_o;
+            const bool pixelTaken = top_->out_valid_o && top_->out_ready_i;
+            if (pixelTaken) out.push_back(sample());
+            if (probes && top_->probe_valid_o) sampleProbes(*probes, activeOctaves);
+            tick();
+            if (fragTaken) {
+                offering = false;
+                ++next;
+            }
+        }
+        top_->frag_valid_i = 0;
+        top_->out_ready_i = 0;
+        busy_ += cycle_ - start;
+        return out;
+    }
+
+private:
+    void tick() {
+        top_->clk_i = 0;
+        top_->eval();
+        dump(2 * cycle_);
+        top_->clk_i = 1;
+        top_->eval();
+        dump(2 * cycle_ + 1);
+        ++cycle_;
+        ctx_.timeInc(1);
+    }
+    void dump(uint64_t t) {
+        if (trace_ && cycle_ >= opt_.traceStart && cycle_ <= opt_.traceEnd) {
+            if (!traceOpen_) {
+                trace_->open(opt_.traceFile.c_str());
+                traceOpen_ = true;
+            }
+            trace_->dump(t);
+        }
+    }
+    void waitIdle() {
+        for (int i = 0; i < 100000 && !top_->idle_o; ++i) {
+            top_->out_ready_i = 1;
+            tick();
+        }
+        if (!top_->idle_o) throw std::runtime_error("rtl " + name_ + ": pipeline does not drain");
+    }
+
+    void drive(const FragmentFx& f) {
+        const int cw = p_.coord.width(), jw = p_.jacobian.width();
+        top_->frag_tag_i = f.tag;
+        for (int k = 0; k < 3; ++k) port::set(top_->frag_s_i, k * cw, cw, uint64_t(f.s[k]));
+        for (int k = 0; k < 6; ++k) port::set(top_->frag_j_i, k * jw, jw, uint64_t(f.j[k]));
+    }
+
+    PixelFx sample() const {
+        const int fw = p_.f.width(), gw = p_.grad.width();
+        const int ww = p_.widthIntBits() + p_.widthFrac;
+        PixelFx px;
+        px.tag = top_->out_tag_o;
+        px.rgba = uint32_t(port::get(top_->out_rgba_o, 0, 4 * p_.colourBits));
+        px.f = port::getSigned(top_->out_f_o, 0, fw);
+        for (int k = 0; k < 3; ++k) px.grad[k] = port::getSigned(top_->out_grad_o, k * gw, gw);
+        px.w = int64_t(port::get(top_->out_w_o, 0, ww));
+        return px;
+    }
+
+    void sampleProbes(std::map<uint32_t, ProbeFx>& probes, int active) const {
+        const int lf = p_.noiseLatticeFrac, nw = 4 + p_.noiseOutFrac, ngw = 6 + p_.noiseOutFrac;
+        ProbeFx& pr = probes[top_->probe_tag_o];
+        const int pass = int(top_->probe_pass_o);
+        pr.q = port::getSigned(top_->probe_q_o, 0, p_.f.width());
+        const int n = std::min(active, p_.octaves);
+        if (int(pr.n.size()) < n) {
+            pr.lat.resize(n);
+            pr.frac.resize(n);
+            pr.n.resize(n);
+            pr.g.resize(n);
+        }
+        for (int u = 0; u < p_.noiseUnits; ++u) {
+            const int i = pass * p_.noiseUnits + u;
+            if (i >= n) break;
+            for (int k = 0; k < 3; ++k) {
+                pr.lat[i][k] = int(port::get(top_->probe_lat_o, u * 36 + 12 * k, 12));
+                pr.frac[i][k] = int64_t(port::get(top_->probe_frac_o, (u * 3 + k) * lf, lf));
+                pr.g[i][k] = port::getSigned(top_->probe_g_o, (u * 3 + k) * ngw, ngw);
+            }
+            pr.n[i] = port::getSigned(top_->probe_n_o, u * nw, nw);
+        }
+    }
+
+    std::string name_;
+    Profile p_;
+    SimOptions opt_;
+    std::mt19937_64 rng_;
+    VerilatedContext ctx_;
+    std::unique_ptr<Top> top_;
+    std::unique_ptr<VerilatedFstC> trace_;
+    bool traceOpen_ = false;
+    uint64_t cycle_ = 0;
+    uint64_t busy_ = 0;
+};
+
+}  // namespace pst

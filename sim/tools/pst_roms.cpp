@@ -1,0 +1,82 @@
+// pst_roms OUTDIR: writes the noise unit's ROM images for $readmemh, from the reference
+// model's tables (model/noise.cpp holds their one definition):
+//   OUTDIR/hash4096.memh  4096 lines, 3 hex digits: Rayshade's hash table T
+//   OUTDIR/perm256.memh    256 lines, 2 hex digits: the 256-entry permutation P
+//   OUTDIR/value16.memh    267 lines, 4 hex digits: R[i] * 32768 as a 16-bit two's-complement
+//                          number (exact: R = (crc - 32768) / 32768). The RTL and the golden
+//                          model bring it to NoiseValueFrac bits with value16 >>> (15 - frac).
+// Each file is written to a temporary name and renamed, so a reader never sees half a file.
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <string>
+
+#include "noise.h"
+
+namespace {
+
+bool writeMemh(const std::string& dir, const std::string& name, int count, int digits,
+               const std::function<uint32_t(int)>& entry) {
+    const std::string path = dir + "/" + name;
+    const std::string tmp = path + ".tmp";
+    {
+        std::ofstream out(tmp, std::ios::trunc);
+        if (!out) {
+            std::fprintf(stderr, "pst_roms: cannot write %s\n", tmp.c_str());
+            return false;
+        }
+        char line[16];
+        for (int i = 0; i < count; ++i) {
+            std::snprintf(line, sizeof line, "%0*x\n", digits, static_cast<unsigned>(entry(i)));
+            out << line;
+        }
+        if (!out.flush()) {
+            std::fprintf(stderr, "pst_roms: write error on %s\n", tmp.c_str());
+            return false;
+        }
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) {
+        std::fprintf(stderr, "pst_roms: cannot rename %s: %s\n", tmp.c_str(), ec.message().c_str());
+        return false;
+    }
+    return true;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc != 2) {
+        std::fprintf(stderr, "usage: pst_roms OUTDIR\n");
+        return 2;
+    }
+    const std::string dir = argv[1];
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) {
+        std::fprintf(stderr, "pst_roms: cannot create %s: %s\n", dir.c_str(), ec.message().c_str());
+        return 1;
+    }
+    const pst::NoiseTables& t = pst::NoiseTables::get();
+
+    // R[i] * 32768 must be an integer in [-32768, 32767]: check every entry before writing.
+    for (int i = 0; i < pst::NoiseTables::kValueSize; ++i) {
+        const double v = t.value[i] * 32768.0;
+        if (!(v == std::floor(v) && v >= -32768.0 && v <= 32767.0)) {
+            std::fprintf(stderr, "pst_roms: R[%d] = %.17g is not a signed 1.15 number\n", i, t.value[i]);
+            return 1;
+        }
+    }
+    bool ok = writeMemh(dir, "hash4096.memh", pst::NoiseTables::kHashSize, 3,
+                        [&](int i) { return uint32_t(t.hash[i]) & 0xfffu; });
+    ok = ok && writeMemh(dir, "perm256.memh", pst::NoiseTables::kPermSize, 2,
+                         [&](int i) { return uint32_t(t.perm[i]) & 0xffu; });
+    ok = ok && writeMemh(dir, "value16.memh", pst::NoiseTables::kValueSize, 4, [&](int i) {
+        return uint32_t(uint16_t(int16_t(std::lround(t.value[i] * 32768.0))));
+    });
+    return ok ? 0 : 1;
+}

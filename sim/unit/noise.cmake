@@ -1,0 +1,74 @@
+# Unit tests of stages 1 and 2 (pst_octave_transform, pst_noise and its sub-modules) against
+# the golden model (model/golden/noise_fx.cpp), bit for bit, one verilated top per profile.
+# Seed: PST_SEED=<n> in the environment replays a run (the test prints its seed).
+set(PST_NOISE_UNIT_PARAMS
+    CoordInt,CoordFrac,MatrixInt,MatrixFrac,OffsetInt,OffsetFrac,NoiseLatticeFrac,NoiseInterp,NoiseCorner,NoiseHash,NoiseValueFrac,NoiseOutFrac)
+set(PST_NOISE_UNIT_SOURCES
+    ${PROJECT_SOURCE_DIR}/sim/unit/pst_noise_unit_top.sv
+    ${PROJECT_SOURCE_DIR}/rtl/pst_octave_transform.sv
+    ${PROJECT_SOURCE_DIR}/rtl/pst_noise.sv
+    ${PROJECT_SOURCE_DIR}/rtl/pst_noise_weight.sv
+    ${PROJECT_SOURCE_DIR}/rtl/pst_noise_corner.sv
+    ${PROJECT_SOURCE_DIR}/rtl/pst_noise_lerp.sv)
+
+foreach(p ${PST_PROFILES})
+  add_executable(noise_unit_${p} ${PROJECT_SOURCE_DIR}/sim/unit/noise_unit_test.cpp)
+  target_link_libraries(noise_unit_${p} PRIVATE pst_golden GTest::gtest_main)
+  target_compile_definitions(noise_unit_${p} PRIVATE PST_PROFILE_PATH="${PROJECT_SOURCE_DIR}/rtl/configs/${p}.toml")
+  pst_verilate(noise_unit_${p} TOP pst_noise_unit_top PROFILE ${p} PARAMS ${PST_NOISE_UNIT_PARAMS}
+               SOURCES ${PST_NOISE_UNIT_SOURCES})
+  gtest_discover_tests(noise_unit_${p} TEST_PREFIX "${p}." DISCOVERY_TIMEOUT 60)
+endforeach()
+
+# Variants: a profile's formats with some noise parameters overridden, so that every
+# generate branch of the noise unit is built and compared (the two profiles cover
+# scurve/value_gradient/rayshade and linear/value_gradient/perm256 only):
+#   var_a  full formats, linear, value corners, perm256, NoiseOutFrac 11 (node frac = VF)
+#   var_b  reduced formats, scurve, value_gradient, rayshade, NoiseValueFrac 15 (> node frac)
+#   var_c  reduced formats, scurve, perm256, VF 3, LF 4, OF 10 (VF + LF < node frac)
+# The test applies the same overrides to the loaded profile (PST_NOISE_OVERRIDES).
+set(PST_NOISE_VARIANTS
+    "var_a|full|NoiseInterp=1,NoiseCorner=1,NoiseHash=1,NoiseOutFrac=11"
+    "var_b|reduced|NoiseInterp=0,NoiseCorner=0,NoiseHash=0,NoiseValueFrac=15"
+    "var_c|reduced|NoiseInterp=0,NoiseCorner=0,NoiseHash=1,NoiseValueFrac=3,NoiseLatticeFrac=4,NoiseOutFrac=10")
+foreach(v ${PST_NOISE_VARIANTS})
+  string(REPLACE "|" ";" v "${v}")
+  list(GET v 0 vname)
+  list(GET v 1 vprofile)
+  list(GET v 2 voverrides)
+  set(cfg ${PROJECT_SOURCE_DIR}/rtl/configs/${vprofile}.toml)
+  execute_process(COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/scripts/profile.py ${cfg} --list --only ${PST_NOISE_UNIT_PARAMS}
+                  OUTPUT_VARIABLE plist RESULT_VARIABLE rc ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "profile ${cfg}: ${err}")
+  endif()
+  string(STRIP "${plist}" plist)
+  string(REPLACE "\n" ";" plist "${plist}")
+  string(REPLACE "," ";" ovlist "${voverrides}")
+  set(gparams "")
+  foreach(line ${plist})
+    string(REPLACE " " ";" kv "${line}")
+    list(GET kv 0 pname)
+    list(GET kv 1 pvalue)
+    foreach(ov ${ovlist})
+      if(ov MATCHES "^${pname}=(.*)$")
+        set(pvalue ${CMAKE_MATCH_1})
+      endif()
+    endforeach()
+    list(APPEND gparams -G${pname}=${pvalue})
+  endforeach()
+  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${cfg})
+  set(target noise_unit_${vname})
+  add_executable(${target} ${PROJECT_SOURCE_DIR}/sim/unit/noise_unit_test.cpp)
+  target_link_libraries(${target} PRIVATE pst_golden GTest::gtest_main)
+  target_compile_definitions(${target} PRIVATE PST_PROFILE_PATH="${cfg}" PST_NOISE_OVERRIDES="${voverrides}")
+  verilate(${target}
+    SOURCES ${PST_NOISE_UNIT_SOURCES}
+    TOP_MODULE pst_noise_unit_top
+    PREFIX Vpst_noise_unit_top
+    DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/${target}_pst_noise_unit_top
+    VERILATOR_ARGS ${gparams} -Werror-UNOPTFLAT -Wno-fatal --assert -O3 --x-assign fast --x-initial fast
+                   -I${PST_RTL_DIR} +define+PST_ROM_DIR=\"${PST_ROM_DIR}\")
+  add_dependencies(${target} pst_rom_images)
+  gtest_discover_tests(${target} TEST_PREFIX "${vname}." DISCOVERY_TIMEOUT 60)
+endforeach()

@@ -1,0 +1,99 @@
+#include "driver.h"
+
+#include <sstream>
+
+#include "clut_filter_fx.h"
+#include "fixed.h"
+
+namespace pst {
+namespace {
+
+uint32_t word(int64_t v) { return uint32_t(uint64_t(v)); }  // low 32 bits, sign-extended in hardware
+
+int64_t q(double v, const FixedFormat& f) { return fx::quantize(v, f.intBits, f.fracBits); }
+
+}  // namespace
+
+int hardwareFilterKind(FilterKind k) {
+    switch (k) {
+        case FilterKind::None: return 0;
+        case FilterKind::MipNearest: return 1;
+        case FilterKind::MipLinear: return 2;
+        case FilterKind::Sat:
+        case FilterKind::Box: return 3;
+    }
+    return 3;
+}
+
+std::pair<uint16_t, uint32_t> controlWrite(const Texture& tex, int filterKind) {
+    const uint32_t clamp = tex.clut.wrap() == WrapMode::Clamp ? 1u : 0u;
+    return {0x0000, clamp | (uint32_t(filterKind) << 1)};
+}
+
+TextureProgram programTexture(const Profile& p, const Texture& tex) {
+    TextureProgram prog;
+    std::ostringstream notes;
+    prog.filterKind = hardwareFilterKind(tex.filter);
+    if (tex.filter == FilterKind::Box) notes << "box filter done by the SAT; ";
+    prog.writes.push_back(controlWrite(tex, prog.filterKind));
+
+    // Quadric A..J (eq. 3).
+    const Quadric& qd = tex.quadric;
+    const double coef[10] = {qd.A, qd.B, qd.C, qd.D, qd.E, qd.F, qd.G, qd.H, qd.I, qd.J};
+    for (int k = 0; k < 10; ++k) prog.writes.push_back({uint16_t(0x0010 + k), word(q(coef[k], p.quadric))});
+
+    // Octaves: M (row-major), o, a, GM = a M^T (row-major).
+    prog.activeOctaves = std::min<int>(int(tex.octaves.size()), p.octaves);
+    prog.droppedOctaves = int(tex.octaves.size()) - prog.activeOctaves;
+    if (prog.droppedOctaves > 0)
+        notes << prog.droppedOctaves << " of " << tex.octaves.size() << " octaves dropped (profile holds "
+              << p.octaves << "); ";
+    prog.writes.push_back({0x0001, uint32_t(prog.activeOctaves)});
+    for (int i = 0; i < prog.activeOctaves; ++i) {
+        const Octave& o = tex.octaves[i];
+        const uint16_t base = uint16_t(0x0100 + 32 * i);
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) {
+                prog.writes.push_back({uint16_t(base + 3 * r + c), word(q(o.M[c][r], p.matrix))});
+                // (a M^T)[r][c] = a M[c][r]
+                prog.writes.push_back({uint16_t(base + 13 + 3 * r + c), word(q(o.amplitude * o.M[r][c], p.gradMatrix))});
+            }
+        for (int k = 0; k < 3; ++k) prog.writes.push_back({uint16_t(base + 9 + k), word(q(o.offset[k], p.offset))});
+        prog.writes.push_back({uint16_t(base + 12), word(q(o.amplitude, p.amplitude))});
+    }
+
+    // Colour tables, built here (driver side) and written through the register port.
+    if (tex.clut.size() != p.clutSize()) {
+        throw std::invalid_argument("texture '" + tex.name + "': colour map has " + std::to_string(tex.clut.size()) +
+                                    " entries, profile '" + p.name + "' needs " + std::to_string(p.clutSize()));
+    }
+    const ClutTables tables = buildClutTables(p, tex.clut.entries());
+    for (const auto& w : clutRegisterWrites(p, tables)) prog.writes.push_back(w);
+    if (tex.noise.interp != p.noise.interp || tex.noise.corner != p.noise.corner || tex.noise.hash != p.noise.hash)
+        notes << "noise variant of the profile (" << toString(p.noise.interp) << ", " << toString(p.noise.corner) << ", "
+              << toString(p.noise.hash) << "); ";
+    if (tex.norm != p.filterNorm) notes << "|grad| by " << toString(p.filterNorm) << "; ";
+    prog.notes = notes.str();
+    return prog;
+}
+
+FragmentFx quantizeFragment(const Profile& p, uint32_t tag, const glm::dvec3& s, const glm::dvec3& dsdx,
+                            const glm::dvec3& dsdy) {
+    FragmentFx f;
+    f.tag = tag;
+    for (int k = 0; k < 3; ++k) {
+        f.s[k] = q(s[k], p.coord);
+        f.j[k] = q(dsdx[k], p.jacobian);
+        f.j[3 + k] = q(dsdy[k], p.jacobian);
+    }
+    return f;
+}
+
+glm::dvec4 unpackRgba(const Profile& p, uint32_t rgba) {
+    const uint32_t mask = (1u << p.colourBits) - 1;
+    glm::dvec4 c;
+    for (int k = 0; k < 4; ++k) c[k] = double((rgba >> (k * p.colourBits)) & mask) / double(mask);
+    return c;
+}
+
+}  // namespace pst

@@ -1,0 +1,43 @@
+// The hardware driver: what a graphics driver does for the texture chip. It turns a texture
+// (double parameters, a colour map) into register writes in the profile's formats, builds the
+// colour tables (clut, summed-area table, MIP levels) in C++, and converts fragments to the
+// fixed-point input formats (round to nearest, saturate).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "pipeline.h"
+#include "profile.h"
+#include "rasterizer.h"
+#include "texture.h"
+
+namespace pst {
+
+using RegWrites = std::vector<std::pair<uint16_t, uint32_t>>;
+
+struct TextureProgram {
+    RegWrites writes;           // control, quadric, octaves, tables
+    int activeOctaves = 0;      // octaves the hardware evaluates
+    int droppedOctaves = 0;     // texture octaves beyond the profile's count (the last ones)
+    int filterKind = 3;         // hardware filter code (0 none, 1 mip, 2 mip blended, 3 sat)
+    std::string notes;          // what the hardware does differently from the texture's request
+};
+
+// The hardware filter code for a texture's filter (box is the reference-only exact integral;
+// the hardware's box filter is the SAT).
+int hardwareFilterKind(FilterKind k);
+
+TextureProgram programTexture(const Profile& p, const Texture& tex);
+// Only the control register (wrap, filter kind), e.g. to render the unfiltered image.
+std::pair<uint16_t, uint32_t> controlWrite(const Texture& tex, int filterKind);
+
+FragmentFx quantizeFragment(const Profile& p, uint32_t tag, const glm::dvec3& s,
+                            const glm::dvec3& dsdx, const glm::dvec3& dsdy);
+
+// Back to numbers: the hardware's colour as RGBA in [0, 1].
+glm::dvec4 unpackRgba(const Profile& p, uint32_t rgba);
+
+}  // namespace pst

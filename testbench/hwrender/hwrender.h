@@ -1,0 +1,54 @@
+// Rendering a scene through the hardware models: the driver programs each object's texture,
+// the fragments of each layer stream through the RTL (and the golden model), the scoreboard
+// checks every pixel bit for bit, and the image is compared with the double reference.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "render.h"
+#include "rtl_model.h"
+#include "scene.h"
+
+namespace pst {
+
+struct HwRenderOptions {
+    size_t maxReports = 8;      // first mismatches kept with their stage traces
+    bool probes = true;         // sample the octave-stage probes (names early stages)
+    Stage fault = Stage::Count; // perturb a golden stage on purpose (scoreboard self-test)
+    std::function<void(const std::string&, double)> progress;
+};
+
+// Hardware image against the reference, over RGB.
+struct ErrorStats {
+    double maxLsb = 0;        // largest |hardware - reference| in colour LSBs
+    double rms = 0;           // in [0, 1] units
+    double psnr = 0;          // dB
+    double within1Lsb = 0;    // % of pixels with every RGB channel within 1 LSB
+};
+
+struct HwRenderResult {
+    Image hardware;           // RTL output (or the golden model's without RTL), RGBA in [0, 1]
+    Image reference;          // reference model, filtered
+    Image difference;         // |hardware - reference| x 8, RGB
+    bool passed = true;       // zero mismatches, nothing lost or out of order
+    size_t pixels = 0, mismatches = 0;
+    std::string scoreboard;   // the scoreboard's summary
+    std::map<Stage, size_t> byStage;  // mismatches by first differing stage
+    uint64_t cycles = 0;      // RTL cycles spent streaming (fill and drain included)
+    long long fragments = 0;
+    double cyclesPerPixel = 0;
+    double rtlSeconds = 0, goldenSeconds = 0, referenceSeconds = 0;
+    ErrorStats vsReference;
+    std::vector<std::string> notes;   // what the driver had to change (octaves dropped, ...)
+};
+
+// `rtl` may be null: golden model only (no scoreboard, no cycles).
+HwRenderResult renderHardware(const Scene& scene, const Profile& profile, RtlModel* rtl,
+                              const HwRenderOptions& options = {});
+
+ErrorStats compareToReference(const Image& hardware, const Image& reference, int colourBits);
+
+}  // namespace pst
