@@ -1,17 +1,20 @@
 #!/usr/bin/python3
-"""Collects out/<scene>/report.json files into one Markdown report (stdout)."""
+"""Collects the main job's JSON files under out/ into one Markdown report (stdout)."""
 import json
 import pathlib
 import sys
 
 
-def main(out_dir: str) -> int:
-    root = pathlib.Path(out_dir)
+def fmt(v, digits=4):
+    return "-" if v is None else f"{v:.{digits}f}"
+
+
+def reference_section(root: pathlib.Path) -> None:
     reports = sorted(root.glob("*/report.json"))
+    print("## Reference renders\n")
     if not reports:
-        print(f"error: no */report.json under {root}", file=sys.stderr)
-        return 1
-    print("# Reference renders\n")
+        print("(none)\n")
+        return
     print("Ground truth: n x n jittered, unfiltered samples per pixel. RMS over RGB in [0, 1].\n")
     print("| scene | size | fragments | render s | truth s | RMS filtered vs truth | RMS unfiltered vs truth | images |")
     print("|---|---|---|---|---|---|---|---|")
@@ -19,14 +22,48 @@ def main(out_dir: str) -> int:
         r = json.loads(path.read_text())
         name = path.parent.name
         vt = r.get("vs_truth", {})
-        f = vt.get("filtered", {}).get("rms")
-        u = vt.get("unfiltered", {}).get("rms")
-        fmt = lambda v: "-" if v is None else f"{v:.4f}"
         sec = r["seconds"]
         imgs = " ".join(f"[{k}]({name}/{k}.png)" for k in ("filtered", "unfiltered", "width", "truth")
                         if (path.parent / f"{k}.png").exists())
         print(f"| {r['title']} | {r['width']}x{r['height']} | {r['fragments']} | "
-              f"{sec['total'] - sec['truth']:.2f} | {sec['truth']:.2f} | {fmt(f)} | {fmt(u)} | {imgs} |")
+              f"{sec['total'] - sec['truth']:.2f} | {sec['truth']:.2f} | "
+              f"{fmt(vt.get('filtered', {}).get('rms'))} | {fmt(vt.get('unfiltered', {}).get('rms'))} | {imgs} |")
+    print()
+
+
+def regress_section(root: pathlib.Path) -> None:
+    path = root / "regress.json"
+    print("## RTL regression\n")
+    if not path.exists():
+        print("(not run)\n")
+        return
+    runs = json.loads(path.read_text())
+    failed = [r for r in runs if not r["passed"]]
+    print(f"**{'FAILED' if failed else 'PASSED'}**: {len(runs)} runs, {len(failed)} with mismatches against the "
+          "golden model. Error figures: RTL image against the double reference over RGB.\n")
+    print("| scene | profile | pixels | mismatches | cycles/pixel | PSNR dB | within 1 LSB % | max LSB | RTL px/s | images |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for r in runs:
+        name = pathlib.Path(r["scene"]).stem
+        v = r["vs_reference"]
+        d = f"{name}/{r['profile']}"
+        imgs = " ".join(f"[{k}]({d}/{k}.png)" for k in ("rtl", "difference") if (root / d / f"{k}.png").exists())
+        print(f"| {name} | {r['profile']} | {r['pixels_checked']} | {r['mismatches']} | {r['cycles_per_pixel']:.3f} | "
+              f"{v['psnr']:.2f} | {v['within_1lsb_percent']:.2f} | {v['max_lsb']:.0f} | "
+              f"{r['pixels_per_second']['rtl']:.0f} | {imgs} |")
+    notes = sorted({n for r in runs for n in r.get("notes", [])})
+    if notes:
+        print("\nDriver notes (what the hardware does differently from the scene's request):\n")
+        for n in notes:
+            print(f"- {n}")
+    print()
+
+
+def main(out_dir: str) -> int:
+    root = pathlib.Path(out_dir)
+    print("# pst: main job report\n")
+    regress_section(root)
+    reference_section(root)
     return 0
 
 

@@ -1,15 +1,24 @@
 #!/usr/bin/env bash
-# The main job: install dependencies, build, render every scene of scenes/ (filtered,
-# unfiltered, filter width, ground truth) into out/<scene>/ and write out/report.md.
+# The main job: install dependencies, build, then into out/:
+#   1. every scene through the reference model (filtered, unfiltered, filter width, ground truth)
+#   2. the RTL regression: every scene through every profile at 512x512, checked bit for bit
+#      against the golden model, with the images
+#   3. out/report.md, the page a designer opens first
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 scripts/build.sh
 mkdir -p out
 TRUTH=${PST_TRUTH:-4}
+SIZE=${PST_SIZE:-512}
+echo "== reference renders (ground truth ${TRUTH}x${TRUTH})"
 for scene in scenes/*.toml; do
   name=$(basename "$scene" .toml)
-  ./build/pst render "$scene" -o "out/$name" --truth "$TRUTH"
+  ./build/pst render "$scene" -o "out/$name" --truth "$TRUTH" -q
 done
+echo "== RTL regression at ${SIZE}x${SIZE}"
+rc=0
+./build/pst regress --size "$SIZE" -o out/regress.json --images out || rc=$?
 /usr/bin/python3 scripts/report.py out > out/report.md.tmp && mv out/report.md.tmp out/report.md
 echo "report: out/report.md"
+exit $rc

@@ -130,7 +130,7 @@ int runHardwareRender(const RenderArgs& a, const HwArgs& hw) {
 }
 
 int runRegress(const std::vector<std::string>& scenes, int size, const HwArgs& hw, const std::string& outPath,
-               bool quiet) {
+               const std::string& imageDir) {
     nlohmann::json all = nlohmann::json::array();
     int failures = 0;
     std::printf("%-14s %-8s %9s %10s %8s %9s %10s %12s\n", "scene", "profile", "pixels", "mismatch", "PSNR",
@@ -142,7 +142,6 @@ int runRegress(const std::vector<std::string>& scenes, int size, const HwArgs& h
             const Profile p = profileByName(name);
             auto rtl = makeRtlModel(p.name, hw.sim);
             HwRenderOptions ho;
-            if (!quiet) ho.progress = {};
             HwRenderResult r = renderHardware(scene, p, rtl.get(), ho);
             std::printf("%-14s %-8s %9lld %10zu %8.2f %9.2f %10.3f %12.0f\n", stem.c_str(), p.name.c_str(),
                         r.fragments, r.mismatches, r.vsReference.psnr, r.vsReference.within1Lsb, r.cyclesPerPixel,
@@ -153,6 +152,13 @@ int runRegress(const std::vector<std::string>& scenes, int size, const HwArgs& h
                 std::cout << r.scoreboard;
             }
             all.push_back(hwJson(path, p, "rtl", r, scene.camera.width, scene.camera.height));
+            if (!imageDir.empty()) {
+                const fs::path dir = fs::path(imageDir) / stem / p.name;
+                fs::create_directories(dir);
+                writeImage(r.hardware, (dir / "rtl.png").string());
+                writeImage(r.reference, (dir / "reference.png").string());
+                writeImage(r.difference, (dir / "difference.png").string());
+            }
         }
     }
     if (!outPath.empty()) writeTextFile(outPath, all.dump(2) + "\n");
@@ -329,14 +335,13 @@ int main(int argc, char** argv) {
 
     std::vector<std::string> regScenes;
     int regSize = 64;
-    std::string regOut;
-    bool regQuiet = false;
+    std::string regOut, regImages;
     auto* regress = app.add_subcommand("regress", "Every scene through every profile's RTL, checked against the golden model");
     regress->add_option("scenes", regScenes, "Scene files (default: scenes/*.toml)")->check(CLI::ExistingFile);
     regress->add_option("--size", regSize, "Square image size")->check(CLI::Range(1, 4096));
     regress->add_option("--profile", hw.profiles, "Profiles (default: every verilated profile)");
     regress->add_option("-o,--out", regOut, "JSON summary file");
-    regress->add_flag("-q,--quiet", regQuiet, "No progress");
+    regress->add_option("--images", regImages, "Also write <dir>/<scene>/<profile>/{rtl,reference,difference}.png");
     addSimOptions(regress);
 
     std::string fragScene, fragOut;
@@ -371,7 +376,7 @@ int main(int argc, char** argv) {
                     if (e.path().extension() == ".toml") regScenes.push_back(e.path().string());
                 std::sort(regScenes.begin(), regScenes.end());
             }
-            return runRegress(regScenes, regSize, hw, regOut, regQuiet);
+            return runRegress(regScenes, regSize, hw, regOut, regImages);
         }
         if (*frag) return runFragments(fragScene, fragSize, fragLayer, fragOut);
         if (*cmp) return runCompare(cmpA, cmpB);
