@@ -139,17 +139,12 @@ module pst_clut_filter #(
   end
 
   // Reciprocal ROM: recip[c] = round(2^RF / c) = floor((2^(RF+1) + c) / 2c); recip[0] unused.
-  logic [RomDepth*RecipBits-1:0] recip_rom;
-  // Two nested loops of at most 64 and (4N+64)/64 iterations: Verilator limits one loop's unrolling.
-  for (genvar hi_c = 0; hi_c < (RomDepth + 63) / 64; hi_c++) begin : g_recip
-    for (genvar lo_c = 0; lo_c < 64; lo_c++) begin : g_entry
-      localparam int C = hi_c * 64 + lo_c;
-      if (C == 0) begin : g_zero
-        assign recip_rom[0 +: RecipBits] = '0;
-      end else if (C < RomDepth) begin : g_rom
-        assign recip_rom[C*RecipBits +: RecipBits] =
-            RecipBits'(((64'd1 << (RF + 1)) + 64'(C)) / 64'(2 * C));
-      end
+  // A memory with an initial image (a ROM to synthesis: counted as ROM bits, not logic).
+  logic [RecipBits-1:0] recip_rom [RomDepth];
+  initial begin
+    recip_rom[0] = '0;
+    for (int c = 1; c < RomDepth; c++) begin
+      recip_rom[c] = RecipBits'(((64'd1 << (RF + 1)) + 64'(c)) / (64'd2 * 64'(c)));
     end
   end
 
@@ -273,7 +268,7 @@ module pst_clut_filter #(
   end
 
   logic [RecipBits-1:0] recip;
-  assign recip = recip_rom[count*RecipBits +: RecipBits];
+  assign recip = recip_rom[count];
 
   // ---------------------------------------------------------------------------------------
   // Per channel: MIP blend, SAT sum and division, output select

@@ -50,7 +50,8 @@ module pst_filter_width #(
   // Shifted width: room for the left shift and at least one bit above W for the clamp.
   localparam int SW   = (XW + ShL > WW) ? XW + ShL : WW + 1;
   localparam int SqW  = 2 * WW + 1;   // ax^2 + ay^2 <= 2 (2^WW - 1)^2 < 2^(2 WW + 1)
-  localparam logic [WW-1:0] WMax = '1;
+  // (Not '1: Yosys 0.23 reads '1 in a parameter declaration as the 1-bit value 1.)
+  localparam logic [WW-1:0] WMax = {WW{1'b1}};
 
   // Steps 1-3 per direction d (0: x with dsdx = j[0..2], 1: y with dsdy = j[3..5]).
   logic [2*WW-1:0] aw;   // a_d at [d*WW +: WW]
