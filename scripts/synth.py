@@ -78,25 +78,29 @@ def base_name(module: str) -> str:
     return m.group(1) if m else module.lstrip("\\")
 
 
-def yosys_script(profile: pathlib.Path, rom_dir: pathlib.Path, stat_json: str, ltp_txt: str) -> str:
+def yosys_script(profile: pathlib.Path, rom_dir: pathlib.Path, stat_json: str, ltp_txt: str, mem_txt: str) -> str:
     params = subprocess.run(["/usr/bin/python3", str(ROOT / "scripts" / "profile.py"), str(profile), "--yosys"],
                             check=True, capture_output=True, text=True).stdout.split("\n")
     chparams = [f"{line} pst_top" for line in params if line.strip()]
     sources = " ".join(str(p) for p in sorted((ROOT / "rtl").glob("*.sv")))
     lines = [
+        f"read_liberty -lib {LIB}",  # cell port directions, for ltp
         f'read_verilog -sv -D SYNTHESIS -D PST_ROM_DIR="{rom_dir}" {sources}',
         *chparams,
         "chparam -set DebugProbes 0 pst_top",
         "hierarchy -check -top pst_top",
         # Coarse synthesis with memories kept as $mem cells.
         "synth -top pst_top -run :fine",
+        # The memories' shapes (SIZE, WIDTH, read ports) for the memory-bit table.
+        f"tee -q -o {mem_txt} select -list t:$mem_v2",
+        f"tee -q -a {mem_txt} dump t:$mem_v2",
         "opt -fast -full",
         "techmap",
         "opt -fast",
         "async2sync",
         "dfflegalize -cell $_DFF_P_ 01",
         f"dfflibmap -liberty {LIB}",
-        f"abc -liberty {LIB}",
+        f"abc -fast -liberty {LIB}",  # the default script takes minutes per multiplier-heavy module
         "opt_clean -purge",
         f"tee -q -o {stat_json} stat -json",
         f"tee -q -o {ltp_txt} ltp -noff",
@@ -104,7 +108,33 @@ def yosys_script(profile: pathlib.Path, rom_dir: pathlib.Path, stat_json: str, l
     return "\n".join(lines) + "\n"
 
 
-def analyse(stat: dict, ltp_text: str, areas: dict) -> dict:
+def parse_stat_json(text: str) -> dict:
+    """Yosys 0.23's `stat -json` prints the hierarchy as plain text inside its "design"
+    section when the design has sub-modules; only the "modules" section is used here, so the
+    text is cut after it."""
+    end = text.find("\n   },\n")
+    stat = json.loads(text if end < 0 else text[:end] + "\n   }\n}\n")
+    return stat
+
+
+def parse_memories(text: str) -> list:
+    """(module, memory, size, width, read ports, write ports) of every $mem_v2 cell; the
+    `select -list` lines and the `dump` blocks come in the same order."""
+    names = [line.strip() for line in text.splitlines() if "/" in line and not line.startswith(" ")
+             and not line.startswith("attribute")]
+    blocks = re.split(r"\n\s*cell \$mem_v2 ", text)[1:]
+    mems = []
+    for name, block in zip(names, blocks):
+        param = lambda key: int(re.search(rf"parameter \\{key} (\d+)", block).group(1))
+        module, memory = name.split("/", 1)
+        mems.append({"module": module, "memory": memory, "size": param("SIZE"), "width": param("WIDTH"),
+                     "read_ports": param("RD_PORTS"), "write_ports": param("WR_PORTS")})
+    if len(names) != len(blocks):
+        raise RuntimeError(f"memory listing mismatch: {len(names)} names, {len(blocks)} cells")
+    return mems
+
+
+def analyse(stat: dict, ltp_text: str, areas: dict, mems: list) -> dict:
     modules = stat["modules"]
     own = {}
     for name, m in modules.items():
@@ -112,9 +142,7 @@ def analyse(stat: dict, ltp_text: str, areas: dict) -> dict:
         logic = sum(n * areas[c] for c, n in cells.items() if c in areas)
         ffs = cells.get("DFF", 0)
         subs = {c: n for c, n in cells.items() if c in modules}
-        mems = [(c, n) for c, n in cells.items() if c.startswith("$mem")]
-        own[name] = {"logic": logic, "ffs": ffs, "subs": subs, "mem_cells": mems,
-                     "memory_bits": m.get("num_memory_bits", 0)}
+        own[name] = {"logic": logic, "ffs": ffs, "subs": subs}
     depth = {}
     for m in re.finditer(r"Longest topological path in (\S+) \(length=(\d+)\)", ltp_text):
         depth[m.group(1)] = int(m.group(2))
@@ -138,12 +166,17 @@ def analyse(stat: dict, ltp_text: str, areas: dict) -> dict:
         entry["instances"] += k
         entry["logic_ge_each"] = max(entry["logic_ge_each"], own[name]["logic"])
         entry["depth"] = max(entry["depth"], depth.get(name.lstrip("\\"), depth.get(name, 0)))
-    # Memory bits per module (Yosys counts depth x width of each memory once, whatever its
-    # number of read ports).
+    # Memories: depth x width bits per instance; a memory with several read ports is one
+    # multi-ported array (or that many single-ported copies: bits x read ports).
     memories = []
-    for name, k in count.items():
-        if own[name]["memory_bits"]:
-            memories.append({"module": base_name(name), "instances": k, "bits_each": own[name]["memory_bits"]})
+    for m in mems:
+        k = next((n for name, n in count.items() if name.lstrip("\\") == m["module"].lstrip("\\")), 0)
+        if k == 0:
+            continue
+        memories.append({"module": base_name(m["module"]), "memory": m["memory"].lstrip("\\"),
+                         "kind": "RAM" if m["write_ports"] else "ROM", "instances": k,
+                         "size": m["size"], "width": m["width"], "read_ports": m["read_ports"],
+                         "bits_each": m["size"] * m["width"]})
     return {"blocks": blocks, "memories": memories, "depth": depth, "count": count}
 
 
@@ -173,8 +206,9 @@ def main() -> int:
     with tempfile.TemporaryDirectory(prefix=f"pst_synth_{name}_") as tmp:
         stat_json = f"{tmp}/stat.json"
         ltp_txt = f"{tmp}/ltp.txt"
+        mem_txt = f"{tmp}/mem.txt"
         script = pathlib.Path(tmp) / "synth.ys"
-        script.write_text(yosys_script(profile, rom_dir, stat_json, ltp_txt))
+        script.write_text(yosys_script(profile, rom_dir, stat_json, ltp_txt, mem_txt))
         t0 = time.time()
         run = subprocess.run([args.yosys, "-q", "-e", "implicitly declared|has no driver", "-l", f"{tmp}/yosys.log",
                               "-s", str(script)], capture_output=True, text=True)
@@ -184,10 +218,16 @@ def main() -> int:
             tail = "\n".join(log.read_text().splitlines()[-30:]) if log.exists() else run.stderr
             print(f"error: yosys failed on {profile}:\n{tail}\n{run.stderr}", file=sys.stderr)
             return 1
-        stat = json.loads(pathlib.Path(stat_json).read_text())
+        raw = pathlib.Path(stat_json).read_text()
+        (out / f"{name}.stat.json").write_text(raw)
+        stat = parse_stat_json(raw)
         ltp_text = pathlib.Path(ltp_txt).read_text()
+        mem_raw = pathlib.Path(mem_txt).read_text()
+        (out / f"{name}.ltp.txt").write_text(ltp_text)
+        (out / f"{name}.mem.txt").write_text(mem_raw)
+        mems = parse_memories(mem_raw)
 
-    a = analyse(stat, ltp_text, areas)
+    a = analyse(stat, ltp_text, areas, mems)
     total = sum(b["logic_ge"] for b in a["blocks"].values())
     ffs = sum(b["ffs"] for b in a["blocks"].values())
     result = {
@@ -199,7 +239,8 @@ def main() -> int:
         "blocks": {b: {"logic_ge": round(v["logic_ge"]), "flip_flops": v["ffs"], "modules": v["modules"]}
                    for b, v in a["blocks"].items()},
         "memories": a["memories"],
-        "memory_bits": sum(m["instances"] * m["bits_each"] for m in a["memories"]),
+        "rom_bits": sum(m["instances"] * m["bits_each"] for m in a["memories"] if m["kind"] == "ROM"),
+        "ram_bits": sum(m["instances"] * m["bits_each"] for m in a["memories"] if m["kind"] == "RAM"),
     }
     md = [f"## Gates: profile `{name}`\n",
           f"Yosys 0.23, hierarchical, {seconds:.0f} s. Logic in NAND2 gate equivalents (cells.lib); "
@@ -213,11 +254,12 @@ def main() -> int:
         md.append(f"| {b} | {v['logic_ge']:,} | {v['flip_flops']:,} | {mods} |")
     md.append(f"| **total** | **{result['logic_ge']:,}** | **{ffs:,}** | |")
     md.append("")
-    md.append("| memory (module) | instances | bits each | bits |")
-    md.append("|---|---:|---:|---:|")
+    md.append("| memory | kind | instances | words x bits | read ports | bits |")
+    md.append("|---|---|---:|---|---:|---:|")
     for m in result["memories"]:
-        md.append(f"| {m['module']} | {m['instances']} | {m['bits_each']:,} | {m['instances'] * m['bits_each']:,} |")
-    md.append(f"| **total** | | | **{result['memory_bits']:,}** |")
+        md.append(f"| {m['module']}.{m['memory']} | {m['kind']} | {m['instances']} | {m['size']} x {m['width']} | "
+                  f"{m['read_ports']} | {m['instances'] * m['bits_each']:,} |")
+    md.append(f"| **total** | | | | | **ROM {result['rom_bits']:,}, RAM {result['ram_bits']:,}** |")
     md.append("")
     depth = {base_name(k): v for k, v in a["depth"].items()}
     md.append("| pipeline stage | modules chained | logic depth (cells, sum of module depths) |")

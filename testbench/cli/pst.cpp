@@ -89,6 +89,11 @@ nlohmann::json hwJson(const std::string& scene, const Profile& p, const std::str
     j["vs_reference"] = {{"max_lsb", r.vsReference.maxLsb}, {"rms", r.vsReference.rms},
                          {"psnr", r.vsReference.psnr}, {"within_1lsb_percent", r.vsReference.within1Lsb}};
     j["notes"] = r.notes;
+    if (r.vsTruth.psnr != 0 || r.vsTruth.rms != 0) {
+        j["vs_truth"] = {{"max_lsb", r.vsTruth.maxLsb}, {"rms", r.vsTruth.rms}, {"psnr", r.vsTruth.psnr},
+                         {"within_1lsb_percent", r.vsTruth.within1Lsb}};
+        j["reference_vs_truth"] = {{"rms", r.referenceVsTruth.rms}, {"psnr", r.referenceVsTruth.psnr}};
+    }
     return j;
 }
 
@@ -109,6 +114,7 @@ int runHardwareRender(const RenderArgs& a, const HwArgs& hw) {
         }
         HwRenderOptions ho;
         ho.progress = progressPrinter(stem + "/" + p.name, a.quiet);
+        ho.truthSamples = a.truth;
         HwRenderResult r = renderHardware(scene, p, rtl.get(), ho);
         fs::create_directories(dir);
         writeImage(r.hardware, (dir / (hw.model + ".png")).string());

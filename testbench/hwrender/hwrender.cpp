@@ -55,6 +55,12 @@ HwRenderResult renderHardware(const Scene& scene, const Profile& p, RtlModel* rt
     auto t0 = Clock::now();
     res.reference = render(scene).filtered;
     res.referenceSeconds = since(t0);
+    Image truth;
+    if (opt.truthSamples > 0) {
+        RenderOptions ro;
+        ro.truthSamples = opt.truthSamples;
+        truth = render(scene, ro).truth;
+    }
 
     res.hardware = Image(W, H, 4);
     for (size_t i = 0; i < size_t(W) * H; ++i)
@@ -137,6 +143,10 @@ HwRenderResult renderHardware(const Scene& scene, const Profile& p, RtlModel* rt
     res.notes.assign(notes.begin(), notes.end());
 
     res.vsReference = compareToReference(res.hardware, res.reference, p.colourBits);
+    if (opt.truthSamples > 0) {
+        res.vsTruth = compareToReference(res.hardware, truth, p.colourBits);
+        res.referenceVsTruth = compareToReference(res.reference, truth, p.colourBits);
+    }
     res.difference = Image(W, H, 4);
     for (size_t i = 0; i < size_t(W) * H; ++i) {
         for (int c = 0; c < 3; ++c)

@@ -18,6 +18,7 @@ struct HwRenderOptions {
     size_t maxReports = 8;      // first mismatches kept with their stage traces
     bool probes = true;         // sample the octave-stage probes (names early stages)
     Stage fault = Stage::Count; // perturb a golden stage on purpose (scoreboard self-test)
+    int truthSamples = 0;       // n > 0: also compare with the n x n supersampled ground truth
     std::function<void(const std::string&, double)> progress;
 };
 
@@ -42,6 +43,8 @@ struct HwRenderResult {
     double cyclesPerPixel = 0;
     double rtlSeconds = 0, goldenSeconds = 0, referenceSeconds = 0;
     ErrorStats vsReference;
+    ErrorStats vsTruth;       // only with truthSamples > 0
+    ErrorStats referenceVsTruth;  // the double reference's own error against the ground truth
     std::vector<std::string> notes;   // what the driver had to change (octaves dropped, ...)
 };
 
