@@ -2,6 +2,7 @@
 """Collects the main job's JSON files under out/ into one Markdown report (stdout)."""
 import json
 import pathlib
+import re
 import sys
 
 
@@ -59,10 +60,35 @@ def regress_section(root: pathlib.Path) -> None:
     print()
 
 
+def include_markdown(title: str, path: pathlib.Path, missing: str, rebase: str = "") -> None:
+    """Includes a Markdown file written by another script; its links are relative to its
+    own folder, so they are re-based onto out/."""
+    print(f"## {title}\n")
+    if not path.exists():
+        print(f"({missing})\n")
+        return
+    text = path.read_text()
+    if rebase:
+        text = re.sub(r"\]\((?!http)([^)]+)\)", lambda m: f"]({rebase}/{m.group(1)})", text)
+    # Demote the included file's own headings below this section's.
+    text = re.sub(r"^(#+) ", lambda m: "#" + m.group(1) + " ", text, flags=re.M)
+    print(text)
+    print()
+
+
 def main(out_dir: str) -> int:
     root = pathlib.Path(out_dir)
     print("# pst: main job report\n")
+    print("Contents: RTL regression (bit-exact against the golden model, error against the double "
+          "reference), gate counts (Yosys), Figure 11 (reference | full | reduced), Figure 10 "
+          "(texture-coordinate precision), the default precision sweep, the reference renders.\n")
     regress_section(root)
+    for name in ("reduced", "full"):
+        include_markdown(f"Gates: {name}", root / "synth" / f"{name}.md", "not synthesized: scripts/synth.py " + name)
+    include_markdown("Figure 11", root / "figures" / "fig11.md", "not built: scripts/figures.py fig11", "figures")
+    include_markdown("Figure 10", root / "figures" / "fig10.md", "not built: scripts/figures.py fig10", "figures")
+    for sweep in sorted((root / "sweep").glob("*/sweep.md")):
+        include_markdown(f"Precision sweep around {sweep.parent.name}", sweep, "", f"sweep/{sweep.parent.name}")
     reference_section(root)
     return 0
 
