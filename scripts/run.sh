@@ -3,7 +3,8 @@
 #   1. every scene through the reference model (filtered, unfiltered, filter width, ground truth)
 #   2. the RTL regression: every scene through every profile at 512x512, checked bit for bit
 #      against the golden model, with the images
-#   3. out/report.md, the page a designer opens first
+#   3. gate counts of both profiles, Figures 10 and 11, a quick precision sweep
+#   4. out/report.md, the page a designer opens first
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
@@ -19,6 +20,12 @@ done
 echo "== RTL regression at ${SIZE}x${SIZE}"
 rc=0
 ./build/pst regress --size "$SIZE" -o out/regress.json --images out || rc=$?
+echo "== gate counts (Yosys), figures, quick precision sweep"
+/usr/bin/python3 scripts/synth.py reduced --quiet || rc=1
+/usr/bin/python3 scripts/synth.py full --quiet || rc=1
+/usr/bin/python3 scripts/figures.py fig11 --out out || rc=1
+/usr/bin/python3 scripts/figures.py fig10 --out out || rc=1
+/usr/bin/python3 scripts/sweep.py --quick || rc=1
 /usr/bin/python3 scripts/report.py out > out/report.md.tmp && mv out/report.md.tmp out/report.md
 echo "report: out/report.md"
 exit $rc
