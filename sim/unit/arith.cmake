@@ -12,6 +12,7 @@ set(PST_ARITH_UNIT_SOURCES
 foreach(p ${PST_PROFILES})
   add_executable(arith_unit_${p} ${PROJECT_SOURCE_DIR}/sim/unit/arith_unit_test.cpp)
   target_link_libraries(arith_unit_${p} PRIVATE pst_golden GTest::gtest_main)
+  target_include_directories(arith_unit_${p} PRIVATE ${PROJECT_SOURCE_DIR}/sim)
   target_compile_definitions(arith_unit_${p} PRIVATE PST_PROFILE_PATH="${PROJECT_SOURCE_DIR}/rtl/configs/${p}.toml")
   pst_verilate(arith_unit_${p} TOP pst_arith_unit_top PROFILE ${p} PARAMS ${PST_ARITH_UNIT_PARAMS}
                SOURCES ${PST_ARITH_UNIT_SOURCES})

@@ -24,6 +24,7 @@
 #include "Vpst_arith_unit_top.h"
 #include "arith_fx.h"
 #include "fixed.h"
+#include "verilated_port.h"
 #include "profile.h"
 
 namespace {
@@ -32,20 +33,9 @@ using pst::Profile;
 using pst::fx::i128;
 namespace fx = pst::fx;
 
-// --- Port access: any verilated port type (CData..QData or VlWide<N>), fields <= 64 bits ---
+// --- Port access (sim/verilated_port.h) ------------------------------------------------------
 template <typename T>
-void setBits(T& p, int lsb, int width, uint64_t v) {
-    const uint64_t m = width >= 64 ? ~uint64_t(0) : (uint64_t(1) << width) - 1;
-    p = T((uint64_t(p) & ~(m << lsb)) | ((v & m) << lsb));
-}
-template <std::size_t N>
-void setBits(VlWide<N>& p, int lsb, int width, uint64_t v) {
-    for (int b = 0; b < width; ++b) {
-        const int i = lsb + b;
-        const uint32_t bit = 1u << (i % 32);
-        p[i / 32] = ((v >> b) & 1) ? (p[i / 32] | bit) : (p[i / 32] & ~bit);
-    }
-}
+void setBits(T& p, int lsb, int width, uint64_t v) { pst::port::set(p, lsb, width, v); }
 template <typename T>
 void clearPort(T& p) { p = 0; }
 template <std::size_t N>
@@ -53,22 +43,9 @@ void clearPort(VlWide<N>& p) {
     for (std::size_t i = 0; i < N; ++i) p[i] = 0;
 }
 template <typename T>
-uint64_t getBits(const T& p, int lsb, int width) {
-    return (uint64_t(p) >> lsb) & (width >= 64 ? ~uint64_t(0) : (uint64_t(1) << width) - 1);
-}
-template <std::size_t N>
-uint64_t getBits(const VlWide<N>& p, int lsb, int width) {
-    uint64_t v = 0;
-    for (int b = 0; b < width; ++b) {
-        const int i = lsb + b;
-        v |= uint64_t((p[i / 32] >> (i % 32)) & 1u) << b;
-    }
-    return v;
-}
+uint64_t getBits(const T& p, int lsb, int width) { return pst::port::get(p, lsb, width); }
 template <typename T>
-int64_t getSigned(const T& p, int lsb, int width) {
-    return fx::wrapSigned(i128(getBits(p, lsb, width)), width);
-}
+int64_t getSigned(const T& p, int lsb, int width) { return pst::port::getSigned(p, lsb, width); }
 
 // --- Profile, seed, random values ------------------------------------------------------------
 const Profile& prof() {

@@ -14,6 +14,7 @@ set(PST_NOISE_UNIT_SOURCES
 foreach(p ${PST_PROFILES})
   add_executable(noise_unit_${p} ${PROJECT_SOURCE_DIR}/sim/unit/noise_unit_test.cpp)
   target_link_libraries(noise_unit_${p} PRIVATE pst_golden GTest::gtest_main)
+  target_include_directories(noise_unit_${p} PRIVATE ${PROJECT_SOURCE_DIR}/sim)
   target_compile_definitions(noise_unit_${p} PRIVATE PST_PROFILE_PATH="${PROJECT_SOURCE_DIR}/rtl/configs/${p}.toml")
   pst_verilate(noise_unit_${p} TOP pst_noise_unit_top PROFILE ${p} PARAMS ${PST_NOISE_UNIT_PARAMS}
                SOURCES ${PST_NOISE_UNIT_SOURCES})
@@ -61,6 +62,7 @@ foreach(v ${PST_NOISE_VARIANTS})
   set(target noise_unit_${vname})
   add_executable(${target} ${PROJECT_SOURCE_DIR}/sim/unit/noise_unit_test.cpp)
   target_link_libraries(${target} PRIVATE pst_golden GTest::gtest_main)
+  target_include_directories(${target} PRIVATE ${PROJECT_SOURCE_DIR}/sim)
   target_compile_definitions(${target} PRIVATE PST_PROFILE_PATH="${cfg}" PST_NOISE_OVERRIDES="${voverrides}")
   verilate(${target}
     SOURCES ${PST_NOISE_UNIT_SOURCES}

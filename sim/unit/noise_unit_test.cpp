@@ -17,6 +17,7 @@
 
 #include "Vpst_noise_unit_top.h"
 #include "fixed.h"
+#include "verilated_port.h"
 #include "noise_fx.h"
 #include "profile.h"
 #include "verilated.h"
@@ -24,40 +25,11 @@
 namespace pst {
 namespace {
 
-// ---- generic port access: integral ports (CData .. QData) and VlWide<N> ----------------
+// ---- generic port access (sim/verilated_port.h) -------------------------------------------
 template <typename T>
-std::enable_if_t<std::is_integral_v<T>> setField(T& port, int lsb, int width, uint64_t value) {
-    for (int b = 0; b < width; ++b) {
-        const T bit = T(1) << (lsb + b);
-        port = ((value >> b) & 1) ? T(port | bit) : T(port & ~bit);
-    }
-}
-template <std::size_t N>
-void setField(VlWide<N>& port, int lsb, int width, uint64_t value) {
-    for (int b = 0; b < width; ++b) {
-        const int i = lsb + b;
-        const uint32_t bit = uint32_t(1) << (i % 32);
-        if ((value >> b) & 1)
-            port[i / 32] |= bit;
-        else
-            port[i / 32] &= ~bit;
-    }
-}
+void setField(T& port, int lsb, int width, uint64_t value) { port::set(port, lsb, width, value); }
 template <typename T>
-std::enable_if_t<std::is_integral_v<T>, uint64_t> getField(const T& port, int lsb, int width) {
-    uint64_t v = 0;
-    for (int b = 0; b < width; ++b) v |= uint64_t((uint64_t(port) >> (lsb + b)) & 1) << b;
-    return v;
-}
-template <std::size_t N>
-uint64_t getField(const VlWide<N>& port, int lsb, int width) {
-    uint64_t v = 0;
-    for (int b = 0; b < width; ++b) {
-        const int i = lsb + b;
-        v |= uint64_t((port[i / 32] >> (i % 32)) & 1) << b;
-    }
-    return v;
-}
+uint64_t getField(const T& port, int lsb, int width) { return port::get(port, lsb, width); }
 
 // ---- profile (with the variant's overrides) -----------------------------------------------
 Profile testProfile() {
