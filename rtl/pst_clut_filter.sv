@@ -10,6 +10,11 @@
 //   ColourBits       bits per RGBA channel (1..8): RAM widths, output width.
 //   WidthFrac        fraction bits of W: window-end precision and the MIP blend weight.
 //   FilterRecipFrac  RF, fraction bits of the SAT reciprocal ROM: the division's precision.
+//   Datapath         0 (parallel): four channel units, rgba_o combinational. 1 (serial): one
+//                    channel unit, channel c = step_i per cycle (0..3); adv_i stores the
+//                    channel, rgba_o is valid at step 3 (channels 0..2 from registers). The
+//                    arithmetic is the same bit for bit; the SAT table needs 3 read ports
+//                    instead of 12.
 //
 // Tables: RAMs written through the register port (clk_i, we_i, addr_i, wdata_i); other
 // addresses are ignored. Reads are combinational (a later revision may register them).
@@ -72,6 +77,7 @@ module pst_clut_filter #(
   parameter int ColourBits      = 8,
   parameter int WidthFrac       = 8,
   parameter int FilterRecipFrac = 18,
+  parameter int Datapath        = 0,
   localparam int FW  = FInt + FFrac,              // f
   localparam int WW  = Log2Clut + 2 + WidthFrac,  // W = w N in entries, < 4N
   localparam int CB4 = 4 * ColourBits             // packed RGBA
@@ -86,6 +92,10 @@ module pst_clut_filter #(
   input  logic [WW-1:0]  w_i,
   input  logic           clamp_i,
   input  logic [1:0]     kind_i,
+  // Datapath = 1: the channel of this cycle and "store it" (unused when Datapath = 0).
+  input  logic           rst_ni,
+  input  logic [1:0]     step_i,
+  input  logic           adv_i,
   output logic [CB4-1:0] rgba_o
 );
 
@@ -259,22 +269,19 @@ module pst_clut_filter #(
     end
   end
 
-  // SAT reads: csat at the high end (hidx), the low end (lo mod N) and N-1.
-  logic [4*SatBits-1:0] csat_h, csat_l, csat_last;
-  for (genvar c = 0; c < 4; c++) begin : g_sat_rd
-    assign csat_h[c*SatBits +: SatBits]    = sat_q[{hidx, 2'(c)}];
-    assign csat_l[c*SatBits +: SatBits]    = sat_q[{lm, 2'(c)}];
-    assign csat_last[c*SatBits +: SatBits] = sat_q[{Log2Clut'(N - 1), 2'(c)}];
-  end
-
   logic [RecipBits-1:0] recip;
   assign recip = recip_rom[count];
 
   // ---------------------------------------------------------------------------------------
-  // Per channel: MIP blend, SAT sum and division, output select
+  // Per channel: MIP blend, SAT sum and division, output select. Lanes = 4 (parallel, lane =
+  // channel) or 1 (serial, channel = step_i).
   // ---------------------------------------------------------------------------------------
-  for (genvar c = 0; c < 4; c++) begin : g_ch
-    logic [CB-1:0]           ca, cb, first, last;
+  localparam int Lanes = (Datapath == 0) ? 4 : 1;
+  logic [Lanes*CB-1:0] lane_out;
+
+  for (genvar l = 0; l < Lanes; l++) begin : g_ch
+    logic [1:0]              ch;      // the channel of this lane
+    logic [CB-1:0]           ca, cb, first, last, entry;
     logic [SatBits-1:0]      sh, sl, sn;
     logic signed [CB:0]      d;       // b - a
     logic signed [AccW-1:0]  acc;     // a 2^TFrac + (b - a) t + 2^(TFrac-1)
@@ -285,13 +292,16 @@ module pst_clut_filter #(
     logic [CB-1:0]           mean;    // <= 2^CB - 1: a mean of CB-bit entries
     logic [CB-1:0]           div_ch, sat_ch, out_ch;
 
-    assign ca    = lev_a[c*CB +: CB];
-    assign cb    = lev_b[c*CB +: CB];
-    assign first = clut_first[c*CB +: CB];
-    assign last  = clut_last[c*CB +: CB];
-    assign sh    = csat_h[c*SatBits +: SatBits];
-    assign sl    = csat_l[c*SatBits +: SatBits];
-    assign sn    = csat_last[c*SatBits +: SatBits];
+    assign ch    = (Datapath == 0) ? 2'(l) : step_i;
+    assign ca    = CB'(lev_a >> (ch * CB));
+    assign cb    = CB'(lev_b >> (ch * CB));
+    assign first = CB'(clut_first >> (ch * CB));
+    assign last  = CB'(clut_last >> (ch * CB));
+    assign entry = CB'(clut_e >> (ch * CB));
+    // SAT reads: csat at the high end (hidx), the low end (lo mod N) and N-1.
+    assign sh    = sat_q[{hidx, ch}];
+    assign sl    = sat_q[{lm, ch}];
+    assign sn    = sat_q[{Log2Clut'(N - 1), ch}];
 
     // MIP: round half up of lerp(a, b, t); the result lies between a and b.
     assign d      = $signed({1'b0, cb}) - $signed({1'b0, ca});
@@ -314,18 +324,32 @@ module pst_clut_filter #(
       if (!clamp_i && w_ge_n) begin
         sat_ch = mean;
       end else if (clamp_i ? cl_entry : (count == '0)) begin
-        sat_ch = clut_e[c*CB +: CB];
+        sat_ch = entry;
       end else begin
         sat_ch = div_ch;
       end
       unique case (kind_i)
-        2'd0:         out_ch = clut_e[c*CB +: CB];
-        2'd1, 2'd2:   out_ch = mip_point ? clut_e[c*CB +: CB] : mip_ch;
+        2'd0:         out_ch = entry;
+        2'd1, 2'd2:   out_ch = mip_point ? entry : mip_ch;
         default:      out_ch = sat_ch;
       endcase
     end
 
-    assign rgba_o[c*CB +: CB] = out_ch;
+    assign lane_out[l*CB +: CB] = out_ch;
+  end
+
+  if (Datapath == 0) begin : g_out_par
+    assign rgba_o = lane_out;
+    logic unused_serial;
+    assign unused_serial = ^{rst_ni, step_i, adv_i};
+  end else begin : g_out_ser
+    // Channels 0..2 stored as they are computed; channel 3 is live at step 3.
+    logic [3*CB-1:0] ch_q;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) ch_q <= '0;
+      else if (adv_i && step_i != 2'd3) ch_q[step_i*CB +: CB] <= lane_out;
+    end
+    assign rgba_o = {lane_out, ch_q};
   end
 
   // Assertions

@@ -1,6 +1,9 @@
 // Filter width (stage 5 of docs/HARDWARE.md): W = |grad_x f| N in colour-table entries
-// (section 3.2: grad_x f = (grad_s f)^T ds/dx). Combinational. Golden model: filterWidthFx in
-// model/golden/arith_fx.cpp (same steps, bit for bit).
+// (section 3.2: grad_x f = (grad_s f)^T ds/dx). Golden model: filterWidthFx in
+// model/golden/arith_fx.cpp (same steps, bit for bit). Combinational when Serial = 0; with
+// Serial = 1 the dot products take one component k per cycle (step_i = 0, 1, 2) through two
+// multipliers instead of six, and w_o is valid at step 2 (the sums are exact, so the result is
+// the same bit for bit).
 //
 //   gx = grad . dsdx, gy = grad . dsdy        exact, GradFrac + JacobianFrac fraction bits
 //   Wx = floor(gx N to WidthFrac)             N = 2^Log2Clut: part of the shift; Wy likewise
@@ -19,6 +22,8 @@
 //   Log2Clut                    N = 2^Log2Clut entries: the scale to entries and W's range.
 //   WidthFrac                   fraction bits of W.
 //   FilterNorm                  which norm is built (0 euclid, 1 max_half_min, 2 l1).
+//   Serial                      0: all six products at once; 1: one component per cycle
+//                               (the profile's datapath = "serial").
 `default_nettype none
 
 module pst_filter_width #(
@@ -29,11 +34,16 @@ module pst_filter_width #(
   parameter int Log2Clut     = 8,
   parameter int WidthFrac    = 8,
   parameter int FilterNorm   = 0,
+  parameter bit Serial       = 1'b0,
   // Derived widths (not profile keys).
   localparam int GW = GradInt + GradFrac,           // one grad_i component
   localparam int JW = JacobianInt + JacobianFrac,   // one j_i entry
   localparam int WW = Log2Clut + 2 + WidthFrac      // W = w N in entries, < 4N
 ) (
+  input  logic            clk_i,    // Serial only: partial-sum registers
+  input  logic            rst_ni,
+  input  logic [1:0]      step_i,   // Serial only: component k this cycle (0..2)
+  input  logic            adv_i,    // Serial only: store this step's partial sums
   input  logic [3*GW-1:0] grad_i,   // element k at [k*GW +: GW]
   input  logic [6*JW-1:0] j_i,      // ds/dx, dt/dx, dr/dx, ds/dy, dt/dy, dr/dy
   output logic [WW-1:0]   w_o
@@ -53,14 +63,53 @@ module pst_filter_width #(
   // (Not '1: Yosys 0.23 reads '1 in a parameter declaration as the 1-bit value 1.)
   localparam logic [WW-1:0] WMax = {WW{1'b1}};
 
-  // Steps 1-3 per direction d (0: x with dsdx = j[0..2], 1: y with dsdy = j[3..5]).
+  // Step 1 per direction d (0: x with dsdx = j[0..2], 1: y with dsdy = j[3..5]): gd.
+  logic [2*XW-1:0] g;    // g_d at [d*XW +: XW]
+  if (!Serial) begin : g_par
+    for (genvar d = 0; d < 2; d++) begin : g_dir
+      assign g[d*XW +: XW] =
+          XW'($signed(grad_i[0*GW +: GW])) * XW'($signed(j_i[(3*d+0)*JW +: JW])) +
+          XW'($signed(grad_i[1*GW +: GW])) * XW'($signed(j_i[(3*d+1)*JW +: JW])) +
+          XW'($signed(grad_i[2*GW +: GW])) * XW'($signed(j_i[(3*d+2)*JW +: JW]));
+    end
+    logic unused_serial;
+    assign unused_serial = ^{clk_i, rst_ni, step_i, adv_i};
+  end else begin : g_ser
+    // Component k = step_i: grad_k dsdx_k and grad_k dsdy_k added to the sums of the steps
+    // before (step 0 starts from zero).
+    logic signed [GW-1:0] gk;
+    logic [2*XW-1:0]      acc_q, sum;
+    always_comb begin
+      unique case (step_i)
+        2'd1:    gk = grad_i[1*GW +: GW];
+        2'd2:    gk = grad_i[2*GW +: GW];
+        default: gk = grad_i[0*GW +: GW];
+      endcase
+    end
+    for (genvar d = 0; d < 2; d++) begin : g_dir
+      logic signed [JW-1:0] jk;
+      always_comb begin
+        unique case (step_i)
+          2'd1:    jk = j_i[(3*d+1)*JW +: JW];
+          2'd2:    jk = j_i[(3*d+2)*JW +: JW];
+          default: jk = j_i[(3*d+0)*JW +: JW];
+        endcase
+      end
+      assign sum[d*XW +: XW] = ((step_i == 2'd0) ? '0 : acc_q[d*XW +: XW]) + XW'(gk) * XW'(jk);
+    end
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) acc_q <= '0;
+      else if (adv_i) acc_q <= sum;
+    end
+    assign g = sum;
+  end
+
+  // Steps 2-3 per direction: to entries, |.|, clamp.
   logic [2*WW-1:0] aw;   // a_d at [d*WW +: WW]
   for (genvar d = 0; d < 2; d++) begin : g_dir
     logic signed [XW-1:0] gd;
     logic signed [SW-1:0] wd, absd;
-    assign gd = XW'($signed(grad_i[0*GW +: GW])) * XW'($signed(j_i[(3*d+0)*JW +: JW])) +
-                XW'($signed(grad_i[1*GW +: GW])) * XW'($signed(j_i[(3*d+1)*JW +: JW])) +
-                XW'($signed(grad_i[2*GW +: GW])) * XW'($signed(j_i[(3*d+2)*JW +: JW]));
+    assign gd   = g[d*XW +: XW];
     assign wd   = (SW'(gd) <<< ShL) >>> ShR;        // floor(g N to WidthFrac)
     assign absd = wd[SW-1] ? -wd : wd;              // |W_d|, no overflow (XW has a spare bit)
     assign aw[d*WW +: WW] = (absd[SW-1:WW] != '0) ? WMax : absd[WW-1:0];
@@ -96,7 +145,7 @@ module pst_filter_width #(
   end
   // W is at least the larger component and at most their sum (every norm).
   always_comb begin
-    assert (w_o >= ax && w_o >= ay && (WW + 1)'(w_o) <= (WW + 1)'(ax) + (WW + 1)'(ay))
+    if (!Serial || step_i == 2'd2) assert (w_o >= ax && w_o >= ay && (WW + 1)'(w_o) <= (WW + 1)'(ax) + (WW + 1)'(ay))
       else $error("pst_filter_width: W outside [max(|Wx|, |Wy|), |Wx| + |Wy|]");
   end
 `endif

@@ -36,6 +36,15 @@
 // Multipliers: 3 weights x 2 (scurve), 8 corners x 3 (value_gradient), 7 lerps x 4 (+1 own-axis
 // ds product for scurve); no weight products w_x w_y w_z as in Rayshade's sum of 8 terms.
 //
+// Serial evaluation (NoiseSteps = 2, 4, 8; combinational when 1): the caller holds lat_i and
+// frac_i and steps step_i through 0..NoiseSteps-1 (adv_i on every step but the last); step j
+// evaluates corners j CPS .. j CPS + CPS-1 (CPS = 8 / NoiseSteps) and their lerps on the first
+// KC = lg CPS axes; the remaining axes are lerped across steps through one lerp and one held
+// node per axis (the node of a step with bit l = 0 is held, the next step's node is lerped
+// with it). The lerps are the tree's lerps on the same operands, so n_o and grad_o (valid at
+// the last step) are the same bit for bit. NoiseSteps = 4: 2 corners + 3 lerps instead of
+// 8 + 7, 6 hash lookups and 8 value reads per cycle instead of 14 and 32.
+//
 // Parameters (names as scripts/profile.py derives them):
 //   NoiseInterp      0 scurve, 1 linear: weight function (and the own-axis ds multiplier)
 //   NoiseCorner      0 value_gradient, 1 value: corner term (24 multipliers, or none)
@@ -43,6 +52,7 @@
 //   NoiseValueFrac   fraction bits of R (1..15)
 //   NoiseLatticeFrac fraction bits of u, s, ds (LF)
 //   NoiseOutFrac     fraction bits of n_o and grad_o
+//   NoiseSteps       cycles per evaluation (1, 2, 4, 8): corners and lerps built (above)
 // ROM images: `PST_ROM_DIR/{hash4096,perm256,value16}.memh, written by sim/tools/pst_roms.
 //
 // Ports:
@@ -63,9 +73,14 @@ module pst_noise #(
   parameter int NoiseValueFrac = 15,
   parameter int NoiseLatticeFrac = 16,
   parameter int NoiseOutFrac = 16,
+  parameter int NoiseSteps = 1,
   localparam int LF = NoiseLatticeFrac,  // fraction bits of u
   localparam int OF = NoiseOutFrac       // fraction bits of the outputs
 ) (
+  input  wire logic               clk_i,    // NoiseSteps > 1: held lerp nodes
+  input  wire logic               rst_ni,
+  input  wire logic [2:0]         step_i,   // 0..NoiseSteps-1: the corners of this cycle
+  input  wire logic               adv_i,    // store this step's held nodes
   input  wire logic [35:0]        lat_i,
   input  wire logic [3*LF-1:0]    frac_i,
   output logic signed [4+OF-1:0]  n_o,
@@ -84,6 +99,10 @@ module pst_noise #(
   localparam int RW = NoiseValueFrac + 1;
   // Hash table entry / index width: 12 (Rayshade) or 8 (perm256).
   localparam int HW = (NoiseHash == 0) ? 12 : 8;
+  // Corners per step, lerp levels inside a step (axes 0..KC-1), serial levels (axes KC..2).
+  localparam int CPS = 8 / NoiseSteps;
+  localparam int KC  = $clog2(CPS);
+  localparam int LS  = $clog2(NoiseSteps);
 
   // ---- 1. weights -------------------------------------------------------------------------
   logic [3*LF-1:0]     s_w;   // s per axis
@@ -100,11 +119,11 @@ module pst_noise #(
   end
 
   // ---- 2. hash ----------------------------------------------------------------------------
-  logic [6*HW-1:0] idx;  // corner indices: axis k, b at [(2k+b)*HW +: HW]
-  logic [2*HW-1:0] h1;   // T[X_bx] at [bx*HW +: HW]
-  logic [4*HW-1:0] h2;   // T[h1 ^ Y_by] at [(bx + 2 by)*HW +: HW]
-  logic [8*HW-1:0] h3;   // T[h2 ^ Z_bz] at [c*HW +: HW]
-  logic [8*8-1:0]  m;    // value-table index per corner
+  // The corners of this step: corner i of CPS is c = step_i CPS + i (all eight at once when
+  // NoiseSteps = 1).
+  logic [6*HW-1:0]  idx;   // corner indices: axis k, b at [(2k+b)*HW +: HW]
+  logic [CPS*8-1:0] m;     // value-table index per corner of the step
+  logic [CPS*3-1:0] cidx;  // corner index c per corner of the step
 
   for (genvar k = 0; k < 3; k++) begin : g_idx
     logic [11:0] l_next;  // L + 1 mod 4096
@@ -117,24 +136,22 @@ module pst_noise #(
     end
   end
 
+  // The hash table T (Rayshade's 4096 x 12 or the 256 x 8 permutation).
+  logic [HW-1:0] rom [1 << HW];
   if (NoiseHash == 0) begin : g_rayshade
-    logic [11:0] rom [0:4095];
     initial $readmemh({`PST_ROM_DIR, "/hash4096.memh"}, rom);
-    for (genvar bx = 0; bx < 2; bx++) begin : g_h1
-      assign h1[bx*HW +: HW] = rom[idx[bx*HW +: HW]];
-    end
-    for (genvar i = 0; i < 4; i++) begin : g_h2
-      assign h2[i*HW +: HW] = rom[h1[(i%2)*HW +: HW] ^ idx[(2 + i/2)*HW +: HW]];
-    end
-    for (genvar c = 0; c < 8; c++) begin : g_h3
-      assign h3[c*HW +: HW] = rom[h2[(c%4)*HW +: HW] ^ idx[(4 + c/4)*HW +: HW]];
-      assign m[c*8 +: 8] = h3[c*HW +: 8];
-      logic unused_h3;
-      assign unused_h3 = ^h3[c*HW+8 +: HW-8];
-    end
   end else begin : g_perm256
-    logic [7:0] rom [0:255];
     initial $readmemh({`PST_ROM_DIR, "/perm256.memh"}, rom);
+  end
+
+  for (genvar i = 0; i < CPS; i++) begin : g_cidx
+    assign cidx[i*3 +: 3] = 3'(step_i) * 3'(CPS) + 3'(i);
+  end
+
+  if (NoiseSteps == 1) begin : g_hash_par
+    // All eight corners, the lookups shared along the chain: 2 + 4 + 8 = 14.
+    logic [2*HW-1:0] h1;   // T[X_bx] at [bx*HW +: HW]
+    logic [4*HW-1:0] h2;   // T[h1 ^ Y_by] at [(bx + 2 by)*HW +: HW]
     for (genvar bx = 0; bx < 2; bx++) begin : g_h1
       assign h1[bx*HW +: HW] = rom[idx[bx*HW +: HW]];
     end
@@ -142,8 +159,31 @@ module pst_noise #(
       assign h2[i*HW +: HW] = rom[h1[(i%2)*HW +: HW] ^ idx[(2 + i/2)*HW +: HW]];
     end
     for (genvar c = 0; c < 8; c++) begin : g_h3
-      assign h3[c*HW +: HW] = rom[h2[(c%4)*HW +: HW] ^ idx[(4 + c/4)*HW +: HW]];
-      assign m[c*8 +: 8] = h3[c*HW +: 8];
+      logic [HW-1:0] h3;   // T[h2 ^ Z_bz]
+      assign h3 = rom[h2[(c%4)*HW +: HW] ^ idx[(4 + c/4)*HW +: HW]];
+      assign m[c*8 +: 8] = h3[7:0];
+      if (HW > 8) begin : g_unused_h3
+        logic unused_h3;
+        assign unused_h3 = ^h3[HW-1:8];
+      end
+    end
+    logic unused_step;
+    assign unused_step = ^{step_i, clk_i, rst_ni, adv_i};
+  end else begin : g_hash_ser
+    // The step's corners, three chained lookups each.
+    for (genvar i = 0; i < CPS; i++) begin : g_chain
+      logic [HW-1:0] x, y, z, h1, h2, h3;
+      assign x  = cidx[i*3 + 0] ? idx[1*HW +: HW] : idx[0*HW +: HW];
+      assign y  = cidx[i*3 + 1] ? idx[3*HW +: HW] : idx[2*HW +: HW];
+      assign z  = cidx[i*3 + 2] ? idx[5*HW +: HW] : idx[4*HW +: HW];
+      assign h1 = rom[x];
+      assign h2 = rom[h1 ^ y];
+      assign h3 = rom[h2 ^ z];
+      assign m[i*8 +: 8] = h3[7:0];
+      if (HW > 8) begin : g_unused_h3
+        logic unused_h3;
+        assign unused_h3 = ^h3[HW-1:8];
+      end
     end
   end
 
@@ -152,13 +192,15 @@ module pst_noise #(
   initial $readmemh({`PST_ROM_DIR, "/value16.memh"}, value_rom);
 
   // ---- 4. corners -------------------------------------------------------------------------
-  logic [8*NodeW-1:0] corner;  // corner c at [c*NodeW +: NodeW]
-  for (genvar c = 0; c < 8; c++) begin : g_corner
+  // tree: level 0 = the step's corners, level t = the lerps on axis t-1 (CPS >> t nodes);
+  // node k of level t at [(t*CPS + k)*NodeW +: NodeW].
+  logic [(KC+1)*CPS*NodeW-1:0] tree;
+  for (genvar i = 0; i < CPS; i++) begin : g_corner
     logic [4*RW-1:0] r;  // R[m + k] at [k*RW +: RW]
     for (genvar k = 0; k < 4; k++) begin : g_r
       if (k == 0 || NoiseCorner == 0) begin : g_read
         logic [15:0] r16;
-        assign r16 = value_rom[{1'b0, m[c*8 +: 8]} + 9'(k)];
+        assign r16 = value_rom[{1'b0, m[i*8 +: 8]} + 9'(k)];
         assign r[k*RW +: RW] = r16[15 -: RW];  // floor: value16 >>> (15 - VF)
         if (RW < 16) begin : g_unused_low
           logic unused_r16;
@@ -172,41 +214,69 @@ module pst_noise #(
       .NoiseCorner      (NoiseCorner),
       .NoiseValueFrac   (NoiseValueFrac),
       .NoiseLatticeFrac (NoiseLatticeFrac),
-      .NodeFrac         (NodeFrac),
-      .Corner           (c)
+      .NodeFrac         (NodeFrac)
     ) u_corner (
-      .r_i    (r),
-      .u_i    (frac_i),
-      .node_o (corner[c*NodeW +: NodeW])
+      .corner_i (cidx[i*3 +: 3]),
+      .r_i      (r),
+      .u_i      (frac_i),
+      .node_o   (tree[i*NodeW +: NodeW])
     );
   end
 
   // ---- 5. lerp tree -----------------------------------------------------------------------
-  logic [7*NodeW-1:0] node;  // 0..3 x lerps (by + 2 bz), 4..5 y lerps (bz), 6 z lerp
-  for (genvar i = 0; i < 7; i++) begin : g_lerp
-    localparam int Axis = (i < 4) ? 0 : (i < 6) ? 1 : 2;
-    logic [NodeW-1:0] a, b;
-    if (i < 4) begin : g_x
-      assign a = corner[(2*i)*NodeW +: NodeW];
-      assign b = corner[(2*i+1)*NodeW +: NodeW];
-    end else if (i < 6) begin : g_y
-      assign a = node[(2*(i-4))*NodeW +: NodeW];
-      assign b = node[(2*(i-4)+1)*NodeW +: NodeW];
-    end else begin : g_z
-      assign a = node[4*NodeW +: NodeW];
-      assign b = node[5*NodeW +: NodeW];
+  // Within the step: level t (axis t-1) lerps nodes 2k, 2k+1 of level t-1.
+  for (genvar t = 1; t <= KC; t++) begin : g_level
+    for (genvar k = 0; k < (CPS >> t); k++) begin : g_lerp
+      pst_noise_lerp #(
+        .NoiseInterp      (NoiseInterp),
+        .NoiseLatticeFrac (NoiseLatticeFrac),
+        .NodeFrac         (NodeFrac),
+        .Axis             (t - 1)
+      ) u_lerp (
+        .a_i    (tree[((t-1)*CPS + 2*k)*NodeW +: NodeW]),
+        .b_i    (tree[((t-1)*CPS + 2*k + 1)*NodeW +: NodeW]),
+        .s_i    (s_w[(t-1)*LF +: LF]),
+        .ds_i   (ds_w[(t-1)*(LF+2) +: LF+2]),
+        .node_o (tree[(t*CPS + k)*NodeW +: NodeW])
+      );
+    end
+    // The rest of the level's slots are unused.
+    if ((CPS >> t) < CPS) begin : g_unused_slots
+      assign tree[(t*CPS + (CPS >> t))*NodeW +: (CPS - (CPS >> t))*NodeW] = '0;
+      logic unused_slots;
+      assign unused_slots = ^tree[(t*CPS + (CPS >> t))*NodeW +: (CPS - (CPS >> t))*NodeW];
+    end
+  end
+
+  // Across the steps (NoiseSteps > 1): serial level l (axis KC + l). At step j the node of the
+  // step climbs level l if bit l of j is 1 (it is then the upper node b, the lower one a having
+  // been held at step j - 2^l); a node reaching level l with bit l = 0 is held there (adv_i).
+  // The last step (all bits 1) climbs every level to the root.
+  logic [(LS+1)*NodeW-1:0] chain;   // node entering serial level l at [l*NodeW +: NodeW]
+  assign chain[0 +: NodeW] = tree[(KC*CPS)*NodeW +: NodeW];
+  for (genvar l = 0; l < LS; l++) begin : g_serial
+    logic [NodeW-1:0] hold_q;
+    logic             lower_ones;   // bits 0..l-1 of the step are all 1
+    if (l == 0) begin : g_l0
+      assign lower_ones = 1'b1;
+    end else begin : g_ln
+      assign lower_ones = &step_i[l-1:0];
+    end
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) hold_q <= '0;
+      else if (adv_i && lower_ones && !step_i[l]) hold_q <= chain[l*NodeW +: NodeW];
     end
     pst_noise_lerp #(
       .NoiseInterp      (NoiseInterp),
       .NoiseLatticeFrac (NoiseLatticeFrac),
       .NodeFrac         (NodeFrac),
-      .Axis             (Axis)
+      .Axis             (KC + l)
     ) u_lerp (
-      .a_i    (a),
-      .b_i    (b),
-      .s_i    (s_w[Axis*LF +: LF]),
-      .ds_i   (ds_w[Axis*(LF+2) +: LF+2]),
-      .node_o (node[i*NodeW +: NodeW])
+      .a_i    (hold_q),
+      .b_i    (chain[l*NodeW +: NodeW]),
+      .s_i    (s_w[(KC+l)*LF +: LF]),
+      .ds_i   (ds_w[(KC+l)*(LF+2) +: LF+2]),
+      .node_o (chain[(l+1)*NodeW +: NodeW])
     );
   end
 
@@ -214,7 +284,7 @@ module pst_noise #(
   // floor to OF (drop GuardBits), sign-extend by one bit (the contract's saturation: the
   // ranges above never reach it).
   logic [NodeW-1:0] root;
-  assign root = node[6*NodeW +: NodeW];
+  assign root = chain[LS*NodeW +: NodeW];
   assign n_o = {root[VW-1], root[GuardBits +: VW-GuardBits]};
   for (genvar k = 0; k < 3; k++) begin : g_grad_out
     assign grad_o[k*(6+OF) +: 6+OF] = {root[VW+(k+1)*GW-1], root[VW+k*GW+GuardBits +: GW-GuardBits]};
@@ -231,6 +301,8 @@ module pst_noise #(
     if (NoiseHash < 0 || NoiseHash > 1) $error("pst_noise: NoiseHash must be 0 or 1");
     if (NoiseValueFrac < 1 || NoiseValueFrac > 15) $error("pst_noise: NoiseValueFrac must be 1..15");
     if (NoiseLatticeFrac < 1) $error("pst_noise: NoiseLatticeFrac must be >= 1");
+    if (NoiseSteps != 1 && NoiseSteps != 2 && NoiseSteps != 4 && NoiseSteps != 8)
+      $error("pst_noise: NoiseSteps must be 1, 2, 4 or 8");
   end
   // The node value never exceeds |3.5| (so n_o never saturates).
   always_comb begin

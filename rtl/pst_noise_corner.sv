@@ -2,7 +2,8 @@
 // docs/HARDWARE.md): the corner's value and gradient as a lerp-tree leaf node.
 // Combinational. Golden: pst::noiseFx (model/golden/noise_fx.cpp).
 //
-// Corner = bx + 2 by + 4 bz selects the corner of the cell (x fastest, Rayshade's order).
+// corner_i = bx + 2 by + 4 bz selects the corner of the cell (x fastest, Rayshade's order); a
+// port, not a parameter, so that a serial noise unit (NoiseSteps > 1) can walk the corners.
 // In: R[m], R[m+1], R[m+2], R[m+3] (Q1.VF, VF = NoiseValueFrac) and the fractions u (LF =
 // NoiseLatticeFrac bits per axis). d_k = u_k - b_k in [-1, 1) is LF+1 bits signed: for
 // b_k = 1 its bit pattern is {1, u_k} (u - 1 in two's complement), so no subtractor.
@@ -27,13 +28,13 @@ module pst_noise_corner #(
   parameter int NoiseValueFrac = 15,
   parameter int NoiseLatticeFrac = 16,
   parameter int NodeFrac = 20,
-  parameter int Corner = 0,
   localparam int RW = NoiseValueFrac + 1,   // Q1.VF value-table entry
   localparam int LF = NoiseLatticeFrac,     // fraction bits of u
   localparam int VW = 3 + NodeFrac,         // node value Q3.NodeFrac: |v| <= 3.5
   localparam int GW = 5 + NodeFrac,         // node derivative Q5.NodeFrac: |g| < 16
   localparam int NodeW = VW + 3 * GW
 ) (
+  input  wire logic [2:0]      corner_i,
   input  wire logic [4*RW-1:0] r_i,
   input  wire logic [3*LF-1:0] u_i,
   output logic [NodeW-1:0]     node_o
@@ -62,10 +63,11 @@ module pst_noise_corner #(
   if (NoiseCorner == 0) begin : g_value_gradient
     logic [3*PW-1:0] prod;  // R[m+1+k] * d_k at [k*PW +: PW], exact
     for (genvar k = 0; k < 3; k++) begin : g_axis
-      localparam logic CornerBit = 1'((Corner >> k) & 1);
+      logic                 corner_bit;
       logic signed [PW-1:0] r_ext, d_ext;
+      assign corner_bit = corner_i[k];
       // d_k = u_k - b_k: {b_k, u_k} is its (LF+1)-bit two's complement.
-      assign d_ext = {{(PW-LF-1){CornerBit}}, CornerBit, u_i[k*LF +: LF]};
+      assign d_ext = {{(PW-LF-1){corner_bit}}, corner_bit, u_i[k*LF +: LF]};
       assign r_ext = {{(PW-RW){r_i[(k+2)*RW-1]}}, r_i[(k+1)*RW +: RW]};
       assign prod[k*PW +: PW] = r_ext * d_ext;
 
@@ -88,7 +90,7 @@ module pst_noise_corner #(
     assign v_exact = half_r0;
     assign node_o[NodeW-1:VW] = '0;
     logic unused_value_only;
-    assign unused_value_only = ^{r_i[4*RW-1:RW], u_i};
+    assign unused_value_only = ^{r_i[4*RW-1:RW], u_i, corner_i};
   end
 
   // Corner value to Q3.NodeFrac.
@@ -105,7 +107,6 @@ module pst_noise_corner #(
   // Assertions
 `ifndef SYNTHESIS
   initial begin
-    if (Corner < 0 || Corner > 7) $error("pst_noise_corner: Corner must be 0..7");
     if (LF < 1) $error("pst_noise_corner: NoiseLatticeFrac must be >= 1");
   end
   // |v| <= 3.5: the exact value never reaches the Q3 range limits.

@@ -9,6 +9,11 @@
 // Parameters (all from the profile, rtl/configs/NAME.toml, through scripts/profile.py):
 //   Octaves, NoiseUnits   K noise terms held; units evaluated per pass. Octaves / NoiseUnits
 //                         passes per fragment: 1 = one fragment per clock.
+//   NoiseSteps            cycles per pass (a noise evaluation walks its corners over them,
+//                         see pst_noise): Octaves / NoiseUnits x NoiseSteps cycles per fragment.
+//   Datapath              0 parallel, 1 serial: the quadric one row per cycle, the filter
+//                         width one component per cycle (3 cycles in [B]), the colour-table
+//                         filter one channel per cycle (4 cycles in [C]).
 //   Log2Clut, ColourBits  colour table of 2^Log2Clut entries, ColourBits per channel.
 //   Noise*                noise unit variant and precision (see pst_noise).
 //   FilterNorm, FilterRecipFrac   |grad| approximation; SAT reciprocal precision.
@@ -23,12 +28,14 @@ module pst_top #(
   parameter int NoiseUnits       = 8,
   parameter int Log2Clut         = 8,
   parameter int ColourBits       = 8,
+  parameter int Datapath         = 0,
   parameter int NoiseInterp      = 0,
   parameter int NoiseCorner      = 0,
   parameter int NoiseHash        = 0,
   parameter int NoiseValueFrac   = 15,
   parameter int NoiseLatticeFrac = 16,
   parameter int NoiseOutFrac     = 16,
+  parameter int NoiseSteps       = 1,
   parameter int FilterNorm       = 0,
   parameter int FilterRecipFrac  = 18,
   parameter int CoordInt         = 12,
@@ -103,6 +110,10 @@ module pst_top #(
   localparam int NGW = 6 + NoiseOutFrac;             // noise gradient Q6.NoiseOutFrac
   localparam int Passes    = Octaves / NoiseUnits;   // octave passes per fragment
   localparam int PassBits  = (Passes > 1) ? $clog2(Passes) : 1;
+  // Cycles per fragment: NoiseSteps cycles per pass (one noise evaluation per lane per pass).
+  localparam int StepBits  = $clog2(NoiseSteps);
+  localparam int Cycles    = Passes * NoiseSteps;
+  localparam int CycBits   = (Cycles > 1) ? $clog2(Cycles) : 1;
   localparam int OctBits   = $clog2(Octaves + 1);    // active octave count 0..Octaves
   // Guard bits: the accumulators add q and up to Octaves terms without overflow.
   localparam int AccGuard  = $clog2(Octaves + 1) + 1;
@@ -174,19 +185,42 @@ module pst_top #(
   // ---------------------------------------------------------------------------------------
   // Octave stage: quadric + NoiseUnits octave lanes, Passes passes per fragment
   // ---------------------------------------------------------------------------------------
-  logic [PassBits-1:0] pass_q, pass_d;
+  // cyc_q = pass * NoiseSteps + step: the cycle of the fragment in [A].
+  logic [CycBits-1:0]  cyc_q, cyc_d;
+  logic [PassBits-1:0] pass_q;
+  logic [2:0]          step;
+  logic                last_step;   // the noise results of this pass are valid
+  assign pass_q    = PassBits'(cyc_q >> StepBits);
+  assign step      = 3'(32'(cyc_q) % NoiseSteps);
+  assign last_step = (32'(step) == NoiseSteps - 1);
   logic signed [FAccW-1:0] facc_q, facc_d;
   logic [3*GAccW-1:0]      gacc_q, gacc_d;
 
   logic [FW-1:0]   q;
   logic [3*GW-1:0] gradq;
+  logic            last_cycle;   // the fragment's last cycle in the octave stage
 
-  pst_quadric #(
-    .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
-    .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
-  ) u_quadric (
-    .s_i (a_s), .coef_i (quad_q), .q_o (q), .gradq_o (gradq)
-  );
+  // Datapath = 0: the whole quadric every cycle; 1: one row of Q per cycle (cycles 0..2), the
+  // result held from cycle 2 on (it is added at the last cycle).
+  if (Datapath == 0) begin : g_quadric_par
+    pst_quadric #(
+      .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
+      .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
+    ) u_quadric (
+      .s_i (a_s), .coef_i (quad_q), .q_o (q), .gradq_o (gradq)
+    );
+  end else begin : g_quadric_ser
+    logic [1:0] row;
+    assign row = (32'(cyc_q) < 3) ? 2'(cyc_q) : 2'd3;
+    pst_quadric_serial #(
+      .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
+      .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
+    ) u_quadric (
+      .clk_i, .rst_ni,
+      .row_i (row), .adv_i (a_valid & ~last_cycle),
+      .s_i (a_s), .coef_i (quad_q), .q_o (q), .gradq_o (gradq)
+    );
+  end
 
   logic [FW-1:0]   fterm [NoiseUnits];
   logic [3*GW-1:0] gterm [NoiseUnits];
@@ -239,8 +273,9 @@ module pst_top #(
     pst_noise #(
       .NoiseInterp(NoiseInterp), .NoiseCorner(NoiseCorner), .NoiseHash(NoiseHash),
       .NoiseValueFrac(NoiseValueFrac), .NoiseLatticeFrac(NoiseLatticeFrac),
-      .NoiseOutFrac(NoiseOutFrac)
+      .NoiseOutFrac(NoiseOutFrac), .NoiseSteps(NoiseSteps)
     ) u_noise (
+      .clk_i, .rst_ni, .step_i (step), .adv_i (a_valid & ~last_step),
       .lat_i (lat), .frac_i (frac), .n_o (n), .grad_o (g)
     );
 
@@ -268,7 +303,7 @@ module pst_top #(
     end
   end
 
-  assign probe_valid_o = DebugProbes & a_valid;
+  assign probe_valid_o = DebugProbes & a_valid & last_step;
   assign probe_tag_o   = DebugProbes ? a_tag : '0;
   assign probe_pass_o  = DebugProbes ? 8'(pass_q) : '0;
   assign probe_q_o     = DebugProbes ? q : '0;
@@ -276,7 +311,6 @@ module pst_top #(
   // Accumulation: the first pass starts from q, later passes from the accumulators.
   logic signed [FAccW-1:0] fsum;
   logic [3*GAccW-1:0]      gsum;
-  logic                    last_pass;
   logic [FW-1:0]           f_sat;
   logic [3*GW-1:0]         grad_sat;
 
@@ -285,12 +319,16 @@ module pst_top #(
   localparam logic signed [GAccW-1:0] GMax = GAccW'({1'b0, {(GW-1){1'b1}}});
   localparam logic signed [GAccW-1:0] GMin = -GMax - 1;
 
+  // The quadric is added at the last cycle (where the serial quadric has its result); the sums
+  // are exact, so where q enters does not change a bit.
   always_comb begin
     logic signed [GAccW-1:0] gc;
-    fsum = (pass_q == '0) ? FAccW'($signed(q)) : facc_q;
+    fsum = (pass_q == '0) ? '0 : facc_q;
+    if (last_cycle) fsum = fsum + FAccW'($signed(q));
     for (int u = 0; u < NoiseUnits; u++) fsum = fsum + FAccW'($signed(fterm[u]));
     for (int k = 0; k < 3; k++) begin
-      gc = (pass_q == '0) ? GAccW'($signed(gradq[k*GW +: GW])) : $signed(gacc_q[k*GAccW +: GAccW]);
+      gc = (pass_q == '0) ? '0 : $signed(gacc_q[k*GAccW +: GAccW]);
+      if (last_cycle) gc = gc + GAccW'($signed(gradq[k*GW +: GW]));
       for (int u = 0; u < NoiseUnits; u++) gc = gc + GAccW'($signed(gterm[u][k*GW +: GW]));
       gsum[k*GAccW +: GAccW] = gc;
       // Saturate to the Grad format.
@@ -304,7 +342,7 @@ module pst_top #(
     else f_sat = FW'(fsum);
   end
 
-  assign last_pass = (32'(pass_q) == Passes - 1);
+  assign last_cycle = (32'(cyc_q) == Cycles - 1);
 
   // [B] register: tag, J, f, grad
   localparam int BWidth = 32 + 6 * JW + FW + 3 * GW;
@@ -312,31 +350,33 @@ module pst_top #(
   logic              b_valid, b_ready;
   logic [BWidth-1:0] b_data;
 
-  assign b_in_valid = a_valid & last_pass;
-  assign a_ready    = last_pass & b_in_ready;
+  assign b_in_valid = a_valid & last_cycle;
+  assign a_ready    = last_cycle & b_in_ready;
 
   always_comb begin
-    pass_d = pass_q;
+    cyc_d  = cyc_q;
     facc_d = facc_q;
     gacc_d = gacc_q;
     if (a_valid) begin
-      if (!last_pass) begin
-        pass_d = pass_q + 1'b1;
-        facc_d = fsum;
-        gacc_d = gsum;
+      if (!last_cycle) begin
+        cyc_d = cyc_q + 1'b1;
+        if (last_step) begin   // a pass's terms are in: accumulate
+          facc_d = fsum;
+          gacc_d = gsum;
+        end
       end else if (b_in_ready) begin
-        pass_d = '0;
+        cyc_d = '0;
       end
     end
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      pass_q <= '0;
+      cyc_q  <= '0;
       facc_q <= '0;
       gacc_q <= '0;
     end else begin
-      pass_q <= pass_d;
+      cyc_q  <= cyc_d;
       facc_q <= facc_d;
       gacc_q <= gacc_d;
     end
@@ -359,12 +399,35 @@ module pst_top #(
   // Filter width -> [C]
   // ---------------------------------------------------------------------------------------
   logic [WW-1:0] b_w;
+  logic          b_done;   // W is valid this cycle
+  logic          c_in_ready;
+
+  // Datapath = 1: the dot products take one component per cycle (steps 0..2); the fragment
+  // leaves [B] at step 2.
+  logic [1:0] wstep_q, wstep_d;
+  if (Datapath == 0) begin : g_width_par
+    assign b_done  = 1'b1;
+    assign wstep_d = '0;
+  end else begin : g_width_ser
+    assign b_done = (wstep_q == 2'd2);
+    always_comb begin
+      wstep_d = wstep_q;
+      if (b_valid && !b_done) wstep_d = wstep_q + 2'd1;
+      else if (b_valid && c_in_ready) wstep_d = '0;
+    end
+  end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) wstep_q <= '0;
+    else wstep_q <= wstep_d;
+  end
+  assign b_ready = b_done & c_in_ready;
 
   pst_filter_width #(
     .GradInt(GradInt), .GradFrac(GradFrac), .JacobianInt(JacobianInt),
     .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac),
-    .FilterNorm(FilterNorm)
+    .FilterNorm(FilterNorm), .Serial(Datapath != 0)
   ) u_width (
+    .clk_i, .rst_ni, .step_i (wstep_q), .adv_i (b_valid & ~b_done),
     .grad_i (b_grad), .j_i (b_j), .w_o (b_w)
   );
 
@@ -374,7 +437,7 @@ module pst_top #(
 
   pst_pipe_reg #(.Width(CWidth)) u_reg_c (
     .clk_i, .rst_ni,
-    .valid_i (b_valid), .ready_o (b_ready),
+    .valid_i (b_valid & b_done), .ready_o (c_in_ready),
     .data_i  ({b_w, b_grad, b_f, b_tag}),
     .valid_o (c_valid), .ready_i (c_ready), .data_o (c_data)
   );
@@ -389,10 +452,31 @@ module pst_top #(
   // Colour-table filter -> [D] -> out
   // ---------------------------------------------------------------------------------------
   logic [CB4-1:0] c_rgba;
+  logic           c_done;     // RGBA is valid this cycle
+  logic           d_in_ready;
+
+  // Datapath = 1: one colour channel per cycle (steps 0..3); the fragment leaves [C] at step 3.
+  logic [1:0] cstep_q, cstep_d;
+  if (Datapath == 0) begin : g_clut_par
+    assign c_done  = 1'b1;
+    assign cstep_d = '0;
+  end else begin : g_clut_ser
+    assign c_done = (cstep_q == 2'd3);
+    always_comb begin
+      cstep_d = cstep_q;
+      if (c_valid && !c_done) cstep_d = cstep_q + 2'd1;
+      else if (c_valid && d_in_ready) cstep_d = '0;
+    end
+  end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) cstep_q <= '0;
+    else cstep_q <= cstep_d;
+  end
+  assign c_ready = c_done & d_in_ready;
 
   pst_clut_filter #(
     .FInt(FInt), .FFrac(FFrac), .Log2Clut(Log2Clut), .ColourBits(ColourBits),
-    .WidthFrac(WidthFrac), .FilterRecipFrac(FilterRecipFrac)
+    .WidthFrac(WidthFrac), .FilterRecipFrac(FilterRecipFrac), .Datapath(Datapath)
   ) u_clut (
     .clk_i,
     .we_i    (reg_we_i),
@@ -402,6 +486,9 @@ module pst_top #(
     .w_i     (c_w),
     .clamp_i (ctrl_q[0]),
     .kind_i  (ctrl_q[2:1]),
+    .rst_ni,
+    .step_i  (cstep_q),
+    .adv_i   (c_valid & ~c_done),
     .rgba_o  (c_rgba)
   );
 
@@ -410,7 +497,7 @@ module pst_top #(
 
   pst_pipe_reg #(.Width(DWidth)) u_reg_d (
     .clk_i, .rst_ni,
-    .valid_i (c_valid), .ready_o (c_ready),
+    .valid_i (c_valid & c_done), .ready_o (d_in_ready),
     .data_i  ({c_w, c_grad, c_f, c_rgba, c_tag}),
     .valid_o (out_valid_o), .ready_i (out_ready_i), .data_o (d_data)
   );
@@ -426,12 +513,15 @@ module pst_top #(
   // The driver keeps an offered fragment until it is taken (an assumption on the source).
   assert property (@(posedge clk_i) disable iff (!rst_ni)
                    (frag_valid_i && !frag_ready_o) |=> (frag_valid_i && $stable(frag_tag_i)));
-  // The pass counter stays within the octave passes.
-  assert property (@(posedge clk_i) disable iff (!rst_ni) 32'(pass_q) < Passes);
+  // The cycle counter stays within the fragment's cycles.
+  assert property (@(posedge clk_i) disable iff (!rst_ni) 32'(cyc_q) < Cycles);
   // Profile consistency.
   initial begin
     assert (Octaves % NoiseUnits == 0) else $fatal(1, "NoiseUnits must divide Octaves");
     assert (Octaves <= 16) else $fatal(1, "at most 16 octaves (register map)");
+    assert (Datapath == 0 || Cycles >= 4) else $fatal(1, "a serial datapath needs 4 cycles per fragment or more");
+    assert (NoiseSteps == 1 || NoiseSteps == 2 || NoiseSteps == 4 || NoiseSteps == 8)
+      else $fatal(1, "NoiseSteps must be 1, 2, 4 or 8");
   end
 `endif
 

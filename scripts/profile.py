@@ -20,6 +20,7 @@ import sys
 import tomllib
 
 ENUMS = {
+    ("pipeline", "datapath"): ["parallel", "serial"],
     ("noise", "interp"): ["scurve", "linear"],
     ("noise", "corner"): ["value_gradient", "value"],
     ("noise", "hash"): ["rayshade", "perm256"],

@@ -36,6 +36,7 @@ LIB = ROOT / "scripts" / "synth" / "cells.lib"
 # Module (base name) -> block of the report.
 BLOCKS = {
     "pst_quadric": "quadric",
+    "pst_quadric_serial": "quadric",
     "pst_octave_transform": "noise",
     "pst_noise": "noise",
     "pst_noise_weight": "noise",

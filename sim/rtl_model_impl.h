@@ -71,7 +71,7 @@ public:
         out.reserve(frags.size());
         const uint64_t start = cycle_;
         const uint64_t limit = opt_.timeoutCycles ? opt_.timeoutCycles
-                                                  : 1000 + 64 * uint64_t(frags.size()) * p_.cyclesPerOctavePass();
+                                                  : 1000 + 64 * uint64_t(frags.size()) * p_.cyclesPerPixel();
         std::bernoulli_distribution gap(opt_.inputGapRate), stall(opt_.outputStallRate);
         size_t next = 0;
         bool offering = false;

@@ -60,6 +60,13 @@ struct Reader {
 
 }  // namespace
 
+bool parseDatapath(const std::string& s, Datapath* d) {
+    if (s == "parallel") *d = Datapath::Parallel;
+    else if (s == "serial") *d = Datapath::Serial;
+    else return false;
+    return true;
+}
+
 Profile parseProfile(const std::string& text, const std::string& path) {
     toml::table root;
     try {
@@ -75,8 +82,15 @@ Profile parseProfile(const std::string& text, const std::string& path) {
     p.noiseUnits = r.integer(pipe, "pipeline", "noise_units", 1, 16);
     if (p.octaves % p.noiseUnits != 0)
         r.fail(pipe.get("noise_units"), "pipeline.noise_units", "must divide pipeline.octaves");
+    p.noiseSteps = r.integer(pipe, "pipeline", "noise_steps", 1, 8);
+    if (p.noiseSteps != 1 && p.noiseSteps != 2 && p.noiseSteps != 4 && p.noiseSteps != 8)
+        r.fail(pipe.get("noise_steps"), "pipeline.noise_steps", "must be 1, 2, 4 or 8");
     p.log2Clut = r.integer(pipe, "pipeline", "log2_clut", 1, 11);  // the SAT range (0x2000 + 4e) must stay below 0x4000
     p.colourBits = r.integer(pipe, "pipeline", "colour_bits", 1, 8);
+    p.datapath = r.choice(pipe, "pipeline", "datapath", parseDatapath);
+    if (p.datapath == Datapath::Serial && p.cyclesPerPixel() < 4)
+        r.fail(pipe.get("datapath"), "pipeline.datapath",
+               "serial needs at least 4 cycles per pixel (octaves / noise_units x noise_steps >= 4)");
     const auto& noise = r.section("noise");
     p.noise.interp = r.choice(noise, "noise", "interp", parseNoiseInterp);
     p.noise.corner = r.choice(noise, "noise", "corner", parseNoiseCorner);

@@ -17,6 +17,12 @@ struct FixedFormat {
     int width() const { return intBits + fracBits; }
 };
 
+// How the quadric, filter-width and colour-table units are built: every product every cycle
+// (parallel), or one row / one channel per cycle over the octave passes (serial: fewer
+// multipliers, needs at least 4 cycles per pixel). The arithmetic is the same bit for bit.
+enum class Datapath { Parallel, Serial };
+bool parseDatapath(const std::string& s, Datapath* d);
+
 struct Profile {
     std::string name;
     std::string path;
@@ -24,8 +30,10 @@ struct Profile {
     // [pipeline]
     int octaves = 8;        // K noise terms held
     int noiseUnits = 8;     // noise units in parallel
+    int noiseSteps = 1;     // cycles per noise evaluation (1, 2, 4, 8)
     int log2Clut = 8;       // N = 2^log2Clut colour-table entries
     int colourBits = 8;     // bits per RGBA channel
+    Datapath datapath = Datapath::Parallel;
     // [noise]
     NoiseOptions noise;
     int noiseValueFrac = 15;    // R table fraction bits
@@ -39,7 +47,10 @@ struct Profile {
     int widthFrac = 8;
 
     int clutSize() const { return 1 << log2Clut; }
-    int cyclesPerOctavePass() const { return (octaves + noiseUnits - 1) / noiseUnits; }
+    int octavePasses() const { return (octaves + noiseUnits - 1) / noiseUnits; }
+    // Cycles a fragment spends in the octave stage: the pipeline's rate (one fragment per
+    // this many cycles; the serial filter-width and colour stages take 3 and 4).
+    int cyclesPerPixel() const { return octavePasses() * noiseSteps; }
     // W = w N in entries: unsigned, log2Clut + 2 integer bits, widthFrac fraction bits.
     int widthIntBits() const { return log2Clut + 2; }
 };

@@ -6,6 +6,7 @@ set(PST_ARITH_UNIT_PARAMS
 set(PST_ARITH_UNIT_SOURCES
     ${PROJECT_SOURCE_DIR}/sim/unit/pst_arith_unit_top.sv
     ${PROJECT_SOURCE_DIR}/rtl/pst_quadric.sv
+    ${PROJECT_SOURCE_DIR}/rtl/pst_quadric_serial.sv
     ${PROJECT_SOURCE_DIR}/rtl/pst_octave_term.sv
     ${PROJECT_SOURCE_DIR}/rtl/pst_filter_width.sv
     ${PROJECT_SOURCE_DIR}/rtl/pst_isqrt.sv)

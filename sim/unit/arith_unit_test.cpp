@@ -148,6 +148,8 @@ protected:
         clearPort(d.quad_s_i), clearPort(d.quad_coef_i);
         clearPort(d.term_n_i), clearPort(d.term_g_i), clearPort(d.term_a_i), clearPort(d.term_gm_i);
         clearPort(d.fw_grad_i), clearPort(d.fw_j_i), clearPort(d.sqrt_x_i);
+        // The serial variants: out of reset, at step 0, clock low.
+        d.clk_i = 0, d.rst_ni = 1, d.ser_step_i = 0, d.ser_adv_i = 0;
         ASSERT_TRUE(eval()) << "an RTL assertion fired on all-zero inputs";
     }
     static void TearDownTestSuite() {
@@ -170,6 +172,39 @@ protected:
     const int GMW = P.gradMatrix.width(), JW = P.jacobian.width(), WW = pst::widthBits(P);
     const int SqW = 2 * WW + 1;
 
+    // One clock edge (the serial variants' partial-sum registers).
+    static bool tick() {
+        top_->clk_i = 1;
+        const bool ok = eval();
+        top_->clk_i = 0;
+        return eval() && ok;
+    }
+    // Steps the serial variants through rows / components 0, 1 (stored on a clock edge each)
+    // to 2 on the inputs already driven: their results are then live (combinational). With
+    // hold, row 2 is stored too and the step moves to 3, where the serial quadric's result
+    // comes from its registers alone. Returns false if an assertion fired.
+    static bool runSerial(bool hold) {
+        bool ok = true;
+        top_->ser_adv_i = 0;  // an idle cycle first: nothing stored, whatever step was left
+        ok = eval() && ok;
+        ok = tick() && ok;
+        top_->ser_adv_i = 1;
+        for (int step = 0; step < 2; ++step) {
+            top_->ser_step_i = step;
+            ok = eval() && ok;
+            ok = tick() && ok;
+        }
+        top_->ser_step_i = 2;
+        ok = eval() && ok;
+        if (hold) {
+            ok = tick() && ok;
+            top_->ser_step_i = 3;
+            top_->ser_adv_i = 0;
+            ok = eval() && ok;
+        }
+        return ok;
+    }
+
     // Quadric: drive, evaluate, compare with the golden model.
     int64_t quadric(Tally& t, const int64_t s[3], const int64_t coef[10]) {  // returns golden q
         Vpst_arith_unit_top& d = *top_;
@@ -181,13 +216,27 @@ protected:
         const int64_t rq = getSigned(d.quad_q_o, 0, FW);
         int64_t rg[3];
         for (int k = 0; k < 3; ++k) rg[k] = getSigned(d.quad_gradq_o, k * GW, GW);
-        t.check(assertOk && rq == q && rg[0] == gq[0] && rg[1] == gq[1] && rg[2] == gq[2], [&] {
-            std::ostringstream os;
-            if (!assertOk) os << "  (an RTL assertion fired)\n";
-            os << "  s " << list(s, 3) << "\n  coef " << list(coef, 10) << "\n  golden q " << q << " gradq "
-               << list(gq, 3) << "\n  rtl    q " << rq << " gradq " << list(rg, 3);
-            return os.str();
-        });
+        // The serial quadric: live at row 2, then held (from its registers) at step 3.
+        int64_t sq[2], sg[2][3];
+        bool serialOk = true;
+        for (int h = 0; h < 2; ++h) {
+            serialOk = runSerial(h == 1) && serialOk;
+            sq[h] = getSigned(d.quad_ser_q_o, 0, FW);
+            for (int k = 0; k < 3; ++k) sg[h][k] = getSigned(d.quad_ser_gradq_o, k * GW, GW);
+        }
+        bool serialMatch = true;
+        for (int h = 0; h < 2; ++h)
+            serialMatch = serialMatch && sq[h] == q && sg[h][0] == gq[0] && sg[h][1] == gq[1] && sg[h][2] == gq[2];
+        t.check(assertOk && serialOk && rq == q && rg[0] == gq[0] && rg[1] == gq[1] && rg[2] == gq[2] && serialMatch,
+                [&] {
+                    std::ostringstream os;
+                    if (!assertOk || !serialOk) os << "  (an RTL assertion fired)\n";
+                    os << "  s " << list(s, 3) << "\n  coef " << list(coef, 10) << "\n  golden q " << q << " gradq "
+                       << list(gq, 3) << "\n  rtl    q " << rq << " gradq " << list(rg, 3) << "\n  serial q (live) "
+                       << sq[0] << " gradq " << list(sg[0], 3) << "\n  serial q (held) " << sq[1] << " gradq "
+                       << list(sg[1], 3);
+                    return os.str();
+                });
         return q;
     }
 
@@ -228,13 +277,18 @@ protected:
             gold[1 + n] = pst::filterWidthFx(pn, grad, j);
             rtl[1 + n] = int64_t(getBits(d.fw_w_norm_o, n * WW, WW));
         }
-        t.check(assertOk && gold[0] == rtl[0] && gold[1] == rtl[1] && gold[2] == rtl[2] && gold[3] == rtl[3], [&] {
-            std::ostringstream os;
-            if (!assertOk) os << "  (an RTL assertion fired)\n";
-            os << "  grad " << list(grad, 3) << "\n  j " << list(j, 6) << "\n  golden W (profile, euclid, mhm, l1) "
-               << list(gold, 4) << "\n  rtl    W (profile, euclid, mhm, l1) " << list(rtl, 4);
-            return os.str();
-        });
+        const bool serialOk = runSerial(false);
+        const int64_t ser = int64_t(getBits(d.fw_ser_w_o, 0, WW));
+        t.check(assertOk && serialOk && gold[0] == rtl[0] && gold[1] == rtl[1] && gold[2] == rtl[2] &&
+                    gold[3] == rtl[3] && gold[0] == ser,
+                [&] {
+                    std::ostringstream os;
+                    if (!assertOk || !serialOk) os << "  (an RTL assertion fired)\n";
+                    os << "  grad " << list(grad, 3) << "\n  j " << list(j, 6)
+                       << "\n  golden W (profile, euclid, mhm, l1) " << list(gold, 4)
+                       << "\n  rtl    W (profile, euclid, mhm, l1) " << list(rtl, 4) << "\n  serial W (profile) " << ser;
+                    return os.str();
+                });
         return gold[0];
     }
 

@@ -3,7 +3,7 @@
 # special (f, W, clamp, kind) vectors, every output bit compared. One verilated top per
 # profile. Seed: PST_SEED=<n> in the environment replays a run (the test prints its seed);
 # PST_CLUT_VECTORS=<n> changes the vector count per table (default 40000; 3 tables).
-set(PST_CLUT_UNIT_PARAMS FInt,FFrac,Log2Clut,ColourBits,WidthFrac,FilterRecipFrac)
+set(PST_CLUT_UNIT_PARAMS FInt,FFrac,Log2Clut,ColourBits,WidthFrac,FilterRecipFrac,Datapath)
 set(PST_CLUT_UNIT_SOURCES ${PROJECT_SOURCE_DIR}/rtl/pst_clut_filter.sv)
 foreach(p ${PST_PROFILES})
   add_executable(clut_unit_${p} ${PROJECT_SOURCE_DIR}/sim/unit/clut_unit_test.cpp)

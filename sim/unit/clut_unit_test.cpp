@@ -83,6 +83,9 @@ public:
         ww_ = p.widthIntBits() + p.widthFrac;
         top_->clk_i = 0;
         top_->we_i = 0;
+        top_->rst_ni = 1;
+        top_->step_i = 0;
+        top_->adv_i = 0;
         top_->eval();
     }
     ~Bench() { top_->final(); }
@@ -102,6 +105,18 @@ public:
         setPort(top_->w_i, ww_, uint64_t(W));
         top_->clamp_i = clamp;
         top_->kind_i = kind;
+        top_->rst_ni = 1;
+        top_->eval();  // settle the inputs before any clock edge
+        // Serial datapath: channels 0..2 one per cycle (stored), channel 3 live at step 3.
+        if (prof().datapath == pst::Datapath::Serial) {
+            for (int step = 0; step < 3; ++step) {
+                top_->step_i = step;
+                top_->adv_i = 1;
+                tick();
+            }
+            top_->adv_i = 0;
+            top_->step_i = 3;
+        }
         top_->eval();
         const uint64_t rtl = getPort(top_->rgba_o);
         ClutTrace tr;

@@ -47,6 +47,7 @@ Profile testProfile() {
         else if (key == "NoiseValueFrac") p.noiseValueFrac = v;
         else if (key == "NoiseLatticeFrac") p.noiseLatticeFrac = v;
         else if (key == "NoiseOutFrac") p.noiseOutFrac = v;
+        else if (key == "NoiseSteps") p.noiseSteps = v;
         else throw std::runtime_error("unknown override " + key);
     }
 #endif
@@ -127,6 +128,18 @@ protected:
             setField(top_->nz_lat_i, 12 * k, 12, uint64_t(lat[k]));
             setField(top_->nz_frac_i, LF * k, LF, uint64_t(frac[k]));
         }
+        // NoiseSteps > 1: steps 0..S-2 stored on a clock edge each, the result live at S-1.
+        top_->rst_ni = 1;
+        top_->nz_adv_i = 1;
+        for (int step = 0; step + 1 < prof_.noiseSteps; ++step) {
+            top_->nz_step_i = step;
+            top_->eval();
+            top_->clk_i = 1;
+            top_->eval();
+            top_->clk_i = 0;
+        }
+        top_->nz_adv_i = 0;
+        top_->nz_step_i = prof_.noiseSteps - 1;
         top_->eval();
         int64_t n, g[3];
         NoiseFxTrace tr;

@@ -52,6 +52,15 @@ module pst_arith_unit_top #(
   input  logic [9*GMW-1:0]  term_gm_i,
   output logic [FW-1:0]     term_fterm_o,
   output logic [3*GW-1:0]   term_gterm_o,
+  // Serial variants (datapath = "serial"), on the same inputs: pst_quadric_serial and
+  // pst_filter_width #(.Serial(1)), stepped by ser_step_i / ser_adv_i.
+  input  logic              clk_i,
+  input  logic              rst_ni,
+  input  logic [1:0]        ser_step_i,
+  input  logic              ser_adv_i,
+  output logic [FW-1:0]     quad_ser_q_o,
+  output logic [3*GW-1:0]   quad_ser_gradq_o,
+  output logic [WW-1:0]     fw_ser_w_o,
   // pst_filter_width
   input  logic [3*GW-1:0]   fw_grad_i,
   input  logic [6*JW-1:0]   fw_j_i,
@@ -69,6 +78,14 @@ module pst_arith_unit_top #(
     .s_i (quad_s_i), .coef_i (quad_coef_i), .q_o (quad_q_o), .gradq_o (quad_gradq_o)
   );
 
+  pst_quadric_serial #(
+    .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
+    .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
+  ) u_quadric_ser (
+    .clk_i, .rst_ni, .row_i (ser_step_i), .adv_i (ser_adv_i),
+    .s_i (quad_s_i), .coef_i (quad_coef_i), .q_o (quad_ser_q_o), .gradq_o (quad_ser_gradq_o)
+  );
+
   pst_octave_term #(
     .NoiseOutFrac(NoiseOutFrac), .AmplitudeInt(AmplitudeInt), .AmplitudeFrac(AmplitudeFrac),
     .GradMatrixInt(GradMatrixInt), .GradMatrixFrac(GradMatrixFrac), .FInt(FInt),
@@ -83,7 +100,17 @@ module pst_arith_unit_top #(
     .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac),
     .FilterNorm(FilterNorm)
   ) u_width (
+    .clk_i, .rst_ni, .step_i (2'd0), .adv_i (1'b0),
     .grad_i (fw_grad_i), .j_i (fw_j_i), .w_o (fw_w_o)
+  );
+
+  pst_filter_width #(
+    .GradInt(GradInt), .GradFrac(GradFrac), .JacobianInt(JacobianInt),
+    .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac),
+    .FilterNorm(FilterNorm), .Serial(1'b1)
+  ) u_width_ser (
+    .clk_i, .rst_ni, .step_i (ser_step_i), .adv_i (ser_adv_i),
+    .grad_i (fw_grad_i), .j_i (fw_j_i), .w_o (fw_ser_w_o)
   );
 
   for (genvar n = 0; n < 3; n++) begin : g_norm
@@ -92,6 +119,7 @@ module pst_arith_unit_top #(
       .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac),
       .FilterNorm(n)
     ) u_width_n (
+      .clk_i, .rst_ni, .step_i (2'd0), .adv_i (1'b0),
       .grad_i (fw_grad_i), .j_i (fw_j_i), .w_o (fw_w_norm_o[n*WW +: WW])
     );
   end

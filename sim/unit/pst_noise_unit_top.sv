@@ -16,6 +16,7 @@ module pst_noise_unit_top #(
   parameter int NoiseHash = 0,
   parameter int NoiseValueFrac = 15,
   parameter int NoiseOutFrac = 16,
+  parameter int NoiseSteps = 1,
   localparam int CW = CoordInt + CoordFrac,    // s element width
   localparam int MW = MatrixInt + MatrixFrac,  // M element width
   localparam int OW = OffsetInt + OffsetFrac,  // o element width
@@ -29,6 +30,10 @@ module pst_noise_unit_top #(
   output logic [35:0]             ot_lat_o,
   output logic [3*LF-1:0]         ot_frac_o,
   // noise unit
+  input  wire logic               clk_i,      // pst_noise with NoiseSteps > 1
+  input  wire logic               rst_ni,
+  input  wire logic [2:0]         nz_step_i,
+  input  wire logic               nz_adv_i,
   input  wire logic [35:0]        nz_lat_i,
   input  wire logic [3*LF-1:0]    nz_frac_i,
   output logic signed [4+OF-1:0]  nz_n_o,
@@ -57,8 +62,13 @@ module pst_noise_unit_top #(
     .NoiseHash        (NoiseHash),
     .NoiseValueFrac   (NoiseValueFrac),
     .NoiseLatticeFrac (NoiseLatticeFrac),
-    .NoiseOutFrac     (NoiseOutFrac)
+    .NoiseOutFrac     (NoiseOutFrac),
+    .NoiseSteps       (NoiseSteps)
   ) u_noise (
+    .clk_i,
+    .rst_ni,
+    .step_i (nz_step_i),
+    .adv_i  (nz_adv_i),
     .lat_i  (nz_lat_i),
     .frac_i (nz_frac_i),
     .n_o    (nz_n_o),
