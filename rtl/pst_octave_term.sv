@@ -15,6 +15,8 @@
 //   GradMatrixInt, GradMatrixFrac   GM = a_i M_i^T entry format (a driver-rounded register).
 //   FInt, FFrac                     fterm_o format (the colour index f).
 //   GradInt, GradFrac               gterm_o component format (grad_s f).
+//   Rows                            3: all of GM g; 1: one row (the caller hands in that row of
+//                                   GM: the serial datapath, one row per cycle).
 `default_nettype none
 
 module pst_octave_term #(
@@ -27,6 +29,7 @@ module pst_octave_term #(
   parameter int FFrac          = 20,
   parameter int GradInt        = 16,
   parameter int GradFrac       = 16,
+  parameter int Rows           = 3,
   // Derived widths (not profile keys).
   localparam int NW  = 4 + NoiseOutFrac,                  // noise value Q4.NoiseOutFrac
   localparam int NGW = 6 + NoiseOutFrac,                  // noise gradient Q6.NoiseOutFrac
@@ -38,9 +41,9 @@ module pst_octave_term #(
   input  logic [NW-1:0]    n_i,       // noise value
   input  logic [3*NGW-1:0] g_i,       // noise gradient dn/dp; element k at [k*NGW +: NGW]
   input  logic [AW-1:0]    a_i,       // amplitude
-  input  logic [9*GMW-1:0] gm_i,      // GM = a M^T row-major: GM[r][c] at [(3r+c)*GMW +: GMW]
-  output logic [FW-1:0]    fterm_o,
-  output logic [3*GW-1:0]  gterm_o    // element r at [r*GW +: GW]
+  input  logic [Rows*3*GMW-1:0] gm_i,  // GM = a M^T row-major: GM[r][c] at [(3r+c)*GMW +: GMW]
+  output logic [FW-1:0]         fterm_o,
+  output logic [Rows*GW-1:0]    gterm_o    // element r at [r*GW +: GW]
 );
 
   // a n: a signed AW x NW product fits AW + NW bits.
@@ -69,7 +72,7 @@ module pst_octave_term #(
   end
 
   // gterm_r = sat_Grad(floor(sum_c GM[r][c] g[c] to GradFrac)).
-  for (genvar r = 0; r < 3; r++) begin : g_row
+  for (genvar r = 0; r < Rows; r++) begin : g_row
     logic signed [DW-1:0]  dot;
     logic signed [GSW-1:0] gs;
     assign dot = DW'($signed(gm_i[(3*r+0)*GMW +: GMW])) * DW'($signed(g_i[0*NGW +: NGW])) +

@@ -17,14 +17,16 @@
 //   MatrixInt, MatrixFrac   M entries Q(MatrixInt).(MatrixFrac)
 //   OffsetInt, OffsetFrac   o entries Q(OffsetInt).(OffsetFrac)
 //   NoiseLatticeFrac        fraction bits of u handed to the noise unit (LF)
+//   Rows                    3: all three axes; 1: one axis (the caller hands in that row of
+//                           M and o: the serial datapath, one row per cycle)
 // Requires MatrixFrac + CoordFrac >= NoiseLatticeFrac and >= OffsetFrac (asserted).
 //
 // Ports:
 //   s_i    3 x CW signed, element k at [k*CW +: CW]
-//   m_i    9 x MW signed, row-major: element 3*r + c at [(3*r+c)*MW +: MW]
-//   o_i    3 x OW signed
-//   lat_o  3 x 12-bit lattice index (after the +576 offset, mod 4096)
-//   frac_o 3 x NoiseLatticeFrac-bit unsigned fraction
+//   m_i    Rows x 3 x MW signed, row-major: element 3*r + c at [(3*r+c)*MW +: MW]
+//   o_i    Rows x OW signed
+//   lat_o  Rows x 12-bit lattice index (after the +576 offset, mod 4096)
+//   frac_o Rows x NoiseLatticeFrac-bit unsigned fraction
 `default_nettype none
 
 module pst_octave_transform #(
@@ -35,6 +37,7 @@ module pst_octave_transform #(
   parameter int OffsetInt = 13,
   parameter int OffsetFrac = 16,
   parameter int NoiseLatticeFrac = 16,
+  parameter int Rows = 3,
   // Derived widths (do not override).
   localparam int CW = CoordInt + CoordFrac,   // s element width
   localparam int MW = MatrixInt + MatrixFrac, // M element width
@@ -42,10 +45,10 @@ module pst_octave_transform #(
   localparam int LF = NoiseLatticeFrac
 ) (
   input  wire logic [3*CW-1:0] s_i,
-  input  wire logic [9*MW-1:0] m_i,
-  input  wire logic [3*OW-1:0] o_i,
-  output logic [35:0]          lat_o,
-  output logic [3*LF-1:0]      frac_o
+  input  wire logic [Rows*3*MW-1:0] m_i,
+  input  wire logic [Rows*OW-1:0]   o_i,
+  output logic [Rows*12-1:0]        lat_o,
+  output logic [Rows*LF-1:0]        frac_o
 );
 
   // Fraction bits of the exact sum (products M s).
@@ -61,7 +64,7 @@ module pst_octave_transform #(
   // Offset of Rayshade's 1e6 lattice shift modulo 4096.
   localparam logic [11:0] LatticeOffset = 12'd576;
 
-  for (genvar r = 0; r < 3; r++) begin : g_axis
+  for (genvar r = 0; r < Rows; r++) begin : g_axis
     logic [3*ProdW-1:0]      prod;  // three exact products, j at [j*ProdW +: ProdW]
     logic signed [AccW-1:0]  off_ext;
     logic signed [AccW-1:0]  acc;

@@ -1,22 +1,25 @@
-// Quadric, one row of Q per cycle (stage 3 of docs/HARDWARE.md, datapath = "serial"): the
-// same q(s) of eq. 3 and gradient 2 (Q [s 1])_xyz as pst_quadric, bit for bit, from three
-// coefficient x coordinate multipliers and one coordinate x row multiplier instead of fifteen.
-// Golden model: quadricFx in model/golden/arith_fx.cpp (the sum is exact, so the order of its
-// terms does not change a bit).
+// Quadric, one product per cycle (stage 3 of docs/HARDWARE.md, datapath = "serial"): the
+// same q(s) of eq. 3 and gradient 2 (Q [s 1])_xyz as pst_quadric, bit for bit, from one
+// coefficient x coordinate multiplier and one coordinate x row multiplier instead of fifteen
+// multipliers. Golden model: quadricFx in model/golden/arith_fx.cpp (every sum is exact, so
+// the order of its terms does not change a bit).
 //
-//   Row r = row_i (0, 1, 2) of Q = [A B C D; B E F G; C F H I; D G I J] (eq. 4):
-//   v_r = Q_r0 s + Q_r1 t + Q_r2 r + (Q_r3 << CoordFrac)   exact, QuadricFrac + CoordFrac bits
-//   u_r = v_r + (Q_r3 << CoordFrac)                        (the linear term D s + G t + I r of
-//                                                           eq. 3 folded into the row: s_r Q_r3)
+//   Step k = 3 r + c (k = step_i = 0..8), row r of Q = [A B C D; B E F G; C F H I; D G I J]
+//   (eq. 4), column c:
+//   v_r = Q_r0 s + Q_r1 t + Q_r2 r + (Q_r3 << CoordFrac)   one product Q_rc s_c per step, exact
+//                                                           at QuadricFrac + CoordFrac bits
+//   u_r = v_r + (Q_r3 << CoordFrac)                        (at c = 2; the linear term
+//                                                           D s + G t + I r of eq. 3 folded into
+//                                                           the row: s_r Q_r3)
 //   q   = sum_r s_r u_r + (J << 2 CoordFrac)               = s . v + ((D s + G t + I r) << CoordFrac)
 //                                                           + (J << 2 CoordFrac), exact
-//   q_o     = sat_F(floor(q to FFrac))                     valid from row 2 on
-//   gradq_o = sat_Grad(floor(2 v_r to GradFrac)), per row  valid from row 2 on
+//   q_o     = sat_F(floor(q to FFrac))                     valid from step 8 on
+//   gradq_o = sat_Grad(floor(2 v_r to GradFrac)), per row  valid from step 8 on
 //
-// Timing: the caller holds s_i and coef_i and steps row_i through 0, 1, 2 (then any value
-// >= 3 to hold the result), raising adv_i on each cycle whose row it leaves: adv_i stores the
-// row's partial sum s_r u_r and its gradient component. At row 2 the outputs are combinational
-// (the stored rows plus row 2); from row 3 on they come from the registers alone.
+// Timing: the caller holds s_i and coef_i and steps step_i through 0..8 (then any value >= 9
+// to hold the result), raising adv_i on each cycle whose step it leaves: adv_i stores the
+// partial sums (and, at c = 2, the row's s_r u_r and gradient component). At step 8 the
+// outputs are combinational; from step 9 on they come from the registers alone.
 //
 // Parameters: as pst_quadric (CoordInt/Frac, QuadricInt/Frac: multiplier widths; FInt/Frac,
 // GradInt/Frac: output formats).
@@ -39,8 +42,8 @@ module pst_quadric_serial #(
 ) (
   input  wire logic              clk_i,
   input  wire logic              rst_ni,
-  input  wire logic [1:0]        row_i,    // 0..2: the row this cycle; 3: hold
-  input  wire logic              adv_i,    // store this row's partials (leaving the row)
+  input  wire logic [3:0]        step_i,   // 0..8: product 3 r + c this cycle; >= 9: hold
+  input  wire logic              adv_i,    // store this step's partial sums (leaving the step)
   input  wire logic [3*CW-1:0]   s_i,      // s, t, r; element k at [k*CW +: CW]
   input  wire logic [10*QW-1:0]  coef_i,   // A..J; element k at [k*QW +: QW]
   output logic [FW-1:0]          q_o,
@@ -67,24 +70,46 @@ module pst_quadric_serial #(
   assign {cj, ci, ch, cg, cf, ce, cd, cc, cb, ca} = coef_i;
   assign {s2, s1, s0} = s_i;
 
-  // Step 1: the row's coefficients and coordinate (row 3 selects row 0's; unused then).
-  logic signed [QW-1:0] k0, k1, k2, k3;
-  logic signed [CW-1:0] sr;
+  // Step 1: this step's row r, column c, coefficient Q_rc, coordinate s_c, and the row's
+  // constant Q_r3 and coordinate s_r.
+  logic                 live;    // step_i is 0..8
+  logic [1:0]           r, c;
+  logic signed [QW-1:0] krc, k3;
+  logic signed [CW-1:0] sc, sr;
+  assign live = (step_i < 4'd9);
   always_comb begin
-    unique case (row_i)
-      2'd1:    begin k0 = cb; k1 = ce; k2 = cf; k3 = cg; sr = s1; end
-      2'd2:    begin k0 = cc; k1 = cf; k2 = ch; k3 = ci; sr = s2; end
-      default: begin k0 = ca; k1 = cb; k2 = cc; k3 = cd; sr = s0; end
+    r = 2'd0;
+    c = 2'd0;
+    if (live) begin
+      r = 2'(step_i / 4'd3);
+      c = 2'(step_i % 4'd3);
+    end
+    unique case ({r, c})
+      4'b0000: krc = ca;  4'b0001: krc = cb;  4'b0010: krc = cc;
+      4'b0100: krc = cb;  4'b0101: krc = ce;  4'b0110: krc = cf;
+      4'b1000: krc = cc;  4'b1001: krc = cf;  4'b1010: krc = ch;
+      default: krc = ca;
+    endcase
+    unique case (r)
+      2'd1:    begin k3 = cg; sr = s1; end
+      2'd2:    begin k3 = ci; sr = s2; end
+      default: begin k3 = cd; sr = s0; end
+    endcase
+    unique case (c)
+      2'd1:    sc = s1;
+      2'd2:    sc = s2;
+      default: sc = s0;
     endcase
   end
 
-  // Step 2: v_r, u_r and the partial s_r u_r (exact).
-  logic signed [VW-1:0]  v;
+  // Step 2: the partial v_r, and at c = 2 u_r and s_r u_r (exact).
+  logic signed [VW-1:0]  vacc_q, vsum, v;
   logic signed [UW-1:0]  u;
   logic signed [QXW-1:0] su;
-  assign v  = VW'(k0) * VW'(s0) + VW'(k1) * VW'(s1) + VW'(k2) * VW'(s2) + (VW'(k3) <<< CoordFrac);
-  assign u  = UW'(v) + (UW'(k3) <<< CoordFrac);
-  assign su = QXW'(sr) * QXW'(u);
+  assign vsum = ((c == 2'd0) ? '0 : vacc_q) + VW'(krc) * VW'(sc);
+  assign v    = vsum + (VW'(k3) <<< CoordFrac);
+  assign u    = UW'(v) + (UW'(k3) <<< CoordFrac);
+  assign su   = QXW'(sr) * QXW'(u);
 
   // Step 3: grad q_r = 2 v_r, floor to GradFrac, saturate to GW bits.
   logic signed [GSW-1:0] gs;
@@ -96,30 +121,21 @@ module pst_quadric_serial #(
   end
 
   // Partial-sum and gradient registers.
-  logic signed [QXW-1:0] acc_q, acc_d;
-  logic [3*GW-1:0]       grad_q, grad_d;
-  logic                  live;   // row_i is 0..2: its partial counts
-  assign live = (row_i != 2'd3);
-
-  logic signed [QXW-1:0] sum;    // sum of the rows so far, this row included
-  assign sum = ((row_i == 2'd0) ? '0 : acc_q) + (live ? su : '0);
-
-  always_comb begin
-    acc_d  = acc_q;
-    grad_d = grad_q;
-    if (adv_i && live) begin
-      acc_d = sum;
-      grad_d[row_i*GW +: GW] = grow;
-    end
-  end
+  logic                  row_end;   // c = 2: v_r is complete
+  logic signed [QXW-1:0] acc_q, sum;
+  logic [3*GW-1:0]       grad_q;
+  assign row_end = live && (c == 2'd2);
+  assign sum     = ((step_i == 4'd0) ? '0 : acc_q) + (row_end ? su : '0);
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
+      vacc_q <= '0;
       acc_q  <= '0;
       grad_q <= '0;
-    end else begin
-      acc_q  <= acc_d;
-      grad_q <= grad_d;
+    end else if (adv_i && live) begin
+      vacc_q <= vsum;
+      acc_q  <= sum;
+      if (row_end) grad_q[r*GW +: GW] <= grow;
     end
   end
 
@@ -133,10 +149,10 @@ module pst_quadric_serial #(
     else q_o = {qs[QSW-1], {(FW-1){~qs[QSW-1]}}};
   end
 
-  // The gradient: row 2's component live at row 2, the stored ones otherwise.
+  // The gradient: row 2's component live at step 8, the stored ones otherwise.
   always_comb begin
     gradq_o = grad_q;
-    if (row_i == 2'd2) gradq_o[2*GW +: GW] = grow;
+    if (step_i == 4'd8) gradq_o[2*GW +: GW] = grow;
   end
 
   // Assertions
@@ -145,22 +161,23 @@ module pst_quadric_serial #(
     assert (CoordInt >= 1 && QuadricInt >= 1 && FInt >= 1 && GradInt >= 1)
       else $error("pst_quadric_serial: every format needs its sign bit (Int >= 1)");
   end
-  // Rows are taken in order: rows 0 and 1 are left only to the next one (after row 2 the
-  // result is complete, and the next fragment may start at row 0).
-  logic [1:0] row_prev_q;
+  // Steps are taken in order: steps 0..7 are left only to the next one (after step 8 the
+  // result is complete, and the next fragment may start at step 0).
+  logic [3:0] step_prev_q;
   logic       adv_prev_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      row_prev_q <= 2'd3;
-      adv_prev_q <= 1'b0;
+      step_prev_q <= 4'd9;
+      adv_prev_q  <= 1'b0;
     end else begin
-      row_prev_q <= row_i;
-      adv_prev_q <= adv_i;
+      step_prev_q <= step_i;
+      adv_prev_q  <= adv_i;
     end
   end
   always_ff @(posedge clk_i) begin
-    if (rst_ni && adv_prev_q && row_prev_q < 2'd2) begin
-      assert (row_i == row_prev_q + 2'd1) else $error("pst_quadric_serial: row %0d left to row %0d", row_prev_q, row_i);
+    if (rst_ni && adv_prev_q && step_prev_q < 4'd8) begin
+      assert (step_i == step_prev_q + 4'd1)
+        else $error("pst_quadric_serial: step %0d left to step %0d", step_prev_q, step_i);
     end
   end
 `endif

@@ -110,9 +110,10 @@ module pst_top #(
   localparam int NGW = 6 + NoiseOutFrac;             // noise gradient Q6.NoiseOutFrac
   localparam int Passes    = Octaves / NoiseUnits;   // octave passes per fragment
   localparam int PassBits  = (Passes > 1) ? $clog2(Passes) : 1;
-  // Cycles per fragment: NoiseSteps cycles per pass (one noise evaluation per lane per pass).
-  localparam int StepBits  = $clog2(NoiseSteps);
-  localparam int Cycles    = Passes * NoiseSteps;
+  // Cycles per fragment: NoiseSteps cycles per pass (one noise evaluation per lane per pass),
+  // plus, for the serial datapath, the first pass's transform rows and the last pass's term
+  // rows (3 + 3 cycles; see the octave stage).
+  localparam int Cycles    = Passes * NoiseSteps + ((Datapath != 0) ? 6 : 0);
   localparam int CycBits   = (Cycles > 1) ? $clog2(Cycles) : 1;
   localparam int OctBits   = $clog2(Octaves + 1);    // active octave count 0..Octaves
   // Guard bits: the accumulators add q and up to Octaves terms without overflow.
@@ -185,23 +186,70 @@ module pst_top #(
   // ---------------------------------------------------------------------------------------
   // Octave stage: quadric + NoiseUnits octave lanes, Passes passes per fragment
   // ---------------------------------------------------------------------------------------
-  // cyc_q = pass * NoiseSteps + step: the cycle of the fragment in [A].
+  // The fragment in [A] stays Cycles cycles; cyc_q counts them. Schedule of a lane:
+  //   Datapath = 0: pass p, noise step j at cycle p NoiseSteps + j; the octave transform and
+  //                 the octave term are combinational around the noise unit.
+  //   Datapath = 1: one row of M_i s + o_i and of a_i M_i^T g per cycle (3 + 3 multipliers
+  //                 instead of 9 + 9), software-pipelined around the noise unit:
+  //                   transform of pass p, row r   cycle p NoiseSteps + r         (r < 3)
+  //                   noise of pass p, step j      cycle 3 + p NoiseSteps + j
+  //                   term of pass p, row r        cycle 3 + (p + 1) NoiseSteps + r
+  //                 so Cycles = Passes NoiseSteps + 6 (NoiseSteps >= 4 keeps the three apart:
+  //                 rows 0, 1 wait in a buffer while the previous pass's noise runs, row 2
+  //                 completes the noise unit's input at its last step).
   logic [CycBits-1:0]  cyc_q, cyc_d;
-  logic [PassBits-1:0] pass_q;
-  logic [2:0]          step;
-  logic                last_step;   // the noise results of this pass are valid
-  assign pass_q    = PassBits'(cyc_q >> StepBits);
-  assign step      = 3'(32'(cyc_q) % NoiseSteps);
-  assign last_step = (32'(step) == NoiseSteps - 1);
+  logic                advance;     // the fragment moves to its next cycle at this edge
+  logic                last_cycle;  // the fragment's last cycle in the octave stage
+  logic                noise_on;    // a noise evaluation runs this cycle
+  logic [PassBits-1:0] npass;       // its pass
+  logic [2:0]          nstep;       // its step
+  logic                nlast;       // its last step: n and g are valid
+  logic                xf_on;       // serial: a transform row is computed this cycle
+  logic [PassBits-1:0] xpass;
+  logic [1:0]          xrow;
+  logic                tm_on;       // serial: a term row is computed this cycle
+  logic [PassBits-1:0] tpass;
+  logic [1:0]          trow;
+
+  assign last_cycle = (32'(cyc_q) == Cycles - 1);
+  assign advance    = a_valid & ~last_cycle;
+
+  always_comb begin
+    int c, cn;
+    c  = 32'(cyc_q);
+    cn = c - 3;
+    if (Datapath == 0) begin
+      noise_on = 1'b1;
+      npass    = PassBits'(c / NoiseSteps);
+      nstep    = 3'(c % NoiseSteps);
+      xf_on    = 1'b0;
+      xpass    = '0;
+      xrow     = '0;
+      tm_on    = 1'b0;
+      tpass    = '0;
+      trow     = '0;
+    end else begin
+      noise_on = (c >= 3) && (c < 3 + Passes * NoiseSteps);
+      npass    = noise_on ? PassBits'(cn / NoiseSteps) : '0;
+      nstep    = noise_on ? 3'(cn % NoiseSteps) : '0;
+      xf_on    = (c < Passes * NoiseSteps) && (c % NoiseSteps < 3);
+      xpass    = PassBits'(c / NoiseSteps);
+      xrow     = 2'(c % NoiseSteps);
+      tm_on    = (c >= 3 + NoiseSteps) && (cn % NoiseSteps < 3);
+      tpass    = tm_on ? PassBits'(cn / NoiseSteps - 1) : '0;
+      trow     = tm_on ? 2'(cn % NoiseSteps) : '0;
+    end
+  end
+  assign nlast = noise_on && (32'(nstep) == NoiseSteps - 1);
+
   logic signed [FAccW-1:0] facc_q, facc_d;
   logic [3*GAccW-1:0]      gacc_q, gacc_d;
 
   logic [FW-1:0]   q;
   logic [3*GW-1:0] gradq;
-  logic            last_cycle;   // the fragment's last cycle in the octave stage
 
-  // Datapath = 0: the whole quadric every cycle; 1: one row of Q per cycle (cycles 0..2), the
-  // result held from cycle 2 on (it is added at the last cycle).
+  // Datapath = 0: the whole quadric every cycle; 1: one product per cycle (cycles 0..8), the
+  // result held from cycle 8 on (it is added at the last cycle; Cycles >= 10 here).
   if (Datapath == 0) begin : g_quadric_par
     pst_quadric #(
       .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
@@ -210,85 +258,183 @@ module pst_top #(
       .s_i (a_s), .coef_i (quad_q), .q_o (q), .gradq_o (gradq)
     );
   end else begin : g_quadric_ser
-    logic [1:0] row;
-    assign row = (32'(cyc_q) < 3) ? 2'(cyc_q) : 2'd3;
+    logic [3:0] qstep;
+    assign qstep = (32'(cyc_q) < 9) ? 4'(cyc_q) : 4'd9;
     pst_quadric_serial #(
       .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
       .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
     ) u_quadric (
       .clk_i, .rst_ni,
-      .row_i (row), .adv_i (a_valid & ~last_cycle),
+      .step_i (qstep), .adv_i (advance),
       .s_i (a_s), .coef_i (quad_q), .q_o (q), .gradq_o (gradq)
     );
   end
 
+  // Per lane, this cycle's contribution to the sums (zero when it has none).
   logic [FW-1:0]   fterm [NoiseUnits];
   logic [3*GW-1:0] gterm [NoiseUnits];
 
   for (genvar u = 0; u < NoiseUnits; u++) begin : g_lane
-    // Octave index of this lane in this pass.
-    logic [OctBits:0] oct_idx;
-    logic             lane_on;
-    logic [35:0]      lat;
+    logic [35:0]      lat;    // the noise unit's input
     logic [3*LF-1:0]  frac;
-    logic [NW-1:0]    n;
+    logic [NW-1:0]    n;      // its output (valid at nlast)
     logic [3*NGW-1:0] g;
-    logic [FW-1:0]    fterm_raw;
-    logic [3*GW-1:0]  gterm_raw;
 
-    if (Passes > 1) begin : g_shared
-      assign oct_idx = (OctBits + 1)'(pass_q) * (OctBits + 1)'(NoiseUnits) + (OctBits + 1)'(u);
-    end else begin : g_parallel
-      assign oct_idx = (OctBits + 1)'(u);
-    end
-    assign lane_on = oct_idx < {1'b0, active_q};
+    if (Datapath == 0) begin : g_par
+      // Octave index of this lane in this pass.
+      logic [OctBits:0] oct_idx;
+      logic             lane_on;
+      logic [FW-1:0]    fterm_raw;
+      logic [3*GW-1:0]  gterm_raw;
 
-    // The register arrays are indexed by the octave of this pass (a constant when Passes = 1).
-    logic [9*MW-1:0]  m_sel;
-    logic [3*OW-1:0]  o_sel;
-    logic [AW-1:0]    a_sel;
-    logic [9*GMW-1:0] gm_sel;
-    always_comb begin
-      m_sel  = oct_m_q[u];
-      o_sel  = oct_o_q[u];
-      a_sel  = oct_a_q[u];
-      gm_sel = oct_gm_q[u];
-      for (int p = 1; p < Passes; p++) begin
-        if (32'(pass_q) == p) begin
-          m_sel  = oct_m_q[p * NoiseUnits + u];
-          o_sel  = oct_o_q[p * NoiseUnits + u];
-          a_sel  = oct_a_q[p * NoiseUnits + u];
-          gm_sel = oct_gm_q[p * NoiseUnits + u];
+      if (Passes > 1) begin : g_shared
+        assign oct_idx = (OctBits + 1)'(npass) * (OctBits + 1)'(NoiseUnits) + (OctBits + 1)'(u);
+      end else begin : g_parallel
+        assign oct_idx = (OctBits + 1)'(u);
+      end
+      assign lane_on = oct_idx < {1'b0, active_q};
+
+      // The register arrays are indexed by the octave of this pass (a constant when Passes = 1).
+      logic [9*MW-1:0]  m_sel;
+      logic [3*OW-1:0]  o_sel;
+      logic [AW-1:0]    a_sel;
+      logic [9*GMW-1:0] gm_sel;
+      always_comb begin
+        m_sel  = oct_m_q[u];
+        o_sel  = oct_o_q[u];
+        a_sel  = oct_a_q[u];
+        gm_sel = oct_gm_q[u];
+        for (int p = 1; p < Passes; p++) begin
+          if (32'(npass) == p) begin
+            m_sel  = oct_m_q[p * NoiseUnits + u];
+            o_sel  = oct_o_q[p * NoiseUnits + u];
+            a_sel  = oct_a_q[p * NoiseUnits + u];
+            gm_sel = oct_gm_q[p * NoiseUnits + u];
+          end
         end
       end
-    end
 
-    pst_octave_transform #(
-      .CoordInt(CoordInt), .CoordFrac(CoordFrac), .MatrixInt(MatrixInt), .MatrixFrac(MatrixFrac),
-      .OffsetInt(OffsetInt), .OffsetFrac(OffsetFrac), .NoiseLatticeFrac(NoiseLatticeFrac)
-    ) u_transform (
-      .s_i (a_s), .m_i (m_sel), .o_i (o_sel), .lat_o (lat), .frac_o (frac)
-    );
+      pst_octave_transform #(
+        .CoordInt(CoordInt), .CoordFrac(CoordFrac), .MatrixInt(MatrixInt), .MatrixFrac(MatrixFrac),
+        .OffsetInt(OffsetInt), .OffsetFrac(OffsetFrac), .NoiseLatticeFrac(NoiseLatticeFrac)
+      ) u_transform (
+        .s_i (a_s), .m_i (m_sel), .o_i (o_sel), .lat_o (lat), .frac_o (frac)
+      );
+
+      pst_octave_term #(
+        .NoiseOutFrac(NoiseOutFrac), .AmplitudeInt(AmplitudeInt), .AmplitudeFrac(AmplitudeFrac),
+        .GradMatrixInt(GradMatrixInt), .GradMatrixFrac(GradMatrixFrac), .FInt(FInt),
+        .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
+      ) u_term (
+        .n_i (n), .g_i (g), .a_i (a_sel), .gm_i (gm_sel), .fterm_o (fterm_raw), .gterm_o (gterm_raw)
+      );
+
+      assign fterm[u] = (lane_on && nlast) ? fterm_raw : '0;
+      assign gterm[u] = (lane_on && nlast) ? gterm_raw : '0;
+    end else begin : g_ser
+      // Octaves of this lane's transform and term rows.
+      logic [OctBits:0] x_oct, t_oct;
+      assign x_oct = (OctBits + 1)'(xpass) * (OctBits + 1)'(NoiseUnits) + (OctBits + 1)'(u);
+      assign t_oct = (OctBits + 1)'(tpass) * (OctBits + 1)'(NoiseUnits) + (OctBits + 1)'(u);
+
+      // Register reads: row xrow of M and o of octave x_oct; row trow of GM and a of t_oct.
+      logic [3*MW-1:0]  m_row;
+      logic [OW-1:0]    o_row;
+      logic [3*GMW-1:0] gm_row;
+      logic [AW-1:0]    a_t;
+      always_comb begin
+        m_row  = '0;
+        o_row  = '0;
+        gm_row = '0;
+        a_t    = '0;
+        for (int p = 0; p < Passes; p++) begin
+          for (int r = 0; r < 3; r++) begin
+            if (32'(xpass) == p && 32'(xrow) == r) begin
+              m_row = oct_m_q[p * NoiseUnits + u][3*r*MW +: 3*MW];
+              o_row = oct_o_q[p * NoiseUnits + u][r*OW +: OW];
+            end
+            if (32'(tpass) == p && 32'(trow) == r) begin
+              gm_row = oct_gm_q[p * NoiseUnits + u][3*r*GMW +: 3*GMW];
+            end
+          end
+          if (32'(tpass) == p) a_t = oct_a_q[p * NoiseUnits + u];
+        end
+      end
+
+      // Transform, one row: lattice index and fraction of axis xrow.
+      logic [11:0]      lat_r;
+      logic [LF-1:0]    frac_r;
+      pst_octave_transform #(
+        .CoordInt(CoordInt), .CoordFrac(CoordFrac), .MatrixInt(MatrixInt), .MatrixFrac(MatrixFrac),
+        .OffsetInt(OffsetInt), .OffsetFrac(OffsetFrac), .NoiseLatticeFrac(NoiseLatticeFrac),
+        .Rows(1)
+      ) u_transform (
+        .s_i (a_s), .m_i (m_row), .o_i (o_row), .lat_o (lat_r), .frac_o (frac_r)
+      );
+
+      // Rows 0, 1 wait in nxt; at row 2 the noise unit's input (cur) is loaded whole.
+      logic [2*12-1:0] nxt_lat_q;
+      logic [2*LF-1:0] nxt_frac_q;
+      logic [35:0]     cur_lat_q;
+      logic [3*LF-1:0] cur_frac_q;
+      always_ff @(posedge clk_i or negedge rst_ni) begin
+        if (!rst_ni) begin
+          nxt_lat_q  <= '0;
+          nxt_frac_q <= '0;
+          cur_lat_q  <= '0;
+          cur_frac_q <= '0;
+        end else if (advance && xf_on) begin
+          if (xrow == 2'd2) begin
+            cur_lat_q  <= {lat_r, nxt_lat_q};
+            cur_frac_q <= {frac_r, nxt_frac_q};
+          end else begin
+            nxt_lat_q[xrow*12 +: 12]  <= lat_r;
+            nxt_frac_q[xrow*LF +: LF] <= frac_r;
+          end
+        end
+      end
+      assign lat  = cur_lat_q;
+      assign frac = cur_frac_q;
+
+      // The noise result waits for the term rows of the next NoiseSteps cycles.
+      logic [NW-1:0]    n_q;
+      logic [3*NGW-1:0] g_q;
+      always_ff @(posedge clk_i or negedge rst_ni) begin
+        if (!rst_ni) begin
+          n_q <= '0;
+          g_q <= '0;
+        end else if (advance && nlast) begin
+          n_q <= n;
+          g_q <= g;
+        end
+      end
+
+      // Term, one row: a n (used at row 0) and row trow of a M^T g.
+      logic [FW-1:0] fterm_raw;
+      logic [GW-1:0] gterm_raw;
+      logic          lane_on;
+      pst_octave_term #(
+        .NoiseOutFrac(NoiseOutFrac), .AmplitudeInt(AmplitudeInt), .AmplitudeFrac(AmplitudeFrac),
+        .GradMatrixInt(GradMatrixInt), .GradMatrixFrac(GradMatrixFrac), .FInt(FInt),
+        .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac), .Rows(1)
+      ) u_term (
+        .n_i (n_q), .g_i (g_q), .a_i (a_t), .gm_i (gm_row), .fterm_o (fterm_raw), .gterm_o (gterm_raw)
+      );
+      assign lane_on  = tm_on && (t_oct < {1'b0, active_q});
+      assign fterm[u] = (lane_on && trow == 2'd0) ? fterm_raw : '0;
+      for (genvar k = 0; k < 3; k++) begin : g_gterm
+        assign gterm[u][k*GW +: GW] = (lane_on && 32'(trow) == k) ? gterm_raw : '0;
+      end
+    end
 
     pst_noise #(
       .NoiseInterp(NoiseInterp), .NoiseCorner(NoiseCorner), .NoiseHash(NoiseHash),
       .NoiseValueFrac(NoiseValueFrac), .NoiseLatticeFrac(NoiseLatticeFrac),
       .NoiseOutFrac(NoiseOutFrac), .NoiseSteps(NoiseSteps)
     ) u_noise (
-      .clk_i, .rst_ni, .step_i (step), .adv_i (a_valid & ~last_step),
+      .clk_i, .rst_ni, .step_i (nstep), .adv_i (advance & noise_on & ~nlast),
       .lat_i (lat), .frac_i (frac), .n_o (n), .grad_o (g)
     );
-
-    pst_octave_term #(
-      .NoiseOutFrac(NoiseOutFrac), .AmplitudeInt(AmplitudeInt), .AmplitudeFrac(AmplitudeFrac),
-      .GradMatrixInt(GradMatrixInt), .GradMatrixFrac(GradMatrixFrac), .FInt(FInt),
-      .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
-    ) u_term (
-      .n_i (n), .g_i (g), .a_i (a_sel), .gm_i (gm_sel), .fterm_o (fterm_raw), .gterm_o (gterm_raw)
-    );
-
-    assign fterm[u] = lane_on ? fterm_raw : '0;
-    assign gterm[u] = lane_on ? gterm_raw : '0;
 
     if (DebugProbes) begin : g_probe
       assign probe_lat_o[u*36 +: 36]          = lat;
@@ -303,13 +449,16 @@ module pst_top #(
     end
   end
 
-  assign probe_valid_o = DebugProbes & a_valid & last_step;
+  // Probes: the noise results of a pass, at its last step.
+  assign probe_valid_o = DebugProbes & a_valid & nlast;
   assign probe_tag_o   = DebugProbes ? a_tag : '0;
-  assign probe_pass_o  = DebugProbes ? 8'(pass_q) : '0;
+  assign probe_pass_o  = DebugProbes ? 8'(npass) : '0;
   assign probe_q_o     = DebugProbes ? q : '0;
 
-  // Accumulation: the first pass starts from q, later passes from the accumulators.
-  logic signed [FAccW-1:0] fsum;
+  // Accumulation: every cycle adds the lanes' contributions (cycle 0 starts from zero); the
+  // last cycle adds q (where the serial quadric has its result) and saturates. The sums are
+  // exact, so the order of the terms does not change a bit.
+  logic signed [FAccW-1:0] fsum, fout;
   logic [3*GAccW-1:0]      gsum;
   logic [FW-1:0]           f_sat;
   logic [3*GW-1:0]         grad_sat;
@@ -319,30 +468,26 @@ module pst_top #(
   localparam logic signed [GAccW-1:0] GMax = GAccW'({1'b0, {(GW-1){1'b1}}});
   localparam logic signed [GAccW-1:0] GMin = -GMax - 1;
 
-  // The quadric is added at the last cycle (where the serial quadric has its result); the sums
-  // are exact, so where q enters does not change a bit.
   always_comb begin
-    logic signed [GAccW-1:0] gc;
-    fsum = (pass_q == '0) ? '0 : facc_q;
-    if (last_cycle) fsum = fsum + FAccW'($signed(q));
+    logic signed [GAccW-1:0] gc, gout;
+    fsum = (cyc_q == '0) ? '0 : facc_q;
     for (int u = 0; u < NoiseUnits; u++) fsum = fsum + FAccW'($signed(fterm[u]));
+    fout = fsum + FAccW'($signed(q));
     for (int k = 0; k < 3; k++) begin
-      gc = (pass_q == '0) ? '0 : $signed(gacc_q[k*GAccW +: GAccW]);
-      if (last_cycle) gc = gc + GAccW'($signed(gradq[k*GW +: GW]));
+      gc = (cyc_q == '0) ? '0 : $signed(gacc_q[k*GAccW +: GAccW]);
       for (int u = 0; u < NoiseUnits; u++) gc = gc + GAccW'($signed(gterm[u][k*GW +: GW]));
       gsum[k*GAccW +: GAccW] = gc;
+      gout = gc + GAccW'($signed(gradq[k*GW +: GW]));
       // Saturate to the Grad format.
-      if (gc > GMax) grad_sat[k*GW +: GW] = GW'(GMax);
-      else if (gc < GMin) grad_sat[k*GW +: GW] = GW'(GMin);
-      else grad_sat[k*GW +: GW] = GW'(gc);
+      if (gout > GMax) grad_sat[k*GW +: GW] = GW'(GMax);
+      else if (gout < GMin) grad_sat[k*GW +: GW] = GW'(GMin);
+      else grad_sat[k*GW +: GW] = GW'(gout);
     end
     // Saturate to the F format.
-    if (fsum > FMax) f_sat = FW'(FMax);
-    else if (fsum < FMin) f_sat = FW'(FMin);
-    else f_sat = FW'(fsum);
+    if (fout > FMax) f_sat = FW'(FMax);
+    else if (fout < FMin) f_sat = FW'(FMin);
+    else f_sat = FW'(fout);
   end
-
-  assign last_cycle = (32'(cyc_q) == Cycles - 1);
 
   // [B] register: tag, J, f, grad
   localparam int BWidth = 32 + 6 * JW + FW + 3 * GW;
@@ -357,16 +502,12 @@ module pst_top #(
     cyc_d  = cyc_q;
     facc_d = facc_q;
     gacc_d = gacc_q;
-    if (a_valid) begin
-      if (!last_cycle) begin
-        cyc_d = cyc_q + 1'b1;
-        if (last_step) begin   // a pass's terms are in: accumulate
-          facc_d = fsum;
-          gacc_d = gsum;
-        end
-      end else if (b_in_ready) begin
-        cyc_d = '0;
-      end
+    if (advance) begin
+      cyc_d  = cyc_q + 1'b1;
+      facc_d = fsum;
+      gacc_d = gsum;
+    end else if (a_valid && b_in_ready) begin
+      cyc_d = '0;
     end
   end
 
@@ -519,7 +660,7 @@ module pst_top #(
   initial begin
     assert (Octaves % NoiseUnits == 0) else $fatal(1, "NoiseUnits must divide Octaves");
     assert (Octaves <= 16) else $fatal(1, "at most 16 octaves (register map)");
-    assert (Datapath == 0 || Cycles >= 4) else $fatal(1, "a serial datapath needs 4 cycles per fragment or more");
+    assert (Datapath == 0 || NoiseSteps >= 4) else $fatal(1, "a serial datapath needs NoiseSteps >= 4");
     assert (NoiseSteps == 1 || NoiseSteps == 2 || NoiseSteps == 4 || NoiseSteps == 8)
       else $fatal(1, "NoiseSteps must be 1, 2, 4 or 8");
   end

@@ -88,9 +88,8 @@ Profile parseProfile(const std::string& text, const std::string& path) {
     p.log2Clut = r.integer(pipe, "pipeline", "log2_clut", 1, 11);  // the SAT range (0x2000 + 4e) must stay below 0x4000
     p.colourBits = r.integer(pipe, "pipeline", "colour_bits", 1, 8);
     p.datapath = r.choice(pipe, "pipeline", "datapath", parseDatapath);
-    if (p.datapath == Datapath::Serial && p.cyclesPerPixel() < 4)
-        r.fail(pipe.get("datapath"), "pipeline.datapath",
-               "serial needs at least 4 cycles per pixel (octaves / noise_units x noise_steps >= 4)");
+    if (p.datapath == Datapath::Serial && p.noiseSteps < 4)
+        r.fail(pipe.get("datapath"), "pipeline.datapath", "serial needs pipeline.noise_steps >= 4");
     const auto& noise = r.section("noise");
     p.noise.interp = r.choice(noise, "noise", "interp", parseNoiseInterp);
     p.noise.corner = r.choice(noise, "noise", "corner", parseNoiseCorner);

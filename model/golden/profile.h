@@ -18,8 +18,9 @@ struct FixedFormat {
 };
 
 // How the quadric, filter-width and colour-table units are built: every product every cycle
-// (parallel), or one row / one channel per cycle over the octave passes (serial: fewer
-// multipliers, needs at least 4 cycles per pixel). The arithmetic is the same bit for bit.
+// (parallel), or one row / one channel per cycle (serial: fewer multipliers; the octave
+// transform and term rows take 3 + 3 more cycles per pixel, see rtl/pst_top.sv; needs
+// noise_steps >= 4). The arithmetic is the same bit for bit.
 enum class Datapath { Parallel, Serial };
 bool parseDatapath(const std::string& s, Datapath* d);
 
@@ -50,7 +51,9 @@ struct Profile {
     int octavePasses() const { return (octaves + noiseUnits - 1) / noiseUnits; }
     // Cycles a fragment spends in the octave stage: the pipeline's rate (one fragment per
     // this many cycles; the serial filter-width and colour stages take 3 and 4).
-    int cyclesPerPixel() const { return octavePasses() * noiseSteps; }
+    int cyclesPerPixel() const {
+        return octavePasses() * noiseSteps + (datapath == Datapath::Serial ? 6 : 0);
+    }
     // W = w N in entries: unsigned, log2Clut + 2 integer bits, widthFrac fraction bits.
     int widthIntBits() const { return log2Clut + 2; }
 };

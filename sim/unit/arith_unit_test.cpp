@@ -149,7 +149,7 @@ protected:
         clearPort(d.term_n_i), clearPort(d.term_g_i), clearPort(d.term_a_i), clearPort(d.term_gm_i);
         clearPort(d.fw_grad_i), clearPort(d.fw_j_i), clearPort(d.sqrt_x_i);
         // The serial variants: out of reset, at step 0, clock low.
-        d.clk_i = 0, d.rst_ni = 1, d.ser_step_i = 0, d.ser_adv_i = 0;
+        d.clk_i = 0, d.rst_ni = 1, d.ser_step_i = 0, d.ser_adv_i = 0, d.quad_ser_step_i = 0, d.quad_ser_adv_i = 0;
         ASSERT_TRUE(eval()) << "an RTL assertion fired on all-zero inputs";
     }
     static void TearDownTestSuite() {
@@ -179,29 +179,32 @@ protected:
         top_->clk_i = 0;
         return eval() && ok;
     }
-    // Steps the serial variants through rows / components 0, 1 (stored on a clock edge each)
-    // to 2 on the inputs already driven: their results are then live (combinational). With
-    // hold, row 2 is stored too and the step moves to 3, where the serial quadric's result
-    // comes from its registers alone. Returns false if an assertion fired.
-    static bool runSerial(bool hold) {
+    // Steps a serial variant (step and adv: its ports) through steps 0..last-1 (stored on a
+    // clock edge each) to `last` on the inputs already driven: its result is then live
+    // (combinational). With hold, step `last` is stored too and the step moves to last + 1,
+    // where the result comes from the registers alone. An idle cycle comes first, whatever
+    // step the previous vector left. Returns false if an assertion fired.
+    template <typename S>
+    static bool runSerial(S& step, uint8_t& adv, int last, bool hold) {
         bool ok = true;
-        top_->ser_adv_i = 0;  // an idle cycle first: nothing stored, whatever step was left
+        adv = 0;
         ok = eval() && ok;
         ok = tick() && ok;
-        top_->ser_adv_i = 1;
-        for (int step = 0; step < 2; ++step) {
-            top_->ser_step_i = step;
+        adv = 1;
+        for (int k = 0; k < last; ++k) {
+            step = S(k);
             ok = eval() && ok;
             ok = tick() && ok;
         }
-        top_->ser_step_i = 2;
+        step = S(last);
         ok = eval() && ok;
         if (hold) {
             ok = tick() && ok;
-            top_->ser_step_i = 3;
-            top_->ser_adv_i = 0;
+            step = S(last + 1);
+            adv = 0;
             ok = eval() && ok;
         }
+        adv = 0;
         return ok;
     }
 
@@ -216,11 +219,11 @@ protected:
         const int64_t rq = getSigned(d.quad_q_o, 0, FW);
         int64_t rg[3];
         for (int k = 0; k < 3; ++k) rg[k] = getSigned(d.quad_gradq_o, k * GW, GW);
-        // The serial quadric: live at row 2, then held (from its registers) at step 3.
+        // The serial quadric: live at step 8, then held (from its registers) at step 9.
         int64_t sq[2], sg[2][3];
         bool serialOk = true;
         for (int h = 0; h < 2; ++h) {
-            serialOk = runSerial(h == 1) && serialOk;
+            serialOk = runSerial(d.quad_ser_step_i, d.quad_ser_adv_i, 8, h == 1) && serialOk;
             sq[h] = getSigned(d.quad_ser_q_o, 0, FW);
             for (int k = 0; k < 3; ++k) sg[h][k] = getSigned(d.quad_ser_gradq_o, k * GW, GW);
         }
@@ -277,7 +280,7 @@ protected:
             gold[1 + n] = pst::filterWidthFx(pn, grad, j);
             rtl[1 + n] = int64_t(getBits(d.fw_w_norm_o, n * WW, WW));
         }
-        const bool serialOk = runSerial(false);
+        const bool serialOk = runSerial(d.ser_step_i, d.ser_adv_i, 2, false);
         const int64_t ser = int64_t(getBits(d.fw_ser_w_o, 0, WW));
         t.check(assertOk && serialOk && gold[0] == rtl[0] && gold[1] == rtl[1] && gold[2] == rtl[2] &&
                     gold[3] == rtl[3] && gold[0] == ser,

@@ -52,10 +52,13 @@ module pst_arith_unit_top #(
   input  logic [9*GMW-1:0]  term_gm_i,
   output logic [FW-1:0]     term_fterm_o,
   output logic [3*GW-1:0]   term_gterm_o,
-  // Serial variants (datapath = "serial"), on the same inputs: pst_quadric_serial and
-  // pst_filter_width #(.Serial(1)), stepped by ser_step_i / ser_adv_i.
+  // Serial variants (datapath = "serial"), on the same inputs: pst_quadric_serial (stepped
+  // by quad_ser_step_i / quad_ser_adv_i) and pst_filter_width #(.Serial(1)) (ser_step_i /
+  // ser_adv_i).
   input  logic              clk_i,
   input  logic              rst_ni,
+  input  logic [3:0]        quad_ser_step_i,
+  input  logic              quad_ser_adv_i,
   input  logic [1:0]        ser_step_i,
   input  logic              ser_adv_i,
   output logic [FW-1:0]     quad_ser_q_o,
@@ -82,7 +85,7 @@ module pst_arith_unit_top #(
     .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
     .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
   ) u_quadric_ser (
-    .clk_i, .rst_ni, .row_i (ser_step_i), .adv_i (ser_adv_i),
+    .clk_i, .rst_ni, .step_i (quad_ser_step_i), .adv_i (quad_ser_adv_i),
     .s_i (quad_s_i), .coef_i (quad_coef_i), .q_o (quad_ser_q_o), .gradq_o (quad_ser_gradq_o)
   );
 
