@@ -1,9 +1,9 @@
 // Filter width (stage 5 of docs/HARDWARE.md): W = |grad_x f| N in colour-table entries
 // (section 3.2: grad_x f = (grad_s f)^T ds/dx). Golden model: filterWidthFx in
 // model/golden/arith_fx.cpp (same steps, bit for bit). Combinational when Serial = 0; with
-// Serial = 1 the dot products take one component k per cycle (step_i = 0, 1, 2) through two
-// multipliers instead of six, and w_o is valid at step 2 (the sums are exact, so the result is
-// the same bit for bit).
+// Serial = 1 the six products take one multiplier over six cycles (step_i = 3 d + k: direction
+// d, component k), and w_o is valid at step 5 (the sums are exact, so the result is the same
+// bit for bit).
 //
 //   gx = grad . dsdx, gy = grad . dsdy        exact, GradFrac + JacobianFrac fraction bits
 //   Wx = floor(gx N to WidthFrac)             N = 2^Log2Clut: part of the shift; Wy likewise
@@ -22,7 +22,7 @@
 //   Log2Clut                    N = 2^Log2Clut entries: the scale to entries and W's range.
 //   WidthFrac                   fraction bits of W.
 //   FilterNorm                  which norm is built (0 euclid, 1 max_half_min, 2 l1).
-//   Serial                      0: all six products at once; 1: one component per cycle
+//   Serial                      0: all six products at once; 1: one product per cycle
 //                               (the profile's datapath = "serial").
 `default_nettype none
 
@@ -42,7 +42,7 @@ module pst_filter_width #(
 ) (
   input  logic            clk_i,    // Serial only: partial-sum registers
   input  logic            rst_ni,
-  input  logic [1:0]      step_i,   // Serial only: component k this cycle (0..2)
+  input  logic [2:0]      step_i,   // Serial only: product 3 d + k this cycle (0..5)
   input  logic            adv_i,    // Serial only: store this step's partial sums
   input  logic [3*GW-1:0] grad_i,   // element k at [k*GW +: GW]
   input  logic [6*JW-1:0] j_i,      // ds/dx, dt/dx, dr/dx, ds/dy, dt/dy, dr/dy
@@ -75,33 +75,35 @@ module pst_filter_width #(
     logic unused_serial;
     assign unused_serial = ^{clk_i, rst_ni, step_i, adv_i};
   end else begin : g_ser
-    // Component k = step_i: grad_k dsdx_k and grad_k dsdy_k added to the sums of the steps
-    // before (step 0 starts from zero).
+    // Product 3 d + k = step_i: grad_k ds_k/d(x or y) added to direction d's sum (k = 0
+    // starts from zero). Direction x's sum is held for steps 3..5; y's is live at step 5.
+    logic [1:0]           d, k;
     logic signed [GW-1:0] gk;
-    logic [2*XW-1:0]      acc_q, sum;
+    logic signed [JW-1:0] jk;
+    logic signed [XW-1:0] gx_q, gy_q, sum;
+    assign d = (step_i >= 3'd3) ? 2'd1 : 2'd0;
+    assign k = 2'((step_i >= 3'd3) ? step_i - 3'd3 : step_i);
     always_comb begin
-      unique case (step_i)
-        2'd1:    gk = grad_i[1*GW +: GW];
-        2'd2:    gk = grad_i[2*GW +: GW];
-        default: gk = grad_i[0*GW +: GW];
-      endcase
-    end
-    for (genvar d = 0; d < 2; d++) begin : g_dir
-      logic signed [JW-1:0] jk;
-      always_comb begin
-        unique case (step_i)
-          2'd1:    jk = j_i[(3*d+1)*JW +: JW];
-          2'd2:    jk = j_i[(3*d+2)*JW +: JW];
-          default: jk = j_i[(3*d+0)*JW +: JW];
-        endcase
+      gk = grad_i[0*GW +: GW];
+      jk = j_i[0*JW +: JW];
+      for (int c = 0; c < 3; c++) begin
+        if (32'(k) == c) gk = grad_i[c*GW +: GW];
+        for (int dd = 0; dd < 2; dd++) begin
+          if (32'(k) == c && 32'(d) == dd) jk = j_i[(3*dd+c)*JW +: JW];
+        end
       end
-      assign sum[d*XW +: XW] = ((step_i == 2'd0) ? '0 : acc_q[d*XW +: XW]) + XW'(gk) * XW'(jk);
     end
     always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) acc_q <= '0;
-      else if (adv_i) acc_q <= sum;
+      if (!rst_ni) begin
+        gx_q <= '0;
+        gy_q <= '0;
+      end else if (adv_i) begin
+        if (d == 2'd0) gx_q <= sum;
+        else gy_q <= sum;
+      end
     end
-    assign g = sum;
+    assign sum = ((k == 2'd0) ? '0 : ((d == 2'd0) ? gx_q : gy_q)) + XW'(gk) * XW'(jk);
+    assign g   = {sum, gx_q};
   end
 
   // Steps 2-3 per direction: to entries, |.|, clamp.
@@ -145,7 +147,7 @@ module pst_filter_width #(
   end
   // W is at least the larger component and at most their sum (every norm).
   always_comb begin
-    if (!Serial || step_i == 2'd2) assert (w_o >= ax && w_o >= ay && (WW + 1)'(w_o) <= (WW + 1)'(ax) + (WW + 1)'(ay))
+    if (!Serial || step_i == 3'd5) assert (w_o >= ax && w_o >= ay && (WW + 1)'(w_o) <= (WW + 1)'(ax) + (WW + 1)'(ay))
       else $error("pst_filter_width: W outside [max(|Wx|, |Wy|), |Wx| + |Wy|]");
   end
 `endif

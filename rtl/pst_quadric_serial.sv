@@ -1,28 +1,28 @@
-// Quadric, one product per cycle (stage 3 of docs/HARDWARE.md, datapath = "serial"): the
-// same q(s) of eq. 3 and gradient 2 (Q [s 1])_xyz as pst_quadric, bit for bit, from one
-// coefficient x coordinate multiplier and one coordinate x row multiplier instead of fifteen
-// multipliers. Golden model: quadricFx in model/golden/arith_fx.cpp (every sum is exact, so
-// the order of its terms does not change a bit).
+// Quadric on one multiplier (stage 3 of docs/HARDWARE.md, datapath = "serial"): the same
+// q(s) of eq. 3 and gradient 2 (Q [s 1])_xyz as pst_quadric, bit for bit, from one CW x QW
+// multiplier used over NSteps cycles instead of fifteen multipliers. Golden model: quadricFx
+// in model/golden/arith_fx.cpp (every sum is exact, so the order of its terms and the split of
+// a product into partial products do not change a bit).
 //
-//   Step k = 3 r + c (k = step_i = 0..8), row r of Q = [A B C D; B E F G; C F H I; D G I J]
-//   (eq. 4), column c:
-//   v_r = Q_r0 s + Q_r1 t + Q_r2 r + (Q_r3 << CoordFrac)   one product Q_rc s_c per step, exact
-//                                                           at QuadricFrac + CoordFrac bits
-//   u_r = v_r + (Q_r3 << CoordFrac)                        (at c = 2; the linear term
-//                                                           D s + G t + I r of eq. 3 folded into
-//                                                           the row: s_r Q_r3)
-//   q   = sum_r s_r u_r + (J << 2 CoordFrac)               = s . v + ((D s + G t + I r) << CoordFrac)
-//                                                           + (J << 2 CoordFrac), exact
-//   q_o     = sat_F(floor(q to FFrac))                     valid from step 8 on
-//   gradq_o = sat_Grad(floor(2 v_r to GradFrac)), per row  valid from step 8 on
+//   Row r of Q = [A B C D; B E F G; C F H I; D G I J] (eq. 4) takes RS = 3 + NChunks steps
+//   (step_i = k = RS r + e):
+//   e = 0, 1, 2:  v_r += Q_re s_e                        exact at QuadricFrac + CoordFrac bits;
+//                 at e = 2: v_r = sum + (Q_r3 << CoordFrac), grad row r = sat_Grad(floor(2 v_r)),
+//                 u_r = v_r + (Q_r3 << CoordFrac) held (the linear term D s + G t + I r of
+//                 eq. 3 folded into the row: s_r Q_r3)
+//   e = 3 + j:    q += (s_r chunk_j(u_r)) << (j L)       u_r = sum_j chunk_j 2^(j L): NChunks chunks of
+//                 L = QW - 1 bits, the low ones unsigned, the top one signed, so that every
+//                 chunk is a QW-bit signed multiplier operand like a coefficient
+//   q_o = sat_F(floor(q + (J << 2 CoordFrac) to FFrac))  = s . v + ((D s + G t + I r) << CoordFrac)
+//                                                          + (J << 2 CoordFrac) of eq. 3
+//   NSteps = 3 RS; q_o and gradq_o are valid from the last step (done_o) on.
 //
-// Timing: the caller holds s_i and coef_i and steps step_i through 0..8 (then any value >= 9
-// to hold the result), raising adv_i on each cycle whose step it leaves: adv_i stores the
-// partial sums (and, at c = 2, the row's s_r u_r and gradient component). At step 8 the
-// outputs are combinational; from step 9 on they come from the registers alone.
+// Timing: the caller holds s_i and coef_i and steps step_i through 0, 1, ... (values from
+// NSteps on hold the result), raising adv_i on each cycle whose step it leaves. At the last
+// step q_o is combinational; after it, it comes from the registers alone.
 //
-// Parameters: as pst_quadric (CoordInt/Frac, QuadricInt/Frac: multiplier widths; FInt/Frac,
-// GradInt/Frac: output formats).
+// Parameters: as pst_quadric (CoordInt/Frac, QuadricInt/Frac: multiplier widths and the step
+// count; FInt/Frac, GradInt/Frac: output formats).
 `default_nettype none
 
 module pst_quadric_serial #(
@@ -42,8 +42,9 @@ module pst_quadric_serial #(
 ) (
   input  wire logic              clk_i,
   input  wire logic              rst_ni,
-  input  wire logic [3:0]        step_i,   // 0..8: product 3 r + c this cycle; >= 9: hold
+  input  wire logic [4:0]        step_i,   // 0..NSteps-1: this cycle's product; >= NSteps: hold
   input  wire logic              adv_i,    // store this step's partial sums (leaving the step)
+  output logic                   done_o,   // q_o and gradq_o are valid (step_i >= NSteps - 1)
   input  wire logic [3*CW-1:0]   s_i,      // s, t, r; element k at [k*CW +: CW]
   input  wire logic [10*QW-1:0]  coef_i,   // A..J; element k at [k*QW +: QW]
   output logic [FW-1:0]          q_o,
@@ -64,52 +65,74 @@ module pst_quadric_serial #(
   localparam int GShL = (GSh < 0) ? -GSh : 0;
   localparam int QSW = (QXW + QShL > FW) ? QXW + QShL : FW + 1;
   localparam int GSW = (VW + 1 + GShL > GW) ? VW + 1 + GShL : GW + 1;
+  // u_r in NChunks chunks of L bits (the top one signed, TopW <= L bits), RS steps a row.
+  localparam int L      = QW - 1;
+  localparam int NChunks = (UW + L - 1) / L;
+  localparam int RS     = 3 + NChunks;
+  localparam int NSteps = 3 * RS;
+  localparam int TopW   = UW - (NChunks - 1) * L;
+  localparam int PW     = CW + QW;   // the product, exact
 
   logic signed [QW-1:0] ca, cb, cc, cd, ce, cf, cg, ch, ci, cj;
   logic signed [CW-1:0] s0, s1, s2;
   assign {cj, ci, ch, cg, cf, ce, cd, cc, cb, ca} = coef_i;
   assign {s2, s1, s0} = s_i;
 
-  // Step 1: this step's row r, column c, coefficient Q_rc, coordinate s_c, and the row's
-  // constant Q_r3 and coordinate s_r.
-  logic                 live;    // step_i is 0..8
-  logic [1:0]           r, c;
-  logic signed [QW-1:0] krc, k3;
-  logic signed [CW-1:0] sc, sr;
-  assign live = (step_i < 4'd9);
+  // Step 1: this step's row r and position e, and the multiplier's operands.
+  logic                 live;    // step_i < NSteps
+  logic [1:0]           r;
+  logic [4:0]           e;
+  logic signed [QW-1:0] k3;      // Q_r3
+  logic signed [CW-1:0] sr;      // s_r
+  logic signed [CW-1:0] ma;      // multiplier operand: s_e or s_r
+  logic signed [QW-1:0] mb;      // multiplier operand: Q_re or chunk_j(u_r)
+  logic signed [UW-1:0] u_q;     // u_r, held for the chunk steps
+  assign live = (32'(step_i) < NSteps);
   always_comb begin
     r = 2'd0;
-    c = 2'd0;
+    e = 5'd0;
     if (live) begin
-      r = 2'(step_i / 4'd3);
-      c = 2'(step_i % 4'd3);
+      r = 2'(32'(step_i) / RS);
+      e = 5'(32'(step_i) % RS);
     end
-    unique case ({r, c})
-      4'b0000: krc = ca;  4'b0001: krc = cb;  4'b0010: krc = cc;
-      4'b0100: krc = cb;  4'b0101: krc = ce;  4'b0110: krc = cf;
-      4'b1000: krc = cc;  4'b1001: krc = cf;  4'b1010: krc = ch;
-      default: krc = ca;
-    endcase
     unique case (r)
       2'd1:    begin k3 = cg; sr = s1; end
       2'd2:    begin k3 = ci; sr = s2; end
       default: begin k3 = cd; sr = s0; end
     endcase
-    unique case (c)
-      2'd1:    sc = s1;
-      2'd2:    sc = s2;
-      default: sc = s0;
-    endcase
+    ma = sr;
+    mb = '0;
+    if (e < 5'd3) begin
+      unique case (e[1:0])
+        2'd1:    ma = s1;
+        2'd2:    ma = s2;
+        default: ma = s0;
+      endcase
+      unique case ({r, e[1:0]})
+        4'b0000: mb = ca;  4'b0001: mb = cb;  4'b0010: mb = cc;
+        4'b0100: mb = cb;  4'b0101: mb = ce;  4'b0110: mb = cf;
+        4'b1000: mb = cc;  4'b1001: mb = cf;  4'b1010: mb = ch;
+        default: mb = ca;
+      endcase
+    end else begin
+      for (int j = 0; j < NChunks; j++) begin
+        if (32'(e) == 3 + j) begin
+          if (j < NChunks - 1) mb = QW'({1'b0, u_q[j*L +: L]});          // unsigned low chunk
+          else mb = QW'($signed(u_q[UW-1 -: TopW]));                // signed top chunk
+        end
+      end
+    end
   end
 
-  // Step 2: the partial v_r, and at c = 2 u_r and s_r u_r (exact).
+  logic signed [PW-1:0] prod;
+  assign prod = PW'(ma) * PW'(mb);
+
+  // Step 2: the partial v_r; at e = 2 v_r, u_r and grad row r.
   logic signed [VW-1:0]  vacc_q, vsum, v;
   logic signed [UW-1:0]  u;
-  logic signed [QXW-1:0] su;
-  assign vsum = ((c == 2'd0) ? '0 : vacc_q) + VW'(krc) * VW'(sc);
+  assign vsum = ((e == 5'd0) ? '0 : vacc_q) + VW'(prod);
   assign v    = vsum + (VW'(k3) <<< CoordFrac);
   assign u    = UW'(v) + (UW'(k3) <<< CoordFrac);
-  assign su   = QXW'(sr) * QXW'(u);
 
   // Step 3: grad q_r = 2 v_r, floor to GradFrac, saturate to GW bits.
   logic signed [GSW-1:0] gs;
@@ -120,24 +143,34 @@ module pst_quadric_serial #(
     else grow = {gs[GSW-1], {(GW-1){~gs[GSW-1]}}};
   end
 
-  // Partial-sum and gradient registers.
-  logic                  row_end;   // c = 2: v_r is complete
-  logic signed [QXW-1:0] acc_q, sum;
-  logic [3*GW-1:0]       grad_q;
-  assign row_end = live && (c == 2'd2);
-  assign sum     = ((step_i == 4'd0) ? '0 : acc_q) + (row_end ? su : '0);
+  // The chunk partial product s_r chunk_j << j L, added to the q sum.
+  logic signed [QXW-1:0] part, acc_q, sum;
+  always_comb begin
+    part = '0;
+    for (int j = 0; j < NChunks; j++) begin
+      if (live && 32'(e) == 3 + j) part = QXW'(prod) <<< (j * L);
+    end
+  end
+  assign sum = ((step_i == 5'd0) ? '0 : acc_q) + part;
 
+  logic [3*GW-1:0] grad_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       vacc_q <= '0;
+      u_q    <= '0;
       acc_q  <= '0;
       grad_q <= '0;
     end else if (adv_i && live) begin
       vacc_q <= vsum;
       acc_q  <= sum;
-      if (row_end) grad_q[r*GW +: GW] <= grow;
+      if (e == 5'd2) begin
+        u_q <= u;
+        grad_q[r*GW +: GW] <= grow;
+      end
     end
   end
+
+  assign done_o = (32'(step_i) >= NSteps - 1);
 
   // Step 4: q = sum + (J << 2 CoordFrac), floor to FFrac, saturate to FW bits.
   logic signed [QXW-1:0] qx;
@@ -149,11 +182,8 @@ module pst_quadric_serial #(
     else q_o = {qs[QSW-1], {(FW-1){~qs[QSW-1]}}};
   end
 
-  // The gradient: row 2's component live at step 8, the stored ones otherwise.
-  always_comb begin
-    gradq_o = grad_q;
-    if (step_i == 4'd8) gradq_o[2*GW +: GW] = grow;
-  end
+  // Every row's gradient is stored by the last step (row 2's at step 2 RS + 2).
+  assign gradq_o = grad_q;
 
   // Assertions
 `ifndef SYNTHESIS
@@ -161,13 +191,13 @@ module pst_quadric_serial #(
     assert (CoordInt >= 1 && QuadricInt >= 1 && FInt >= 1 && GradInt >= 1)
       else $error("pst_quadric_serial: every format needs its sign bit (Int >= 1)");
   end
-  // Steps are taken in order: steps 0..7 are left only to the next one (after step 8 the
-  // result is complete, and the next fragment may start at step 0).
-  logic [3:0] step_prev_q;
+  // Steps are taken in order: a step before the last is left only to the next one (after
+  // the last the result is complete, and the next fragment may start at step 0).
+  logic [4:0] step_prev_q;
   logic       adv_prev_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      step_prev_q <= 4'd9;
+      step_prev_q <= 5'(NSteps);
       adv_prev_q  <= 1'b0;
     end else begin
       step_prev_q <= step_i;
@@ -175,10 +205,14 @@ module pst_quadric_serial #(
     end
   end
   always_ff @(posedge clk_i) begin
-    if (rst_ni && adv_prev_q && step_prev_q < 4'd8) begin
-      assert (step_i == step_prev_q + 4'd1)
+    if (rst_ni && adv_prev_q && 32'(step_prev_q) < NSteps - 1) begin
+      assert (step_i == step_prev_q + 5'd1)
         else $error("pst_quadric_serial: step %0d left to step %0d", step_prev_q, step_i);
     end
+  end
+  initial begin
+    assert (NSteps <= 31) else $error("pst_quadric_serial: %0d steps do not fit step_i", NSteps);
+    assert (QW >= 2) else $error("pst_quadric_serial: QuadricInt + QuadricFrac must be >= 2");
   end
 `endif
 

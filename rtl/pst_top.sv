@@ -12,7 +12,7 @@
 //   NoiseSteps            cycles per pass (a noise evaluation walks its corners over them,
 //                         see pst_noise): Octaves / NoiseUnits x NoiseSteps cycles per fragment.
 //   Datapath              0 parallel, 1 serial: the quadric one row per cycle, the filter
-//                         width one component per cycle (3 cycles in [B]), the colour-table
+//                         width one product per cycle (6 cycles in [B]), the colour-table
 //                         filter one channel per cycle (4 cycles in [C]).
 //   Log2Clut, ColourBits  colour table of 2^Log2Clut entries, ColourBits per channel.
 //   Noise*                noise unit variant and precision (see pst_noise).
@@ -248,8 +248,8 @@ module pst_top #(
   logic [FW-1:0]   q;
   logic [3*GW-1:0] gradq;
 
-  // Datapath = 0: the whole quadric every cycle; 1: one product per cycle (cycles 0..8), the
-  // result held from cycle 8 on (it is added at the last cycle; Cycles >= 10 here).
+  // Datapath = 0: the whole quadric every cycle; 1: one multiplier stepped by the cycle count
+  // (pst_quadric_serial), its result complete by the last cycle, where it is added.
   if (Datapath == 0) begin : g_quadric_par
     pst_quadric #(
       .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
@@ -258,14 +258,15 @@ module pst_top #(
       .s_i (a_s), .coef_i (quad_q), .q_o (q), .gradq_o (gradq)
     );
   end else begin : g_quadric_ser
-    logic [3:0] qstep;
-    assign qstep = (32'(cyc_q) < 9) ? 4'(cyc_q) : 4'd9;
+    logic [4:0] qstep;
+    logic       qdone;
+    assign qstep = (32'(cyc_q) < 31) ? 5'(cyc_q) : 5'd31;
     pst_quadric_serial #(
       .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
       .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
     ) u_quadric (
       .clk_i, .rst_ni,
-      .step_i (qstep), .adv_i (advance),
+      .step_i (qstep), .adv_i (advance), .done_o (qdone),
       .s_i (a_s), .coef_i (quad_q), .q_o (q), .gradq_o (gradq)
     );
   end
@@ -543,17 +544,17 @@ module pst_top #(
   logic          b_done;   // W is valid this cycle
   logic          c_in_ready;
 
-  // Datapath = 1: the dot products take one component per cycle (steps 0..2); the fragment
-  // leaves [B] at step 2.
-  logic [1:0] wstep_q, wstep_d;
+  // Datapath = 1: the six products of the dot products take one multiplier, one per cycle
+  // (steps 0..5); the fragment leaves [B] at step 5.
+  logic [2:0] wstep_q, wstep_d;
   if (Datapath == 0) begin : g_width_par
     assign b_done  = 1'b1;
     assign wstep_d = '0;
   end else begin : g_width_ser
-    assign b_done = (wstep_q == 2'd2);
+    assign b_done = (wstep_q == 3'd5);
     always_comb begin
       wstep_d = wstep_q;
-      if (b_valid && !b_done) wstep_d = wstep_q + 2'd1;
+      if (b_valid && !b_done) wstep_d = wstep_q + 3'd1;
       else if (b_valid && c_in_ready) wstep_d = '0;
     end
   end
@@ -654,6 +655,10 @@ module pst_top #(
   // The driver keeps an offered fragment until it is taken (an assumption on the source).
   assert property (@(posedge clk_i) disable iff (!rst_ni)
                    (frag_valid_i && !frag_ready_o) |=> (frag_valid_i && $stable(frag_tag_i)));
+  // The serial quadric has its result by the fragment's last cycle.
+  if (Datapath != 0) begin : g_assert_quadric
+    assert property (@(posedge clk_i) disable iff (!rst_ni) (a_valid && last_cycle) |-> g_quadric_ser.qdone);
+  end
   // The cycle counter stays within the fragment's cycles.
   assert property (@(posedge clk_i) disable iff (!rst_ni) 32'(cyc_q) < Cycles);
   // Profile consistency.

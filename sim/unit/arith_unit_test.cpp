@@ -208,6 +208,21 @@ protected:
         return ok;
     }
 
+    // The serial quadric's step count: the first step at which it raises done_o (found once).
+    static int quadricSteps() {
+        static int steps = 0;
+        if (steps == 0) {
+            for (int k = 0; k < 32 && steps == 0; ++k) {
+                top_->quad_ser_step_i = k;
+                eval();
+                if (top_->quad_ser_done_o) steps = k + 1;
+            }
+            top_->quad_ser_step_i = 0;
+            eval();
+        }
+        return steps;
+    }
+
     // Quadric: drive, evaluate, compare with the golden model.
     int64_t quadric(Tally& t, const int64_t s[3], const int64_t coef[10]) {  // returns golden q
         Vpst_arith_unit_top& d = *top_;
@@ -219,11 +234,11 @@ protected:
         const int64_t rq = getSigned(d.quad_q_o, 0, FW);
         int64_t rg[3];
         for (int k = 0; k < 3; ++k) rg[k] = getSigned(d.quad_gradq_o, k * GW, GW);
-        // The serial quadric: live at step 8, then held (from its registers) at step 9.
+        // The serial quadric: live at its last step, then held (from its registers) after it.
         int64_t sq[2], sg[2][3];
         bool serialOk = true;
         for (int h = 0; h < 2; ++h) {
-            serialOk = runSerial(d.quad_ser_step_i, d.quad_ser_adv_i, 8, h == 1) && serialOk;
+            serialOk = runSerial(d.quad_ser_step_i, d.quad_ser_adv_i, quadricSteps() - 1, h == 1) && serialOk;
             sq[h] = getSigned(d.quad_ser_q_o, 0, FW);
             for (int k = 0; k < 3; ++k) sg[h][k] = getSigned(d.quad_ser_gradq_o, k * GW, GW);
         }
@@ -280,7 +295,7 @@ protected:
             gold[1 + n] = pst::filterWidthFx(pn, grad, j);
             rtl[1 + n] = int64_t(getBits(d.fw_w_norm_o, n * WW, WW));
         }
-        const bool serialOk = runSerial(d.ser_step_i, d.ser_adv_i, 2, false);
+        const bool serialOk = runSerial(d.ser_step_i, d.ser_adv_i, 5, false);
         const int64_t ser = int64_t(getBits(d.fw_ser_w_o, 0, WW));
         t.check(assertOk && serialOk && gold[0] == rtl[0] && gold[1] == rtl[1] && gold[2] == rtl[2] &&
                     gold[3] == rtl[3] && gold[0] == ser,

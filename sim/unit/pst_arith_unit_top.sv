@@ -57,9 +57,10 @@ module pst_arith_unit_top #(
   // ser_adv_i).
   input  logic              clk_i,
   input  logic              rst_ni,
-  input  logic [3:0]        quad_ser_step_i,
+  input  logic [4:0]        quad_ser_step_i,
   input  logic              quad_ser_adv_i,
-  input  logic [1:0]        ser_step_i,
+  output logic              quad_ser_done_o,
+  input  logic [2:0]        ser_step_i,
   input  logic              ser_adv_i,
   output logic [FW-1:0]     quad_ser_q_o,
   output logic [3*GW-1:0]   quad_ser_gradq_o,
@@ -85,7 +86,7 @@ module pst_arith_unit_top #(
     .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
     .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
   ) u_quadric_ser (
-    .clk_i, .rst_ni, .step_i (quad_ser_step_i), .adv_i (quad_ser_adv_i),
+    .clk_i, .rst_ni, .step_i (quad_ser_step_i), .adv_i (quad_ser_adv_i), .done_o (quad_ser_done_o),
     .s_i (quad_s_i), .coef_i (quad_coef_i), .q_o (quad_ser_q_o), .gradq_o (quad_ser_gradq_o)
   );
 
@@ -103,7 +104,7 @@ module pst_arith_unit_top #(
     .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac),
     .FilterNorm(FilterNorm)
   ) u_width (
-    .clk_i, .rst_ni, .step_i (2'd0), .adv_i (1'b0),
+    .clk_i, .rst_ni, .step_i (3'd0), .adv_i (1'b0),
     .grad_i (fw_grad_i), .j_i (fw_j_i), .w_o (fw_w_o)
   );
 
@@ -122,7 +123,7 @@ module pst_arith_unit_top #(
       .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac),
       .FilterNorm(n)
     ) u_width_n (
-      .clk_i, .rst_ni, .step_i (2'd0), .adv_i (1'b0),
+      .clk_i, .rst_ni, .step_i (3'd0), .adv_i (1'b0),
       .grad_i (fw_grad_i), .j_i (fw_j_i), .w_o (fw_w_norm_o[n*WW +: WW])
     );
   end
