@@ -114,7 +114,10 @@ module pst_top #(
   // plus, for the serial datapath, the first pass's transform rows and the last pass's term
   // rows (3 + 3 cycles; see the octave stage).
   localparam int Cycles    = Passes * NoiseSteps + ((Datapath != 0) ? 6 : 0);
-  localparam int CycBits   = (Cycles > 1) ? $clog2(Cycles) : 1;
+  // The serial quadric needs up to 31 cycles (pst_quadric_serial's NSteps): a fragment with
+  // fewer octave cycles waits for it, so the counter reaches 31 there.
+  localparam int CycMax    = (Datapath != 0 && Cycles < 32) ? 32 : Cycles;
+  localparam int CycBits   = (CycMax > 1) ? $clog2(CycMax) : 1;
   localparam int OctBits   = $clog2(Octaves + 1);    // active octave count 0..Octaves
   // Guard bits: the accumulators add q and up to Octaves terms without overflow.
   localparam int AccGuard  = $clog2(Octaves + 1) + 1;
@@ -211,7 +214,8 @@ module pst_top #(
   logic [PassBits-1:0] tpass;
   logic [1:0]          trow;
 
-  assign last_cycle = (32'(cyc_q) == Cycles - 1);
+  logic quad_done;   // the quadric's result is valid (always, when parallel)
+  assign last_cycle = (32'(cyc_q) + 1 >= Cycles) && quad_done;
   assign advance    = a_valid & ~last_cycle;
 
   always_comb begin
@@ -235,12 +239,17 @@ module pst_top #(
       xf_on    = (c < Passes * NoiseSteps) && (c % NoiseSteps < 3);
       xpass    = PassBits'(c / NoiseSteps);
       xrow     = 2'(c % NoiseSteps);
-      tm_on    = (c >= 3 + NoiseSteps) && (cn % NoiseSteps < 3);
+      tm_on    = (c >= 3 + NoiseSteps) && (c < 3 + (Passes + 1) * NoiseSteps) &&
+                 (cn % NoiseSteps < 3);
       tpass    = tm_on ? PassBits'(cn / NoiseSteps - 1) : '0;
       trow     = tm_on ? 2'(cn % NoiseSteps) : '0;
     end
   end
   assign nlast = noise_on && (32'(nstep) == NoiseSteps - 1);
+  if (Datapath == 0) begin : g_unused_sched
+    logic unused_sched;   // the serial schedule's signals (constant here)
+    assign unused_sched = ^{xf_on, xpass, xrow, tm_on, tpass, trow};
+  end
 
   logic signed [FAccW-1:0] facc_q, facc_d;
   logic [3*GAccW-1:0]      gacc_q, gacc_d;
@@ -257,6 +266,7 @@ module pst_top #(
     ) u_quadric (
       .s_i (a_s), .coef_i (quad_q), .q_o (q), .gradq_o (gradq)
     );
+    assign quad_done = 1'b1;
   end else begin : g_quadric_ser
     logic [4:0] qstep;
     logic       qdone;
@@ -269,6 +279,7 @@ module pst_top #(
       .step_i (qstep), .adv_i (advance), .done_o (qdone),
       .s_i (a_s), .coef_i (quad_q), .q_o (q), .gradq_o (gradq)
     );
+    assign quad_done = qdone;
   end
 
   // Per lane, this cycle's contribution to the sums (zero when it has none).
@@ -333,9 +344,8 @@ module pst_top #(
       assign fterm[u] = (lane_on && nlast) ? fterm_raw : '0;
       assign gterm[u] = (lane_on && nlast) ? gterm_raw : '0;
     end else begin : g_ser
-      // Octaves of this lane's transform and term rows.
-      logic [OctBits:0] x_oct, t_oct;
-      assign x_oct = (OctBits + 1)'(xpass) * (OctBits + 1)'(NoiseUnits) + (OctBits + 1)'(u);
+      // Octave of this lane's term rows (lane_on: an active octave).
+      logic [OctBits:0] t_oct;
       assign t_oct = (OctBits + 1)'(tpass) * (OctBits + 1)'(NoiseUnits) + (OctBits + 1)'(u);
 
       // Register reads: row xrow of M and o of octave x_oct; row trow of GM and a of t_oct.
@@ -655,12 +665,8 @@ module pst_top #(
   // The driver keeps an offered fragment until it is taken (an assumption on the source).
   assert property (@(posedge clk_i) disable iff (!rst_ni)
                    (frag_valid_i && !frag_ready_o) |=> (frag_valid_i && $stable(frag_tag_i)));
-  // The serial quadric has its result by the fragment's last cycle.
-  if (Datapath != 0) begin : g_assert_quadric
-    assert property (@(posedge clk_i) disable iff (!rst_ni) (a_valid && last_cycle) |-> g_quadric_ser.qdone);
-  end
   // The cycle counter stays within the fragment's cycles.
-  assert property (@(posedge clk_i) disable iff (!rst_ni) 32'(cyc_q) < Cycles);
+  assert property (@(posedge clk_i) disable iff (!rst_ni) 32'(cyc_q) < CycMax);
   // Profile consistency.
   initial begin
     assert (Octaves % NoiseUnits == 0) else $fatal(1, "NoiseUnits must divide Octaves");

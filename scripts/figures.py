@@ -347,12 +347,16 @@ def fig11(args):
     md.append("# Figure 11: 100,000-gate simulations of Figures 1 through 6\n")
     def describe(name):
         f = ROOT / "rtl" / "configs" / f"{name}.toml"
+        # Clocks per pixel as the RTL runs measured them (the regress entries), not recomputed.
+        cpps = [e["cycles_per_pixel"] for r in rows for e in (r["ef"], r["er"])
+                if e and e.get("profile") == name and "cycles_per_pixel" in e]
+        clocks = f", {max(cpps):.0f} clock{'s' if max(cpps) >= 1.5 else ''} per pixel (RTL)" if cpps else ""
         try:
             p = tomllib.loads(f.read_text())
             pp, nz, fm = p["pipeline"], p["noise"], p["formats"]
-            cpp = -(-pp["octaves"] // pp["noise_units"])
             return (f"{pp['octaves']} octaves through {pp['noise_units']} noise unit"
-                    f"{'s' if pp['noise_units'] > 1 else ''} ({cpp} clock{'s' if cpp > 1 else ''} per pixel), "
+                    f"{'s' if pp['noise_units'] > 1 else ''} ({pp['noise_steps']} cycle"
+                    f"{'s' if pp['noise_steps'] > 1 else ''} per evaluation, {pp['datapath']} datapath{clocks}), "
                     f"{nz['interp']} interpolation, {nz['hash']} hash, {nz['out_frac']}-bit noise fraction, "
                     f"{fm['coord']['frac']} fraction bits of texture coordinate, |grad| by {p['filter']['norm']}")
         except (OSError, tomllib.TOMLDecodeError, KeyError, TypeError, ZeroDivisionError):

@@ -123,6 +123,10 @@ KNOBS = {
                lambda d: d["noise"]["corner"]),
     "norm": ("filter.norm", ["euclid", "max_half_min", "l1"], _apply_key("filter", "norm"),
              lambda d: d["filter"]["norm"]),
+    "datapath": ("pipeline.datapath (gates and cycles only: the images are the same bit for bit)",
+                 ["parallel", "serial"], _apply_key("pipeline", "datapath"), lambda d: d["pipeline"]["datapath"]),
+    "noise_steps": ("pipeline.noise_steps (gates and cycles only: the images are the same bit for bit)",
+                    [1, 2, 4, 8], _apply_key("pipeline", "noise_steps"), lambda d: d["pipeline"]["noise_steps"]),
     "filter": ("every texture's filter (scene copies; not a profile key)", ["none", "mip", "mip_linear", "sat"],
                None, lambda d: None),
 }
@@ -130,7 +134,7 @@ KNOBS = {
 QUICK = {"base": "reduced", "knobs": "coord_frac,octaves,hash", "scenes": "marble,zoneplate", "size": 64,
          "truth": 2, "rtl_subset": 0, "values": ["coord_frac=8,10,16", "octaves=2,8"]}
 
-ENUMS = {("noise", "interp"): ["scurve", "linear"], ("noise", "corner"): ["value_gradient", "value"],
+ENUMS = {("pipeline", "datapath"): ["parallel", "serial"], ("noise", "interp"): ["scurve", "linear"], ("noise", "corner"): ["value_gradient", "value"],
          ("noise", "hash"): ["rayshade", "perm256"], ("filter", "norm"): ["euclid", "max_half_min", "l1"]}
 FORMAT_MAX = {"coord": 40, "jacobian": 40, "matrix": 32, "offset": 32, "amplitude": 32, "grad_matrix": 32,
               "quadric": 32, "f": 48, "grad": 48}
@@ -156,6 +160,10 @@ def validate(doc: dict) -> list:
     p = doc.get("pipeline", {})
     if not bad and p["octaves"] % p["noise_units"]:
         bad.append("pipeline.noise_units must divide pipeline.octaves")
+    if p.get("noise_steps") not in (1, 2, 4, 8):
+        bad.append("pipeline.noise_steps must be 1, 2, 4 or 8")
+    elif p.get("datapath") == "serial" and p["noise_steps"] < 4:
+        bad.append("pipeline.datapath = serial needs pipeline.noise_steps >= 4")
     fm = doc.get("formats", {})
     for name, mx in FORMAT_MAX.items():
         f = fm.get(name, {})
