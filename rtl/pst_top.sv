@@ -93,6 +93,7 @@ module pst_top #(
   output logic                          probe_valid_o,
   output logic [31:0]                   probe_tag_o,
   output logic [7:0]                    probe_pass_o,
+  output logic                          probe_q_valid_o,   // probe_q_o is final (the last cycle)
   output logic [FW-1:0]                 probe_q_o,
   output logic [NoiseUnits*36-1:0]      probe_lat_o,
   output logic [NoiseUnits*3*NoiseLatticeFrac-1:0] probe_frac_o,
@@ -460,10 +461,12 @@ module pst_top #(
     end
   end
 
-  // Probes: the noise results of a pass, at its last step.
+  // Probes: the noise results of a pass, at its last step; q at the fragment's last cycle
+  // (the serial quadric may finish after the last noise step).
   assign probe_valid_o = DebugProbes & a_valid & nlast;
   assign probe_tag_o   = DebugProbes ? a_tag : '0;
   assign probe_pass_o  = DebugProbes ? 8'(npass) : '0;
+  assign probe_q_valid_o = DebugProbes & a_valid & last_cycle;
   assign probe_q_o     = DebugProbes ? q : '0;
 
   // Accumulation: every cycle adds the lanes' contributions (cycle 0 starts from zero); the

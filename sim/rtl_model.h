@@ -54,5 +54,7 @@ public:
 std::unique_ptr<RtlModel> makeRtlModel(const std::string& profile, const SimOptions& options = {});
 // The profiles compiled into this build.
 std::vector<std::string> rtlProfiles();
+// The profile file a verilated profile was built from ("" if `name` is not one of them).
+std::string rtlProfilePath(const std::string& name);
 
 }  // namespace pst

@@ -93,6 +93,8 @@ public:
             const bool pixelTaken = top_->out_valid_o && top_->out_ready_i;
             if (pixelTaken) out.push_back(sample());
             if (probes && top_->probe_valid_o) sampleProbes(*probes, activeOctaves);
+            if (probes && top_->probe_q_valid_o)
+                (*probes)[top_->probe_tag_o].q = port::getSigned(top_->probe_q_o, 0, p_.f.width());
             tick();
             if (fragTaken) {
                 offering = false;
@@ -156,7 +158,6 @@ private:
         const int lf = p_.noiseLatticeFrac, nw = 4 + p_.noiseOutFrac, ngw = 6 + p_.noiseOutFrac;
         ProbeFx& pr = probes[top_->probe_tag_o];
         const int pass = int(top_->probe_pass_o);
-        pr.q = port::getSigned(top_->probe_q_o, 0, p_.f.width());
         const int n = std::min(active, p_.octaves);
         if (int(pr.n.size()) < n) {
             pr.lat.resize(n);

@@ -66,7 +66,12 @@ std::string sourceDir() {
     return d ? d : PST_SOURCE_DIR_DEFAULT;
 }
 
-Profile profileByName(const std::string& name) { return loadProfile(profilePath(name, sourceDir())); }
+// A verilated profile by its name (rtl/configs or PST_EXTRA_PROFILE_DIR), else a name in
+// rtl/configs or a profile file.
+Profile profileByName(const std::string& name) {
+    const std::string built = rtlProfilePath(name);
+    return loadProfile(built.empty() ? profilePath(name, sourceDir()) : built);
+}
 
 nlohmann::json hwJson(const std::string& scene, const Profile& p, const std::string& model,
                       const HwRenderResult& r, int w, int h) {
