@@ -21,7 +21,8 @@ std::string sourceDir() {
     const char* d = std::getenv("PST_SOURCE_DIR");
     return d ? d : PST_SOURCE_DIR_DEFAULT;
 }
-Profile profile(const std::string& name) { return loadProfile(sourceDir() + "/rtl/configs/" + name + ".toml"); }
+// The file each verilated profile was built from (rtl/configs, sim/test_profiles, ...).
+Profile profile(const std::string& name) { return loadProfile(rtlProfilePath(name)); }
 
 const char* kScenes[] = {"wood_teapot", "marble", "seascape", "fire", "planet", "moonrise", "zoneplate", "wood_torus"};
 
