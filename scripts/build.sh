@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
 # Configures and builds the project into build/ (ccache if present). Used by test.sh and run.sh.
+#   scripts/build.sh            everything (the tests included)
+#   scripts/build.sh pst ...    only these targets (the main job needs only the `pst` tool)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 GEN=()
@@ -7,4 +9,8 @@ if command -v ninja >/dev/null 2>&1; then GEN=(-G Ninja); fi
 if [ ! -f build/CMakeCache.txt ]; then
   cmake -S . -B build "${GEN[@]}" -DCMAKE_BUILD_TYPE=Release
 fi
-cmake --build build -j"$(nproc)"
+if [ $# -gt 0 ]; then
+  cmake --build build -j"$(nproc)" --target "$@"
+else
+  cmake --build build -j"$(nproc)"
+fi
