@@ -20,7 +20,7 @@ for scene in scenes/*.toml; do
 done
 echo "== RTL regression at ${SIZE}x${SIZE}"
 rc=0
-./build/pst regress --size "$SIZE" -o out/regress.json --images out || rc=$?
+./build/pst regress --size "$SIZE" --profile full --profile reduced -o out/regress.json --images out || rc=$?
 echo "== gate counts (Yosys), quick precision sweep, figures"
 # full's synthesis (one core, about 3 minutes) runs beside the quick sweep, whose base point is
 # the reduced profile's synthesis (out/synth/reduced.{json,md}).
