@@ -4,8 +4,8 @@
 // (model/golden/noise_fx.cpp, same steps and floors; the unit tests compare every bit).
 //
 // Notation: LF = NoiseLatticeFrac, VF = NoiseValueFrac, OF = NoiseOutFrac,
-// NF = NodeFrac = OF + GuardBits (GuardBits = 4: internal node fraction bits; the golden
-// model's kNoiseGuardBits). Corner c = bx + 2 by + 4 bz (x fastest, Rayshade's order).
+// NF = NodeFrac = OF + NoiseGuardBits (the profile's noise.guard_bits: internal node fraction
+// bits below the output LSB). Corner c = bx + 2 by + 4 bz (x fastest, Rayshade's order).
 //
 // 1. Weights (pst_noise_weight, one per axis): s (weight of the upper corner) and ds = ds/du,
 //    unsigned at LF fraction bits. scurve: u2 = floor(u u), s = floor(u2 (3 - 2u)),
@@ -53,6 +53,8 @@
 //   NoiseLatticeFrac fraction bits of u, s, ds (LF)
 //   NoiseOutFrac     fraction bits of n_o and grad_o
 //   NoiseSteps       cycles per evaluation (1, 2, 4, 8): corners and lerps built (above)
+//   NoiseGuardBits   node fraction bits below NoiseOutFrac (1..8): every corner, lerp and
+//                    held node's width
 // ROM images: `PST_ROM_DIR/{hash4096,perm256,value16}.memh, written by sim/tools/pst_roms.
 //
 // Ports:
@@ -74,6 +76,7 @@ module pst_noise #(
   parameter int NoiseLatticeFrac = 16,
   parameter int NoiseOutFrac = 16,
   parameter int NoiseSteps = 1,
+  parameter int NoiseGuardBits = 4,
   localparam int LF = NoiseLatticeFrac,  // fraction bits of u
   localparam int OF = NoiseOutFrac       // fraction bits of the outputs
 ) (
@@ -87,8 +90,8 @@ module pst_noise #(
   output logic [3*(6+OF)-1:0]     grad_o
 );
 
-  // Guard bits of the internal nodes below the output LSB (golden: kNoiseGuardBits).
-  localparam int GuardBits = 4;
+  // Guard bits of the internal nodes below the output LSB (golden: noiseNodeFrac).
+  localparam int GuardBits = NoiseGuardBits;
   // Fraction bits of every corner and lerp node.
   localparam int NodeFrac = OF + GuardBits;
   // Node value Q3.NodeFrac (|v| <= 3.5), node derivative Q5.NodeFrac (|g| < 16).

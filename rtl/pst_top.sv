@@ -36,6 +36,7 @@ module pst_top #(
   parameter int NoiseLatticeFrac = 16,
   parameter int NoiseOutFrac     = 16,
   parameter int NoiseSteps       = 1,
+  parameter int NoiseGuardBits   = 4,
   parameter int FilterNorm       = 0,
   parameter int FilterRecipFrac  = 18,
   parameter int CoordInt         = 12,
@@ -442,7 +443,7 @@ module pst_top #(
     pst_noise #(
       .NoiseInterp(NoiseInterp), .NoiseCorner(NoiseCorner), .NoiseHash(NoiseHash),
       .NoiseValueFrac(NoiseValueFrac), .NoiseLatticeFrac(NoiseLatticeFrac),
-      .NoiseOutFrac(NoiseOutFrac), .NoiseSteps(NoiseSteps)
+      .NoiseOutFrac(NoiseOutFrac), .NoiseSteps(NoiseSteps), .NoiseGuardBits(NoiseGuardBits)
     ) u_noise (
       .clk_i, .rst_ni, .step_i (nstep), .adv_i (advance & noise_on & ~nlast),
       .lat_i (lat), .frac_i (frac), .n_o (n), .grad_o (g)

@@ -107,6 +107,8 @@ KNOBS = {
                      _apply_key("noise", "lattice_frac"), lambda d: d["noise"]["lattice_frac"]),
     "out_frac": ("noise.out_frac (noise value / weight-product bits)", [6, 8, 10, 12, 16],
                  _apply_key("noise", "out_frac"), lambda d: d["noise"]["out_frac"]),
+    "guard_bits": ("noise.guard_bits (noise node fraction bits below out_frac)", [1, 2, 3, 4, 6],
+                   _apply_key("noise", "guard_bits"), lambda d: d["noise"]["guard_bits"]),
     "amp_frac": ("formats.amplitude.frac = grad_matrix.frac = matrix.frac", [6, 8, 10, 12, 16],
                  _set_format_frac("amplitude", "grad_matrix", "matrix"),
                  lambda d: d["formats"]["amplitude"]["frac"]
@@ -150,7 +152,7 @@ def validate(doc: dict) -> list:
             bad.append(f"{sec}.{key} = {v} outside [{lo}, {hi}]")
     for key, lo, hi in [("octaves", 1, 16), ("noise_units", 1, 16), ("log2_clut", 1, 11), ("colour_bits", 1, 8)]:
         rng("pipeline", key, lo, hi)
-    for key, lo, hi in [("value_frac", 1, 15), ("lattice_frac", 1, 20), ("out_frac", 1, 24)]:
+    for key, lo, hi in [("value_frac", 1, 15), ("lattice_frac", 1, 20), ("out_frac", 1, 24), ("guard_bits", 1, 8)]:
         rng("noise", key, lo, hi)
     rng("filter", "recip_frac", 4, 24)
     rng("formats", "width_frac", 0, 24)

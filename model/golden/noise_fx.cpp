@@ -2,7 +2,7 @@
 // bit for bit as rtl/pst_octave_transform.sv and rtl/pst_noise.sv (same steps, same floors).
 //
 // Notation: LF = NoiseLatticeFrac, VF = NoiseValueFrac, OF = NoiseOutFrac,
-// NF = OF + kNoiseGuardBits (internal node fraction bits). floor = fx::floorShift.
+// NF = OF + noise.guard_bits (internal node fraction bits). floor = fx::floorShift.
 //
 // Stage 1 (octave transform), per axis r:
 //   acc = sum_j M[r][j] s[j] + (o[r] << (MatrixFrac + CoordFrac - OffsetFrac))   exact

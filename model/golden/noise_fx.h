@@ -11,10 +11,9 @@
 namespace pst {
 
 // Guard bits of the noise unit's internal nodes: corner values, lerp results and their
-// derivatives are held at NoiseOutFrac + kNoiseGuardBits fraction bits (rtl/pst_noise.sv
-// localparam GuardBits: the same constant, the unit tests compare every bit).
-constexpr int kNoiseGuardBits = 4;
-inline int noiseNodeFrac(const Profile& p) { return p.noiseOutFrac + kNoiseGuardBits; }
+// derivatives are held at NoiseOutFrac + noise.guard_bits fraction bits (the profile's key;
+// rtl/pst_noise.sv parameter NoiseGuardBits).
+inline int noiseNodeFrac(const Profile& p) { return p.noiseOutFrac + p.noiseGuardBits; }
 
 // Stage 1. s: 3 x Coord, M: 9 x Matrix (row-major, M[3 r + c]), o: 3 x Offset, all
 // sign-extended integers of their formats. Out per axis: lat = lattice index after Rayshade's

@@ -97,6 +97,7 @@ Profile parseProfile(const std::string& text, const std::string& path) {
     p.noiseValueFrac = r.integer(noise, "noise", "value_frac", 1, 15);
     p.noiseLatticeFrac = r.integer(noise, "noise", "lattice_frac", 1, 20);
     p.noiseOutFrac = r.integer(noise, "noise", "out_frac", 1, 24);
+    p.noiseGuardBits = r.integer(noise, "noise", "guard_bits", 1, 8);
     const auto& filt = r.section("filter");
     p.filterNorm = r.choice(filt, "filter", "norm", parseGradNorm);
     p.filterRecipFrac = r.integer(filt, "filter", "recip_frac", 4, 24);

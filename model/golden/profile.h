@@ -40,6 +40,7 @@ struct Profile {
     int noiseValueFrac = 15;    // R table fraction bits
     int noiseLatticeFrac = 16;  // fraction bits of T_i s into the noise unit
     int noiseOutFrac = 16;      // noise value and gradient fraction bits
+    int noiseGuardBits = 4;     // fraction bits of the noise unit's nodes below noiseOutFrac
     // [filter]
     GradNorm filterNorm = GradNorm::Euclid;
     int filterRecipFrac = 18;

@@ -2,7 +2,7 @@
 # the golden model (model/golden/noise_fx.cpp), bit for bit, one verilated top per profile.
 # Seed: PST_SEED=<n> in the environment replays a run (the test prints its seed).
 set(PST_NOISE_UNIT_PARAMS
-    CoordInt,CoordFrac,MatrixInt,MatrixFrac,OffsetInt,OffsetFrac,NoiseLatticeFrac,NoiseInterp,NoiseCorner,NoiseHash,NoiseValueFrac,NoiseOutFrac,NoiseSteps)
+    CoordInt,CoordFrac,MatrixInt,MatrixFrac,OffsetInt,OffsetFrac,NoiseLatticeFrac,NoiseInterp,NoiseCorner,NoiseHash,NoiseValueFrac,NoiseOutFrac,NoiseSteps,NoiseGuardBits)
 set(PST_NOISE_UNIT_SOURCES
     ${PROJECT_SOURCE_DIR}/sim/unit/pst_noise_unit_top.sv
     ${PROJECT_SOURCE_DIR}/rtl/pst_octave_transform.sv
@@ -29,12 +29,12 @@ endforeach()
 #   var_b  reduced formats, scurve, value_gradient, rayshade, NoiseValueFrac 15 (> node frac),
 #          the reduced's four steps
 #   var_c  reduced formats, scurve, perm256, VF 3, LF 4, OF 10 (VF + LF < node frac), eight
-#          steps (one corner per cycle)
+#          steps (one corner per cycle), one guard bit
 # The test applies the same overrides to the loaded profile (PST_NOISE_OVERRIDES).
 set(PST_NOISE_VARIANTS
     "var_a|full|NoiseInterp=1,NoiseCorner=1,NoiseHash=1,NoiseOutFrac=11,NoiseSteps=2"
     "var_b|reduced|NoiseInterp=0,NoiseCorner=0,NoiseHash=0,NoiseValueFrac=15"
-    "var_c|reduced|NoiseInterp=0,NoiseCorner=0,NoiseHash=1,NoiseValueFrac=3,NoiseLatticeFrac=4,NoiseOutFrac=10,NoiseSteps=8")
+    "var_c|reduced|NoiseInterp=0,NoiseCorner=0,NoiseHash=1,NoiseValueFrac=3,NoiseLatticeFrac=4,NoiseOutFrac=10,NoiseSteps=8,NoiseGuardBits=1")
 foreach(v ${PST_NOISE_VARIANTS})
   string(REPLACE "|" ";" v "${v}")
   list(GET v 0 vname)

@@ -48,6 +48,7 @@ Profile testProfile() {
         else if (key == "NoiseLatticeFrac") p.noiseLatticeFrac = v;
         else if (key == "NoiseOutFrac") p.noiseOutFrac = v;
         else if (key == "NoiseSteps") p.noiseSteps = v;
+        else if (key == "NoiseGuardBits") p.noiseGuardBits = v;
         else throw std::runtime_error("unknown override " + key);
     }
 #endif

@@ -17,6 +17,7 @@ module pst_noise_unit_top #(
   parameter int NoiseValueFrac = 15,
   parameter int NoiseOutFrac = 16,
   parameter int NoiseSteps = 1,
+  parameter int NoiseGuardBits = 4,
   localparam int CW = CoordInt + CoordFrac,    // s element width
   localparam int MW = MatrixInt + MatrixFrac,  // M element width
   localparam int OW = OffsetInt + OffsetFrac,  // o element width
@@ -63,7 +64,8 @@ module pst_noise_unit_top #(
     .NoiseValueFrac   (NoiseValueFrac),
     .NoiseLatticeFrac (NoiseLatticeFrac),
     .NoiseOutFrac     (NoiseOutFrac),
-    .NoiseSteps       (NoiseSteps)
+    .NoiseSteps       (NoiseSteps),
+    .NoiseGuardBits   (NoiseGuardBits)
   ) u_noise (
     .clk_i,
     .rst_ni,
