@@ -3,7 +3,10 @@
 // model/golden/arith_fx.cpp (same steps, bit for bit). Combinational when Serial = 0; with
 // Serial = 1 the six products take one multiplier over six cycles (step_i = 3 d + k: direction
 // d, component k), and w_o is valid at step 5 (the sums are exact, so the result is the same
-// bit for bit).
+// bit for bit). For the euclidean norm the serial unit goes on: step 6 ax^2, step 7 + ay^2 (one
+// WW x WW squarer), then the square root two digits per cycle (steps 8 .. 7 + NSq, the same
+// restoring digit recurrence as pst_isqrt from the top pair down: floor(sqrt) either way);
+// done_o marks the last step.
 //
 //   gx = grad . dsdx, gy = grad . dsdy        exact, GradFrac + JacobianFrac fraction bits
 //   Wx = floor(gx N to WidthFrac)             N = 2^Log2Clut: part of the shift; Wy likewise
@@ -42,8 +45,9 @@ module pst_filter_width #(
 ) (
   input  logic            clk_i,    // Serial only: partial-sum registers
   input  logic            rst_ni,
-  input  logic [2:0]      step_i,   // Serial only: product 3 d + k this cycle (0..5)
+  input  logic [4:0]      step_i,   // Serial only: product 3 d + k (0..5), then the norm's steps
   input  logic            adv_i,    // Serial only: store this step's partial sums
+  output logic            done_o,   // Serial only: w_o is valid (the last step; always 1 if not Serial)
   input  logic [3*GW-1:0] grad_i,   // element k at [k*GW +: GW]
   input  logic [6*JW-1:0] j_i,      // ds/dx, dt/dx, dr/dx, ds/dy, dt/dy, dr/dy
   output logic [WW-1:0]   w_o
@@ -60,6 +64,10 @@ module pst_filter_width #(
   // Shifted width: room for the left shift and at least one bit above W for the clamp.
   localparam int SW   = (XW + ShL > WW) ? XW + ShL : WW + 1;
   localparam int SqW  = 2 * WW + 1;   // ax^2 + ay^2 <= 2 (2^WW - 1)^2 < 2^(2 WW + 1)
+  // Serial euclid: root digits NIt = ceil(SqW / 2) = WW + 1, two per cycle over NSq cycles.
+  localparam int NIt  = WW + 1;
+  localparam int NSq  = (NIt + 1) / 2;
+  localparam int LastStep = (!Serial) ? 0 : (FilterNorm == 0) ? 7 + NSq : 5;
   // (Not '1: Yosys 0.23 reads '1 in a parameter declaration as the 1-bit value 1.)
   localparam logic [WW-1:0] WMax = {WW{1'b1}};
 
@@ -74,6 +82,7 @@ module pst_filter_width #(
     end
     logic unused_serial;
     assign unused_serial = ^{clk_i, rst_ni, step_i, adv_i};
+    assign done_o = 1'b1;
   end else begin : g_ser
     // Product 3 d + k = step_i: grad_k ds_k/d(x or y) added to direction d's sum (k = 0
     // starts from zero). Direction x's sum is held for steps 3..5; y's is live at step 5.
@@ -81,8 +90,10 @@ module pst_filter_width #(
     logic signed [GW-1:0] gk;
     logic signed [JW-1:0] jk;
     logic signed [XW-1:0] gx_q, gy_q, sum;
-    assign d = (step_i >= 3'd3) ? 2'd1 : 2'd0;
-    assign k = 2'((step_i >= 3'd3) ? step_i - 3'd3 : step_i);
+    logic                 prod_step;   // steps 0..5: the dot products
+    assign prod_step = (step_i <= 5'd5);
+    assign d = (step_i >= 5'd3) ? 2'd1 : 2'd0;
+    assign k = 2'((step_i >= 5'd3) ? step_i - 5'd3 : step_i);
     always_comb begin
       gk = grad_i[0*GW +: GW];
       jk = j_i[0*JW +: JW];
@@ -97,13 +108,15 @@ module pst_filter_width #(
       if (!rst_ni) begin
         gx_q <= '0;
         gy_q <= '0;
-      end else if (adv_i) begin
+      end else if (adv_i && prod_step) begin
         if (d == 2'd0) gx_q <= sum;
         else gy_q <= sum;
       end
     end
     assign sum = ((k == 2'd0) ? '0 : ((d == 2'd0) ? gx_q : gy_q)) + XW'(gk) * XW'(jk);
-    assign g   = {sum, gx_q};
+    // Direction y is live at step 5, held after it (the euclidean norm's steps).
+    assign g   = prod_step ? {sum, gx_q} : {gy_q, gx_q};
+    assign done_o = (32'(step_i) == LastStep);
   end
 
   // Steps 2-3 per direction: to entries, |.|, clamp.
@@ -123,12 +136,61 @@ module pst_filter_width #(
 
   // Step 4: the norm (at most WW + 1 bits), then saturate to WW bits.
   logic [WW:0] nrm;
-  if (FilterNorm == 0) begin : g_euclid
+  if (FilterNorm == 0 && !Serial) begin : g_euclid
     logic [SqW-1:0] sumsq;
     logic [WW:0]    root;   // pst_isqrt: ceil(SqW / 2) = WW + 1 bits
     assign sumsq = SqW'(ax) * SqW'(ax) + SqW'(ay) * SqW'(ay);
     pst_isqrt #(.InWidth(SqW)) u_isqrt (.x_i (sumsq), .y_o (root));
     assign nrm = root;
+  end else if (FilterNorm == 0) begin : g_euclid_ser
+    // xs_q: ax^2 (step 6), ax^2 + ay^2 (step 7), then shifted left two digits (4 bits) a cycle;
+    // the digits are taken from its top. 4 NSq >= SqW bits (zero-extended).
+    localparam int XPW = 4 * NSq;
+    localparam int RW  = 2 * NSq + 2;   // remainder and root: root < 2^(2 NSq), rem <= 2 root
+    logic [XPW-1:0] xs_q, sq, xs_d;
+    logic [RW-1:0]  rem_q, root_q, rem_d, root_d;
+    logic           sqrt_step, first;
+    logic [WW-1:0]  a_sq;   // ax at step 6, ay at step 7
+    assign a_sq      = (step_i == 5'd6) ? ax : ay;
+    assign sq        = XPW'(a_sq) * XPW'(a_sq);
+    assign sqrt_step = (step_i >= 5'd8);
+    assign first     = (step_i == 5'd8);
+    always_comb begin
+      logic [RW-1:0] r, q, trial;
+      r = first ? '0 : rem_q;
+      q = first ? '0 : root_q;
+      for (int t = 0; t < 2; t++) begin
+        r     = (r << 2) | RW'(xs_q[XPW-1-2*t -: 2]);
+        trial = (q << 2) | RW'(1);
+        if (r >= trial) begin
+          r = r - trial;
+          q = (q << 1) | RW'(1);
+        end else begin
+          q = q << 1;
+        end
+      end
+      rem_d  = r;
+      root_d = q;
+      if (step_i == 5'd6) xs_d = sq;
+      else if (step_i == 5'd7) xs_d = xs_q + sq;
+      else xs_d = xs_q << 4;
+    end
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) begin
+        xs_q   <= '0;
+        rem_q  <= '0;
+        root_q <= '0;
+      end else if (adv_i && step_i >= 5'd6) begin
+        xs_q <= xs_d;
+        if (sqrt_step) begin
+          rem_q  <= rem_d;
+          root_q <= root_d;
+        end
+      end
+    end
+    assign nrm = root_d[WW:0];   // the last step's root: floor(sqrt(ax^2 + ay^2)) < 2^(WW+1)
+    logic unused_root;
+    assign unused_root = ^root_d[RW-1:WW+1];
   end else if (FilterNorm == 1) begin : g_max_half_min
     logic [WW-1:0] amax, amin;
     assign amax = (ax >= ay) ? ax : ay;
@@ -147,7 +209,7 @@ module pst_filter_width #(
   end
   // W is at least the larger component and at most their sum (every norm).
   always_comb begin
-    if (!Serial || step_i == 3'd5) assert (w_o >= ax && w_o >= ay && (WW + 1)'(w_o) <= (WW + 1)'(ax) + (WW + 1)'(ay))
+    if (done_o) assert (w_o >= ax && w_o >= ay && (WW + 1)'(w_o) <= (WW + 1)'(ax) + (WW + 1)'(ay))
       else $error("pst_filter_width: W outside [max(|Wx|, |Wy|), |Wx| + |Wy|]");
   end
 `endif

@@ -12,7 +12,8 @@
 //   NoiseSteps            cycles per pass (a noise evaluation walks its corners over them,
 //                         see pst_noise): Octaves / NoiseUnits x NoiseSteps cycles per fragment.
 //   Datapath              0 parallel, 1 serial: the quadric one row per cycle, the filter
-//                         width one product per cycle (6 cycles in [B]), the colour-table
+//                         width one product per cycle (6 cycles in [B], 16 with the euclidean
+//                         norm: squares and square root serial too), the colour-table
 //                         filter one channel per cycle (4 cycles in [C]).
 //   Log2Clut, ColourBits  colour table of 2^Log2Clut entries, ColourBits per channel.
 //   Noise*                noise unit variant and precision (see pst_noise).
@@ -559,16 +560,15 @@ module pst_top #(
   logic          c_in_ready;
 
   // Datapath = 1: the six products of the dot products take one multiplier, one per cycle
-  // (steps 0..5); the fragment leaves [B] at step 5.
-  logic [2:0] wstep_q, wstep_d;
+  // (steps 0..5), the euclidean norm 2 + NSq more (pst_filter_width); the fragment leaves [B]
+  // at the module's last step (done).
+  logic [4:0] wstep_q, wstep_d;
   if (Datapath == 0) begin : g_width_par
-    assign b_done  = 1'b1;
     assign wstep_d = '0;
   end else begin : g_width_ser
-    assign b_done = (wstep_q == 3'd5);
     always_comb begin
       wstep_d = wstep_q;
-      if (b_valid && !b_done) wstep_d = wstep_q + 3'd1;
+      if (b_valid && !b_done) wstep_d = wstep_q + 5'd1;
       else if (b_valid && c_in_ready) wstep_d = '0;
     end
   end
@@ -583,7 +583,7 @@ module pst_top #(
     .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac),
     .FilterNorm(FilterNorm), .Serial(Datapath != 0)
   ) u_width (
-    .clk_i, .rst_ni, .step_i (wstep_q), .adv_i (b_valid & ~b_done),
+    .clk_i, .rst_ni, .step_i (wstep_q), .adv_i (b_valid & ~b_done), .done_o (b_done),
     .grad_i (b_grad), .j_i (b_j), .w_o (b_w)
   );
 

@@ -223,6 +223,23 @@ protected:
         return steps;
     }
 
+    // The serial filter width's step count (6, or more for the euclidean norm): the first step
+    // at which it raises done_o (found once).
+    static int widthSteps(bool euclid = false) {
+        static int steps[2] = {0, 0};
+        int& n = steps[euclid ? 1 : 0];
+        if (n == 0) {
+            for (int k = 0; k < 32 && n == 0; ++k) {
+                top_->ser_step_i = k;
+                eval();
+                if (euclid ? top_->fw_ser_euclid_done_o : top_->fw_ser_done_o) n = k + 1;
+            }
+            top_->ser_step_i = 0;
+            eval();
+        }
+        return n;
+    }
+
     // Quadric: drive, evaluate, compare with the golden model.
     int64_t quadric(Tally& t, const int64_t s[3], const int64_t coef[10]) {  // returns golden q
         Vpst_arith_unit_top& d = *top_;
@@ -295,16 +312,19 @@ protected:
             gold[1 + n] = pst::filterWidthFx(pn, grad, j);
             rtl[1 + n] = int64_t(getBits(d.fw_w_norm_o, n * WW, WW));
         }
-        const bool serialOk = runSerial(d.ser_step_i, d.ser_adv_i, 5, false);
+        bool serialOk = runSerial(d.ser_step_i, d.ser_adv_i, widthSteps() - 1, false);
         const int64_t ser = int64_t(getBits(d.fw_ser_w_o, 0, WW));
+        // The serial euclidean norm (squares and square root over cycles) against euclid's golden.
+        serialOk = runSerial(d.ser_step_i, d.ser_adv_i, widthSteps(true) - 1, false) && serialOk;
+        const int64_t serEuclid = int64_t(getBits(d.fw_ser_euclid_w_o, 0, WW));
         t.check(assertOk && serialOk && gold[0] == rtl[0] && gold[1] == rtl[1] && gold[2] == rtl[2] &&
-                    gold[3] == rtl[3] && gold[0] == ser,
+                    gold[3] == rtl[3] && gold[0] == ser && gold[1] == serEuclid,
                 [&] {
                     std::ostringstream os;
                     if (!assertOk || !serialOk) os << "  (an RTL assertion fired)\n";
                     os << "  grad " << list(grad, 3) << "\n  j " << list(j, 6)
                        << "\n  golden W (profile, euclid, mhm, l1) " << list(gold, 4)
-                       << "\n  rtl    W (profile, euclid, mhm, l1) " << list(rtl, 4) << "\n  serial W (profile) " << ser;
+                       << "\n  rtl    W (profile, euclid, mhm, l1) " << list(rtl, 4) << "\n  serial W (profile) " << ser << ", serial euclid W " << serEuclid;
                     return os.str();
                 });
         return gold[0];

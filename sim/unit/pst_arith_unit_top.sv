@@ -60,11 +60,14 @@ module pst_arith_unit_top #(
   input  logic [4:0]        quad_ser_step_i,
   input  logic              quad_ser_adv_i,
   output logic              quad_ser_done_o,
-  input  logic [2:0]        ser_step_i,
+  input  logic [4:0]        ser_step_i,
   input  logic              ser_adv_i,
   output logic [FW-1:0]     quad_ser_q_o,
   output logic [3*GW-1:0]   quad_ser_gradq_o,
   output logic [WW-1:0]     fw_ser_w_o,
+  output logic              fw_ser_done_o,
+  output logic [WW-1:0]     fw_ser_euclid_w_o,   // the serial euclidean norm, whatever the profile's
+  output logic              fw_ser_euclid_done_o,
   // pst_filter_width
   input  logic [3*GW-1:0]   fw_grad_i,
   input  logic [6*JW-1:0]   fw_j_i,
@@ -104,7 +107,7 @@ module pst_arith_unit_top #(
     .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac),
     .FilterNorm(FilterNorm)
   ) u_width (
-    .clk_i, .rst_ni, .step_i (3'd0), .adv_i (1'b0),
+    .clk_i, .rst_ni, .step_i (5'd0), .adv_i (1'b0), .done_o (),
     .grad_i (fw_grad_i), .j_i (fw_j_i), .w_o (fw_w_o)
   );
 
@@ -113,8 +116,17 @@ module pst_arith_unit_top #(
     .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac),
     .FilterNorm(FilterNorm), .Serial(1'b1)
   ) u_width_ser (
-    .clk_i, .rst_ni, .step_i (ser_step_i), .adv_i (ser_adv_i),
+    .clk_i, .rst_ni, .step_i (ser_step_i), .adv_i (ser_adv_i), .done_o (fw_ser_done_o),
     .grad_i (fw_grad_i), .j_i (fw_j_i), .w_o (fw_ser_w_o)
+  );
+
+  pst_filter_width #(
+    .GradInt(GradInt), .GradFrac(GradFrac), .JacobianInt(JacobianInt),
+    .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac),
+    .FilterNorm(0), .Serial(1'b1)
+  ) u_width_ser_euclid (
+    .clk_i, .rst_ni, .step_i (ser_step_i), .adv_i (ser_adv_i), .done_o (fw_ser_euclid_done_o),
+    .grad_i (fw_grad_i), .j_i (fw_j_i), .w_o (fw_ser_euclid_w_o)
   );
 
   for (genvar n = 0; n < 3; n++) begin : g_norm
@@ -123,7 +135,7 @@ module pst_arith_unit_top #(
       .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac),
       .FilterNorm(n)
     ) u_width_n (
-      .clk_i, .rst_ni, .step_i (3'd0), .adv_i (1'b0),
+      .clk_i, .rst_ni, .step_i (5'd0), .adv_i (1'b0), .done_o (),
       .grad_i (fw_grad_i), .j_i (fw_j_i), .w_o (fw_w_norm_o[n*WW +: WW])
     );
   end
