@@ -50,8 +50,11 @@ struct Profile {
 
     int clutSize() const { return 1 << log2Clut; }
     int octavePasses() const { return (octaves + noiseUnits - 1) / noiseUnits; }
-    // Cycles a fragment spends in the octave stage: the pipeline's rate (one fragment per
-    // this many cycles; the serial filter-width and colour stages take 3 and 4).
+    // The octave stage's nominal cycles per fragment (rtl/pst_top.sv Cycles): the pipeline's
+    // rate as long as the other serial units are shorter (filter width 6, or 16 with euclid;
+    // colour filter 4; the serial quadric 18 with reduced's widths, so a profile with fewer
+    // octave cycles runs at the quadric's rate). Used for simulation timeouts; `pst regress`
+    // reports the measured rate.
     int cyclesPerPixel() const {
         return octavePasses() * noiseSteps + (datapath == Datapath::Serial ? 6 : 0);
     }
