@@ -562,20 +562,10 @@ module pst_top #(
   // Datapath = 1: the six products of the dot products take one multiplier, one per cycle
   // (steps 0..5), the euclidean norm 2 + NSq more (pst_filter_width); the fragment leaves [B]
   // at the module's last step (done).
-  logic [4:0] wstep_q, wstep_d;
-  if (Datapath == 0) begin : g_width_par
-    assign wstep_d = '0;
-  end else begin : g_width_ser
-    always_comb begin
-      wstep_d = wstep_q;
-      if (b_valid && !b_done) wstep_d = wstep_q + 5'd1;
-      else if (b_valid && c_in_ready) wstep_d = '0;
-    end
-  end
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) wstep_q <= '0;
-    else wstep_q <= wstep_d;
-  end
+  logic [4:0] wstep_q;
+  pst_step_counter #(.Width(5)) u_wstep (
+    .clk_i, .rst_ni, .valid_i (b_valid), .done_i (b_done), .ready_i (c_in_ready), .step_o (wstep_q)
+  );
   assign b_ready = b_done & c_in_ready;
 
   pst_filter_width #(
@@ -612,22 +602,11 @@ module pst_top #(
   logic           d_in_ready;
 
   // Datapath = 1: one colour channel per cycle (steps 0..3); the fragment leaves [C] at step 3.
-  logic [1:0] cstep_q, cstep_d;
-  if (Datapath == 0) begin : g_clut_par
-    assign c_done  = 1'b1;
-    assign cstep_d = '0;
-  end else begin : g_clut_ser
-    assign c_done = (cstep_q == 2'd3);
-    always_comb begin
-      cstep_d = cstep_q;
-      if (c_valid && !c_done) cstep_d = cstep_q + 2'd1;
-      else if (c_valid && d_in_ready) cstep_d = '0;
-    end
-  end
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) cstep_q <= '0;
-    else cstep_q <= cstep_d;
-  end
+  logic [1:0] cstep_q;
+  assign c_done = (Datapath == 0) || (cstep_q == 2'd3);
+  pst_step_counter #(.Width(2)) u_cstep (
+    .clk_i, .rst_ni, .valid_i (c_valid), .done_i (c_done), .ready_i (d_in_ready), .step_o (cstep_q)
+  );
   assign c_ready = c_done & d_in_ready;
 
   pst_clut_filter #(

@@ -208,36 +208,29 @@ protected:
         return ok;
     }
 
-    // The serial quadric's step count: the first step at which it raises done_o (found once).
-    static int quadricSteps() {
-        static int steps = 0;
-        if (steps == 0) {
-            for (int k = 0; k < 32 && steps == 0; ++k) {
-                top_->quad_ser_step_i = k;
-                eval();
-                if (top_->quad_ser_done_o) steps = k + 1;
-            }
-            top_->quad_ser_step_i = 0;
+    // A serial unit's step count: the first step at which its done port rises (step port left
+    // at 0 afterwards).
+    template <typename S, typename D>
+    static int stepsUntilDone(S& step, const D& done) {
+        int n = 0;
+        for (int k = 0; k < 32 && n == 0; ++k) {
+            step = S(k);
             eval();
+            if (done) n = k + 1;
         }
-        return steps;
-    }
-
-    // The serial filter width's step count (6, or more for the euclidean norm): the first step
-    // at which it raises done_o (found once).
-    static int widthSteps(bool euclid = false) {
-        static int steps[2] = {0, 0};
-        int& n = steps[euclid ? 1 : 0];
-        if (n == 0) {
-            for (int k = 0; k < 32 && n == 0; ++k) {
-                top_->ser_step_i = k;
-                eval();
-                if (euclid ? top_->fw_ser_euclid_done_o : top_->fw_ser_done_o) n = k + 1;
-            }
-            top_->ser_step_i = 0;
-            eval();
-        }
+        step = 0;
+        eval();
         return n;
+    }
+    // The serial quadric's, the serial filter width's (6, more for the euclidean norm), found once.
+    static int quadricSteps() {
+        static const int n = stepsUntilDone(top_->quad_ser_step_i, top_->quad_ser_done_o);
+        return n;
+    }
+    static int widthSteps(bool euclid = false) {
+        static const int n[2] = {stepsUntilDone(top_->ser_step_i, top_->fw_ser_done_o),
+                                 stepsUntilDone(top_->ser_step_i, top_->fw_ser_euclid_done_o)};
+        return n[euclid ? 1 : 0];
     }
 
     // Quadric: drive, evaluate, compare with the golden model.
