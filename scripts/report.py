@@ -1,97 +1,113 @@
 #!/usr/bin/python3
-"""Collects the main job's JSON files under out/ into one Markdown report (stdout)."""
+"""The main job's report, and the page of one hardware run.
+
+    /usr/bin/python3 scripts/report.py out                      Markdown report on stdout
+    /usr/bin/python3 scripts/report.py out --md out/report.md --html out/report.html
+        Collects out/ (regress.json and its images, out/synth/*.json|md, out/figures, out/sweep,
+        the reference renders) once (pstlib.report_data) and writes both renderings: report.md
+        (tables, links) and report.html (sortable tables, an image viewer per scene, every
+        section with an anchor; one file, no network, opens from file://).
+
+    /usr/bin/python3 scripts/report.py --html FILE --regress JSON [--images DIR]
+    /usr/bin/python3 scripts/report.py --html FILE --summary DIR/summary.json [...]
+        The page of one `pst regress` run (images in DIR/<scene>/<profile>/, default: FILE's
+        folder) or of `pst render --profile` runs (images beside each summary.json): the table
+        and the viewers. `pst regress --html` and `pst render --profile P --html` call this.
+
+Missing or unreadable input: `error: FILE: what is wrong`, exit status 2, no output file.
+"""
+import argparse
 import json
+import os
 import pathlib
-import re
 import sys
 
-
-def fmt(v, digits=4):
-    return "-" if v is None else f"{v:.{digits}f}"
+from pstlib import report_data, report_html, report_md
 
 
-def reference_section(root: pathlib.Path) -> None:
-    reports = sorted(root.glob("*/report.json"))
-    print("## Reference renders\n")
-    if not reports:
-        print("(none)\n")
-        return
-    print("Ground truth: n x n jittered, unfiltered samples per pixel. RMS over RGB in [0, 1].\n")
-    print("| scene | size | fragments | render s | truth s | RMS filtered vs truth | RMS unfiltered vs truth | images |")
-    print("|---|---|---|---|---|---|---|---|")
-    for path in reports:
-        r = json.loads(path.read_text())
-        name = path.parent.name
-        vt = r.get("vs_truth", {})
-        sec = r["seconds"]
-        imgs = " ".join(f"[{k}]({name}/{k}.png)" for k in ("filtered", "unfiltered", "width", "truth")
-                        if (path.parent / f"{k}.png").exists())
-        print(f"| {r['title']} | {r['width']}x{r['height']} | {r['fragments']} | "
-              f"{sec['total'] - sec['truth']:.2f} | {sec['truth']:.2f} | "
-              f"{fmt(vt.get('filtered', {}).get('rms'))} | {fmt(vt.get('unfiltered', {}).get('rms'))} | {imgs} |")
-    print()
+def write_atomic(path: pathlib.Path, text: str) -> None:
+    path.parent.mkdir(parents=True, exist_ok=True)
+    tmp = path.with_name(f".{path.name}.{os.getpid()}.tmp")
+    try:
+        tmp.write_text(text)
+        os.replace(tmp, path)
+    finally:
+        tmp.unlink(missing_ok=True)
 
 
-def regress_section(root: pathlib.Path) -> None:
-    path = root / "regress.json"
-    print("## RTL regression\n")
-    if not path.exists():
-        print("(not run)\n")
-        return
-    runs = json.loads(path.read_text())
-    failed = [r for r in runs if not r["passed"]]
-    print(f"**{'FAILED' if failed else 'PASSED'}**: {len(runs)} runs, {len(failed)} with mismatches against the "
-          "golden model. Error figures: RTL image against the double reference over RGB.\n")
-    print("| scene | profile | pixels | mismatches | cycles/pixel | PSNR dB | within 1 LSB % | max LSB | RTL px/s | images |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
-    for r in runs:
-        name = pathlib.Path(r["scene"]).stem
-        v = r["vs_reference"]
-        d = f"{name}/{r['profile']}"
-        imgs = " ".join(f"[{k}]({d}/{k}.png)" for k in ("rtl", "difference") if (root / d / f"{k}.png").exists())
-        print(f"| {name} | {r['profile']} | {r['pixels_checked']} | {r['mismatches']} | {r['cycles_per_pixel']:.3f} | "
-              f"{v['psnr']:.2f} | {v['within_1lsb_percent']:.2f} | {v['max_lsb']:.0f} | "
-              f"{r['pixels_per_second']['rtl']:.0f} | {imgs} |")
-    notes = sorted({n for r in runs for n in r.get("notes", [])})
-    if notes:
-        print("\nDriver notes (what the hardware does differently from the scene's request):\n")
-        for n in notes:
-            print(f"- {n}")
-    print()
+def load_json(path: pathlib.Path):
+    try:
+        return json.loads(path.read_text())
+    except OSError as e:
+        raise InputError(f"{path}: cannot read: {e.strerror}")
+    except ValueError as e:
+        raise InputError(f"{path}: not JSON: {e}")
 
 
-def include_markdown(title: str, path: pathlib.Path, missing: str, rebase: str = "") -> None:
-    """Includes a Markdown file written by another script; its links are relative to its
-    own folder, so they are re-based onto out/."""
-    print(f"## {title}\n")
-    if not path.exists():
-        print(f"({missing})\n")
-        return
-    text = path.read_text()
-    if rebase:
-        text = re.sub(r"\]\((?!http)([^)]+)\)", lambda m: f"]({rebase}/{m.group(1)})", text)
-    # Demote the included file's own headings below this section's.
-    text = re.sub(r"^(#+) ", lambda m: "#" + m.group(1) + " ", text, flags=re.M)
-    print(text)
-    print()
+class InputError(Exception):
+    pass
 
 
-def main(out_dir: str) -> int:
-    root = pathlib.Path(out_dir)
-    print("# pst: main job report\n")
-    print("Contents: RTL regression (bit-exact against the golden model, error against the double "
-          "reference), gate counts (Yosys), Figure 11 (reference | full | reduced), Figure 10 "
-          "(texture-coordinate precision), the default precision sweep, the reference renders.\n")
-    regress_section(root)
-    for name in ("reduced", "full"):
-        include_markdown(f"Gates: {name}", root / "synth" / f"{name}.md", "not synthesized: scripts/synth.py " + name)
-    include_markdown("Figure 11", root / "figures" / "fig11.md", "not built: scripts/figures.py fig11", "figures")
-    include_markdown("Figure 10", root / "figures" / "fig10.md", "not built: scripts/figures.py fig10", "figures")
-    for sweep in sorted((root / "sweep").glob("*/sweep.md")):
-        include_markdown(f"Precision sweep around {sweep.parent.name}", sweep, "", f"sweep/{sweep.parent.name}")
-    reference_section(root)
-    return 0
+def md_links(root: pathlib.Path):
+    def links(run):
+        d = f"{report_data.scene_stem(run)}/{run['profile']}"
+        return [(k, f"{d}/{k}.png") for k in ("rtl", "difference") if (root / d / f"{k}.png").exists()]
+    return links
+
+
+def page(args) -> report_data.Report:
+    html_path = pathlib.Path(args.html)
+    root = html_path.parent if str(html_path.parent) else pathlib.Path(".")
+    pairs = []
+    if args.regress:
+        runs = load_json(pathlib.Path(args.regress))
+        if not isinstance(runs, list):
+            raise InputError(f"{args.regress}: expected a list of runs (pst regress -o)")
+        images = pathlib.Path(args.images) if args.images else root
+        pairs += [(r, images / report_data.scene_stem(r) / r["profile"]) for r in runs]
+    for s in args.summary or []:
+        p = pathlib.Path(s)
+        pairs.append((load_json(p), p.parent))
+    title = "pst regress" if args.regress else "pst render --profile"
+    rep = report_data.collect_runs(pairs, root, title)
+    rep.subtitle = f"{len(rep.runs)} runs"
+    return rep
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("out", nargs="?", default="out", help="the main job's output folder (default out)")
+    ap.add_argument("--md", help="write the Markdown report here (default: stdout unless --html)")
+    ap.add_argument("--html", help="write the HTML report (or page) here")
+    ap.add_argument("--regress", help="page of one `pst regress -o JSON` run")
+    ap.add_argument("--images", help="with --regress: its --images folder (default: the page's folder)")
+    ap.add_argument("--summary", action="append", help="page of `pst render --profile` runs (repeatable)")
+    ap.add_argument("--embed-all", action="store_true", help="also embed the figures' images (one movable file)")
+    args = ap.parse_args()
+    try:
+        if args.regress or args.summary:
+            if not args.html:
+                raise InputError("--html: a page needs an output file")
+            rep = page(args)
+            write_atomic(pathlib.Path(args.html), report_html.render(rep, embed_all=args.embed_all))
+            return 0
+        root = pathlib.Path(args.out)
+        if not root.is_dir():
+            raise InputError(f"{root}: no such folder (run scripts/run.sh first)")
+        rep = report_data.collect(root)
+        rep.subtitle = "Markdown version: report.md"
+        text = report_md.render(rep, md_links(root))
+        if args.md:
+            write_atomic(pathlib.Path(args.md), text)
+        elif not args.html:
+            sys.stdout.write(text)
+        if args.html:
+            write_atomic(pathlib.Path(args.html), report_html.render(rep, embed_all=args.embed_all))
+        return 0
+    except InputError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1] if len(sys.argv) > 1 else "out"))
+    sys.exit(main())

@@ -10,7 +10,12 @@ PACKAGES=(
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   python3-numpy python3-matplotlib python3-openimageio
+  python3-markdown chromium         # HTML report (scripts/report.py) and its browser test
 )
+# Node.js for the report's browser test (playwright-core): Debian's nodejs/npm unless a node
+# (and npm) is already on the PATH (e.g. another distribution's nodejs package, which has npm).
+command -v node >/dev/null 2>&1 || PACKAGES+=(nodejs)
+command -v npm >/dev/null 2>&1 || PACKAGES+=(npm)
 
 missing=()
 for p in "${PACKAGES[@]}"; do
@@ -21,12 +26,21 @@ done
 
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#PACKAGES[@]} packages present"
-  exit 0
+else
+  echo "setup: installing ${missing[*]}"
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -q
+  $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
 
-echo "setup: installing ${missing[*]}"
-SUDO=""
-if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-export DEBIAN_FRONTEND=noninteractive
-$SUDO apt-get update -q
-$SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
+# The browser test's driver (playwright-core, no browser download: it drives /usr/bin/chromium)
+# from the checked-in lock file, into scripts/tests/browser/node_modules (ignored by git).
+BROWSER_DIR="$(dirname "$0")/tests/browser"
+if [ ! -f "$BROWSER_DIR/node_modules/.package-lock.json" ] ||
+   ! cmp -s "$BROWSER_DIR/package-lock.json" "$BROWSER_DIR/node_modules/.lock-installed"; then
+  echo "setup: npm ci in $BROWSER_DIR"
+  (cd "$BROWSER_DIR" && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error &&
+   cp package-lock.json node_modules/.lock-installed)
+fi

@@ -1,0 +1,261 @@
+"""The report's data: one collection of the main job's outputs under out/ (or of one
+`pst regress` / `pst render --profile` run), rendered by report_md (Markdown) and report_html
+(HTML). Nothing here formats for one renderer: tables are lists of cells, images are paths.
+"""
+import json
+import pathlib
+import re
+from dataclasses import dataclass, field
+from typing import Optional
+
+
+@dataclass
+class Table:
+    """A table both renderers draw: `columns` names, `rows` of cells (str, int, float or None,
+    None drawn as '-'), `fmt` per column a format spec for numbers ('' = as is), `links` per
+    row a dict column -> list of (label, path relative to the report)."""
+    columns: list
+    rows: list
+    fmt: list = field(default_factory=list)
+    links: list = field(default_factory=list)
+    failed: list = field(default_factory=list)     # per row: True when the row is a failure
+
+    def cell(self, r: int, c: int) -> str:
+        v = self.rows[r][c]
+        if v is None:
+            return "-"
+        f = self.fmt[c] if c < len(self.fmt) else ""
+        if f == "auto" and isinstance(v, (int, float)) and not isinstance(v, bool):
+            if isinstance(v, int):
+                return f"{v:,}"
+            return f"{v:,.0f}" if abs(v) >= 1e4 else f"{v:.4g}"
+        if f and isinstance(v, (int, float)) and not isinstance(v, bool):
+            return format(v, f)
+        return str(v)
+
+
+@dataclass
+class Layer:
+    """One image of a scene's viewer: `kind` reference | rtl | golden | truth | difference."""
+    label: str
+    kind: str
+    path: pathlib.Path             # absolute
+    profile: str = ""
+
+
+@dataclass
+class SceneView:
+    name: str
+    layers: list                   # of Layer, reference first
+    runs: list                     # the hardware runs (JSON objects) of this scene
+
+
+@dataclass
+class Included:
+    """A Markdown file written by another script (synth, figures, sweep): its text with links
+    re-based onto the report's folder and its headings demoted below the section's."""
+    title: str
+    anchor: str
+    text: Optional[str]            # None when missing
+    missing: str = ""              # what to run to make it
+    data: dict = field(default_factory=dict)   # a JSON file beside it, when there is one
+
+
+@dataclass
+class Report:
+    title: str
+    root: pathlib.Path             # folder the report's relative links start from
+    subtitle: str = ""
+    runs: list = field(default_factory=list)   # hardware runs (regress.json entries)
+    regress_ran: bool = False
+    scenes: list = field(default_factory=list)  # of SceneView
+    notes: list = field(default_factory=list)   # driver notes
+    gates: list = field(default_factory=list)   # of Included (data: out/synth/<profile>.json)
+    figures: list = field(default_factory=list)  # of Included
+    sweeps: list = field(default_factory=list)   # of Included
+    extras: list = field(default_factory=list)   # of Included (coverage, animations, ...)
+    references: Optional[Table] = None           # the reference renders, None when none
+
+    @property
+    def failed_runs(self) -> list:
+        return [r for r in self.runs if not r.get("passed", False)]
+
+
+def scene_stem(run: dict) -> str:
+    return pathlib.Path(run["scene"]).stem
+
+
+def rel(path: pathlib.Path, root: pathlib.Path) -> str:
+    try:
+        return path.resolve().relative_to(root.resolve()).as_posix()
+    except ValueError:
+        return path.resolve().as_posix()
+
+
+def failures_first(runs: list) -> list:
+    """Failures (most mismatches first), then the rest in their run order."""
+    order = {id(r): i for i, r in enumerate(runs)}
+    return sorted(runs, key=lambda r: (bool(r.get("passed", False)), -int(r.get("mismatches", 0)), order[id(r)]))
+
+
+REGRESS_COLUMNS = ["scene", "profile", "result", "pixels", "mismatches", "PSNR dB", "within 1 LSB %",
+                   "max LSB", "clocks/pixel", "RTL px/s", "golden px/s", "images"]
+REGRESS_FMT = ["", "", "", "d", "d", ".2f", ".2f", ".0f", ".3f", ",.0f", ",.0f", ""]
+
+
+def regress_table(runs: list, image_links) -> Table:
+    """The regression table, failures first. `image_links(run)` gives the row's image links."""
+    t = Table(columns=REGRESS_COLUMNS, rows=[], fmt=REGRESS_FMT)
+    for r in failures_first(runs):
+        v = r.get("vs_reference", {})
+        pps = r.get("pixels_per_second", {})
+        t.rows.append([scene_stem(r), r.get("profile"), "pass" if r.get("passed") else "FAIL",
+                       r.get("pixels_checked"), r.get("mismatches"), v.get("psnr"), v.get("within_1lsb_percent"),
+                       v.get("max_lsb"), r.get("cycles_per_pixel"), pps.get("rtl"), pps.get("golden"), ""])
+        t.failed.append(not r.get("passed", False))
+        t.links.append({"images": image_links(r)})
+    return t
+
+
+def scene_views(runs_dirs: list, truth_dir) -> list:
+    """Viewer layers per scene from (run, image folder) pairs: the reference, each profile's
+    image, the ground truth (truth_dir(stem)/truth.png when it exists) and each profile's
+    difference image."""
+    by_scene = {}
+    for run, d in runs_dirs:
+        by_scene.setdefault(scene_stem(run), []).append((run, pathlib.Path(d)))
+    views = []
+    for stem, items in by_scene.items():
+        layers, diffs, refs = [], [], []
+        for run, d in items:
+            ref = d / "reference.png"
+            if ref.exists() and not any(ref.read_bytes() == r.read_bytes() for r in refs):
+                refs.append(ref)
+                label = "reference" if not refs[:-1] else f"reference ({run['profile']})"
+                layers.append(Layer(label, "reference", ref, run["profile"]))
+        for run, d in items:
+            model = run.get("model", "rtl")
+            img = d / f"{model}.png"
+            if img.exists():
+                layers.append(Layer(f"{run['profile']} ({model})", model, img, run["profile"]))
+            if (d / "difference.png").exists():
+                diffs.append(Layer(f"|{run['profile']} - reference| x8", "difference", d / "difference.png",
+                                   run["profile"]))
+        tdir = truth_dir(stem)
+        if tdir is not None and (pathlib.Path(tdir) / "truth.png").exists():
+            layers.append(Layer("ground truth", "truth", pathlib.Path(tdir) / "truth.png"))
+        layers += diffs
+        if layers:
+            views.append(SceneView(stem, layers, [r for r, _ in items]))
+    return views
+
+
+def read_included(title: str, anchor: str, path: pathlib.Path, root: pathlib.Path, missing: str,
+                  json_path: Optional[pathlib.Path] = None) -> Included:
+    data = {}
+    if json_path is not None and json_path.exists():
+        try:
+            data = json.loads(json_path.read_text())
+        except (OSError, ValueError):
+            data = {}
+    if not path.exists():
+        return Included(title, anchor, None, missing, data)
+    text = path.read_text()
+    base = rel(path.parent, root)
+    if base not in ("", "."):
+        # Relative links and images of the included file start from its own folder.
+        text = re.sub(r"\]\((?![a-z]+:|/|#)([^)]+)\)", lambda m: f"]({base}/{m.group(1)})", text)
+    text = re.sub(r"^(#+) ", lambda m: "#" + m.group(1) + " ", text, flags=re.M)
+    return Included(title, anchor, text, missing, data)
+
+
+def reference_table(root: pathlib.Path) -> Optional[Table]:
+    reports = sorted(root.glob("*/report.json"))
+    if not reports:
+        return None
+    t = Table(columns=["scene", "size", "fragments", "render s", "truth s", "RMS filtered vs truth",
+                       "RMS unfiltered vs truth", "images"],
+              rows=[], fmt=["", "", "d", ".2f", ".2f", ".4f", ".4f", ""])
+    for path in reports:
+        r = json.loads(path.read_text())
+        name = path.parent.name
+        vt = r.get("vs_truth", {})
+        sec = r.get("seconds", {})
+        t.rows.append([r.get("title", name), f"{r['width']}x{r['height']}", r.get("fragments"),
+                       sec.get("total", 0) - sec.get("truth", 0), sec.get("truth"),
+                       vt.get("filtered", {}).get("rms"), vt.get("unfiltered", {}).get("rms"), ""])
+        t.failed.append(False)
+        t.links.append({"images": [(k, f"{name}/{k}.png") for k in ("filtered", "unfiltered", "width", "truth")
+                                   if (path.parent / f"{k}.png").exists()]})
+    return t
+
+
+def collect(out_dir) -> Report:
+    """Everything the main job (scripts/run.sh) left under out_dir."""
+    root = pathlib.Path(out_dir)
+    rep = Report("pst: main job report", root)
+    path = root / "regress.json"
+    if path.exists():
+        rep.regress_ran = True
+        rep.runs = json.loads(path.read_text())
+    runs_dirs = [(r, root / scene_stem(r) / r["profile"]) for r in rep.runs]
+    rep.scenes = scene_views(runs_dirs, lambda stem: root / stem)
+    rep.notes = sorted({n for r in rep.runs for n in r.get("notes", [])})
+    synth = root / "synth"
+    names = ["reduced", "full"]
+    names += sorted(p.stem for p in synth.glob("*.json") if p.stem not in names and "." not in p.stem)
+    for name in names:
+        rep.gates.append(read_included(f"Gates and timing: {name}", f"gates-{name}", synth / f"{name}.md", root,
+                                       f"not synthesized: scripts/synth.py {name}", synth / f"{name}.json"))
+    figs = root / "figures"
+    rep.figures.append(read_included("Figure 11", "fig11", figs / "fig11.md", root,
+                                     "not built: scripts/figures.py fig11"))
+    rep.figures.append(read_included("Figure 10", "fig10", figs / "fig10.md", root,
+                                     "not built: scripts/figures.py fig10"))
+    for sweep in sorted((root / "sweep").glob("*/sweep.md")):
+        rep.sweeps.append(read_included(f"Precision sweep around {sweep.parent.name}",
+                                        f"sweep-{sweep.parent.name}", sweep, root, ""))
+    for sweep in sorted((root / "search").glob("*/*.md")):
+        rep.sweeps.append(read_included(f"Search: {sweep.parent.name}", f"search-{sweep.parent.name}", sweep,
+                                        root, ""))
+    # Later outputs (animations, coverage) as they appear: their Markdown summaries.
+    for kind in ("animations", "coverage"):
+        for md in sorted((root / kind).glob("*.md")):
+            rep.extras.append(read_included(f"{kind.capitalize()}: {md.stem}", f"{kind}-{md.stem}", md, root, ""))
+    rep.references = reference_table(root)
+    return rep
+
+
+def collect_runs(runs_dirs: list, root: pathlib.Path, title: str) -> Report:
+    """One `pst regress --html` or `pst render --profile ... --html` run: (run, image folder)
+    pairs; the ground truth of a scene is <image folder>/../truth.png when present (the
+    layout of `pst render SCENE --truth N` beside `pst render SCENE --profile P`)."""
+    rep = Report(title, root)
+    rep.regress_ran = True
+    rep.runs = [r for r, _ in runs_dirs]
+    # Only a folder named after the scene: <dir>/<scene>/<profile>/ beside <dir>/<scene>/truth.png.
+    dirs = {scene_stem(r): pathlib.Path(d).resolve().parent for r, d in runs_dirs}
+    rep.scenes = scene_views(runs_dirs, lambda stem: dirs[stem] if dirs.get(stem) and dirs[stem].name == stem else None)
+    rep.notes = sorted({n for r in rep.runs for n in r.get("notes", [])})
+    return rep
+
+
+def gate_summary(gates: list) -> Optional[Table]:
+    """Headline figures of each synthesized profile: every number at the top level of
+    out/synth/<profile>.json (logic GE, flip-flops, memory bits, and whatever the synthesis
+    adds: area, Fmax, ...), one column per profile; keys a profile lacks are '-'."""
+    present = [g for g in gates if g.data]
+    if not present:
+        return None
+    keys = []
+    for g in present:
+        for k, v in g.data.items():
+            if isinstance(v, (int, float)) and not isinstance(v, bool) and k not in keys:
+                keys.append(k)
+    t = Table(columns=["figure"] + [g.data.get("profile", g.anchor.split("-", 1)[1]) for g in present], rows=[])
+    t.fmt = [""] + ["auto"] * len(present)
+    for k in keys:
+        t.rows.append([k.replace("_", " ")] + [g.data.get(k) for g in present])
+        t.failed.append(False)
+        t.links.append({})
+    return t
