@@ -1,0 +1,98 @@
+"""pstlib.report_*: the data collected from an out/ folder and its two renderings.
+(The page in a real browser: scripts/tests/browser/report.test.mjs.)"""
+import base64
+import json
+import pathlib
+import re
+import sys
+
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent))
+
+from pstlib import report_data, report_html, report_md  # noqa: E402
+
+# A 1x1 PNG (a real file: the page embeds it as a data: URI).
+PNG = base64.b64decode("iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAIAAACQd1PeAAAADElEQVR4nGP4z8AAAAMBAQDJ/pLvAAAAAElFTkSuQmCC")
+
+
+def run(scene, profile, mismatches, psnr):
+    return {"scene": f"scenes/{scene}.toml", "profile": profile, "model": "rtl", "passed": mismatches == 0,
+            "mismatches": mismatches, "pixels_checked": 4, "cycles_per_pixel": 1.0,
+            "vs_reference": {"psnr": psnr, "within_1lsb_percent": 90.0, "max_lsb": 2},
+            "pixels_per_second": {"rtl": 10.0, "golden": 100.0}, "notes": []}
+
+
+def make_out(tmp: pathlib.Path) -> pathlib.Path:
+    out = tmp / "out"
+    runs = [run("a", "full", 0, 40.0), run("a", "reduced", 2, 30.0), run("b", "full", 0, 50.0),
+            run("b", "reduced", 7, 20.0)]
+    for r in runs:
+        d = out / report_data.scene_stem(r) / r["profile"]
+        d.mkdir(parents=True)
+        for k in ("rtl", "reference", "difference"):
+            (d / f"{k}.png").write_bytes(PNG)
+    (out / "a" / "truth.png").write_bytes(PNG)
+    (out / "regress.json").write_text(json.dumps(runs))
+    (out / "synth").mkdir()
+    (out / "synth" / "reduced.json").write_text(json.dumps({"profile": "reduced", "logic_ge": 98000, "fmax_mhz": 50.5}))
+    (out / "synth" / "full.json").write_text(json.dumps({"profile": "full", "logic_ge": 3000000}))
+    (out / "synth" / "full.md").write_text("## Gates\n\n| a | b |\n|---|---|\n| 1 | 2 |\n")
+    (out / "figures").mkdir()
+    (out / "figures" / "fig11.md").write_text("# Fig\n\n![x](fig11.png) [link](fig11_a.png) [web](https://x.y/z)\n")
+    return out
+
+
+def test_failures_first_most_mismatches_first(tmp_path):
+    rep = report_data.collect(make_out(tmp_path))
+    t = report_data.regress_table(rep.runs, lambda r: [])
+    assert [(row[0], row[1]) for row in t.rows] == [("b", "reduced"), ("a", "reduced"), ("a", "full"), ("b", "full")]
+    assert t.failed == [True, True, False, False]
+
+
+def test_viewer_layers_reference_profiles_truth_differences(tmp_path):
+    rep = report_data.collect(make_out(tmp_path))
+    a = next(v for v in rep.scenes if v.name == "a")
+    # The two profiles' reference images are the same file content: one reference layer.
+    assert [l.kind for l in a.layers] == ["reference", "rtl", "rtl", "truth", "difference", "difference"]
+    b = next(v for v in rep.scenes if v.name == "b")
+    assert "truth" not in [l.kind for l in b.layers]
+
+
+def test_gate_summary_tolerates_missing_keys(tmp_path):
+    rep = report_data.collect(make_out(tmp_path))
+    t = report_data.gate_summary(rep.gates)
+    assert t.columns == ["figure", "reduced", "full"]
+    fmax = next(i for i, r in enumerate(t.rows) if r[0] == "fmax mhz")
+    assert t.cell(fmax, 1) == "50.5" and t.cell(fmax, 2) == "-"
+    md = report_md.render(rep, lambda r: [])
+    assert "(not synthesized: scripts/synth.py reduced)" in md   # json without md
+
+
+def test_included_links_rebased_headings_demoted(tmp_path):
+    rep = report_data.collect(make_out(tmp_path))
+    fig11 = next(f for f in rep.figures if f.anchor == "fig11")
+    assert "](figures/fig11.png)" in fig11.text and "](figures/fig11_a.png)" in fig11.text
+    assert "](https://x.y/z)" in fig11.text
+    assert fig11.text.startswith("## Fig")
+
+
+def test_html_page_self_contained(tmp_path):
+    out = make_out(tmp_path)
+    rep = report_data.collect(out)
+    page = report_html.render(rep)
+    assert not re.search(r"<(script|link|img)[^>]+(src|href)=\"https?:", page)   # no network
+    scripts = re.findall(r"<script[^>]*>(.*?)</script>", page, flags=re.S)
+    specs = [json.loads(s) for s in scripts if s.startswith("{")]
+    assert [s["name"] for s in specs] == ["a", "b"]
+    assert all(l["src"].startswith("data:image/png;base64,") for s in specs for l in s["layers"])
+    assert 'id="scene-a"' in page and 'id="gates"' in page and 'id="fig11"' in page
+    assert '<img alt="x" src="figures/fig11.png"' in page
+    embedded = report_html.render(rep, embed_all=True)
+    assert '<img alt="x" src="data:image/png;base64,' not in embedded   # fig11.png does not exist: left as is
+    (out / "figures" / "fig11.png").write_bytes(PNG)
+    assert '<img alt="x" src="data:image/png;base64,' in report_html.render(rep, embed_all=True)
+
+
+def test_numbers_sort_as_numbers(tmp_path):
+    rep = report_data.collect(make_out(tmp_path))
+    page = report_html.render(rep)
+    assert 'data-v="20.0"' in page and 'data-v="7"' in page
