@@ -16,6 +16,8 @@
 
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include "driver.h"
@@ -59,11 +61,33 @@ struct HwArgs {
     std::string model = "rtl";      // rtl | golden
     SimOptions sim;
     std::string trace;
+    std::string html;               // render --profile --html: the runs' page
 };
 
 std::string sourceDir() {
     const char* d = std::getenv("PST_SOURCE_DIR");
     return d ? d : PST_SOURCE_DIR_DEFAULT;
+}
+
+extern "C" char** environ;
+
+// The HTML page of hardware runs (table, image viewer per scene) is written by
+// scripts/report.py, the one source of the report's pages. Returns 0, or 1 when it fails.
+int writeHtmlPage(const std::string& page, std::vector<std::string> args) {
+    const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+    args.insert(args.begin(), {python, sourceDir() + "/scripts/report.py", "--html", page});
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid;
+    int status = 0;
+    if (posix_spawnp(&pid, python.c_str(), nullptr, nullptr, argv.data(), environ) != 0 ||
+        waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+        std::cerr << "error: --html: " << args[1] << " did not write " << page << "\n";
+        return 1;
+    }
+    std::cout << "page: " << page << "\n";
+    return 0;
 }
 
 // A verilated profile by its name (rtl/configs or PST_EXTRA_PROFILE_DIR), else a name in
@@ -107,6 +131,7 @@ int runHardwareRender(const RenderArgs& a, const HwArgs& hw) {
     Scene scene = loadScene(a.scene, w, h);
     const std::string stem = fs::path(a.scene).stem().string();
     int rc = 0;
+    std::vector<std::string> pageArgs;
     for (const std::string& name : hw.profiles) {
         const Profile p = profileByName(name);
         const fs::path dir = a.outDir.empty() ? fs::path("out") / stem / p.name
@@ -127,6 +152,7 @@ int runHardwareRender(const RenderArgs& a, const HwArgs& hw) {
         writeImage(r.difference, (dir / "difference.png").string());
         writeTextFile((dir / "summary.json").string(),
                       hwJson(a.scene, p, hw.model, r, scene.camera.width, scene.camera.height).dump(2) + "\n");
+        pageArgs.insert(pageArgs.end(), {"--summary", (dir / "summary.json").string()});
         std::cout << stem << " [" << p.name << ", " << hw.model << "]: " << r.fragments << " fragments";
         if (rtl) std::cout << ", " << r.mismatches << " mismatches, " << r.cyclesPerPixel << " cycles/pixel";
         std::cout << ", PSNR vs reference " << r.vsReference.psnr << " dB, " << r.vsReference.within1Lsb
@@ -137,6 +163,7 @@ int runHardwareRender(const RenderArgs& a, const HwArgs& hw) {
             rc = 1;
         }
     }
+    if (!hw.html.empty()) rc = std::max(rc, writeHtmlPage(hw.html, pageArgs));
     return rc;
 }
 
@@ -332,6 +359,7 @@ int main(int argc, char** argv) {
     render->add_option("--trace", hw.trace, "FST waveform of the RTL run (off unless given)");
     render->add_option("--trace-start", hw.sim.traceStart, "First traced cycle");
     render->add_option("--trace-end", hw.sim.traceEnd, "Last traced cycle");
+    render->add_option("--html", hw.html, "With --profile: also an HTML page of the runs (table, image viewer)");
     addSimOptions(render);
 
     std::string texPath, fragPath, evalOut, filterName, evalModel = "reference";
@@ -353,6 +381,9 @@ int main(int argc, char** argv) {
     regress->add_option("--profile", hw.profiles, "Profiles (default: every verilated profile)");
     regress->add_option("-o,--out", regOut, "JSON summary file");
     regress->add_option("--images", regImages, "Also write <dir>/<scene>/<profile>/{rtl,reference,difference}.png");
+    std::string regHtml;
+    regress->add_option("--html", regHtml, "Also an HTML page: table, image viewer per scene (images to --images, "
+                        "default the page's folder; JSON to -o, default beside the page)");
     addSimOptions(regress);
 
     std::string fragScene, fragOut;
@@ -375,7 +406,10 @@ int main(int argc, char** argv) {
         return rc == 0 ? 0 : 2;
     }
     try {
-        if (*render) return hw.profiles.empty() ? runRender(ra) : runHardwareRender(ra, hw);
+        if (*render) {
+            if (!hw.html.empty() && hw.profiles.empty()) throw InputError("--html: needs --profile");
+            return hw.profiles.empty() ? runRender(ra) : runHardwareRender(ra, hw);
+        }
         if (*eval) {
             if (evalModel != "reference" && hw.profiles.empty()) hw.profiles = {"full"};
             return runEval(texPath, fragPath, evalOut, filterName, evalModel, hw);
@@ -387,7 +421,12 @@ int main(int argc, char** argv) {
                     if (e.path().extension() == ".toml") regScenes.push_back(e.path().string());
                 std::sort(regScenes.begin(), regScenes.end());
             }
-            return runRegress(regScenes, regSize, hw, regOut, regImages);
+            if (regHtml.empty()) return runRegress(regScenes, regSize, hw, regOut, regImages);
+            const fs::path page(regHtml), dir = page.parent_path().empty() ? fs::path(".") : page.parent_path();
+            const std::string json = regOut.empty() ? (dir / (page.stem().string() + ".json")).string() : regOut;
+            const std::string images = regImages.empty() ? dir.string() : regImages;
+            const int rc = runRegress(regScenes, regSize, hw, json, images);
+            return std::max(rc, writeHtmlPage(regHtml, {"--regress", json, "--images", images}));
         }
         if (*frag) return runFragments(fragScene, fragSize, fragLayer, fragOut);
         if (*cmp) return runCompare(cmpA, cmpB);
