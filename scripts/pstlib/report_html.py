@@ -135,8 +135,11 @@ def render(rep: Report, embed_all: bool = False) -> str:
         section("regression", "RTL regression", '<p class="missing">(not run)</p>')
 
     if rep.scenes:
-        parts = [f"<p>{esc(VIEWER_HELP)}</p>\n"]
-        for v in rep.scenes:
+        # Scenes with a failing run first, as in the table.
+        views = sorted(rep.scenes, key=lambda v: all(r.get("passed", False) for r in v.runs))
+        links = " ".join(f'<a href="#scene-{esc(v.name)}">{esc(v.name)}</a>' for v in views)
+        parts = [f"<p>{esc(VIEWER_HELP)}</p>\n<p class=\"scene-links\">Scenes: {links}</p>\n"]
+        for v in views:
             parts.append(anchor_heading(3, f"scene-{v.name}", v.name))
             parts.append(scene_stats(v))
             parts.append(viewer(v, rep.root))
