@@ -240,6 +240,28 @@ def collect_runs(runs_dirs: list, root: pathlib.Path, title: str) -> Report:
     return rep
 
 
+# Nested objects of a synthesis JSON that are per-module listings, not headline figures.
+NOT_FIGURES = {"blocks", "depth", "seconds", "modules", "count"}
+
+
+def flatten_figures(data: dict) -> dict:
+    """The numbers (and yes/no flags) at the top level of a JSON object and one level down
+    ("timing fmax_mhz"), in file order."""
+    out = {}
+    for k, v in data.items():
+        if isinstance(v, bool):
+            out[k] = "yes" if v else "no"
+        elif isinstance(v, (int, float)):
+            out[k] = v
+        elif isinstance(v, dict) and k not in NOT_FIGURES:
+            for k2, v2 in v.items():
+                if isinstance(v2, bool):
+                    out[f"{k} {k2}"] = "yes" if v2 else "no"
+                elif isinstance(v2, (int, float)):
+                    out[f"{k} {k2}"] = v2
+    return out
+
+
 def gate_summary(gates: list) -> Optional[Table]:
     """Headline figures of each synthesized profile: every number at the top level of
     out/synth/<profile>.json (logic GE, flip-flops, memory bits, and whatever the synthesis
@@ -247,15 +269,14 @@ def gate_summary(gates: list) -> Optional[Table]:
     present = [g for g in gates if g.data]
     if not present:
         return None
+    flat = [flatten_figures(g.data) for g in present]
     keys = []
-    for g in present:
-        for k, v in g.data.items():
-            if isinstance(v, (int, float)) and not isinstance(v, bool) and k not in keys:
-                keys.append(k)
+    for f in flat:
+        keys += [k for k in f if k not in keys]
     t = Table(columns=["figure"] + [g.data.get("profile", g.anchor.split("-", 1)[1]) for g in present], rows=[])
     t.fmt = [""] + ["auto"] * len(present)
     for k in keys:
-        t.rows.append([k.replace("_", " ")] + [g.data.get(k) for g in present])
+        t.rows.append([k.replace("_", " ")] + [f.get(k) for f in flat])
         t.failed.append(False)
         t.links.append({})
     return t

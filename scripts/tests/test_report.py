@@ -33,7 +33,9 @@ def make_out(tmp: pathlib.Path) -> pathlib.Path:
     (out / "a" / "truth.png").write_bytes(PNG)
     (out / "regress.json").write_text(json.dumps(runs))
     (out / "synth").mkdir()
-    (out / "synth" / "reduced.json").write_text(json.dumps({"profile": "reduced", "logic_ge": 98000, "fmax_mhz": 50.5}))
+    (out / "synth" / "reduced.json").write_text(json.dumps({"profile": "reduced", "logic_ge": 98000, "fmax_mhz": 50.5,
+                "timing": {"fmax_mhz": 51.25, "worst": {"slack_ns": -1}}, "throughput": {"meets_realtime": True},
+                "depth": {"pst_noise": 40}}))
     (out / "synth" / "full.json").write_text(json.dumps({"profile": "full", "logic_ge": 3000000}))
     (out / "synth" / "full.md").write_text("## Gates\n\n| a | b |\n|---|---|\n| 1 | 2 |\n")
     (out / "figures").mkdir()
@@ -63,6 +65,9 @@ def test_gate_summary_tolerates_missing_keys(tmp_path):
     assert t.columns == ["figure", "reduced", "full"]
     fmax = next(i for i, r in enumerate(t.rows) if r[0] == "fmax mhz")
     assert t.cell(fmax, 1) == "50.5" and t.cell(fmax, 2) == "-"
+    figures = [r[0] for r in t.rows]
+    assert "timing fmax mhz" in figures and "throughput meets realtime" in figures
+    assert not any(f.startswith(("depth", "timing worst")) for f in figures)   # listings, objects 2 deep
     md = report_md.render(rep, lambda r: [])
     assert "(not synthesized: scripts/synth.py reduced)" in md   # json without md
 
