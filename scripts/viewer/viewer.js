@@ -76,7 +76,7 @@
       loaded: 0,
     };
     const imgs = L.map(() => new Image());
-    const pixels = L.map(() => null);   // ImageData per layer, for the readout
+    const pixels = L.map(() => null);   // ImageData per layer for the readout (false: unreadable)
 
     // Controls
     const bar = el("div", { class: "pv-bar" });
@@ -173,6 +173,7 @@
     }
 
     function value(i, x, y) {
+      if (pixels[i] === null && imgs[i].naturalWidth) pixels[i] = readPixels(imgs[i]);
       const p = pixels[i];
       if (!p) return null;
       const lx = Math.floor((x * p.width) / W), ly = Math.floor((y * p.height) / H);
@@ -236,15 +237,17 @@
       e.preventDefault();
     });
 
-    // Images: data: URIs, decoded once; each one's pixels kept for the readout.
+    // Images: data: URIs, decoded once; each one's pixels read at the first readout.
+    function readPixels(img) {
+      const c = document.createElement("canvas");
+      c.width = img.naturalWidth;
+      c.height = img.naturalHeight;
+      const x = c.getContext("2d", { willReadFrequently: true });
+      x.drawImage(img, 0, 0);
+      try { return x.getImageData(0, 0, c.width, c.height); } catch (err) { return false; }
+    }
     L.forEach((l, i) => {
       imgs[i].onload = () => {
-        const c = document.createElement("canvas");
-        c.width = imgs[i].naturalWidth;
-        c.height = imgs[i].naturalHeight;
-        const x = c.getContext("2d");
-        x.drawImage(imgs[i], 0, 0);
-        try { pixels[i] = x.getImageData(0, 0, c.width, c.height); } catch (err) { pixels[i] = null; }
         st.loaded += 1;
         root.dataset.loaded = String(st.loaded);
         geometry();
