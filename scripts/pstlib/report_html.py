@@ -59,7 +59,11 @@ def table(t: Table, sortable: bool = False, cls: str = "") -> str:
 
 
 def md_to_html(text: str) -> str:
-    return markdown.markdown(text, extensions=["tables"], output_format="html")
+    """Markdown (python3-markdown, tables) to HTML; a link to an image file (the sweep's plots)
+    also shows the image under it."""
+    page = markdown.markdown(text, extensions=["tables"], output_format="html")
+    return re.sub(r'(<a href="([^"]+\.(?:png|gif|jpe?g|svg|webp))">([^<]*)</a>)',
+                  lambda m: f'{m.group(1)}<br><img class="plot" src="{m.group(2)}" alt="{m.group(3)}">', page)
 
 
 def embed_images(page: str, root: pathlib.Path) -> str:

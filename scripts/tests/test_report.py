@@ -91,6 +91,7 @@ def test_html_page_self_contained(tmp_path):
     assert all(l["src"].startswith("data:image/png;base64,") for s in specs for l in s["layers"])
     assert 'id="scene-a"' in page and 'id="gates"' in page and 'id="fig11"' in page
     assert '<img alt="x" src="figures/fig11.png"' in page
+    assert '<a href="figures/fig11_a.png">link</a><br><img class="plot" src="figures/fig11_a.png" alt="link">' in page
     embedded = report_html.render(rep, embed_all=True)
     assert '<img alt="x" src="data:image/png;base64,' not in embedded   # fig11.png does not exist: left as is
     (out / "figures" / "fig11.png").write_bytes(PNG)

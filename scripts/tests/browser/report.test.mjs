@@ -69,6 +69,9 @@ fs.writeFileSync(path.join(OUT, "synth/reduced.md"), "## Gates: profile `reduced
 fs.mkdirSync(path.join(OUT, "figures"));
 fs.copyFileSync(path.join(OUT, "zoneplate/reduced/rtl.png"), path.join(OUT, "figures/fig11.png"));
 fs.writeFileSync(path.join(OUT, "figures/fig11.md"), "## Figure 11\n\n![fig11](fig11.png)\n");
+fs.mkdirSync(path.join(OUT, "sweep/reduced/knobs"), { recursive: true });
+fs.copyFileSync(path.join(OUT, "planet/full/rtl.png"), path.join(OUT, "sweep/reduced/knobs/octaves.png"));
+fs.writeFileSync(path.join(OUT, "sweep/reduced/sweep.md"), "## Plots\n\n- [octaves](knobs/octaves.png)\n");
 // One run marked failed (as a mismatch would leave it): the page must put it first.
 const runs = JSON.parse(fs.readFileSync(path.join(OUT, "regress.json"), "utf8"));
 const failing = runs.find((r) => r.scene.endsWith("planet.toml") && r.profile === "reduced");
@@ -100,7 +103,7 @@ try {
       (i) => ({ src: i.alt, w: i.naturalWidth })));
     return { all, layers };
   });
-  check(imgs.all.length >= 1 && imgs.all.every((i) => i.w > 0), `${imgs.all.length} <img> elements load`,
+  check(imgs.all.length === 2 && imgs.all.every((i) => i.w > 0), `${imgs.all.length} <img> elements load`,
         JSON.stringify(imgs.all.filter((i) => !(i.w > 0))));
   // Per scene: reference, full, reduced, difference x 2; zoneplate also the ground truth.
   check(imgs.layers.length === 2 * 5 + 1 && imgs.layers.every((i) => i.w > 0),
@@ -108,7 +111,7 @@ try {
 
   // Sections with anchors
   const ids = await page.evaluate(() => ["regression", "images", "scene-zoneplate", "scene-planet", "gates",
-    "gates-reduced", "gates-full", "fig11", "fig10", "references"].filter((id) => !document.getElementById(id)));
+    "gates-reduced", "gates-full", "fig11", "fig10", "sweeps", "sweep-reduced", "references"].filter((id) => !document.getElementById(id)));
   check(ids.length === 0, "sections have anchors", "missing " + ids.join(", "));
   const gateText = await page.textContent("#gates");
   check(gateText.includes("12,345") && gateText.includes("99.5") && gateText.includes("not synthesized"),
