@@ -2,6 +2,9 @@
 // See noise.h and DESIGN.md section 2 "Noise".
 #include "noise.h"
 
+#include "perlin2002.h"
+#include "worley.h"
+
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
@@ -31,6 +34,31 @@ bool parseNoiseHash(const std::string& name, NoiseHash* out) {
     else return false;
     return true;
 }
+
+bool parseNoiseBasis(const std::string& name, NoiseBasis* out) {
+    if (name == "rayshade") *out = NoiseBasis::Rayshade;
+    else if (name == "perlin2002") *out = NoiseBasis::Perlin2002;
+    else if (name == "worley") *out = NoiseBasis::Worley;
+    else return false;
+    return true;
+}
+
+bool parseWorleyMetric(const std::string& name, WorleyMetric* out) {
+    if (name == "euclid") *out = WorleyMetric::Euclid;
+    else if (name == "manhattan") *out = WorleyMetric::Manhattan;
+    else return false;
+    return true;
+}
+
+const char* toString(NoiseBasis v) {
+    switch (v) {
+    case NoiseBasis::Rayshade: return "rayshade";
+    case NoiseBasis::Perlin2002: return "perlin2002";
+    case NoiseBasis::Worley: return "worley";
+    }
+    return "?";
+}
+const char* toString(WorleyMetric v) { return v == WorleyMetric::Euclid ? "euclid" : "manhattan"; }
 
 const char* toString(NoiseInterp v) { return v == NoiseInterp::SCurve ? "scurve" : "linear"; }
 const char* toString(NoiseCorner v) {
@@ -114,6 +142,8 @@ int noiseHash(int ix, int iy, int iz, NoiseHash hash) {
 // ---- Noise3 -------------------------------------------------------------------------------
 
 double noise(const glm::dvec3& p, const NoiseOptions& opt, glm::dvec3* grad) {
+    if (opt.basis == NoiseBasis::Perlin2002) return perlin2002(p, grad);
+    if (opt.basis == NoiseBasis::Worley) return worleyBasis(p, opt, grad);
     if (grad) *grad = glm::dvec3(0.0);
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return 0.0;
     const NoiseTables& tables = NoiseTables::get();

@@ -1,6 +1,8 @@
 // Rayshade noise (Skinner & Kolb, noise.c of Rayshade 4.0) in double precision,
 // with its analytic gradient and the cheaper variants the hardware may use.
 // Paper: Hart et al. 1999, section 2.1.3; DESIGN.md section 2 "Noise".
+// Two later bases share the entry point noise(p, opt, grad) through NoiseOptions::basis:
+// Perlin's 2002 improved noise (perlin2002.h) and Worley's 1996 cellular basis (worley.h).
 //
 // n(p) = sum over the 8 corners c of the lattice cell of p of
 //            w_c(p) * (0.5 R[m_c] + R[m_c+1] dx + R[m_c+2] dy + R[m_c+3] dz),
@@ -44,10 +46,28 @@ enum class NoiseHash {
 // noise then repeats every 256 lattice cells instead of 4096. P is built like Rayshade's
 // table: a fresh srand48(1) stream, for i = 255 down to 1 swap P[i], P[(int)(drand48()*256)].
 
+// The basis function n of eq. 1, chosen per texture (every octave uses the same basis).
+enum class NoiseBasis {
+    Rayshade,    // the paper's: Rayshade's value-gradient noise (interp, corner, hash apply)
+    Perlin2002,  // Perlin's improved noise, bit for bit his ImprovedNoise.java (perlin2002.h)
+    Worley,      // Worley's cellular basis sum_k C_k F_k + C_cell cell(ID_1) (worley.h)
+};
+
+// The distance of Worley's basis.
+enum class WorleyMetric {
+    Euclid,     // |d|_2: cells are Voronoi cells, grad F_k the unit vector from point k
+    Manhattan,  // |d|_1: "rigidly rectangular" regions (Worley, Fig. 3), grad F_k = sign(d)
+};
+
 struct NoiseOptions {
     NoiseInterp interp = NoiseInterp::SCurve;
     NoiseCorner corner = NoiseCorner::ValueGradient;
     NoiseHash hash = NoiseHash::Rayshade4096;
+    NoiseBasis basis = NoiseBasis::Rayshade;
+    // Worley only: n = C1 F1 + C2 F2 + C3 F3 + C4 F4 + cell * cell(ID of the nearest point).
+    WorleyMetric metric = WorleyMetric::Euclid;
+    std::array<double, 4> coef = {1.0, 0.0, 0.0, 0.0};
+    double cell = 0.0;
 };
 
 // Parse/print the enum names used in scene files ("scurve", "linear", "value_gradient",
@@ -55,9 +75,13 @@ struct NoiseOptions {
 bool parseNoiseInterp(const std::string& name, NoiseInterp* out);
 bool parseNoiseCorner(const std::string& name, NoiseCorner* out);
 bool parseNoiseHash(const std::string& name, NoiseHash* out);
+bool parseNoiseBasis(const std::string& name, NoiseBasis* out);  // rayshade|perlin2002|worley
+bool parseWorleyMetric(const std::string& name, WorleyMetric* out);  // euclid | manhattan
 const char* toString(NoiseInterp v);
 const char* toString(NoiseCorner v);
 const char* toString(NoiseHash v);
+const char* toString(NoiseBasis v);
+const char* toString(WorleyMetric v);
 
 // The tables of Rayshade's NoiseInit(), built once on first use (thread-safe). The
 // srand48(1)/drand48() stream is reproduced with erand48 on a private state, so building
@@ -92,6 +116,7 @@ int noiseHash(int ix, int iy, int iz, NoiseHash hash);
 // p > -1e6, see "Domain" above). |n| <= 3.5 always (ValueGradient; 0.5 for ValueOnly).
 // The gradient is exact inside a cell; on a lattice plane it is the one-sided derivative
 // from the cell above (SCURVE noise is C1 there, Linear noise only C0).
+// opt.basis Perlin2002 / Worley hand p to perlin2002() / worleyBasis() (their headers).
 double noise(const glm::dvec3& p, const NoiseOptions& opt = {}, glm::dvec3* grad = nullptr);
 
 }  // namespace pst
