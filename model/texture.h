@@ -51,6 +51,9 @@ struct Texture {
     ColorMap clut;
     FilterKind filter = FilterKind::Sat;
     GradNorm norm = GradNorm::Euclid;
+    // "FILE:LINE: FIELD" of the noise basis in its scene file (set by the parser when the basis
+    // is given), so a consumer that cannot do the basis (the hardware profiles) names it.
+    std::string basisSource;
 };
 
 // The per-fragment result of the texture pipeline.

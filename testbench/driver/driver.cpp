@@ -4,6 +4,7 @@
 
 #include "clut_filter_fx.h"
 #include "fixed.h"
+#include "input_error.h"
 
 namespace pst {
 namespace {
@@ -30,7 +31,16 @@ std::pair<uint16_t, uint32_t> controlWrite(const Texture& tex, int filterKind) {
     return {0x0000, clamp | (uint32_t(filterKind) << 1)};
 }
 
+std::string hardwareUnsupported(const Profile& p, const Texture& tex) {
+    if (tex.noise.basis == NoiseBasis::Rayshade) return "";
+    const std::string where =
+        tex.basisSource.empty() ? "texture '" + tex.name + "': noise.basis" : tex.basisSource;
+    return where + ": basis '" + toString(tex.noise.basis) + "' has no hardware unit yet (profile '" + p.name +
+           "' implements the paper's basis rayshade only); render it with the reference model (no --profile)";
+}
+
 TextureProgram programTexture(const Profile& p, const Texture& tex) {
+    if (std::string why = hardwareUnsupported(p, tex); !why.empty()) throw InputError(why);
     TextureProgram prog;
     std::ostringstream notes;
     prog.filterKind = hardwareFilterKind(tex.filter);

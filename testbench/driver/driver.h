@@ -30,6 +30,13 @@ struct TextureProgram {
 // the hardware's box filter is the SAT).
 int hardwareFilterKind(FilterKind k);
 
+// Empty if profile p can run texture tex, else why not, as "FILE:LINE: FIELD: what" when the
+// scene file named the field: the hardware has only the paper's Rayshade basis so far
+// (perlin2002 and worley are reference-only).
+std::string hardwareUnsupported(const Profile& p, const Texture& tex);
+
+// Throws InputError (hardwareUnsupported's message) for a texture the profile cannot run,
+// rather than program the profile's own noise in its place.
 TextureProgram programTexture(const Profile& p, const Texture& tex);
 // Only the control register (wrap, filter kind), e.g. to render the unfiltered image.
 std::pair<uint16_t, uint32_t> controlWrite(const Texture& tex, int filterKind);

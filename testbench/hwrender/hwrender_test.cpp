@@ -147,6 +147,29 @@ TEST_P(EveryProfile, ScoreboardNamesAPerturbedStage) {
     }
 }
 
+// A texture with a reference-only noise basis is refused (not rendered with the profile's
+// Rayshade noise in its place), naming the scene file, line and field.
+TEST_P(EveryProfile, RefusesReferenceOnlyBases) {
+    const Profile p = profile(GetParam());
+    const std::string path = sourceDir() + "/scenes/bases.toml";
+    Scene scene = loadScene(path, 16, 16);
+    int refused = 0;
+    for (const Texture& tex : scene.textures) {
+        const std::string why = hardwareUnsupported(p, tex);
+        if (tex.noise.basis == NoiseBasis::Rayshade) {
+            EXPECT_EQ(why, "") << tex.name;
+            continue;
+        }
+        EXPECT_NE(why.find(path + ":"), std::string::npos) << why;
+        EXPECT_NE(why.find("textures." + tex.name + ".noise.basis: basis '"), std::string::npos) << why;
+        EXPECT_THROW(programTexture(p, tex), InputError);
+        ++refused;
+    }
+    EXPECT_EQ(refused, 8);
+    auto rtl = makeRtlModel(p.name, {});
+    EXPECT_THROW(renderHardware(scene, p, rtl.get()), InputError);
+}
+
 INSTANTIATE_TEST_SUITE_P(Profiles, EveryProfile, ::testing::ValuesIn(rtlProfiles()));
 
 }  // namespace

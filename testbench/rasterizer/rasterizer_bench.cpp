@@ -53,6 +53,7 @@ void BM_RenderScene256(benchmark::State& st, const char* name) {
 }
 BENCHMARK_CAPTURE(BM_RenderScene256, wood_teapot, "wood_teapot")->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_RenderScene256, planet, "planet")->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_RenderScene256, bases, "bases")->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace pst

@@ -235,10 +235,40 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
         const std::string np = join(path, "noise");
         auto nt = nn->as_table();
         if (!nt) c.fail(nn, np, "expected a table");
-        checkKeys(c, *nt, np, {"interp", "corner", "hash"});
-        tex.noise.interp = getEnum(c, *nt, np, "interp", tex.noise.interp, parseNoiseInterp, "scurve or linear");
-        tex.noise.corner = getEnum(c, *nt, np, "corner", tex.noise.corner, parseNoiseCorner, "value_gradient or value");
-        tex.noise.hash = getEnum(c, *nt, np, "hash", tex.noise.hash, parseNoiseHash, "rayshade or perm256");
+        checkKeys(c, *nt, np, {"basis", "interp", "corner", "hash", "metric", "coef", "cell"});
+        NoiseOptions& no = tex.noise;
+        no.basis = getEnum(c, *nt, np, "basis", no.basis, parseNoiseBasis, "rayshade, perlin2002 or worley");
+        if (const toml::node* bn = find(*nt, "basis")) {
+            std::ostringstream os;
+            os << c.file;
+            if (bn->source().begin.line > 0) os << ":" << bn->source().begin.line;
+            os << ": " << join(np, "basis");
+            tex.basisSource = os.str();
+        }
+        // Each basis takes only its own keys, so a key that would be ignored is an error.
+        for (const char* k : {"interp", "corner", "hash"})
+            if (no.basis != NoiseBasis::Rayshade && find(*nt, k))
+                c.fail(find(*nt, k), join(np, k), std::string("applies to basis rayshade only (basis is ") +
+                                                      toString(no.basis) + ")");
+        for (const char* k : {"metric", "coef", "cell"})
+            if (no.basis != NoiseBasis::Worley && find(*nt, k))
+                c.fail(find(*nt, k), join(np, k), std::string("applies to basis worley only (basis is ") +
+                                                      toString(no.basis) + ")");
+        no.interp = getEnum(c, *nt, np, "interp", no.interp, parseNoiseInterp, "scurve or linear");
+        no.corner = getEnum(c, *nt, np, "corner", no.corner, parseNoiseCorner, "value_gradient or value");
+        no.hash = getEnum(c, *nt, np, "hash", no.hash, parseNoiseHash, "rayshade or perm256");
+        no.metric = getEnum(c, *nt, np, "metric", no.metric, parseWorleyMetric, "euclid or manhattan");
+        if (const toml::node* cn = find(*nt, "coef")) {
+            // [C1, C2, C3, C4] of sum C_k F_k; missing trailing entries are 0.
+            auto v = asNumbers(c, *cn, join(np, "coef"), 1, 4);
+            no.coef = {0.0, 0.0, 0.0, 0.0};
+            for (size_t k = 0; k < v.size(); ++k) no.coef[k] = v[k];
+        }
+        no.cell = getNumber(c, *nt, np, "cell", 0.0);
+        if (no.basis == NoiseBasis::Worley && no.cell == 0.0 &&
+            std::all_of(no.coef.begin(), no.coef.end(), [](double x) { return x == 0.0; }))
+            c.fail(find(*nt, "coef") ? find(*nt, "coef") : nn, join(np, "coef"),
+                   "every coefficient and cell are 0: the basis would be constant");
     }
     tex.filter = getEnum(c, t, path, "filter", tex.filter, parseFilterKind, "none, mip, mip_linear, sat or box");
     tex.norm = getEnum(c, t, path, "norm", tex.norm, parseGradNorm, "euclid, max_half_min or l1");

@@ -80,7 +80,7 @@ TEST(Scene, MatrixIsRowsAsWritten) {
 
 TEST(Scene, EveryPaperSceneParses) {
     const char* names[] = {"wood_teapot", "marble", "seascape", "fire", "planet", "moonrise",
-                           "zoneplate", "wood_torus"};
+                           "zoneplate", "wood_torus", "bases"};
     for (const char* n : names) {
         SCOPED_TRACE(n);
         Scene s = loadScene(sourceDir() + "/scenes/" + n + ".toml");
@@ -118,6 +118,47 @@ TEST(Scene, ErrorsNameFileLineAndField) {
     expectError("[image]\nwidth = = 3\n", {"bad.toml:2:"});
     expectError(std::string(kMinimal) + "\n[[objects]]\nmesh = \"cube\"\ntexture = \"t\"\nfilter = 3\n",
                 {"bad.toml:21:", "objects[1].filter", "unknown key"});
+}
+
+// kMinimal with a noise table on line 9.
+std::string withNoise(const std::string& noise) {
+    std::string t = kMinimal;
+    const std::string q = "quadric = { A = 1.0 }";
+    return t.replace(t.find(q), q.size(), q + "\nnoise = " + noise);
+}
+
+TEST(Scene, NoiseBasis) {
+    Scene s = parseScene(withNoise("{ basis = \"worley\", metric = \"manhattan\", coef = [-1.0, 1.0], cell = 0.5 }"),
+                         "ok.toml");
+    const NoiseOptions& n = s.textures[0].noise;
+    EXPECT_EQ(n.basis, NoiseBasis::Worley);
+    EXPECT_EQ(n.metric, WorleyMetric::Manhattan);
+    EXPECT_EQ(n.coef, (std::array<double, 4>{-1.0, 1.0, 0.0, 0.0}));
+    EXPECT_EQ(n.cell, 0.5);
+    EXPECT_EQ(s.textures[0].basisSource, "ok.toml:9: textures.t.noise.basis");
+    s = parseScene(withNoise("{ basis = \"perlin2002\" }"), "ok.toml");
+    EXPECT_EQ(s.textures[0].noise.basis, NoiseBasis::Perlin2002);
+    // Default: Rayshade, no source.
+    s = parseScene(kMinimal, "ok.toml");
+    EXPECT_EQ(s.textures[0].noise.basis, NoiseBasis::Rayshade);
+    EXPECT_EQ(s.textures[0].basisSource, "");
+
+    expectError(withNoise("{ basis = \"simplex\" }"),
+                {"bad.toml:9:", "textures.t.noise.basis", "unknown value 'simplex'", "perlin2002"});
+    expectError(withNoise("{ basis = 3 }"), {"bad.toml:9:", "textures.t.noise.basis", "expected a string"});
+    expectError(withNoise("{ basis = \"perlin2002\", interp = \"linear\" }"),
+                {"bad.toml:9:", "textures.t.noise.interp", "rayshade only"});
+    expectError(withNoise("{ coef = [1.0] }"), {"bad.toml:9:", "textures.t.noise.coef", "worley only"});
+    expectError(withNoise("{ basis = \"worley\", metric = \"chebyshev\" }"),
+                {"bad.toml:9:", "textures.t.noise.metric", "euclid or manhattan"});
+    expectError(withNoise("{ basis = \"worley\", coef = [1, 2, 3, 4, 5] }"),
+                {"bad.toml:9:", "textures.t.noise.coef", "expected 1 to 4 numbers"});
+    expectError(withNoise("{ basis = \"worley\", coef = [1.0, nan] }"),
+                {"bad.toml:9:", "textures.t.noise.coef[1]", "NaN"});
+    expectError(withNoise("{ basis = \"worley\", coef = [0.0, 0.0] }"),
+                {"bad.toml:9:", "textures.t.noise.coef", "constant"});
+    expectError(withNoise("{ basis = \"worley\", cell = inf }"), {"bad.toml:9:", "textures.t.noise.cell", "infinite"});
+    expectError(withNoise("{ basis = \"worley\", seed = 1 }"), {"bad.toml:9:", "textures.t.noise.seed", "unknown key"});
 }
 
 TEST(Scene, TextureBlockFile) {
