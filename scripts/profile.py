@@ -1,14 +1,9 @@
 #!/usr/bin/python3
 """Turns a hardware profile (rtl/configs/NAME.toml) into SystemVerilog top-level parameters.
 
-The profile is the one place where the hardware's widths live; the C++ golden model reads the
-same file (model/golden/profile.cpp). Parameter names follow one rule:
-  [pipeline] key        -> UpperCamel(key)                 octaves -> Octaves
-  [noise] key           -> "Noise" + UpperCamel(key)       out_frac -> NoiseOutFrac
-  [filter] key          -> "Filter" + UpperCamel(key)      norm -> FilterNorm
-  [formats] name.int    -> UpperCamel(name) + "Int"        coord.int -> CoordInt
-  [formats] name_frac   -> UpperCamel(name_frac)           width_frac -> WidthFrac
-Enumerations become their index in ENUMS (the order of the C++ enums in model/*.h).
+A thin CLI over pstlib.contract: the profile schema (keys, ranges, enums, cross-constraints)
+and the parameter-naming rule live in rtl/contract.toml; the profile is checked against it
+before anything is printed. Enumerations become their index (pst_pkg's localparams).
 
   profile.py PROFILE.toml --verilator   one -GName=value per line
   profile.py PROFILE.toml --yosys       chparam -set Name value ... (one line per parameter)
@@ -17,58 +12,12 @@ Enumerations become their index in ENUMS (the order of the C++ enums in model/*.
                                          top that declares only some of them)
 """
 import sys
-import tomllib
+from pathlib import Path
 
-ENUMS = {
-    ("pipeline", "datapath"): ["parallel", "serial"],
-    ("noise", "interp"): ["scurve", "linear"],
-    ("noise", "corner"): ["value_gradient", "value"],
-    ("noise", "hash"): ["rayshade", "perm256"],
-    ("filter", "norm"): ["euclid", "max_half_min", "l1"],
-}
-PREFIX = {"pipeline": "", "noise": "Noise", "filter": "Filter"}
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from pstlib import contract  # noqa: E402
 
-
-def camel(key: str) -> str:
-    return "".join(part[:1].upper() + part[1:] for part in key.split("_"))
-
-
-def fail(path: str, field: str, what: str) -> None:
-    print(f"error: {path}: {field}: {what}", file=sys.stderr)
-    sys.exit(2)
-
-
-def parameters(path: str) -> list[tuple[str, int]]:
-    try:
-        with open(path, "rb") as f:
-            doc = tomllib.load(f)
-    except OSError as e:
-        fail(path, "file", str(e))
-    except tomllib.TOMLDecodeError as e:
-        fail(path, "syntax", str(e))
-    out = []
-    for section, prefix in PREFIX.items():
-        for key, value in doc.get(section, {}).items():
-            if (section, key) in ENUMS:
-                choices = ENUMS[(section, key)]
-                if value not in choices:
-                    fail(path, f"{section}.{key}", f"unknown value {value!r} (expected {', '.join(choices)})")
-                value = choices.index(value)
-            if not isinstance(value, int) or isinstance(value, bool) or value < 0:
-                fail(path, f"{section}.{key}", "expected a non-negative integer")
-            out.append((prefix + camel(key), value))
-    for name, value in doc.get("formats", {}).items():
-        if isinstance(value, dict):
-            for part in ("int", "frac"):
-                v = value.get(part)
-                if not isinstance(v, int) or v < 0:
-                    fail(path, f"formats.{name}.{part}", "expected a non-negative integer")
-                out.append((camel(name) + camel(part), v))
-        else:
-            if not isinstance(value, int) or value < 0:
-                fail(path, f"formats.{name}", "expected a non-negative integer")
-            out.append((camel(name), value))
-    return out
+FORMATS = {"--verilator": "-G{}={}", "--yosys": "chparam -set {} {}", "--list": "{} {}"}
 
 
 def main() -> int:
@@ -77,10 +26,14 @@ def main() -> int:
     if len(args) == 4 and args[2] == "--only":
         only = set(args[3].split(","))
         args = args[:2]
-    if len(args) != 2 or args[1] not in ("--verilator", "--yosys", "--list"):
+    if len(args) != 2 or args[1] not in FORMATS:
         print(__doc__, file=sys.stderr)
         return 2
-    params = parameters(args[0])
+    try:
+        params = contract.parameters(contract.read_profile(args[0]))
+    except contract.ProfileError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
     if only is not None:
         unknown = only - {n for n, _ in params}
         if unknown:
@@ -88,12 +41,7 @@ def main() -> int:
             return 2
         params = [(n, v) for n, v in params if n in only]
     for name, value in params:
-        if args[1] == "--verilator":
-            print(f"-G{name}={value}")
-        elif args[1] == "--yosys":
-            print(f"chparam -set {name} {value}")
-        else:
-            print(f"{name} {value}")
+        print(FORMATS[args[1]].format(name, value))
     return 0
 
 

@@ -9,7 +9,7 @@ PACKAGES=(
   libglm-dev libopenimageio-dev openimageio-tools
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  python3-numpy python3-matplotlib python3-openimageio
+  python3-numpy python3-matplotlib python3-openimageio python3-pytest
   python3-markdown chromium         # HTML report (scripts/report.py) and its browser test
 )
 # Node.js for the report's browser test (playwright-core): Debian's nodejs/npm unless a node

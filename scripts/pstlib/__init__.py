@@ -1,0 +1,3 @@
+"""pst's Python library: small modules shared by the scripts (contract: the hardware contract
+and profile schema of rtl/contract.toml; report_*: the report). Put scripts/ on sys.path and
+`from pstlib import contract`."""

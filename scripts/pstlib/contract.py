@@ -1,0 +1,535 @@
+#!/usr/bin/python3
+"""The hardware contract (rtl/contract.toml): profile schema, register map, fixed constants.
+
+One description, read here, is the profile schema of every script and the source of the
+generated files each other side uses (rtl/pst_pkg.sv, model/golden/contract.h, the register
+table of docs/HARDWARE.md).
+
+API (import as `from pstlib import contract`, with scripts/ on sys.path):
+  load(path=None) -> Contract          the description (cached; default rtl/contract.toml)
+  ENUMS          {(section, key): [names]}   profile enums, names in index order
+  FORMAT_MAX     {format name: max int + frac}
+  FORMAT_INT, FORMAT_FRAC   (lo, hi) of a format's int and frac bits
+  RANGES         {(section, key): (lo, hi) or tuple of allowed values}
+  param_name(section, key[, part])    RTL parameter name: ("noise", "out_frac") -> NoiseOutFrac
+  validate(doc) -> [str]               what the golden model and the RTL reject, each
+                                       "FIELD: what is wrong" (empty: valid); doc as tomllib loads it
+  parameters(doc) -> [(Name, int)]     the RTL parameters of a valid profile (enums as indices)
+  read_profile(path) -> dict           tomllib-loaded and validated; raises ProfileError whose str()
+                                       is "PATH:LINE: FIELD: what is wrong"
+  sv_package(c), cpp_header(c), hardware_md_table(c)   the generated texts
+  GENERATED      {relative path: generator} of every generated file
+
+CLI:
+  contract.py --write [--root DIR]     regenerate the generated files under DIR (default: the repo)
+  contract.py --check                  exit 1 naming each stale generated file (ctest contract_stale)
+"""
+from __future__ import annotations
+
+import argparse
+import functools
+import re
+import sys
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+DESCRIPTION = ROOT / "rtl" / "contract.toml"
+SECTION_PREFIX = {"pipeline": "", "noise": "Noise", "filter": "Filter", "formats": ""}
+
+
+def camel(key: str) -> str:
+    """snake_case -> UpperCamelCase (grad_matrix -> GradMatrix)."""
+    return "".join(part[:1].upper() + part[1:] for part in key.split("_"))
+
+
+def param_name(section: str, key: str, part: str | None = None) -> str:
+    """RTL parameter of a profile key; `part` is "int" or "frac" for a format."""
+    return SECTION_PREFIX[section] + camel(key) + (camel(part) if part else "")
+
+
+@dataclass
+class Key:
+    section: str
+    key: str
+    kind: str                 # "range" | "values" | "enum" | "format"
+    doc: str = ""
+    lo: int = 0
+    hi: int = 0
+    values: tuple = ()
+    enum: tuple = ()
+    max_width: int = 0
+
+    @property
+    def field(self) -> str:
+        return f"{self.section}.{self.key}"
+
+    @property
+    def params(self) -> list[str]:
+        if self.kind == "format":
+            return [param_name(self.section, self.key, "int"), param_name(self.section, self.key, "frac")]
+        return [param_name(self.section, self.key)]
+
+
+@dataclass
+class Constraint:
+    expr: str
+    field: str
+    message: str
+
+
+@dataclass
+class Contract:
+    path: Path
+    keys: list[Key]
+    format_int: tuple[int, int]
+    format_frac: tuple[int, int]
+    constraints: list[Constraint]
+    registers: dict
+    enums: dict                 # extra enums (filter_kind ...): name -> [values]
+    constants: dict             # name -> (value, doc)
+    raw: dict = field(repr=False, default_factory=dict)
+
+    def key(self, section: str, key: str) -> Key:
+        for k in self.keys:
+            if k.section == section and k.key == key:
+                return k
+        raise KeyError(f"{section}.{key}")
+
+    @property
+    def param_names(self) -> list[str]:
+        return [p for k in self.keys for p in k.params]
+
+    def enum_of_param(self) -> dict[str, Key]:
+        return {k.params[0]: k for k in self.keys if k.kind == "enum"}
+
+
+@functools.lru_cache(maxsize=None)
+def load(path: str | Path | None = None) -> Contract:
+    """Reads the description (default rtl/contract.toml)."""
+    path = Path(path) if path else DESCRIPTION
+    with open(path, "rb") as f:
+        raw = tomllib.load(f)
+    schema = raw["schema"]
+    keys = []
+    for section in ("pipeline", "noise", "filter", "formats"):
+        for key, spec in schema[section].items():
+            doc = spec.get("doc", "")
+            if "enum" in spec:
+                keys.append(Key(section, key, "enum", doc, enum=tuple(spec["enum"])))
+            elif "values" in spec:
+                keys.append(Key(section, key, "values", doc, values=tuple(spec["values"]),
+                                lo=min(spec["values"]), hi=max(spec["values"])))
+            elif spec.get("format"):
+                keys.append(Key(section, key, "format", doc, max_width=spec["max_width"]))
+            else:
+                keys.append(Key(section, key, "range", doc, lo=spec["min"], hi=spec["max"]))
+    constraints = [Constraint(c["expr"], c["field"], c["message"]) for c in raw.get("constraint", [])]
+    constants = {}
+    for n, v in raw.get("constants", {}).items():
+        if "expr" in v:
+            if not re.fullmatch(r"[A-Za-z0-9_ +\-*/()<>]+", v["expr"]):
+                raise ValueError(f"constants.{n}: expr {v['expr']!r} is not + - * / << >> over names")
+            value = eval(v["expr"].replace("/", "//"), {}, {k: x for k, (x, _) in constants.items()})  # noqa: S307
+            constants[n] = (value, f"{v.get('doc', '')} (= {v['expr']})")
+        else:
+            constants[n] = (v["value"], v.get("doc", ""))
+    return Contract(path, keys, tuple(schema["format_int"]), tuple(schema["format_frac"]), constraints,
+                    raw["registers"], raw.get("enums", {}), constants, raw)
+
+
+def _tables():
+    c = load()
+    enums = {(k.section, k.key): list(k.enum) for k in c.keys if k.kind == "enum"}
+    fmax = {k.key: k.max_width for k in c.keys if k.kind == "format"}
+    ranges = {(k.section, k.key): (k.values if k.kind == "values" else (k.lo, k.hi))
+              for k in c.keys if k.kind in ("range", "values")}
+    return enums, fmax, ranges, c.format_int, c.format_frac
+
+
+ENUMS, FORMAT_MAX, RANGES, FORMAT_INT, FORMAT_FRAC = _tables()
+
+
+# ---------------------------------------------------------------------------------------------
+# Constraint expressions: C operators over parameter names and Enum.value.
+# ---------------------------------------------------------------------------------------------
+_TOKEN = re.compile(r"\s*(?:(\d+)|([A-Za-z_][A-Za-z0-9_]*)(?:\.([A-Za-z_][A-Za-z0-9_]*))?|(&&|\|\||==|!=|<=|>=|[-+*/%<>()!]))")
+
+
+def _tokens(expr: str):
+    pos, out = 0, []
+    expr = expr.strip()
+    while pos < len(expr):
+        m = _TOKEN.match(expr, pos)
+        if not m or m.end() == pos:
+            raise ValueError(f"constraint {expr!r}: cannot read at {expr[pos:]!r}")
+        out.append(m.groups())
+        pos = m.end()
+    return out
+
+
+def translate(expr: str, lang: str, contract: Contract | None = None) -> str:
+    """A constraint expression in Python ("py": names looked up in `v`), C++ ("cpp": v[Name])
+    or SystemVerilog ("sv": parameter names, enums as pst_pkg::EnumValue)."""
+    c = contract or load()
+    enums = c.enum_of_param()
+    names = set(c.param_names)
+    out = []
+    for num, name, member, op in _tokens(expr):
+        if num:
+            out.append(num)
+        elif name and member:
+            if name not in enums or member not in enums[name].enum:
+                raise ValueError(f"constraint {expr!r}: unknown enum value {name}.{member}")
+            idx = enums[name].enum.index(member)
+            out.append({"py": str(idx), "cpp": str(idx), "sv": f"pst_pkg::{name}{camel(member)}"}[lang])
+        elif name:
+            if name not in names:
+                raise ValueError(f"constraint {expr!r}: unknown parameter {name}")
+            out.append({"py": f"v[{name!r}]", "cpp": f"v[{name}]", "sv": name}[lang])
+        elif lang == "py":
+            out.append({"&&": "and", "||": "or", "!": "not", "/": "//"}.get(op, op))
+        else:
+            out.append(op)
+    return " ".join(out)
+
+
+# ---------------------------------------------------------------------------------------------
+# Profiles
+# ---------------------------------------------------------------------------------------------
+def _is_int(v) -> bool:
+    return isinstance(v, int) and not isinstance(v, bool)
+
+
+def validate(doc: dict, contract: Contract | None = None) -> list[str]:
+    """Everything model/golden/profile.cpp and the RTL's assertions reject, as
+    "FIELD: what is wrong" strings (empty list: the profile is valid)."""
+    c = contract or load()
+    bad = []
+    for k in c.keys:
+        sec = doc.get(k.section)
+        if not isinstance(sec, dict):
+            bad.append(f"{k.section}: missing table")
+            continue
+        if k.key not in sec:
+            bad.append(f"{k.field}: missing")
+            continue
+        v = sec[k.key]
+        if k.kind == "enum":
+            if v not in k.enum:
+                bad.append(f"{k.field}: unknown value {v!r} (expected {', '.join(k.enum)})")
+        elif k.kind == "values":
+            if not _is_int(v) or v not in k.values:
+                bad.append(f"{k.field}: must be {', '.join(map(str, k.values[:-1]))} or {k.values[-1]} (is {v!r})")
+        elif k.kind == "range":
+            if not _is_int(v) or not k.lo <= v <= k.hi:
+                bad.append(f"{k.field}: must be an integer in [{k.lo}, {k.hi}] (is {v!r})")
+        else:
+            if not isinstance(v, dict):
+                bad.append(f"{k.field}: expected {{ int = I, frac = F }}")
+                continue
+            i, fr = v.get("int"), v.get("frac")
+            if not _is_int(i) or not c.format_int[0] <= i <= c.format_int[1]:
+                bad.append(f"{k.field}.int: must be an integer in [{c.format_int[0]}, {c.format_int[1]}] (is {i!r})")
+            elif not _is_int(fr) or not c.format_frac[0] <= fr <= c.format_frac[1]:
+                bad.append(f"{k.field}.frac: must be an integer in [{c.format_frac[0]}, {c.format_frac[1]}] (is {fr!r})")
+            elif i + fr > k.max_width:
+                bad.append(f"{k.field}: int + frac must be at most {k.max_width} (is {i + fr})")
+    if bad:
+        return bad
+    v = dict(parameters(doc, c))
+    for con in c.constraints:
+        if not eval(translate(con.expr, "py", c), {}, {"v": v}):  # noqa: S307 (our own grammar)
+            bad.append(f"{con.field}: {con.message}")
+    return bad
+
+
+def parameters(doc: dict, contract: Contract | None = None) -> list[tuple[str, int]]:
+    """The RTL parameters of a (valid) profile in description order; enums as their index."""
+    c = contract or load()
+    out = []
+    for k in c.keys:
+        v = doc[k.section][k.key]
+        if k.kind == "enum":
+            out.append((k.params[0], k.enum.index(v)))
+        elif k.kind == "format":
+            out += [(k.params[0], v["int"]), (k.params[1], v["frac"])]
+        else:
+            out.append((k.params[0], v))
+    return out
+
+
+class ProfileError(ValueError):
+    """str(): "PATH:LINE: FIELD: what is wrong" (LINE left out when unknown)."""
+
+    def __init__(self, path, field, what, line=None):
+        self.path, self.field, self.what, self.line = str(path), field, what, line
+        super().__init__(f"{self.path}{f':{line}' if line else ''}: {field}: {what}")
+
+
+def _line_of(text: str, field: str) -> int | None:
+    """Line of a profile key ("noise.out_frac", "formats.coord.int") in the TOML text."""
+    parts = field.split(".")
+    section, key = parts[0], parts[1] if len(parts) > 1 else None
+    current = None
+    for n, line in enumerate(text.splitlines(), 1):
+        s = line.split("#", 1)[0].strip()
+        m = re.fullmatch(r"\[\s*([A-Za-z0-9_]+)\s*\]", s)
+        if m:
+            current = m.group(1)
+            if key is None and current == section:
+                return n
+        elif current == section and key and re.match(rf"{re.escape(key)}\s*=", s):
+            return n
+    return None
+
+
+def read_profile(path: str | Path, contract: Contract | None = None) -> dict:
+    """Loads and validates a profile; raises ProfileError at its first problem."""
+    try:
+        text = Path(path).read_text()
+    except OSError as e:
+        raise ProfileError(path, "file", e.strerror or str(e)) from None
+    try:
+        doc = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as e:
+        raise ProfileError(path, "syntax", str(e)) from None
+    bad = validate(doc, contract)
+    if bad:
+        field, what = bad[0].split(": ", 1)
+        raise ProfileError(path, field, what, _line_of(text, field))
+    return doc
+
+
+# ---------------------------------------------------------------------------------------------
+# Generators
+# ---------------------------------------------------------------------------------------------
+HEADER = "GENERATED by scripts/pstlib/contract.py from rtl/contract.toml: do not edit."
+
+
+def _regs(c: Contract) -> list[tuple[str, dict]]:
+    return [(n, r) for n, r in c.registers.items() if isinstance(r, dict)]
+
+
+def _address_text(name: str, r: dict) -> str:
+    a = f"0x{r['addr']:04x}"
+    if name == "quadric":
+        return f"{a} + k"
+    if name == "octave":
+        return f"{a} + {r['stride']} i + k"
+    if name == "sat":
+        return f"{a} + {r['stride']} e + c"
+    if name in ("clut", "mip"):
+        return f"{a} + e"
+    return a
+
+
+def sv_package(c: Contract) -> str:
+    L = [f"// {HEADER}",
+         "// pst_pkg: the hardware contract (rtl/contract.toml) for the RTL: profile enums, the",
+         "// register map, port and probe layouts and the fixed step counts. Referenced as pst_pkg::Name",
+         "// (Yosys 0.23 reads no `import`). Every file that uses it includes it first (the guard makes",
+         "// that once), so any file order works in Verilator and Yosys.",
+         "`ifndef PST_PKG_SV", "`define PST_PKG_SV", "`default_nettype none", "", "package pst_pkg;", "",
+         "  // A design uses a few of these facts at a time.", "  /* verilator lint_off UNUSEDPARAM */", ""]
+    L.append("  // Profile enums (the values of the int parameters Datapath, NoiseInterp, ...).")
+    for k in c.keys:
+        if k.kind == "enum":
+            p = k.params[0]
+            L.append(f"  // {k.field}: {k.doc}")
+            for i, e in enumerate(k.enum):
+                L.append(f"  localparam int {p}{camel(e)} = {i};")
+    L += ["", "  // Profile ranges (model/golden/profile.cpp and scripts/pstlib/contract.py check them)."]
+    for k in c.keys:
+        if k.kind in ("range", "values"):
+            p = k.params[0]
+            L.append(f"  localparam int {p}Min = {k.lo};")
+            L.append(f"  localparam int {p}Max = {k.hi};")
+    L += ["", "  // Register map (docs/HARDWARE.md).",
+          f"  localparam int RegAddrBits = {c.registers['addr_bits']};",
+          f"  localparam int RegDataBits = {c.registers['data_bits']};"]
+    ab = c.registers["addr_bits"]
+    for name, r in _regs(c):
+        n = camel(name)
+        L.append(f"  // {_address_text(name, r)}: {r['doc']}")
+        L.append(f"  localparam logic [{ab - 1}:0] Reg{n} = {ab}'h{r['addr']:04x};")
+        if "count" in r:
+            L.append(f"  localparam int Reg{n}Count = {r['count']};")
+        if "stride" in r:
+            L.append(f"  localparam int Reg{n}Stride = {r['stride']};")
+        if "bits" in r:
+            L.append(f"  localparam int Reg{n}Bits = {r['bits']};")
+        for f in r.get("fields", []):
+            fn = camel(f["name"])
+            if "lsb" in f:
+                L.append(f"  localparam int Reg{n}{fn}Lsb = {f['lsb']};")
+                L.append(f"  localparam int Reg{n}{fn}Width = {f['width']};")
+            else:
+                L.append(f"  localparam int Reg{n}{fn} = {f['offset']};")
+                L.append(f"  localparam int Reg{n}{fn}Count = {f['count']};")
+    for name, values in c.enums.items():
+        L.append(f"  // {name}")
+        for i, v in enumerate(values):
+            L.append(f"  localparam int {camel(name)}{camel(v)} = {i};")
+    L += ["", "  // Fixed facts of the datapath."]
+    for name, (v, doc) in c.constants.items():
+        L.append(f"  localparam int {name} = {v};  // {doc}")
+    L += ["", "  /* verilator lint_on UNUSEDPARAM */", "", "endpackage", "", "`default_nettype wire",
+          "`endif  // PST_PKG_SV", ""]
+    return "\n".join(L)
+
+
+def cpp_header(c: Contract) -> str:
+    L = [f"// {HEADER}",
+         "// The hardware contract (rtl/contract.toml) for the golden model, the driver and the harness:",
+         "// profile schema, register map and fixed layouts.",
+         "#pragma once", "", "#include <cstdint>", "", "namespace pst::contract {", ""]
+    L.append("// RTL parameters of a profile, in description order (index into a value array).")
+    L.append("enum Param : int {")
+    for p in c.param_names:
+        L.append(f"    {p},")
+    L += ["    kNumParams", "};", ""]
+    L.append("// Profile enums: names in index order.")
+    for k in c.keys:
+        if k.kind == "enum":
+            names = ", ".join(f'"{e}"' for e in k.enum)
+            L.append(f"inline constexpr const char* k{k.params[0]}Names[] = {{{names}}};")
+    L.append("")
+    L.append("enum class KeyKind { Range, Values, Enum, Format };")
+    L.append("struct KeySpec {")
+    L.append("    const char* section;")
+    L.append("    const char* key;")
+    L.append("    KeyKind kind;")
+    L.append("    Param param;             // the first (int) parameter of a format")
+    L.append("    int lo, hi;              // Range; Values: the smallest and largest")
+    L.append("    int values[8];           // Values (nValues of them)")
+    L.append("    int nValues;")
+    L.append("    const char* const* names;  // Enum (nValues of them)")
+    L.append("    int maxWidth;            // Format: int + frac at most")
+    L.append("};")
+    L.append(f"inline constexpr int kFormatIntMin = {c.format_int[0]}, kFormatIntMax = {c.format_int[1]};")
+    L.append(f"inline constexpr int kFormatFracMin = {c.format_frac[0]}, kFormatFracMax = {c.format_frac[1]};")
+    for k in c.keys:
+        if k.kind in ("range", "values"):
+            L.append(f"inline constexpr int k{k.params[0]}Min = {k.lo}, k{k.params[0]}Max = {k.hi};")
+    L.append("inline constexpr KeySpec kSchema[] = {")
+    for k in c.keys:
+        p = k.params[0]
+        if k.kind == "enum":
+            L.append(f'    {{"{k.section}", "{k.key}", KeyKind::Enum, {p}, 0, {len(k.enum) - 1}, {{}}, {len(k.enum)}, k{p}Names, 0}},')
+        elif k.kind == "values":
+            vals = ", ".join(map(str, k.values))
+            L.append(f'    {{"{k.section}", "{k.key}", KeyKind::Values, {p}, {k.lo}, {k.hi}, {{{vals}}}, {len(k.values)}, nullptr, 0}},')
+        elif k.kind == "range":
+            L.append(f'    {{"{k.section}", "{k.key}", KeyKind::Range, {p}, {k.lo}, {k.hi}, {{}}, 0, nullptr, 0}},')
+        else:
+            L.append(f'    {{"{k.section}", "{k.key}", KeyKind::Format, {p}, 0, 0, {{}}, 0, nullptr, {k.max_width}}},')
+    L += ["};", ""]
+    L.append("// Cross-constraints over the parameter values, checked once every key is in range.")
+    L.append("struct Constraint {")
+    L.append("    const char* field;")
+    L.append("    const char* message;")
+    L.append("    bool (*holds)(const int* v);")
+    L.append("};")
+    L.append("inline constexpr Constraint kConstraints[] = {")
+    for con in c.constraints:
+        L.append(f'    {{"{con.field}", "{con.message}",')
+        L.append(f"     [](const int* v) {{ return {translate(con.expr, 'cpp', c)}; }}}},")
+    L += ["};", ""]
+    L.append("// Register map (docs/HARDWARE.md).")
+    L.append(f"inline constexpr int kRegAddrBits = {c.registers['addr_bits']};")
+    L.append(f"inline constexpr int kRegDataBits = {c.registers['data_bits']};")
+    for name, r in _regs(c):
+        n = camel(name)
+        L.append(f"// {_address_text(name, r)}: {r['doc']}")
+        L.append(f"inline constexpr uint16_t kReg{n} = 0x{r['addr']:04x};")
+        if "count" in r:
+            L.append(f"inline constexpr int kReg{n}Count = {r['count']};")
+        if "stride" in r:
+            L.append(f"inline constexpr int kReg{n}Stride = {r['stride']};")
+        if "bits" in r:
+            L.append(f"inline constexpr int kReg{n}Bits = {r['bits']};")
+        for f in r.get("fields", []):
+            fn = camel(f["name"])
+            if "lsb" in f:
+                L.append(f"inline constexpr int kReg{n}{fn}Lsb = {f['lsb']}, kReg{n}{fn}Width = {f['width']};")
+            else:
+                L.append(f"inline constexpr int kReg{n}{fn} = {f['offset']}, kReg{n}{fn}Count = {f['count']};")
+    for name, values in c.enums.items():
+        L.append(f"enum class {camel(name)} : int {{ {', '.join(camel(v) for v in values)} }};")
+    L += ["", "// Fixed facts of the datapath."]
+    for name, (v, doc) in c.constants.items():
+        L.append(f"inline constexpr int k{name} = {v};  // {doc}")
+    L += ["", "}  // namespace pst::contract", ""]
+    return "\n".join(L)
+
+
+MD_BEGIN = "<!-- BEGIN register map: generated by scripts/pstlib/contract.py from rtl/contract.toml -->"
+MD_END = "<!-- END register map -->"
+
+
+def hardware_md_table(c: Contract) -> str:
+    L = [MD_BEGIN, "| address | register |", "|---|---|"]
+    for name, r in _regs(c):
+        L.append(f"| {_address_text(name, r)} | {r['doc']} |")
+    L.append(MD_END)
+    return "\n".join(L)
+
+
+def _hardware_md(c: Contract, current: str) -> str:
+    start, end = current.find(MD_BEGIN), current.find(MD_END)
+    if start < 0 or end < 0:
+        raise ValueError(f"docs/HARDWARE.md: markers {MD_BEGIN!r} ... {MD_END!r} missing")
+    return current[:start] + hardware_md_table(c) + current[end + len(MD_END):]
+
+
+GENERATED = {
+    "rtl/pst_pkg.sv": lambda c, cur: sv_package(c),
+    "model/golden/contract.h": lambda c, cur: cpp_header(c),
+    "docs/HARDWARE.md": _hardware_md,
+}
+
+
+def generate(root: Path, contract: Contract | None = None) -> dict[str, str]:
+    """{relative path: text it should have} for every generated file under `root`."""
+    c = contract or load(root / "rtl" / "contract.toml")
+    out = {}
+    for rel, gen in GENERATED.items():
+        p = root / rel
+        cur = p.read_text() if p.exists() else ""
+        out[rel] = gen(c, cur)
+    return out
+
+
+def main(argv: list[str] | None = None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--root", type=Path, default=ROOT, help="repository root (default: this one)")
+    g = ap.add_mutually_exclusive_group(required=True)
+    g.add_argument("--write", action="store_true", help="regenerate the generated files")
+    g.add_argument("--check", action="store_true", help="exit 1 if a generated file is stale")
+    a = ap.parse_args(argv)
+    try:
+        texts = generate(a.root)
+    except (OSError, ValueError, KeyError, tomllib.TOMLDecodeError) as e:
+        print(f"error: {a.root / 'rtl/contract.toml'}: {e}", file=sys.stderr)
+        return 2
+    stale = []
+    for rel, text in texts.items():
+        p = a.root / rel
+        if (p.read_text() if p.exists() else None) != text:
+            stale.append(rel)
+            if a.write:
+                p.write_text(text)
+    if a.check and stale:
+        for rel in stale:
+            print(f"error: {rel}: stale (regenerate: /usr/bin/python3 scripts/pstlib/contract.py --write)",
+                  file=sys.stderr)
+        return 1
+    for rel in stale:
+        print(f"wrote {rel}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

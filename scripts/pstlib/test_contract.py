@@ -1,0 +1,124 @@
+"""Tests of pstlib.contract: the profile schema and the generators (run by ctest through pytest)."""
+import copy
+import sys
+import tomllib
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from pstlib import contract  # noqa: E402
+
+ROOT = Path(__file__).resolve().parents[2]
+PROFILES = sorted((ROOT / "rtl" / "configs").glob("*.toml")) + sorted((ROOT / "sim" / "test_profiles").glob("*.toml"))
+
+
+def reduced() -> dict:
+    with open(ROOT / "rtl" / "configs" / "reduced.toml", "rb") as f:
+        return tomllib.load(f)
+
+
+@pytest.mark.parametrize("path", PROFILES, ids=lambda p: p.stem)
+def test_shipped_profiles_are_valid(path):
+    assert contract.validate(contract.read_profile(path)) == []
+
+
+def test_parameter_names_follow_the_rule():
+    assert contract.param_name("pipeline", "octaves") == "Octaves"
+    assert contract.param_name("noise", "out_frac") == "NoiseOutFrac"
+    assert contract.param_name("filter", "norm") == "FilterNorm"
+    assert contract.param_name("formats", "grad_matrix", "int") == "GradMatrixInt"
+    assert contract.param_name("formats", "width_frac") == "WidthFrac"
+
+
+def test_parameters_of_reduced():
+    p = dict(contract.parameters(reduced()))
+    # Values as written in rtl/configs/reduced.toml; enums as their index in the description.
+    assert p["Octaves"] == 4 and p["NoiseUnits"] == 1 and p["NoiseSteps"] == 4
+    assert p["Datapath"] == 1 and p["NoiseInterp"] == 0 and p["FilterNorm"] == 0
+    assert (p["CoordInt"], p["CoordFrac"], p["WidthFrac"]) == (10, 12, 4)
+    assert len(p) == 34
+
+
+def test_enum_tables():
+    assert contract.ENUMS[("pipeline", "datapath")] == ["parallel", "serial"]
+    assert contract.ENUMS[("filter", "norm")] == ["euclid", "max_half_min", "l1"]
+    assert contract.FORMAT_MAX["coord"] == 40 and contract.FORMAT_MAX["quadric"] == 32
+    assert contract.RANGES[("pipeline", "noise_steps")] == (1, 2, 4, 8)
+
+
+@pytest.mark.parametrize("edit, field", [
+    (lambda d: d["pipeline"].update(noise_units=3), "pipeline.noise_units"),
+    (lambda d: d["pipeline"].update(noise_steps=2), "pipeline.datapath"),   # serial needs >= 4
+    (lambda d: d["pipeline"].update(noise_steps=3), "pipeline.noise_steps"),
+    (lambda d: d["pipeline"].update(octaves=17), "pipeline.octaves"),
+    (lambda d: d["pipeline"].update(octaves=True), "pipeline.octaves"),
+    (lambda d: d["pipeline"].update(datapath="fast"), "pipeline.datapath"),
+    (lambda d: d["formats"].update(matrix={"int": 7, "frac": 4}, coord={"int": 10, "frac": 2}),
+     "noise.lattice_frac"),   # 8 > matrix + coord frac = 6
+    (lambda d: d["formats"].update(offset={"int": 13, "frac": 21}), "formats.offset"),
+    (lambda d: d["formats"].update(quadric={"int": 20, "frac": 13}), "formats.quadric"),
+    (lambda d: d["formats"].update(quadric={"int": 1, "frac": 0}), "formats.quadric"),
+    (lambda d: d["formats"].update(coord={"int": 0, "frac": 12}), "formats.coord.int"),
+    (lambda d: d["formats"].update(width_frac=-1), "formats.width_frac"),
+    (lambda d: d["pipeline"].update(log2_clut=1) or d["formats"].update(width_frac=0), "formats.width_frac"),
+    (lambda d: d.pop("filter"), "filter"),
+    (lambda d: d["noise"].pop("hash"), "noise.hash"),
+])
+def test_validate_names_the_field(edit, field):
+    d = copy.deepcopy(reduced())
+    edit(d)
+    bad = contract.validate(d)
+    assert bad, "expected an error"
+    assert any(b.split(": ", 1)[0] == field for b in bad), bad
+
+
+def test_constraint_translation():
+    e = "Datapath != Datapath.serial || NoiseSteps >= 4"
+    assert contract.translate(e, "py") == "v['Datapath'] != 1 or v['NoiseSteps'] >= 4"
+    assert contract.translate(e, "cpp") == "v[Datapath] != 1 || v[NoiseSteps] >= 4"
+    assert contract.translate(e, "sv") == "Datapath != pst_pkg::DatapathSerial || NoiseSteps >= 4"
+    with pytest.raises(ValueError):
+        contract.translate("Octaves > Nope", "py")
+    with pytest.raises(ValueError):
+        contract.translate("Datapath == Datapath.fast", "py")
+
+
+def test_read_profile_error_has_line(tmp_path):
+    text = (ROOT / "rtl" / "configs" / "reduced.toml").read_text().replace("noise_units = 1", "noise_units = 3")
+    p = tmp_path / "bad.toml"
+    p.write_text(text)
+    with pytest.raises(contract.ProfileError) as e:
+        contract.read_profile(p)
+    line = text.splitlines().index("noise_units = 3") + 1
+    assert str(e.value) == f"{p}:{line}: pipeline.noise_units: must divide pipeline.octaves"
+
+
+def test_read_profile_syntax_and_missing(tmp_path):
+    p = tmp_path / "x.toml"
+    p.write_text("[pipeline\n")
+    with pytest.raises(contract.ProfileError, match="syntax"):
+        contract.read_profile(p)
+    with pytest.raises(contract.ProfileError, match="file"):
+        contract.read_profile(tmp_path / "missing.toml")
+
+
+def test_generated_files_are_current():
+    gen = contract.generate(ROOT)
+    for rel, text in gen.items():
+        assert (ROOT / rel).read_text() == text, f"{rel} is stale: run scripts/pstlib/contract.py --write"
+
+
+def test_one_line_edit_changes_generated_files(tmp_path):
+    # A register address edited once in the description reaches the package, the header and
+    # the docs table.
+    src = (ROOT / "rtl" / "contract.toml").read_text()
+    assert "addr = 0x1000" in src
+    (tmp_path / "rtl").mkdir()
+    (tmp_path / "rtl" / "contract.toml").write_text(src.replace("addr = 0x1000", "addr = 0x1800"))
+    (tmp_path / "docs").mkdir()
+    (tmp_path / "docs" / "HARDWARE.md").write_text((ROOT / "docs" / "HARDWARE.md").read_text())
+    gen = contract.generate(tmp_path, contract.load(tmp_path / "rtl" / "contract.toml"))
+    assert "localparam logic [15:0] RegClut = 16'h1800;" in gen["rtl/pst_pkg.sv"]
+    assert "kRegClut = 0x1800;" in gen["model/golden/contract.h"]
+    assert "| 0x1800 + e |" in gen["docs/HARDWARE.md"]
