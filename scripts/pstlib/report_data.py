@@ -202,8 +202,10 @@ def collect(out_dir) -> Report:
     rep.scenes = scene_views(runs_dirs, lambda stem: root / stem)
     rep.notes = sorted({n for r in rep.runs for n in r.get("notes", [])})
     synth = root / "synth"
+    # The two profiles and any other profile the regression ran (out/synth also holds the
+    # sweep's points, <base>_<knob>_<value>.json: those belong to the sweep's section).
     names = ["reduced", "full"]
-    names += sorted(p.stem for p in synth.glob("*.json") if p.stem not in names and "." not in p.stem)
+    names += sorted({r["profile"] for r in rep.runs} - set(names))
     for name in names:
         rep.gates.append(read_included(f"Gates and timing: {name}", f"gates-{name}", synth / f"{name}.md", root,
                                        f"not synthesized: scripts/synth.py {name}", synth / f"{name}.json"))

@@ -103,7 +103,11 @@ def included(inc, level: int = 2) -> str:
     if inc.text is None:
         out.append(f'<p class="missing">({esc(inc.missing)})</p>' if inc.missing else "")
     else:
-        out.append('<div class="md">' + md_to_html(inc.text) + "</div>")
+        # The included file's headings go below this section's heading.
+        levels = [len(m) for m in re.findall(r"^(#+) ", inc.text, flags=re.M)]
+        shift = level + 1 - min(levels) if levels else 0
+        text = re.sub(r"^(#+) ", lambda m: "#" * min(6, len(m.group(1)) + shift) + " ", inc.text, flags=re.M)
+        out.append('<div class="md">' + md_to_html(text) + "</div>")
     out.append("</section>\n")
     return "\n".join(out)
 

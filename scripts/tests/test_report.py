@@ -38,6 +38,7 @@ def make_out(tmp: pathlib.Path) -> pathlib.Path:
                 "depth": {"pst_noise": 40}}))
     (out / "synth" / "full.json").write_text(json.dumps({"profile": "full", "logic_ge": 3000000}))
     (out / "synth" / "full.md").write_text("## Gates\n\n| a | b |\n|---|---|\n| 1 | 2 |\n")
+    (out / "synth" / "reduced_octaves_2.json").write_text(json.dumps({"profile": "reduced_octaves_2", "logic_ge": 1}))
     (out / "figures").mkdir()
     (out / "figures" / "fig11.md").write_text("# Fig\n\n![x](fig11.png) [link](fig11_a.png) [web](https://x.y/z)\n")
     return out
