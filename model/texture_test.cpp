@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "worley.h"
+
 namespace pst {
 namespace {
 
@@ -111,6 +113,54 @@ TEST(Texture, GradientMatchesFiniteDifferences) {
                 }
                 EXPECT_GT(tested, 1000);
             }
+}
+
+// grad_s f of eq. 10-12 with the other bases: perlin2002 (C2), and worley F2 - F1 (Euclid and
+// Manhattan) away from the cell boundaries of every octave.
+TEST(Texture, GradientMatchesFiniteDifferencesOtherBases) {
+    std::mt19937_64 rng(12);
+    std::uniform_real_distribution<double> d(-4.0, 4.0);
+    const double h = 1e-6;
+    NoiseOptions perlin, euclid, manhattan;
+    perlin.basis = NoiseBasis::Perlin2002;
+    euclid.basis = manhattan.basis = NoiseBasis::Worley;
+    euclid.coef = manhattan.coef = {-1.0, 1.0, 0.0, 0.0};
+    euclid.cell = 0.3;  // constant per cell: no gradient, no effect inside a cell
+    manhattan.metric = WorleyMetric::Manhattan;
+    for (const NoiseOptions& opt : {perlin, euclid, manhattan}) {
+        const Texture tex = testTexture(opt);
+        int tested = 0;
+        for (int k = 0; k < 2000; ++k) {
+            const glm::dvec3 s(d(rng), d(rng), d(rng));
+            bool inside = true;  // F1 < F2 < F3 with margins: the stencil stays in one cell
+            if (opt.basis == NoiseBasis::Worley) {
+                for (const Octave& o : tex.octaves) {
+                    const glm::dvec3 p = o.M * s + o.offset;
+                    const WorleyResult r = worley(p, 3, opt.metric);
+                    inside = inside && r.F[1] - r.F[0] > 1e-3 && r.F[2] - r.F[1] > 1e-3;
+                    // Manhattan: sign(x - p_n) flips on the point's own coordinate planes,
+                    // where F_n is only C0: keep the stencil off them too.
+                    for (int n = 0; n < 2 && opt.metric == WorleyMetric::Manhattan; ++n)
+                        for (int a = 0; a < 3; ++a) inside = inside && std::abs(r.delta[n][a]) > 1e-3;
+                }
+            }
+            if (!inside) continue;
+            glm::dvec3 g;
+            evalF(tex, s, &g);
+            glm::dvec3 fd;
+            for (int a = 0; a < 3; ++a) {
+                glm::dvec3 sp = s, sm = s;
+                sp[a] += h;
+                sm[a] -= h;
+                fd[a] = (evalF(tex, sp) - evalF(tex, sm)) / (2 * h);
+            }
+            ++tested;
+            for (int a = 0; a < 3; ++a)
+                ASSERT_NEAR(g[a], fd[a], 1e-5 * std::max(1.0, std::abs(fd[a])))
+                    << toString(opt.basis) << " s = " << s.x << " " << s.y << " " << s.z << " axis " << a;
+        }
+        EXPECT_GT(tested, 1000) << toString(opt.basis);
+    }
 }
 
 TEST(Texture, FilterWidthNorms) {

@@ -124,6 +124,7 @@ WorleyResult worley(const glm::dvec3& pIn, int order, WorleyMetric metric) {
     for (int n = 0; n < order; ++n) {
         const glm::dvec3& d = delta[n];
         r.id[n] = id[n];
+        r.delta[n] = d;
         if (euclid) {
             r.F[n] = std::sqrt(best[n]);
             r.grad[n] = r.F[n] > 0 ? d / r.F[n] : glm::dvec3(0.0);

@@ -55,6 +55,7 @@ struct WorleyResult {
     std::array<glm::dvec3, kWorleyMaxOrder> grad{};  // grad F_n: (x - p_n)/|x - p_n| (Euclid),
                                                      // sign(x - p_n) (Manhattan); 0 at p_n
     std::array<uint32_t, kWorleyMaxOrder> id{};      // ID of the n-th nearest point
+    std::array<glm::dvec3, kWorleyMaxOrder> delta{}; // x - p_n (Worley's "direction vectors")
 };
 
 // F_1..F_order (order 1..4) at p.

@@ -117,6 +117,10 @@ TEST(Worley, F1ToF4EqualABruteForceSearch) {
             for (int n = 0; n < 4; ++n) {
                 // Same points, so the same distances up to the rounding of the difference.
                 ASSERT_NEAR(r.F[n], b.d[n], 1e-12) << "F" << n + 1 << " metric " << toString(metric);
+                const glm::dvec3& dn = r.delta[n];
+                ASSERT_NEAR(metric == WorleyMetric::Euclid ? std::sqrt(glm::dot(dn, dn))
+                                                           : std::abs(dn.x) + std::abs(dn.y) + std::abs(dn.z),
+                            r.F[n], 1e-12);
                 if (b.d[n + 1] - b.d[n] > 1e-9 && (n == 0 || b.d[n] - b.d[n - 1] > 1e-9)) {
                     ASSERT_EQ(r.id[n], b.id[n]) << "ID of F" << n + 1;
                 }
