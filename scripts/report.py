@@ -17,7 +17,6 @@
 Missing or unreadable input: `error: FILE: what is wrong`, exit status 2, no output file.
 """
 import argparse
-import json
 import os
 import pathlib
 import sys
@@ -35,17 +34,8 @@ def write_atomic(path: pathlib.Path, text: str) -> None:
         tmp.unlink(missing_ok=True)
 
 
-def load_json(path: pathlib.Path):
-    try:
-        return json.loads(path.read_text())
-    except OSError as e:
-        raise InputError(f"{path}: cannot read: {e.strerror}")
-    except ValueError as e:
-        raise InputError(f"{path}: not JSON: {e}")
-
-
-class InputError(Exception):
-    pass
+InputError = report_data.InputError
+load_json = report_data.load_json
 
 
 def md_links(root: pathlib.Path):
@@ -61,13 +51,17 @@ def page(args) -> report_data.Report:
     pairs = []
     if args.regress:
         runs = load_json(pathlib.Path(args.regress))
-        if not isinstance(runs, list):
-            raise InputError(f"{args.regress}: expected a list of runs (pst regress -o)")
+        if not isinstance(runs, list) or not all(isinstance(r, dict) and "scene" in r and "profile" in r
+                                                  for r in runs):
+            raise InputError(f"{args.regress}: expected a list of runs with scene and profile (pst regress -o)")
         images = pathlib.Path(args.images) if args.images else root
         pairs += [(r, images / report_data.scene_stem(r) / r["profile"]) for r in runs]
     for s in args.summary or []:
         p = pathlib.Path(s)
-        pairs.append((load_json(p), p.parent))
+        run = load_json(p)
+        if not isinstance(run, dict) or "scene" not in run or "profile" not in run:
+            raise InputError(f"{p}: expected one run with scene and profile (pst render --profile)")
+        pairs.append((run, p.parent))
     title = "pst regress" if args.regress else "pst render --profile"
     rep = report_data.collect_runs(pairs, root, title)
     rep.subtitle = f"{len(rep.runs)} runs"
@@ -107,6 +101,9 @@ def main() -> int:
     except InputError as e:
         print(f"error: {e}", file=sys.stderr)
         return 2
+    except RuntimeError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 1
 
 
 if __name__ == "__main__":

@@ -9,6 +9,19 @@ from dataclasses import dataclass, field
 from typing import Optional
 
 
+class InputError(Exception):
+    """An input file is missing or malformed: `FILE: what is wrong`."""
+
+
+def load_json(path: pathlib.Path):
+    try:
+        return json.loads(pathlib.Path(path).read_text())
+    except OSError as e:
+        raise InputError(f"{path}: cannot read: {e.strerror}")
+    except ValueError as e:
+        raise InputError(f"{path}: not JSON: {e}")
+
+
 @dataclass
 class Table:
     """A table both renderers draw: `columns` names, `rows` of cells (str, int, float or None,
@@ -177,7 +190,7 @@ def reference_table(root: pathlib.Path) -> Optional[Table]:
                        "RMS unfiltered vs truth", "images"],
               rows=[], fmt=["", "", "d", ".2f", ".2f", ".4f", ".4f", ""])
     for path in reports:
-        r = json.loads(path.read_text())
+        r = load_json(path)
         name = path.parent.name
         vt = r.get("vs_truth", {})
         sec = r.get("seconds", {})
@@ -197,7 +210,10 @@ def collect(out_dir) -> Report:
     path = root / "regress.json"
     if path.exists():
         rep.regress_ran = True
-        rep.runs = json.loads(path.read_text())
+        rep.runs = load_json(path)
+        if not isinstance(rep.runs, list) or not all(isinstance(r, dict) and "scene" in r and "profile" in r
+                                                      for r in rep.runs):
+            raise InputError(f"{path}: expected a list of runs with scene and profile (pst regress -o)")
     runs_dirs = [(r, root / scene_stem(r) / r["profile"]) for r in rep.runs]
     rep.scenes = scene_views(runs_dirs, lambda stem: root / stem)
     rep.notes = sorted({n for r in rep.runs for n in r.get("notes", [])})

@@ -13,7 +13,10 @@ import json
 import pathlib
 import re
 
-import markdown
+try:
+    import markdown     # Debian's python3-markdown (scripts/setup.sh)
+except ImportError:     # report.md does not need it: report.py says what is missing
+    markdown = None
 
 from .report_data import Report, Table, failures_first, gate_summary, regress_table, scene_stem
 
@@ -61,6 +64,8 @@ def table(t: Table, sortable: bool = False, cls: str = "") -> str:
 def md_to_html(text: str) -> str:
     """Markdown (python3-markdown, tables) to HTML; a link to an image file (the sweep's plots)
     also shows the image under it."""
+    if markdown is None:
+        raise RuntimeError("python3-markdown is not installed (scripts/setup.sh installs it)")
     page = markdown.markdown(text, extensions=["tables"], output_format="html")
     return re.sub(r'(<a href="([^"]+\.(?:png|gif|jpe?g|svg|webp))">([^<]*)</a>)',
                   lambda m: f'{m.group(1)}<br><img class="plot" src="{m.group(2)}" alt="{m.group(3)}">', page)

@@ -103,3 +103,14 @@ def test_numbers_sort_as_numbers(tmp_path):
     rep = report_data.collect(make_out(tmp_path))
     page = report_html.render(rep)
     assert 'data-v="20.0"' in page and 'data-v="7"' in page
+
+
+def test_bad_input_names_the_file(tmp_path):
+    out = make_out(tmp_path)
+    (out / "regress.json").write_text("[{\"scene\": 1}]")
+    try:
+        report_data.collect(out)
+    except report_data.InputError as e:
+        assert str(e).startswith(str(out / "regress.json") + ": expected a list of runs")
+    else:
+        raise AssertionError("no error")
