@@ -216,6 +216,15 @@ def collect(out_dir) -> Report:
             raise InputError(f"{path}: expected a list of runs with scene and profile (pst regress -o)")
     runs_dirs = [(r, root / scene_stem(r) / r["profile"]) for r in rep.runs]
     rep.scenes = scene_views(runs_dirs, lambda stem: root / stem)
+    # Scenes with a reference render and no hardware run (e.g. a reference-only noise basis).
+    have = {v.name for v in rep.scenes}
+    for path in sorted(root.glob("*/report.json")):
+        d, stem = path.parent, path.parent.name
+        kinds = [("filtered", "reference (filtered)"), ("unfiltered", "unfiltered"), ("truth", "ground truth"),
+                 ("width", "filter width")]
+        layers = [Layer(label, k, d / f"{k}.png") for k, label in kinds if (d / f"{k}.png").exists()]
+        if stem not in have and layers:
+            rep.scenes.append(SceneView(stem, layers, []))
     rep.notes = sorted({n for r in rep.runs for n in r.get("notes", [])})
     synth = root / "synth"
     # The two profiles and any other profile the regression ran (out/synth also holds the

@@ -92,6 +92,8 @@ def viewer(view, root: pathlib.Path) -> str:
 
 
 def scene_stats(view) -> str:
+    if not view.runs:
+        return '<p class="scene-stats">Reference render only (no hardware run of this scene).</p>\n'
     parts = []
     for r in failures_first(view.runs):
         v = r.get("vs_reference", {})

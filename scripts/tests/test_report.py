@@ -31,6 +31,11 @@ def make_out(tmp: pathlib.Path) -> pathlib.Path:
         for k in ("rtl", "reference", "difference"):
             (d / f"{k}.png").write_bytes(PNG)
     (out / "a" / "truth.png").write_bytes(PNG)
+    (out / "c").mkdir()
+    (out / "c" / "report.json").write_text(json.dumps({"title": "C", "width": 1, "height": 1, "fragments": 1,
+                                                       "seconds": {"total": 1, "truth": 0}}))
+    for k in ("filtered", "unfiltered", "width"):
+        (out / "c" / f"{k}.png").write_bytes(PNG)
     (out / "regress.json").write_text(json.dumps(runs))
     (out / "synth").mkdir()
     (out / "synth" / "reduced.json").write_text(json.dumps({"profile": "reduced", "logic_ge": 98000, "fmax_mhz": 50.5,
@@ -58,6 +63,8 @@ def test_viewer_layers_reference_profiles_truth_differences(tmp_path):
     assert [l.kind for l in a.layers] == ["reference", "rtl", "rtl", "truth", "difference", "difference"]
     b = next(v for v in rep.scenes if v.name == "b")
     assert "truth" not in [l.kind for l in b.layers]
+    c = next(v for v in rep.scenes if v.name == "c")
+    assert [l.kind for l in c.layers] == ["filtered", "unfiltered", "width"] and c.runs == []
 
 
 def test_gate_summary_tolerates_missing_keys(tmp_path):
@@ -88,7 +95,7 @@ def test_html_page_self_contained(tmp_path):
     assert not re.search(r"<(script|link|img)[^>]+(src|href)=\"https?:", page)   # no network
     scripts = re.findall(r"<script[^>]*>(.*?)</script>", page, flags=re.S)
     specs = [json.loads(s) for s in scripts if s.startswith("{")]
-    assert [s["name"] for s in specs] == ["a", "b"]
+    assert [s["name"] for s in specs] == ["a", "b", "c"]   # c: a reference render alone
     assert all(l["src"].startswith("data:image/png;base64,") for s in specs for l in s["layers"])
     assert 'id="scene-a"' in page and 'id="gates"' in page and 'id="fig11"' in page
     assert '<img alt="x" src="figures/fig11.png"' in page

@@ -62,6 +62,8 @@ const SCENES = ["scenes/zoneplate.toml", "scenes/planet.toml"];
 run(PST, ["regress", ...SCENES, "--size", "32", "--profile", "full", "--profile", "reduced",
           "-o", path.join(OUT, "regress.json"), "--images", OUT]);
 run(PST, ["render", "scenes/zoneplate.toml", "--size", "32", "--truth", "2", "-q", "-o", path.join(OUT, "zoneplate")]);
+// A scene with a reference render only (no hardware run): its viewer shows the reference images.
+run(PST, ["render", "scenes/bases.toml", "--size", "32", "-q", "-o", path.join(OUT, "bases")]);
 fs.mkdirSync(path.join(OUT, "synth"));
 fs.writeFileSync(path.join(OUT, "synth/reduced.json"),
                  JSON.stringify({ profile: "reduced", logic_ge: 12345, flip_flops: 678, fmax_mhz: 99.5 }));
@@ -105,12 +107,13 @@ try {
   });
   check(imgs.all.length === 2 && imgs.all.every((i) => i.w > 0), `${imgs.all.length} <img> elements load`,
         JSON.stringify(imgs.all.filter((i) => !(i.w > 0))));
-  // Per scene: reference, full, reduced, difference x 2; zoneplate also the ground truth.
-  check(imgs.layers.length === 2 * 5 + 1 && imgs.layers.every((i) => i.w > 0),
-        `${imgs.layers.length} viewer images load (expected 11)`, JSON.stringify(imgs.layers));
+  // Per scene: reference, full, reduced, difference x 2; zoneplate also the ground truth;
+  // bases (reference render only): filtered, unfiltered, filter width.
+  check(imgs.layers.length === 2 * 5 + 1 + 3 && imgs.layers.every((i) => i.w > 0),
+        `${imgs.layers.length} viewer images load (expected 14)`, JSON.stringify(imgs.layers));
 
   // Sections with anchors
-  const ids = await page.evaluate(() => ["regression", "images", "scene-zoneplate", "scene-planet", "gates",
+  const ids = await page.evaluate(() => ["regression", "images", "scene-zoneplate", "scene-planet", "scene-bases", "gates",
     "gates-reduced", "gates-full", "fig11", "fig10", "sweeps", "sweep-reduced", "references"].filter((id) => !document.getElementById(id)));
   check(ids.length === 0, "sections have anchors", "missing " + ids.join(", "));
   const gateText = await page.textContent("#gates");
