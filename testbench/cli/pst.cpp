@@ -25,6 +25,8 @@
 #include "fragments.h"
 #include "hwrender.h"
 #include "imageio.h"
+#include "junit.h"
+#include "random_regress.h"
 #include "render.h"
 #include "scene.h"
 
@@ -176,8 +178,9 @@ int runHardwareRender(const RenderArgs& a, const HwArgs& hw) {
 }
 
 int runRegress(const std::vector<std::string>& scenes, int size, const HwArgs& hw, const std::string& outPath,
-               const std::string& imageDir) {
+               const std::string& imageDir, const std::string& junitPath) {
     nlohmann::json all = nlohmann::json::array();
+    std::vector<JunitCase> cases;
     int failures = 0, skipped = 0;
     std::printf("%-14s %-8s %9s %10s %8s %9s %10s %12s\n", "scene", "profile", "pixels", "mismatch", "PSNR",
                 "<=1LSB%", "cyc/pixel", "rtl px/s");
@@ -192,6 +195,7 @@ int runRegress(const std::vector<std::string>& scenes, int size, const HwArgs& h
                 std::printf("%-14s %-8s SKIPPED: %s\n", stem.c_str(), p.name.c_str(), why.c_str());
                 std::fflush(stdout);
                 ++skipped;
+                cases.push_back({"regress." + p.name, stem, 0, false, why, "", true});
                 continue;
             }
             auto rtl = makeRtlModel(p.name, hw.sim);
@@ -205,6 +209,8 @@ int runRegress(const std::vector<std::string>& scenes, int size, const HwArgs& h
                 ++failures;
                 std::cout << r.scoreboard;
             }
+            cases.push_back({"regress." + p.name, stem, r.rtlSeconds + r.goldenSeconds + r.referenceSeconds, !r.passed,
+                             std::to_string(r.mismatches) + " mismatches", r.scoreboard});
             all.push_back(hwJson(path, p, "rtl", r, scene.camera.width, scene.camera.height));
             if (!imageDir.empty()) {
                 const fs::path dir = fs::path(imageDir) / stem / p.name;
@@ -216,9 +222,54 @@ int runRegress(const std::vector<std::string>& scenes, int size, const HwArgs& h
         }
     }
     if (!outPath.empty()) writeTextFile(outPath, all.dump(2) + "\n");
+    if (!junitPath.empty()) writeJunit(junitPath, "pst regress", cases);
     std::printf("%s: %zu runs, %d failed", failures ? "FAILED" : "PASSED", all.size(), failures);
     if (skipped) std::printf(", %d skipped (no hardware unit for their noise basis)", skipped);
     std::printf("\n");
+    return failures ? 1 : 0;
+}
+
+// pst regress --random N: constrained-random textures and fragments (testbench/random).
+int runRandom(const HwArgs& hw, RandomRegressOptions o, bool quiet, const std::string& junitPath) {
+    int failures = 0;
+    std::vector<JunitCase> cases;
+    std::printf("%-14s %10s %9s %9s %10s %10s %12s\n", "profile", "fragments", "textures", "mismatch", "cyc/pixel",
+                "seconds", "fragments/s");
+    for (const std::string& name : hw.profiles) {
+        const Profile p = profileByName(name);
+        if (!quiet && isatty(STDERR_FILENO))
+            o.progress = [&](uint64_t done, uint64_t total) {
+                std::fprintf(stderr, "\r%s: %llu / %llu", p.name.c_str(), (unsigned long long)done,
+                             (unsigned long long)total);
+                if (done >= total) std::fprintf(stderr, "\n");
+            };
+        const RandomRegressResult r = runRandomRegress(p, p.name, o);
+        std::printf("%-14s %10llu %9llu %9llu %10.3f %10.1f %12.0f\n", p.name.c_str(),
+                    (unsigned long long)r.fragments, (unsigned long long)r.textures, (unsigned long long)r.mismatches,
+                    r.fragments ? double(r.cycles) / double(r.fragments) : 0.0, r.seconds,
+                    r.seconds > 0 ? double(r.fragments) / r.seconds : 0.0);
+        std::fflush(stdout);
+        JunitCase jc{"regress.random." + p.name, "seed " + std::to_string(o.seed) + " fragments " +
+                     std::to_string(r.firstFragment) + ".." + std::to_string(r.firstFragment + r.fragments),
+                     r.seconds, !r.passed, "", ""};
+        if (!r.passed) {
+            ++failures;
+            jc.message = std::to_string(r.mismatches) + " mismatches, first at fragment " +
+                         (r.firstBad == UINT64_MAX ? std::string("?") : std::to_string(r.firstBad));
+            jc.output = r.report;
+            cases.push_back(jc);
+            std::cout << r.report;
+            if (r.firstBad != UINT64_MAX)
+                std::cout << "first mismatch: seed " << o.seed << ", fragment " << r.firstBad << "; replay alone: pst regress --random 1 --seed "
+                          << o.seed << " --from " << r.firstBad << " --batch " << o.maxBatch << " --profile " << name
+                          << " --probes\n";
+        } else {
+            cases.push_back(jc);
+        }
+    }
+    if (!junitPath.empty()) writeJunit(junitPath, "pst regress --random", cases);
+    std::printf("%s: %zu profiles, %d failed (seed %llu)\n", failures ? "FAILED" : "PASSED", hw.profiles.size(),
+                failures, (unsigned long long)o.seed);
     return failures ? 1 : 0;
 }
 
@@ -398,11 +449,23 @@ int main(int argc, char** argv) {
     regress->add_option("--size", regSize, "Square image size")->check(CLI::Range(1, 4096));
     regress->add_option("--profile", hw.profiles, "Profiles (default: every verilated profile)");
     regress->add_option("-o,--out", regOut, "JSON summary file");
+    std::string regJunit;
+    regress->add_option("--junit", regJunit, "JUnit XML of the runs (one test case per scene x profile, or per profile with --random)");
     regress->add_option("--images", regImages, "Also write <dir>/<scene>/<profile>/{rtl,reference,difference}.png");
     std::string regHtml;
     regress->add_option("--html", regHtml, "Also an HTML page: table, image viewer per scene (images to --images, "
                         "default the page's folder; JSON to -o, default beside the page)");
     addSimOptions(regress);
+    RandomRegressOptions rnd;
+    uint64_t rndCount = 0;
+    bool rndQuiet = false;
+    auto* rndOpt = regress->add_option("--random", rndCount, "Constrained-random mode: N random fragments per profile (random textures, gaps, stalls) instead of scenes")
+        ->check(CLI::Range(uint64_t(1), uint64_t(1) << 32));
+    regress->add_option("--seed", rnd.seed, "Seed of --random")->needs(rndOpt);
+    regress->add_option("--from", rnd.from, "Replay --random from the fragment with this index (starts at its segment)")->needs(rndOpt);
+    regress->add_option("--batch", rnd.maxBatch, "Most fragments per random texture")->check(CLI::Range(1, 1 << 20))->needs(rndOpt);
+    regress->add_flag("--probes", rnd.probes, "Sample the octave-stage probes in --random (names the first bad stage)")->needs(rndOpt);
+    regress->add_flag("-q,--quiet", rndQuiet, "No progress on stderr");
 
     std::string fragScene, fragOut;
     int fragSize = 0, fragLayer = 0;
@@ -434,16 +497,23 @@ int main(int argc, char** argv) {
         }
         if (*regress) {
             if (hw.profiles.empty()) hw.profiles = rtlProfiles();
+            if (rndCount > 0) {
+                if (!regScenes.empty()) throw InputError("--random: takes no scene files");
+                if (rnd.from + rndCount > (uint64_t(1) << 32))
+                    throw InputError("--from: fragment indices are 32-bit tags (from + N <= 2^32)");
+                rnd.fragments = rndCount;
+                return runRandom(hw, rnd, rndQuiet, regJunit);
+            }
             if (regScenes.empty()) {
                 for (const auto& e : fs::directory_iterator(fs::path(sourceDir()) / "scenes"))
                     if (e.path().extension() == ".toml") regScenes.push_back(e.path().string());
                 std::sort(regScenes.begin(), regScenes.end());
             }
-            if (regHtml.empty()) return runRegress(regScenes, regSize, hw, regOut, regImages);
+            if (regHtml.empty()) return runRegress(regScenes, regSize, hw, regOut, regImages, regJunit);
             const fs::path page(regHtml), dir = page.parent_path().empty() ? fs::path(".") : page.parent_path();
             const std::string json = regOut.empty() ? (dir / (page.stem().string() + ".json")).string() : regOut;
             const std::string images = regImages.empty() ? dir.string() : regImages;
-            const int rc = runRegress(regScenes, regSize, hw, json, images);
+            const int rc = runRegress(regScenes, regSize, hw, json, images, regJunit);
             return std::max(rc, writeHtmlPage(regHtml, {"--regress", json, "--images", images}));
         }
         if (*frag) return runFragments(fragScene, fragSize, fragLayer, fragOut);

@@ -1,0 +1,253 @@
+#include "random_regress.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "driver.h"
+#include "fixed.h"
+#include "rtl_model.h"
+#include "scoreboard.h"
+
+namespace pst {
+namespace {
+
+uint64_t mix(uint64_t a, uint64_t b) {
+    // splitmix64 finalizer of a combined word: independent streams per (seed, index).
+    uint64_t z = a * 0x9e3779b97f4a7c15ull + b + 0x632be59bd9b4e019ull;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+// A segment's seeds: batch sizes, content (textures, fragments, rates), RTL gaps and stalls.
+uint64_t segmentSeed(uint64_t seed, uint64_t g) { return mix(seed, g); }
+
+std::vector<int> batchSizes(const RandomRegressOptions& o, uint64_t g) {
+    RandomStream r(mix(segmentSeed(o.seed, g), 1));
+    std::vector<int> sizes(size_t(std::max(1, o.batchesPerSegment)));
+    for (int& n : sizes) n = int(r.range(1, std::max(1, o.maxBatch)));
+    return sizes;
+}
+
+glm::dvec4 randomColour(RandomStream& r) { return {r.uniform(), r.uniform(), r.uniform(), r.uniform()}; }
+
+// The colour table: uniform noise, a ramp between two colours, a constant (black, white or
+// any), or stripes of a random period (sharp edges for the filters).
+std::vector<glm::dvec4> randomTable(RandomStream& r, int n) {
+    std::vector<glm::dvec4> e(static_cast<size_t>(n));
+    switch (r.range(0, 3)) {
+        case 0:
+            for (auto& c : e) c = randomColour(r);
+            break;
+        case 1: {
+            const glm::dvec4 a = randomColour(r), b = randomColour(r);
+            for (int i = 0; i < n; ++i) e[size_t(i)] = a + (b - a) * (double(i) / std::max(1, n - 1));
+            break;
+        }
+        case 2: {
+            const int k = int(r.range(0, 2));
+            const glm::dvec4 c = k == 0 ? glm::dvec4(0.0) : k == 1 ? glm::dvec4(1.0) : randomColour(r);
+            std::fill(e.begin(), e.end(), c);
+            break;
+        }
+        default: {
+            const glm::dvec4 a = randomColour(r), b = randomColour(r);
+            const int period = int(r.range(1, n));
+            for (int i = 0; i < n; ++i) e[size_t(i)] = (i / period) % 2 ? b : a;
+            break;
+        }
+    }
+    return e;
+}
+
+// A per-texture (or per-batch) magnitude cap: log2 of the largest typical value.
+int randomCap(RandomStream& r, const FixedFormat& f) { return int(r.range(-f.fracBits, f.intBits - 1)); }
+
+}  // namespace
+
+uint64_t RandomStream::next() {
+    uint64_t z = (s_ += 0x9e3779b97f4a7c15ull);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+    return z ^ (z >> 31);
+}
+
+double RandomStream::uniform() { return double(next() >> 11) * 0x1.0p-53; }
+
+int64_t RandomStream::range(int64_t lo, int64_t hi) {
+    const uint64_t span = uint64_t(hi - lo) + 1;
+    return span == 0 ? int64_t(next()) : lo + int64_t(next() % span);
+}
+
+double randomFormatValue(RandomStream& r, const FixedFormat& f, int maxExp) {
+    const int w = f.width();
+    const double u = r.uniform();
+    const double sign = r.chance(0.5) ? -1.0 : 1.0;
+    if (u < 0.08) return 0.0;
+    if (u < 0.16) {  // the extremes and one LSB either side of zero
+        const int64_t pick[4] = {fx::maxSigned(w), fx::minSigned(w), 1, -1};
+        return std::ldexp(double(pick[r.range(0, 3)]), -f.fracBits);
+    }
+    if (u < 0.24) return std::ldexp(double(r.range(fx::minSigned(w), fx::maxSigned(w))), -f.fracBits);
+    if (u < 0.28) return sign * std::ldexp(double(fx::maxSigned(w)), -f.fracBits) * r.uniform(1.0, 4.0);
+    // Log-uniform magnitude from below one LSB to 2^(maxExp + 1).
+    return sign * std::exp2(r.uniform(double(-f.fracBits - 1), double(maxExp + 1)));
+}
+
+Texture randomTexture(RandomStream& r, const Profile& p) {
+    Texture t;
+    t.name = "random";
+    const int qe = randomCap(r, p.quadric);
+    double* coef[10] = {&t.quadric.A, &t.quadric.B, &t.quadric.C, &t.quadric.D, &t.quadric.E,
+                        &t.quadric.F, &t.quadric.G, &t.quadric.H, &t.quadric.I, &t.quadric.J};
+    for (double* c : coef) *c = r.chance(0.3) ? 0.0 : randomFormatValue(r, p.quadric, qe);
+
+    // 0..Octaves octaves; sometimes one more than the profile holds (the driver drops it).
+    const int n = r.chance(0.1) ? p.octaves + 1 : int(r.range(0, p.octaves));
+    // Lattice textures: integer diagonal M and integer o, so integer s lands on lattice planes.
+    const bool lattice = r.chance(0.2);
+    const int me = randomCap(r, p.matrix), oe = randomCap(r, p.offset), ae = randomCap(r, p.amplitude);
+    for (int i = 0; i < n; ++i) {
+        Octave o;
+        if (lattice) {
+            o.M = glm::dmat3(0.0);
+            for (int k = 0; k < 3; ++k) o.M[k][k] = double(r.range(-4, 4));
+            for (int k = 0; k < 3; ++k) o.offset[k] = double(r.range(-64, 64));
+        } else {
+            for (int c = 0; c < 3; ++c)
+                for (int k = 0; k < 3; ++k) o.M[c][k] = randomFormatValue(r, p.matrix, me);
+            for (int k = 0; k < 3; ++k) o.offset[k] = randomFormatValue(r, p.offset, oe);
+        }
+        o.amplitude = randomFormatValue(r, p.amplitude, ae);
+        t.octaves.push_back(o);
+    }
+    t.noise = p.noise;
+    t.norm = p.filterNorm;
+    const WrapMode wrap = r.chance(0.5) ? WrapMode::Clamp : WrapMode::Mod;
+    t.clut = ColorMap(randomTable(r, p.clutSize()), wrap);
+    static const FilterKind kinds[5] = {FilterKind::None, FilterKind::MipNearest, FilterKind::MipLinear,
+                                        FilterKind::Sat, FilterKind::Box};
+    t.filter = kinds[r.range(0, 4)];
+    return t;
+}
+
+std::vector<FragmentFx> randomFragments(RandomStream& r, const Profile& p, uint32_t firstTag, size_t n) {
+    const int se = randomCap(r, p.coord), je = randomCap(r, p.jacobian);
+    const double latticeRate = r.chance(0.3) ? r.uniform() : 0.0;
+    // Coherent streams (a scanline: small steps from a start point) or independent points.
+    const bool walk = r.chance(0.3);
+    glm::dvec3 s0(randomFormatValue(r, p.coord, se), randomFormatValue(r, p.coord, se),
+                  randomFormatValue(r, p.coord, se));
+    const double step = std::exp2(r.uniform(double(-p.coord.fracBits), 2.0));
+    std::vector<FragmentFx> out;
+    out.reserve(n);
+    for (size_t i = 0; i < n; ++i) {
+        glm::dvec3 s, dx, dy;
+        for (int k = 0; k < 3; ++k) {
+            if (walk) {
+                s0[k] += step * r.uniform(-1.0, 1.0);
+                s[k] = s0[k];
+            } else {
+                s[k] = randomFormatValue(r, p.coord, se);
+            }
+            if (latticeRate > 0 && r.chance(latticeRate)) s[k] = std::round(s[k]);
+            dx[k] = randomFormatValue(r, p.jacobian, je);
+            dy[k] = randomFormatValue(r, p.jacobian, je);
+        }
+        if (r.chance(0.05)) dx = dy = glm::dvec3(0.0);  // a zero Jacobian
+        out.push_back(quantizeFragment(p, firstTag + uint32_t(i), s, dx, dy));
+    }
+    return out;
+}
+
+uint64_t segmentStart(const RandomRegressOptions& o, uint64_t index, uint64_t* segment) {
+    uint64_t start = 0;
+    for (uint64_t g = 0;; ++g) {
+        uint64_t len = 0;
+        for (int n : batchSizes(o, g)) len += uint64_t(n);
+        if (index < start + len) {
+            if (segment) *segment = g;
+            return start;
+        }
+        start += len;
+    }
+}
+
+RandomRegressResult runRandomRegress(const Profile& p, const std::string& rtlName, const RandomRegressOptions& o) {
+    using Clock = std::chrono::steady_clock;
+    const auto t0 = Clock::now();
+    RandomRegressResult res;
+    uint64_t g = 0;
+    uint64_t idx = segmentStart(o, o.from, &g);
+    res.firstFragment = idx;
+    const uint64_t end = o.from + o.fragments;
+    for (; idx < end; ++g) {
+        const uint64_t segSeed = segmentSeed(o.seed, g);
+        const std::vector<int> sizes = batchSizes(o, g);
+        RandomStream r(mix(segSeed, 2));
+        SimOptions so;
+        so.seed = mix(segSeed, 3);
+        so.inputGapRate = r.chance(0.25) ? 0.0 : r.uniform(0.0, o.maxGapRate);
+        so.outputStallRate = r.chance(0.25) ? 0.0 : r.uniform(0.0, o.maxStallRate);
+        auto rtl = makeRtlModel(rtlName, so);
+        GoldenPipeline golden(p);
+        Scoreboard board(p, o.maxReports);
+        Texture tex;
+        TextureProgram prog;
+        bool programmed = false;
+        for (size_t b = 0; b < sizes.size() && idx < end; ++b) {
+            // A new texture, or (as for an unfiltered image) only a new control word.
+            RegWrites writes;
+            if (!programmed || !r.chance(0.2)) {
+                tex = randomTexture(r, p);
+                prog = programTexture(p, tex);
+                writes = prog.writes;
+                programmed = true;
+            } else {
+                writes = {controlWrite(tex, int(r.range(0, 3)))};
+            }
+            ++res.textures;
+            std::vector<FragmentFx> frags = randomFragments(r, p, uint32_t(idx), size_t(sizes[b]));
+            if (frags.size() > end - idx) frags.resize(size_t(end - idx));
+
+            for (const auto& [a, d] : writes) golden.write(a, d);
+            rtl->write(writes);
+            for (const FragmentFx& f : frags) {
+                if (o.fault != Stage::Count) golden.injectFault(f.tag >= o.faultFrom ? o.fault : Stage::Count);
+                StageTrace trace;
+                const PixelFx px = golden.eval(f, &trace);
+                board.expect(f, px, trace);
+            }
+            std::map<uint32_t, ProbeFx> probes;
+            const std::vector<PixelFx> got = rtl->run(frags, prog.activeOctaves, o.probes ? &probes : nullptr);
+            for (const PixelFx& px : got) {
+                auto it = probes.find(px.tag);
+                board.observe(px, it == probes.end() ? nullptr : &it->second);
+            }
+            idx += frags.size();
+            res.fragments += frags.size();
+        }
+        board.finish();
+        res.cycles += rtl->busyCycles();
+        ++res.segments;
+        if (!board.passed()) {
+            res.passed = false;
+            res.mismatches += board.mismatches() + board.lost() + board.unexpected();
+            for (const Mismatch& m : board.reports())
+                res.firstBad = std::min<uint64_t>(res.firstBad, m.stage == Stage::Count ? m.got.tag : m.input.tag);
+            std::ostringstream os;
+            os << "segment " << g << " (gap rate " << so.inputGapRate << ", stall rate " << so.outputStallRate
+               << "): " << board.summary();
+            res.report += os.str();
+            break;  // the first failing segment is enough; replay it with --from
+        }
+        if (o.progress) o.progress(idx - res.firstFragment, end - res.firstFragment);
+    }
+    res.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
+    return res;
+}
+
+}  // namespace pst

@@ -1,0 +1,158 @@
+// The constrained-random regression: its generators reach what they promise (every filter kind
+// and wrap, 0..Octaves octaves, saturated f, grad and W, lattice planes, zero and extreme
+// Jacobians), a seed replays, and a perturbed golden stage is caught at the right fragment,
+// also when replayed alone.
+#include "random_regress.h"
+
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "driver.h"
+#include "fixed.h"
+#include "rtl_model.h"
+
+namespace pst {
+namespace {
+
+Profile profile(const std::string& name) { return loadProfile(rtlProfilePath(name)); }
+
+TEST(RandomStream, SameSeedSameStreamAndRangesHold) {
+    RandomStream a(42), b(42), c(43);
+    bool differs = false;
+    for (int i = 0; i < 1000; ++i) {
+        const uint64_t x = a.next();
+        EXPECT_EQ(x, b.next());
+        differs = differs || x != c.next();
+        const int64_t v = a.range(-3, 5);
+        b.range(-3, 5);
+        EXPECT_GE(v, -3);
+        EXPECT_LE(v, 5);
+        const double u = a.uniform();
+        b.uniform();
+        EXPECT_GE(u, 0.0);
+        EXPECT_LT(u, 1.0);
+    }
+    EXPECT_TRUE(differs);
+}
+
+TEST(RandomRegress, TexturesReachEveryKindWrapOctaveCountAndRegisterExtreme) {
+    for (const std::string& name : rtlProfiles()) {
+        SCOPED_TRACE(name);
+        const Profile p = profile(name);
+        RandomStream r(7);
+        std::set<int> kinds, wraps, octaves;
+        bool quadricMax = false, quadricMin = false, dropped = false;
+        for (int i = 0; i < 500; ++i) {
+            const Texture t = randomTexture(r, p);
+            const TextureProgram prog = programTexture(p, t);
+            kinds.insert(prog.filterKind);
+            wraps.insert(int(t.clut.wrap()));
+            octaves.insert(prog.activeOctaves);
+            dropped = dropped || prog.droppedOctaves > 0;
+            for (const auto& [a, d] : prog.writes)
+                if (a >= 0x10 && a < 0x1a) {
+                    const int64_t v = fx::wrapSigned(d, p.quadric.width());
+                    quadricMax = quadricMax || v == fx::maxSigned(p.quadric.width());
+                    quadricMin = quadricMin || v == fx::minSigned(p.quadric.width());
+                }
+        }
+        EXPECT_EQ(kinds.size(), 4u);
+        EXPECT_EQ(wraps.size(), 2u);
+        EXPECT_EQ(int(octaves.size()), p.octaves + 1);  // 0..Octaves
+        EXPECT_TRUE(dropped);
+        EXPECT_TRUE(quadricMax && quadricMin);
+    }
+}
+
+TEST(RandomRegress, FragmentsAndGoldenOutputsReachTheCorners) {
+    for (const std::string& name : rtlProfiles()) {
+        SCOPED_TRACE(name);
+        const Profile p = profile(name);
+        RandomStream r(11);
+        const int cw = p.coord.width(), jw = p.jacobian.width(), fw = p.f.width(), gw = p.grad.width();
+        const int64_t wmax = fx::maxUnsigned(p.widthIntBits() + p.widthFrac);
+        bool sMax = false, sMin = false, lattice = false, jZero = false, jMax = false, jMin = false;
+        int fSat = 0, fFree = 0, gSat = 0, wSat = 0, wZero = 0, wMid = 0;
+        for (int batch = 0; batch < 60; ++batch) {
+            const Texture t = randomTexture(r, p);
+            GoldenPipeline golden(p);
+            for (const auto& [a, d] : programTexture(p, t).writes) golden.write(a, d);
+            for (const FragmentFx& f : randomFragments(r, p, 0, 200)) {
+                bool zero = true;
+                for (int k = 0; k < 3; ++k) {
+                    sMax = sMax || f.s[k] == fx::maxSigned(cw);
+                    sMin = sMin || f.s[k] == fx::minSigned(cw);
+                    lattice = lattice || (f.s[k] != 0 && f.s[k] % (int64_t(1) << p.coord.fracBits) == 0);
+                }
+                for (int k = 0; k < 6; ++k) {
+                    zero = zero && f.j[k] == 0;
+                    jMax = jMax || f.j[k] == fx::maxSigned(jw);
+                    jMin = jMin || f.j[k] == fx::minSigned(jw);
+                }
+                jZero = jZero || zero;
+                const PixelFx px = golden.eval(f);
+                const bool fs = px.f == fx::maxSigned(fw) || px.f == fx::minSigned(fw);
+                (fs ? fSat : fFree)++;
+                for (int k = 0; k < 3; ++k) gSat += px.grad[k] == fx::maxSigned(gw) || px.grad[k] == fx::minSigned(gw);
+                wSat += px.w == wmax;
+                wZero += px.w == 0;
+                wMid += px.w > 0 && px.w < wmax;
+            }
+        }
+        EXPECT_TRUE(sMax && sMin && lattice && jZero && jMax && jMin);
+        // Saturated and unsaturated results both occur, in a good share each.
+        EXPECT_GT(fSat, 200);
+        EXPECT_GT(fFree, 2000);
+        EXPECT_GT(gSat, 200);
+        EXPECT_GT(wSat, 200);
+        EXPECT_GT(wZero, 200);
+        EXPECT_GT(wMid, 1000);
+    }
+}
+
+TEST(RandomRegress, SegmentStartsAreConsistent) {
+    RandomRegressOptions o;
+    o.seed = 5;
+    uint64_t g0 = 99, g1 = 99;
+    EXPECT_EQ(segmentStart(o, 0, &g0), 0u);
+    EXPECT_EQ(g0, 0u);
+    const uint64_t s = segmentStart(o, 100000, &g1);
+    EXPECT_LE(s, 100000u);
+    EXPECT_GT(g1, 0u);
+    // The segment before ends where this one starts.
+    EXPECT_LT(segmentStart(o, s - 1), s);
+    EXPECT_EQ(segmentStart(o, s), s);
+}
+
+// The regression can fail: a perturbed golden stage from fragment X on is reported at X, and
+// replaying from X alone reports X again.
+TEST(RandomRegress, PerturbedGoldenIsCaughtAtItsFragmentAndReplays) {
+    const std::string name = rtlProfiles().back();
+    const Profile p = profile(name);
+    RandomRegressOptions o;
+    o.seed = 3;
+    o.maxBatch = 300;
+    o.fragments = 6000;
+    const RandomRegressResult clean = runRandomRegress(p, name, o);
+    EXPECT_TRUE(clean.passed) << clean.report;
+    EXPECT_EQ(clean.fragments, 6000u);
+    EXPECT_GT(clean.textures, 10u);
+
+    o.fault = Stage::Accumulate;
+    o.faultFrom = 4321;
+    const RandomRegressResult bad = runRandomRegress(p, name, o);
+    EXPECT_FALSE(bad.passed);
+    EXPECT_EQ(bad.firstBad, 4321u) << bad.report;
+
+    o.from = 4321;
+    o.fragments = 1;
+    const RandomRegressResult replay = runRandomRegress(p, name, o);
+    EXPECT_FALSE(replay.passed);
+    EXPECT_EQ(replay.firstBad, 4321u);
+    EXPECT_LE(replay.firstFragment, 4321u);
+    EXPECT_LE(replay.fragments, 4321u - replay.firstFragment + 1);
+}
+
+}  // namespace
+}  // namespace pst
