@@ -146,7 +146,8 @@
       } else {
         drawLayer(st.show === "a" ? st.a : st.b);
       }
-      toggle.textContent = st.slider ? "A|B" : (st.show === "a" ? "A: " : "B: ") + L[st.show === "a" ? st.a : st.b].label;
+      toggle.textContent = st.slider ? `${L[st.a].label} | ${L[st.b].label}`
+                                     : (st.show === "a" ? "A: " : "B: ") + L[st.show === "a" ? st.a : st.b].label;
       zoomLabel.textContent = st.zoom + "x";
       root.dataset.show = st.slider ? "slider" : st.show;
       root.dataset.zoom = String(st.zoom);
