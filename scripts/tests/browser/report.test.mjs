@@ -84,6 +84,33 @@ run(PYTHON, [path.join(SOURCE, "scripts/report.py"), OUT, "--md", path.join(OUT,
 const PAGE = path.join(WORK, "page/regress.html");
 run(PST, ["regress", "scenes/zoneplate.toml", "--size", "16", "--profile", "reduced", "--html", PAGE]);
 
+
+// Colour changes between horizontally adjacent pixels of a PNG screenshot: on the boundaries of
+// block x block squares (pixels drawn as blocks) or inside them (smoothing), decoded in the page.
+async function hardEdges(page, png, block) {
+  return page.evaluate(async ([b64, block]) => {
+    const img = new Image();
+    img.src = "data:image/png;base64," + b64;
+    await img.decode();
+    const c = document.createElement("canvas");
+    c.width = img.naturalWidth; c.height = img.naturalHeight;
+    const x = c.getContext("2d");
+    x.drawImage(img, 0, 0);
+    const d = x.getImageData(0, 0, c.width, c.height).data;
+    let onBoundary = 0, inside = 0;
+    const colours = new Set();
+    for (let y = 0; y < c.height; y++)
+      for (let i = 1; i < c.width; i++) {
+        const o = 4 * (y * c.width + i), p = o - 4;
+        colours.add((d[o] << 16) | (d[o + 1] << 8) | d[o + 2]);
+        if (d[o] !== d[p] || d[o + 1] !== d[p + 1] || d[o + 2] !== d[p + 2]) {
+          if (i % block === 0) onBoundary += 1; else inside += 1;
+        }
+      }
+    return { onBoundary, inside, colours: colours.size, w: c.width };
+  }, [png.toString("base64"), block]);
+}
+
 // ---------------------------------------------------------------------------------------------
 const browser = await chromium.launch({ executablePath: CHROMIUM, args: ["--no-sandbox"] });
 try {
@@ -205,30 +232,26 @@ try {
     return { zoom: v.pvState.zoom, cw: c.width, iw: v.pvImages[0].naturalWidth, ox: v.pvState.ox, oy: v.pvState.oy };
   });
   const block = geo.cw / (geo.iw / geo.zoom);
-  const edges = await page.evaluate(async ([b64, block]) => {
-    const img = new Image();
-    img.src = "data:image/png;base64," + b64;
-    await img.decode();
-    const c = document.createElement("canvas");
-    c.width = img.naturalWidth; c.height = img.naturalHeight;
-    const x = c.getContext("2d");
-    x.drawImage(img, 0, 0);
-    const d = x.getImageData(0, 0, c.width, c.height).data;
-    let onBoundary = 0, inside = 0;
-    const colours = new Set();
-    for (let y = 0; y < c.height; y++)
-      for (let i = 1; i < c.width; i++) {
-        const o = 4 * (y * c.width + i), p = o - 4;
-        colours.add((d[o] << 16) | (d[o + 1] << 8) | d[o + 2]);
-        if (d[o] !== d[p] || d[o + 1] !== d[p + 1] || d[o + 2] !== d[p + 2]) {
-          if (i % block === 0) onBoundary += 1; else inside += 1;
-        }
-      }
-    return { onBoundary, inside, colours: colours.size };
-  }, [zoomed.toString("base64"), block]);
-  check(geo.zoom === 4 && geo.ox === 0 && geo.oy === 0 && Number.isInteger(block) && edges.onBoundary > 0 && edges.inside === 0 &&
-        edges.colours <= (geo.iw / geo.zoom) ** 2,
+  const edges = await hardEdges(page, zoomed, block);
+  check(geo.zoom === 4 && geo.ox === 0 && geo.oy === 0 && Number.isInteger(block) && edges.onBoundary > 0 &&
+        edges.inside === 0 && edges.colours <= (geo.iw / geo.zoom) ** 2,
         `zoom 4x draws ${block}x${block} px blocks with hard edges`, JSON.stringify({ geo, edges }));
+
+  // On a 2x screen the canvas is scaled up by the browser: CSS image-rendering keeps it sharp.
+  {
+    const hidpi = await browser.newContext({ viewport: { width: 1280, height: 1000 }, deviceScaleFactor: 2 });
+    const p2 = await hidpi.newPage();
+    p2.on("pageerror", (e) => errors.push(String(e)));
+    await p2.goto("file://" + HTML);
+    await p2.waitForFunction((v) => Number(document.querySelector(v).dataset.loaded) > 0, V);
+    const c2 = await p2.$(`${V} canvas`);
+    const shot = await c2.screenshot();
+    const b2 = 2 * (await p2.$eval(`${V} canvas`, (c) => c.width / c.parentElement.pvImages[0].naturalWidth));
+    const e2 = await hardEdges(p2, shot, b2);
+    check(e2.w === 2 * geo.cw && e2.onBoundary > 0 && e2.inside === 0,
+          `at device scale 2 the fitted image's ${b2}x${b2} px blocks keep hard edges`, JSON.stringify(e2));
+    await hidpi.close();
+  }
 
   // Value under the cursor: the readout names the pixel and every image's value
   const box = await canvas.boundingBox();
