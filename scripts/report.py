@@ -10,9 +10,11 @@
 
     /usr/bin/python3 scripts/report.py --html FILE --regress JSON [--images DIR]
     /usr/bin/python3 scripts/report.py --html FILE --summary DIR/summary.json [...]
+    /usr/bin/python3 scripts/report.py --html FILE --sweep out/sweep/NAME
         The page of one `pst regress` run (images in DIR/<scene>/<profile>/, default: FILE's
         folder) or of `pst render --profile` runs (images beside each summary.json): the table
         and the viewers. `pst regress --html` and `pst render --profile P --html` call this.
+        --sweep: a precision sweep's points side by side per scene (golden images), its sweep.md.
 
 Missing or unreadable input: `error: FILE: what is wrong`, exit status 2, no output file.
 """
@@ -62,9 +64,30 @@ def page(args) -> report_data.Report:
         if not isinstance(run, dict) or "scene" not in run or "profile" not in run:
             raise InputError(f"{p}: expected one run with scene and profile (pst render --profile)")
         pairs.append((run, p.parent))
-    title = "pst regress" if args.regress else "pst render --profile"
+    if args.sweep:
+        # A sweep's folder (scripts/sweep.py --out): renders/<point>/<scene>/summary.json beside
+        # golden.png, reference.png, difference.png; its sweep.md as a section.
+        sweep = pathlib.Path(args.sweep)
+        found = sorted((sweep / "renders").glob("*/*/summary.json"))
+        if not found:
+            raise InputError(f"{sweep}: no renders/<point>/<scene>/summary.json (scripts/sweep.py --out)")
+        for p in found:
+            run = load_json(p)
+            if not isinstance(run, dict) or "scene" not in run:
+                raise InputError(f"{p}: expected one run with scene (pst render --profile)")
+            run["profile"] = p.parent.parent.name          # the sweep point
+            pairs.append((run, p.parent))
+    title = "pst regress" if args.regress else "precision sweep" if args.sweep else "pst render --profile"
     rep = report_data.collect_runs(pairs, root, title)
     rep.subtitle = f"{len(rep.runs)} runs"
+    if args.summary:
+        rep.runs_title = "Hardware runs"
+    if args.sweep:
+        sweep = pathlib.Path(args.sweep)
+        rep.title = f"precision sweep: {sweep.resolve().name}"
+        rep.runs_title = "Sweep points (golden model against the reference)"
+        rep.subtitle += " of the golden model (one per sweep point and scene)"
+        rep.sweeps.append(report_data.read_included("Sweep table and plots", "sweep", sweep / "sweep.md", root, ""))
     return rep
 
 
@@ -76,10 +99,11 @@ def main() -> int:
     ap.add_argument("--regress", help="page of one `pst regress -o JSON` run")
     ap.add_argument("--images", help="with --regress: its --images folder (default: the page's folder)")
     ap.add_argument("--summary", action="append", help="page of `pst render --profile` runs (repeatable)")
+    ap.add_argument("--sweep", help="page of a precision sweep's folder (scripts/sweep.py --out DIR)")
     ap.add_argument("--embed-all", action="store_true", help="also embed the figures' images (one movable file)")
     args = ap.parse_args()
     try:
-        if args.regress or args.summary:
+        if args.regress or args.summary or args.sweep:
             if not args.html:
                 raise InputError("--html: a page needs an output file")
             rep = page(args)

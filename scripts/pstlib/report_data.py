@@ -79,6 +79,7 @@ class Report:
     title: str
     root: pathlib.Path             # folder the report's relative links start from
     subtitle: str = ""
+    runs_title: str = "RTL regression"
     runs: list = field(default_factory=list)   # hardware runs (regress.json entries)
     regress_ran: bool = False
     scenes: list = field(default_factory=list)  # of SceneView

@@ -121,3 +121,25 @@ def test_bad_input_names_the_file(tmp_path):
         assert str(e).startswith(str(out / "regress.json") + ": expected a list of runs")
     else:
         raise AssertionError("no error")
+
+
+def test_sweep_page_puts_the_points_side_by_side(tmp_path):
+    import subprocess
+    sweep = tmp_path / "sweep"
+    for point in ("base", "base_octaves_2"):
+        d = sweep / "renders" / point / "a"
+        d.mkdir(parents=True)
+        r = run("a", "base", 0, 40.0)
+        r["model"] = "golden"
+        (d / "summary.json").write_text(json.dumps(r))
+        for k in ("golden", "reference", "difference"):
+            (d / f"{k}.png").write_bytes(PNG)
+    (sweep / "sweep.md").write_text("# Precision sweep\n\n- [plot](knobs/octaves.png)\n")
+    page = sweep / "index.html"
+    script = pathlib.Path(__file__).resolve().parent.parent / "report.py"
+    subprocess.run([sys.executable, str(script), "--html", str(page), "--sweep", str(sweep)], check=True)
+    text = page.read_text()
+    specs = [json.loads(s) for s in re.findall(r'<script type="application/json">(.*?)</script>', text, flags=re.S)]
+    assert [l["label"] for l in specs[0]["layers"]] == [
+        "reference", "base (golden)", "base_octaves_2 (golden)", "|base - reference| x8", "|base_octaves_2 - reference| x8"]
+    assert 'id="sweep"' in text and '<img class="plot" src="knobs/octaves.png"' in text
