@@ -112,7 +112,20 @@ def main() -> int:
         root = pathlib.Path(args.out)
         if not root.is_dir():
             raise InputError(f"{root}: no such folder (run scripts/run.sh first)")
+        # Each sweep with renders also gets its own page (the points side by side), linked below.
+        pages = {}
+        for sweep_md in sorted((root / "sweep").glob("*/sweep.md")) if args.html else []:
+            d = sweep_md.parent
+            if any((d / "renders").glob("*/*/summary.json")):
+                sub = argparse.Namespace(html=str(d / "index.html"), regress=None, images=None, summary=None,
+                                         sweep=str(d))
+                write_atomic(d / "index.html", report_html.render(page(sub), embed_all=args.embed_all))
+                pages[f"sweep-{d.name}"] = f"sweep/{d.name}/index.html"
         rep = report_data.collect(root)
+        for inc in rep.sweeps:
+            if inc.anchor in pages and inc.text is not None:
+                inc.text += (f"\nEvery point's images side by side in the viewer: "
+                             f"[{pages[inc.anchor]}]({pages[inc.anchor]})\n")
         rep.subtitle = "Markdown version: report.md"
         text = report_md.render(rep, md_links(root))
         if args.md:

@@ -74,6 +74,10 @@ fs.writeFileSync(path.join(OUT, "figures/fig11.md"), "## Figure 11\n\n![fig11](f
 fs.mkdirSync(path.join(OUT, "sweep/reduced/knobs"), { recursive: true });
 fs.copyFileSync(path.join(OUT, "planet/full/rtl.png"), path.join(OUT, "sweep/reduced/knobs/octaves.png"));
 fs.writeFileSync(path.join(OUT, "sweep/reduced/sweep.md"), "## Plots\n\n- [octaves](knobs/octaves.png)\n");
+// One sweep point's render (the golden model, as scripts/sweep.py makes them): report.py also
+// writes the sweep's own page, out/sweep/reduced/index.html.
+run(PST, ["render", "scenes/zoneplate.toml", "--size", "16", "--profile", "reduced", "--model", "golden", "-q",
+          "-o", path.join(OUT, "sweep/reduced/renders/reduced/zoneplate")]);
 // One run marked failed (as a mismatch would leave it): the page must put it first.
 const runs = JSON.parse(fs.readFileSync(path.join(OUT, "regress.json"), "utf8"));
 const failing = runs.find((r) => r.scene.endsWith("planet.toml") && r.profile === "reduced");
@@ -264,6 +268,16 @@ try {
   await page.goto("file://" + HTML);
   await page.waitForTimeout(300);
   await page.screenshot({ path: path.join(WORK, "report.png"), fullPage: true });
+
+  // The sweep's page, linked from the report: its viewer shows the point's golden image
+  check(await page.$('a[href="sweep/reduced/index.html"]') !== null, "the report links the sweep's page");
+  await page.goto("file://" + path.join(OUT, "sweep/reduced/index.html"));
+  await page.waitForFunction(() => document.querySelector(".pv") && Number(document.querySelector(".pv").dataset.loaded) >=
+    JSON.parse(document.querySelector(".pv script").textContent).layers.length, null, { timeout: 10000 });
+  const sweepLabels = await page.$$eval(".pv select:first-of-type option", (o) => o.map((x) => x.textContent));
+  check(sweepLabels.includes("reduced (golden)") && await page.evaluate(() =>
+    document.querySelector(".pv").pvImages.every((i) => i.naturalWidth === 16)),
+        "sweep page: the point's golden image in the viewer", sweepLabels.join(", "));
 
   // The page of `pst regress --html`: its own viewer, images loaded
   await page.goto("file://" + PAGE);
