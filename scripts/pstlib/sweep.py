@@ -1,0 +1,224 @@
+"""Sweep points: the knobs (one profile change each), the points' profiles and scene copies."""
+import copy
+import hashlib
+import pathlib
+import re
+import tomllib
+
+from . import atomic, tomledit
+from .rules import validate
+
+DEFAULT_SCENES = ["wood_teapot", "marble", "seascape", "fire", "planet", "zoneplate"]
+QUICK = {"base": "reduced", "knobs": "coord_frac,octaves,hash", "scenes": "marble,zoneplate", "size": 64,
+         "truth": 2, "rtl_subset": 0, "values": ["coord_frac=8,10,16", "octaves=2,8"]}
+
+
+# ----------------------------------------------------------------------------------------------
+# Knobs: name -> (what it changes, default values, apply(doc, value) -> None, base(doc) -> value)
+
+def _set_format_frac(*names):
+    def apply(doc, v):
+        for n in names:
+            doc["formats"][n]["frac"] = v
+    return apply
+
+
+def _apply_octaves(doc, v):
+    pipe = doc["pipeline"]
+    units = pipe["noise_units"]
+    if units == pipe["octaves"]:
+        units = v                      # one pass per pixel stays one pass per pixel
+    else:
+        units = max(d for d in range(1, units + 1) if v % d == 0)   # the most units <= the base's
+    pipe["octaves"] = v
+    pipe["noise_units"] = units
+
+
+def _apply_key(section, key):
+    def apply(doc, v):
+        doc[section][key] = v
+    return apply
+
+
+def _get(section, key):
+    return lambda d: d[section][key]
+
+
+def _knob(desc, values, section, key):
+    return (desc, values, _apply_key(section, key), _get(section, key))
+
+
+def _format_frac(d, *names):
+    """The common fraction of several formats, None when they differ."""
+    fr = {d["formats"][n]["frac"] for n in names}
+    return fr.pop() if len(fr) == 1 else None
+
+
+KNOBS = {
+    "coord_frac": ("formats.coord.frac", [6, 8, 10, 12, 14, 16, 20],
+                   _set_format_frac("coord"), lambda d: _format_frac(d, "coord")),
+    "jacobian_frac": ("formats.jacobian.frac", [8, 10, 12, 16, 24],
+                      _set_format_frac("jacobian"), lambda d: _format_frac(d, "jacobian")),
+    "noise_value_frac": _knob("noise.value_frac", [4, 5, 7, 9, 11, 15], "noise", "value_frac"),
+    "lattice_frac": _knob("noise.lattice_frac", [4, 6, 8, 10, 12, 16], "noise", "lattice_frac"),
+    "out_frac": _knob("noise.out_frac (noise value / weight-product bits)", [6, 8, 10, 12, 16],
+                      "noise", "out_frac"),
+    "guard_bits": _knob("noise.guard_bits (noise node fraction bits below out_frac)", [1, 2, 3, 4, 6],
+                        "noise", "guard_bits"),
+    "amp_frac": ("formats.amplitude.frac = grad_matrix.frac = matrix.frac", [6, 8, 10, 12, 16],
+                 _set_format_frac("amplitude", "grad_matrix", "matrix"),
+                 lambda d: _format_frac(d, "amplitude", "grad_matrix", "matrix")),
+    "colour_bits": _knob("pipeline.colour_bits", [5, 6, 7, 8], "pipeline", "colour_bits"),
+    "octaves": ("pipeline.octaves (noise_units: all of them if the base has one pass, else the "
+                "largest divisor)", [1, 2, 3, 4, 6, 8], _apply_octaves, _get("pipeline", "octaves")),
+    "interp": _knob("noise.interp", ["scurve", "linear"], "noise", "interp"),
+    "hash": _knob("noise.hash", ["rayshade", "perm256"], "noise", "hash"),
+    "corner": _knob("noise.corner", ["value_gradient", "value"], "noise", "corner"),
+    "norm": _knob("filter.norm", ["euclid", "max_half_min", "l1"], "filter", "norm"),
+    "datapath": _knob("pipeline.datapath (gates and cycles only: the images are the same bit for bit)",
+                      ["parallel", "serial"], "pipeline", "datapath"),
+    "noise_steps": _knob("pipeline.noise_steps (gates and cycles only: the images are the same bit for bit)",
+                         [1, 2, 4, 8], "pipeline", "noise_steps"),
+    "filter": ("every texture's filter (scene copies; not a profile key)", ["none", "mip", "mip_linear", "sat"],
+               None, lambda d: None),
+}
+
+
+def parse_values(spec: str):
+    """(knob, values) of a --values KNOB=V1,V2 argument; ValueError saying what is wrong."""
+    m = re.fullmatch(r"(\w+)=([\w,]+)", spec.strip())
+    if not m or m.group(1) not in KNOBS:
+        raise ValueError(f"expected KNOB=V1,V2,... with a known knob, got {spec!r}")
+    k = m.group(1)
+    known = KNOBS[k][1]
+    vals = []
+    for v in m.group(2).split(","):
+        if isinstance(known[0], int):
+            if not v.isdigit():
+                raise ValueError(f"{k} takes integers, got {v!r}")
+            vals.append(int(v))
+        else:
+            if v not in known:
+                raise ValueError(f"{k} takes {', '.join(known)}, got {v!r}")
+            vals.append(v)
+    return k, vals
+
+
+# ----------------------------------------------------------------------------------------------
+# Points
+
+def sha(text: str) -> str:
+    return hashlib.sha256(text.encode()).hexdigest()[:16]
+
+
+def ident(s: str) -> str:
+    """S as a C identifier (the name of a point, a profile, a verilated model)."""
+    s = re.sub(r"[^A-Za-z0-9_]", "_", s)
+    return s if re.match(r"[A-Za-z_]", s) else "p_" + s
+
+
+def point_name(base: str, knob: str, value) -> str:
+    return ident(f"{base}_{knob}_{value}")
+
+
+class Point:
+    def __init__(self, name, knob, value, profile_path, profile_text, scene_files, synth_name, is_base=False):
+        self.name = name
+        self.knob = knob            # "base" for the base profile itself
+        self.value = value
+        self.profile = profile_path
+        self.profile_sha = sha(profile_text)
+        self.scene_files = scene_files   # scene name -> file rendered
+        self.synth_name = synth_name     # out/synth/<synth_name>.json: its gate count
+        self.is_base = is_base
+
+
+def point_profile(base_doc: dict, knob: str, value):
+    """The base profile with one knob set (a new document) and what it violates (empty: valid)."""
+    doc = copy.deepcopy(base_doc)
+    KNOBS[knob][2](doc, value)
+    return doc, validate(doc)
+
+
+def set_texture_keys(text: str, keys: dict) -> str:
+    """The scene with KEYS (name -> value) set in every [textures.NAME] table."""
+    names = tomllib.loads(text).get("textures", {})
+    return tomledit.set_values(text, {("textures", t, k): v for t in names for k, v in keys.items()})
+
+
+def variant_keys(doc: dict) -> dict:
+    """The texture keys that make the reference use a profile's noise variant and |grad| norm."""
+    n = doc["noise"]
+    return {"noise": {"interp": n["interp"], "corner": n["corner"], "hash": n["hash"]},
+            "norm": doc["filter"]["norm"]}
+
+
+def point_scenes(scene_files: dict, pdir: pathlib.Path, name: str, keys: dict):
+    """Scene copies with texture keys set (points/<name>/<scene>.toml), or the scenes themselves;
+    and the copies' text (it is part of the point's content hash)."""
+    if not keys:
+        return dict(scene_files), ""
+    files, texts = {}, []
+    for s, f in scene_files.items():
+        text = set_texture_keys(f.read_text(), keys)
+        p = pdir / name / f"{s}.toml"
+        atomic.write_if_changed(p, text)
+        files[s] = p
+        texts.append(text)
+    return files, "".join(texts)
+
+
+def base_values(base_doc: dict, scene_files: dict) -> dict:
+    """Each knob's value in the base (None: none, or several, like the scenes' filters)."""
+    values = {k: KNOBS[k][3](base_doc) for k in KNOBS}
+    kinds = {t.get("filter", "sat") for f in scene_files.values()
+             for t in tomllib.loads(f.read_text()).get("textures", {}).values()}
+    values["filter"] = kinds.pop() if len(kinds) == 1 else None
+    return values
+
+
+def make_points(a, out: pathlib.Path):
+    """The base point, the knob points, the skipped values (knob, value, why) and the base's
+    knob values. Writes points/<name>.toml (and the scene copies) where they changed."""
+    points, skipped = [], []
+    pdir = out / "points"
+    base_text = a.base_path.read_text()
+    base_keys = variant_keys(a.base_doc) if a.match_variant else {}
+    try:
+        files, extra = point_scenes(a.scene_files, pdir, a.base_name, base_keys)
+    except (ValueError, KeyError, tomllib.TOMLDecodeError) as e:
+        raise SystemExit(f"error: --match-variant: {e}")
+    base = Point(a.base_name, "base", "-", a.base_path, base_text + extra, files, a.base_name, True)
+    bvalues = base_values(a.base_doc, a.scene_files)
+    for k in a.knob_list:
+        desc = KNOBS[k][0]
+        for v in a.value_lists[k]:
+            name = point_name(a.base_name, k, v)
+            if v == bvalues[k]:
+                continue
+            if k == "filter":
+                path, text, synth_name = a.base_path, base_text, a.base_name
+                keys = dict(base_keys, filter=v)
+            else:
+                doc, bad = point_profile(a.base_doc, k, v)
+                if bad:
+                    skipped.append((k, v, "; ".join(bad)))
+                    continue
+                change = f"{k} = {v} ({desc})"
+                if k == "octaves":
+                    change += f"; noise_units = {doc['pipeline']['noise_units']}"
+                text = tomledit.with_comment(
+                    tomledit.set_values(base_text, tomledit.changes_between(a.base_doc, doc)),
+                    f"Sweep point {name}: profile {a.base_name} ({a.base_path.name}) with\n{change}.\n"
+                    f"Written by scripts/sweep.py; the profile's own comments follow.\n")
+                path = pdir / f"{name}.toml"
+                atomic.write_if_changed(path, text)
+                synth_name = name
+                keys = variant_keys(doc) if a.match_variant else {}
+            try:
+                files, extra = point_scenes(a.scene_files, pdir, name, keys)
+            except (ValueError, KeyError, tomllib.TOMLDecodeError) as e:
+                skipped.append((k, v, f"scene copies: {e}"))
+                continue
+            points.append(Point(name, k, v, path, text + extra, files, synth_name))
+    return base, points, skipped, bvalues

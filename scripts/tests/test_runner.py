@@ -1,0 +1,98 @@
+import json
+import os
+import types
+
+from pstlib import runner
+
+SETTINGS = {"size": 64, "truth": 2}
+
+
+def point(knob="coord_frac", sha="abc"):
+    return types.SimpleNamespace(name="p", knob=knob, profile_sha=sha)
+
+
+def result(**kw):
+    r = {"profile_sha": "abc", "settings": dict(SETTINGS), "status": "ok",
+         "scenes": {"marble": {}, "zoneplate": {}}, "synth": {"sha": "abc", "logic_ge": 1000}}
+    r.update(kw)
+    return r
+
+
+def never():
+    raise AssertionError("not asked")
+
+
+def test_reusable_result():
+    assert runner.reusable(result(), point(), SETTINGS, ["marble"], False, never)
+
+
+def test_changed_profile_settings_or_scenes_start_again():
+    assert not runner.reusable(None, point(), SETTINGS, ["marble"], False, never)
+    assert not runner.reusable(result(profile_sha="old"), point(), SETTINGS, ["marble"], False, never)
+    assert not runner.reusable(result(), point(), {"size": 128, "truth": 2}, ["marble"], False, never)
+    assert not runner.reusable(result(), point(), SETTINGS, ["marble", "fire"], False, never)
+
+
+def test_failed_results_stay_unless_retried():
+    assert runner.reusable(result(status="failed"), point(), SETTINGS, ["marble"], False, never)
+    assert not runner.reusable(result(status="failed"), point(), SETTINGS, ["marble"], True, never)
+
+
+def test_missing_synthesis_reruns_only_when_there_is_one_to_run_or_pick_up():
+    r = result(synth=None)
+    assert not runner.reusable(r, point(), SETTINGS, ["marble"], False, lambda: True)
+    assert runner.reusable(r, point(), SETTINGS, ["marble"], False, lambda: False)
+    stale = result(synth={"sha": "old"})
+    assert not runner.reusable(stale, point(), SETTINGS, ["marble"], False, lambda: True)
+    assert runner.reusable(r, point(knob="filter"), SETTINGS, ["marble"], False, never)
+
+
+def test_synth_cache(tmp_path):
+    prof = tmp_path / "p.toml"
+    prof.write_text("# one\n[noise]\nout_frac = 8\n")
+    rtl = tmp_path / "a.sv"
+    rtl.write_text("module a; endmodule\n")
+    sj = tmp_path / "p.json"
+    assert not runner.synth_cache_valid(sj, prof, [rtl])
+    sj.write_text(json.dumps({"logic_ge": 5}))
+    side = tmp_path / "p.sweep.json"
+    side.write_text(json.dumps(runner.synth_key(prof, [rtl])))
+    assert runner.synth_cache_valid(sj, prof, [rtl])
+    prof.write_text("# other comment\n[noise]\nout_frac = 8\n")       # comments do not count
+    assert runner.synth_cache_valid(sj, prof, [rtl])
+    rtl.write_text("module a; wire w; endmodule\n")
+    assert not runner.synth_cache_valid(sj, prof, [rtl])
+    # without a sidecar: by modification times
+    side.unlink()
+    os.utime(sj, (2000, 2000))
+    os.utime(prof, (1000, 1000))
+    os.utime(rtl, (1000, 1000))
+    assert runner.synth_cache_valid(sj, prof, [rtl])
+    os.utime(rtl, (3000, 3000))
+    assert not runner.synth_cache_valid(sj, prof, [rtl])
+    sj.write_text("{}")                                                  # no gate count
+    assert not runner.synth_cache_valid(sj, prof, [])
+
+
+def test_synth_record(tmp_path):
+    sj = tmp_path / "x.json"
+    sj.write_text(json.dumps({"logic_ge": 98200, "rom_bits": 4096, "flip_flops": 10,
+                              "blocks": {"noise": {"logic_ge": 40000}}}))
+    r = runner.synth_record("abc", sj)
+    assert r == {"sha": "abc", "file": str(sj), "logic_ge": 98200, "rom_bits": 4096, "ram_bits": None,
+                 "flip_flops": 10, "yosys_seconds": None, "blocks": {"noise": 40000}}
+
+
+def test_read_json(tmp_path):
+    assert runner.read_json(tmp_path / "none.json") is None
+    (tmp_path / "bad.json").write_text("{")
+    assert runner.read_json(tmp_path / "bad.json") is None
+    (tmp_path / "ok.json").write_text('{"a": 1}')
+    assert runner.read_json(tmp_path / "ok.json") == {"a": 1}
+
+
+def test_run_reports_exit_status_and_output(tmp_path):
+    rc, out, err = runner.run(["/bin/sh", "-c", "echo hi; echo no >&2; exit 3"], cwd=tmp_path)
+    assert (rc, out, err) == (3, "hi\n", "no\n")
+    rc, out, err = runner.run(["/bin/sleep", "5"], cwd=tmp_path, timeout=0.2)
+    assert rc != 0 and "timed out" in err

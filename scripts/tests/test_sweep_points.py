@@ -1,0 +1,117 @@
+import argparse
+import copy
+import tomllib
+
+import pytest
+
+from conftest import ROOT
+from pstlib import rules, sweep
+
+REDUCED = ROOT / "rtl" / "configs" / "reduced.toml"
+FULL = ROOT / "rtl" / "configs" / "full.toml"
+
+
+def load(p):
+    return tomllib.loads(p.read_text())
+
+
+def test_shipped_profiles_are_valid():
+    assert rules.validate(load(FULL)) == []
+    assert rules.validate(load(REDUCED)) == []
+
+
+@pytest.mark.parametrize("edit, complaint", [
+    (lambda d: d["pipeline"].update(octaves=17), "pipeline.octaves = 17 outside [1, 16]"),
+    (lambda d: d["noise"].update(hash="md5"), "noise.hash not one of rayshade, perm256"),
+    (lambda d: d["pipeline"].update(octaves=6, noise_units=4), "pipeline.noise_units must divide pipeline.octaves"),
+    (lambda d: d["pipeline"].update(datapath="serial", noise_steps=2),
+     "pipeline.datapath = serial needs pipeline.noise_steps >= 4"),
+    (lambda d: d["pipeline"].update(noise_steps=3), "pipeline.noise_steps must be 1, 2, 4 or 8"),
+    (lambda d: d["formats"]["coord"].update(frac=29), "formats.coord: int + frac = 41 > 40"),
+    (lambda d: (d["formats"]["matrix"].update(frac=0), d["formats"]["coord"].update(frac=10)),
+     "matrix.frac + coord.frac = 10 < offset.frac"),
+    (lambda d: d["formats"].update(width_frac=-8), "formats.width_frac = -8 outside [0, 24]"),
+])
+def test_validate_names_what_is_wrong(edit, complaint):
+    doc = load(FULL)
+    edit(doc)
+    assert any(b.startswith(complaint) for b in rules.validate(doc)), rules.validate(doc)
+
+
+def test_point_names_are_c_identifiers():
+    assert sweep.point_name("reduced", "coord_frac", 8) == "reduced_coord_frac_8"
+    assert sweep.point_name("my-base", "hash", "perm256") == "my_base_hash_perm256"
+    assert sweep.ident("9lives") == "p_9lives"
+
+
+def test_octaves_knob_keeps_one_pass_or_takes_the_largest_divisor():
+    full = load(FULL)                       # 8 octaves through 8 units: one pass per pixel
+    doc, bad = sweep.point_profile(full, "octaves", 3)
+    assert bad == [] and doc["pipeline"]["octaves"] == 3 and doc["pipeline"]["noise_units"] == 3
+    base = copy.deepcopy(full)
+    base["pipeline"].update(octaves=8, noise_units=4)
+    doc, _ = sweep.point_profile(base, "octaves", 6)
+    assert doc["pipeline"]["noise_units"] == 3
+    assert base["pipeline"]["noise_units"] == 4     # the base is not changed
+
+
+def test_amp_frac_knob_moves_three_formats_and_invalid_values_are_reported():
+    red = load(REDUCED)
+    doc, bad = sweep.point_profile(red, "amp_frac", 10)
+    assert [doc["formats"][n]["frac"] for n in ("amplitude", "grad_matrix", "matrix")] == [10, 10, 10]
+    assert bad == []
+    assert sweep.KNOBS["amp_frac"][3](red) == 8
+    doc, bad = sweep.point_profile(red, "coord_frac", 30)     # 10 + 30 = 40 bits: the most
+    assert bad == []
+    doc, bad = sweep.point_profile(red, "coord_frac", 31)
+    assert bad == ["formats.coord: int + frac = 41 > 40"]
+
+
+def test_parse_values():
+    assert sweep.parse_values("coord_frac=8,10") == ("coord_frac", [8, 10])
+    assert sweep.parse_values("hash=perm256") == ("hash", ["perm256"])
+    for bad in ("coord_frac=8,x", "hash=md5", "nosuch=1", "coord_frac"):
+        with pytest.raises(ValueError):
+            sweep.parse_values(bad)
+
+
+def test_set_texture_keys_in_a_real_scene():
+    text = (ROOT / "scenes" / "marble.toml").read_text()
+    new = sweep.set_texture_keys(text, {"filter": "mip", "noise": {"interp": "linear", "corner": "value",
+                                                                   "hash": "perm256"}})
+    tex = tomllib.loads(new)["textures"]
+    assert tex and all(t["filter"] == "mip" for t in tex.values())
+    assert all(t["noise"] == {"interp": "linear", "corner": "value", "hash": "perm256"} for t in tex.values())
+    assert tomllib.loads(new)["objects"] == tomllib.loads(text)["objects"]
+
+
+def args_for(tmp_path, knobs, values, scenes=("marble",)):
+    a = argparse.Namespace(base_path=REDUCED, base_doc=load(REDUCED), base_name="reduced", match_variant=False,
+                           knob_list=list(knobs), value_lists=dict(values),
+                           scene_files={s: ROOT / "scenes" / f"{s}.toml" for s in scenes})
+    return a
+
+
+def test_make_points_writes_one_change_per_point(tmp_path):
+    a = args_for(tmp_path, ["coord_frac", "hash", "filter"],
+                 {"coord_frac": [8, 12, 31], "hash": ["rayshade", "perm256"], "filter": ["sat", "mip"]})
+    base, points, skipped, bv = sweep.make_points(a, tmp_path)
+    # 12 (coord), rayshade (hash) and sat (the scenes' filter) are the base's values: skipped silently
+    assert [p.name for p in points] == ["reduced_coord_frac_8", "reduced_hash_perm256", "reduced_filter_mip"]
+    assert [(k, v) for k, v, _ in skipped] == [("coord_frac", 31)]
+    assert bv["coord_frac"] == 12 and bv["filter"] == "sat"
+    base_doc = load(REDUCED)
+    p8 = points[0]
+    assert p8.profile == tmp_path / "points" / "reduced_coord_frac_8.toml"
+    doc = load(p8.profile)
+    assert doc["formats"]["coord"] == {"int": 10, "frac": 8}
+    doc["formats"]["coord"]["frac"] = 12
+    assert doc == base_doc                            # nothing else changed
+    assert p8.synth_name == p8.name
+    mip = points[2]
+    assert mip.profile == REDUCED and mip.synth_name == "reduced"       # the same hardware
+    assert tomllib.loads(mip.scene_files["marble"].read_text())["textures"]["marble"]["filter"] == "mip"
+    assert len({base.profile_sha, *(p.profile_sha for p in points)}) == 4
+    # again: same files, same content hashes
+    base2, points2, _, _ = sweep.make_points(a, tmp_path)
+    assert [p.profile_sha for p in points2] == [p.profile_sha for p in points]
