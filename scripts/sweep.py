@@ -44,12 +44,10 @@ point (render, synthesis, RTL check) failed, 2 on bad arguments, 130 when interr
 or SIGTERM in the background; running children are stopped).
 """
 import argparse
-import concurrent.futures
 import json
 import os
 import pathlib
 import shutil
-import signal
 import sys
 import time
 import tomllib
@@ -62,7 +60,7 @@ from pstlib.results import PSNR_CAP, psnr_vs_base, row_of, rtl_subset, summarize
 from pstlib.rtlcheck import rtl_check
 from pstlib.rules import validate
 from pstlib.sweep_report import write_reports
-from pstlib.runner import read_json, reusable, run_point, say, stop_children, synth_cache_valid, STOP
+from pstlib.runner import STOP, read_json, reusable, run_point, run_points, say, stop_children, synth_cache_valid
 from pstlib.sweep import DEFAULT_SCENES, KNOBS, QUICK, ident, make_points, parse_values
 
 
@@ -165,7 +163,6 @@ def main(argv=None) -> int:
     say(f"sweep of {a.base_name}: {len(points)} points + base, {len(a.scene_files)} scenes at {a.size}x{a.size}, "
         f"truth {a.truth}, synthesis {'off' if a.no_synth else 'on'}, {a.jobs} jobs -> {out}")
 
-    results = {}
     n = len(todo)
     done = [0]
 
@@ -195,45 +192,19 @@ def main(argv=None) -> int:
         atomic.write_text(out / "results" / f"{pt.name}.json", json.dumps(r, indent=2) + "\n")
         return r
 
-    interrupted = False
-    def on_term(*_):
-        raise KeyboardInterrupt
-    prev = signal.signal(signal.SIGTERM, on_term)
-    pool = concurrent.futures.ThreadPoolExecutor(max_workers=a.jobs)
+    def failed(pt, e):     # a bug or an unreadable output: record it, keep going
+        r = {"name": pt.name, "knob": pt.knob, "value": pt.value, "status": "failed",
+             "profile": str(pt.profile), "profile_sha": pt.profile_sha, "settings": settings, "scenes": {},
+             "error": f"{type(e).__name__}: {e}"}
+        atomic.write_text(out / "results" / f"{pt.name}.json", json.dumps(r, indent=2) + "\n")
+        return r
+
     try:
-        futs = {}
-        for pt in todo:
-            r = cached(pt)
-            if r is not None:
-                results[pt.name] = r
-                report(pt, r, "cached")
-            else:
-                futs[pool.submit(work, pt)] = pt
-        for f in concurrent.futures.as_completed(futs):
-            pt = futs[f]
-            try:
-                r = f.result()
-            except KeyboardInterrupt:
-                raise
-            except Exception as e:     # a bug or an unreadable output: record it, keep going
-                r = {"name": pt.name, "knob": pt.knob, "value": pt.value, "status": "failed",
-                     "profile": str(pt.profile), "profile_sha": pt.profile_sha,
-                     "settings": settings, "scenes": {},
-                     "error": f"{type(e).__name__}: {e}"}
-                atomic.write_text(out / "results" / f"{pt.name}.json", json.dumps(r, indent=2) + "\n")
-            results[pt.name] = r
-            report(pt, r, "run")
+        results = run_points(todo, a.jobs, cached, work, failed, report)
     except KeyboardInterrupt:
-        interrupted = True
-        stop_children()
-        pool.shutdown(wait=True, cancel_futures=True)
         shutil.rmtree(out / "tmp", ignore_errors=True)
         say("interrupted: finished points are kept in results/; rerun the same command to resume")
         return 130
-    finally:
-        if not interrupted:
-            pool.shutdown(wait=True)
-        signal.signal(signal.SIGTERM, prev)
     shutil.rmtree(out / "tmp", ignore_errors=True)
 
     base_res = results[base.name]

@@ -2,6 +2,8 @@ import json
 import os
 import types
 
+import pytest
+
 from pstlib import runner
 
 SETTINGS = {"size": 64, "truth": 2}
@@ -96,3 +98,35 @@ def test_run_reports_exit_status_and_output(tmp_path):
     assert (rc, out, err) == (3, "hi\n", "no\n")
     rc, out, err = runner.run(["/bin/sleep", "5"], cwd=tmp_path, timeout=0.2)
     assert rc != 0 and "timed out" in err
+
+
+def test_run_points_reuses_cached_runs_the_rest_and_records_failures():
+    todo = [types.SimpleNamespace(name=n) for n in ("a", "b", "c")]
+    seen = []
+
+    def cached(pt):
+        return {"v": "stored"} if pt.name == "a" else None
+
+    def work(pt):
+        if pt.name == "c":
+            raise OSError("no summary.json")
+        return {"v": "new"}
+    res = runner.run_points(todo, 2, cached, work, lambda pt, e: {"v": f"failed: {e}"},
+                            lambda pt, r, how: seen.append((pt.name, how)))
+    assert res == {"a": {"v": "stored"}, "b": {"v": "new"}, "c": {"v": "failed: no summary.json"}}
+    assert sorted(seen) == [("a", "cached"), ("b", "run"), ("c", "run")]
+
+
+def test_run_points_interrupted_stops_and_raises():
+    todo = [types.SimpleNamespace(name=n) for n in ("a", "b")]
+
+    def work(pt):
+        raise KeyboardInterrupt
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            runner.run_points(todo, 1, lambda pt: None, work, lambda pt, e: None, lambda *a: None)
+        assert runner.STOP.is_set()
+        with pytest.raises(KeyboardInterrupt):            # no new child once stopped
+            runner.run(["/bin/true"])
+    finally:
+        runner.STOP.clear()
