@@ -84,32 +84,12 @@ def parse_crop(s):
     return v
 
 
-def fig10(args):
-    out = Path(args.out)
-    figdir = out / "figures"
-    workdir = figdir / "fig10"
-    pst = Path(args.pst)
-    scene = Path(args.scene)
-    base_path = Path(args.base)
-    if not pst.exists():
-        raise InputMissing(f"{rel(pst)} is missing: build it first (`{BUILD_CMD}`)")
-    if not scene.exists():
-        raise InputMissing(f"{rel(scene)} is missing (the Figure 10 scene; see scenes/README.md)")
-    if not base_path.exists():
-        raise InputMissing(f"{rel(base_path)} is missing (the base hardware profile)")
-    base_text = base_path.read_text()
-    try:
-        base = tomllib.loads(base_text)
-        base["formats"]["coord"]["int"], base["formats"]["matrix"]["frac"]
-        base["formats"]["offset"]["frac"], base["noise"]["lattice_frac"]
-    except (tomllib.TOMLDecodeError, KeyError, TypeError) as e:
-        raise InputMissing(f"{rel(base_path)}: not a hardware profile ({e})")
-    base_frac = base["formats"]["coord"]["frac"]
-    workdir.mkdir(parents=True, exist_ok=True)
-
+def render_bits(pst, scene, workdir, base_text, base, base_path, bits, threads):
+    """scenes/precision.toml through the golden model of the base profile with each coord.frac = b:
+    per b {bits, notes, dir, psnr, within, maxlsb, seconds}; None when a render fails."""
     results = []
     t_all = time.monotonic()
-    for n, b in enumerate(args.bits, 1):
+    for n, b in enumerate(bits, 1):
         try:
             text, notes = profile_for_bits(base_text, base, b, rel(base_path))
         except ValueError as e:
@@ -121,15 +101,15 @@ def fig10(args):
         if tmp.exists():
             shutil.rmtree(tmp)
         cmd = [str(pst), "render", str(scene), "--profile", str(prof), "--model", "golden", "-o", str(tmp), "-q",
-               "-j", str(args.threads)]
-        progress(f"fig10: [{n}/{len(args.bits)}] coord.frac = {b}: {' '.join(rel(c) if '/' in c else c for c in cmd)}")
+               "-j", str(threads)]
+        progress(f"fig10: [{n}/{len(bits)}] coord.frac = {b}: {' '.join(rel(c) if '/' in c else c for c in cmd)}")
         t0 = time.monotonic()
         r = subprocess.run(cmd, capture_output=True, text=True)
         if r.returncode != 0:
             shutil.rmtree(tmp, ignore_errors=True)
             sys.stderr.write(r.stderr)
             print(f"error: fig10: pst render failed for coord.frac = {b} (exit {r.returncode})", file=sys.stderr)
-            return 1
+            return None
         if dest.exists():
             shutil.rmtree(dest)
         os.replace(tmp, dest)
@@ -141,24 +121,31 @@ def fig10(args):
                  f"({time.monotonic() - t0:.1f} s)")
     progress(f"fig10: {len(results)} renders in {time.monotonic() - t_all:.1f} s")
 
-    foot = pixel_footprint(pst, scene, workdir)
+    return results
 
-    # Mosaic: each precision and the reference; full image (crop marked) over the zoomed crop.
-    ref = read_rgb(results[0]["dir"] / "reference.png")
-    panels = [(f"{r['bits']} fraction bits: {r['psnr']:.1f} dB", read_rgb(r["dir"] / "golden.png")) for r in results]
-    panels.append(("reference (double precision)", ref))
-    h, w = ref.shape[:2]
+
+def scale_crops(crops, w, h):
+    """Crop boxes X,Y,W,H given in pixels of a 512 x 512 image, for a W x H image (clipped to it)."""
     k = w / 512.0
-    crops = [[round(v * k) for v in cr] for cr in args.crop]
+    crops = [[round(v * k) for v in cr] for cr in crops]
     for cr in crops:
         cr[2] = min(cr[2], w - cr[0])
         cr[3] = min(cr[3], h - cr[1])
         if cr[2] <= 0 or cr[3] <= 0:
             raise InputMissing(f"--crop {cr} lies outside the {w} x {h} image")
-    T = args.tile
+    return crops
+
+
+def mosaic(results, ref, crops, tile, columns):
+    """Each precision and the reference; full image (crops marked) over the zoomed crops."""
+    w = ref.shape[1]
+    panels = [(f"{r['bits']} fraction bits: {r['psnr']:.1f} dB", read_rgb(r["dir"] / "golden.png")) for r in results]
+    panels.append(("reference (double precision)", ref))
+    h, w = ref.shape[:2]
+    T = tile
     ncrop = len(crops)
     ch = T // ncrop if ncrop > 1 else T                         # crop tiles side by side under the image
-    cols = min(args.columns, len(panels))
+    cols = min(columns, len(panels))
     nrows = (len(panels) + cols - 1) // cols
     gap, head = 10, 30
     crop_h = max(round(ch * cr[3] / cr[2]) for cr in crops)
@@ -182,11 +169,12 @@ def fig10(args):
             zc = zoom_nearest(crop, cw_each, round(cw_each * chh / cw)).copy()
             draw_box(zc, 0, 0, zc.shape[1], zc.shape[0], colours[j % len(colours)], 2)
             c.paste(zc, x + j * cw_each, y + head + T + 4)
-    path = figdir / "fig10.png"
-    write_png(path, c.finish())
-    progress(f"fig10: {rel(path)}")
+    return c.finish()
 
-    # Captions.
+
+def captions(out, scene, base_path, base, results, crops, w, h, foot):
+    """fig10.md."""
+    base_frac = base["formats"]["coord"]["frac"]
     adjusted = [r for r in results if r["notes"]]
     md = ["# Figure 10: the effect of numerical precision on texture appearance\n"]
     md.append(
@@ -243,8 +231,42 @@ def fig10(args):
     if not Canvas.labelled():
         md.append("*(No font was usable for labels inside the image: panels are in the order of the table, "
                   "then the reference.)*\n")
+    return "\n".join(md)
+
+
+def fig10(args):
+    out = Path(args.out)
+    figdir = out / "figures"
+    workdir = figdir / "fig10"
+    pst = Path(args.pst)
+    scene = Path(args.scene)
+    base_path = Path(args.base)
+    if not pst.exists():
+        raise InputMissing(f"{rel(pst)} is missing: build it first (`{BUILD_CMD}`)")
+    if not scene.exists():
+        raise InputMissing(f"{rel(scene)} is missing (the Figure 10 scene; see scenes/README.md)")
+    if not base_path.exists():
+        raise InputMissing(f"{rel(base_path)} is missing (the base hardware profile)")
+    base_text = base_path.read_text()
+    try:
+        base = tomllib.loads(base_text)
+        base["formats"]["coord"]["int"], base["formats"]["matrix"]["frac"]
+        base["formats"]["offset"]["frac"], base["noise"]["lattice_frac"]
+    except (tomllib.TOMLDecodeError, KeyError, TypeError) as e:
+        raise InputMissing(f"{rel(base_path)}: not a hardware profile ({e})")
+    workdir.mkdir(parents=True, exist_ok=True)
+
+    results = render_bits(pst, scene, workdir, base_text, base, base_path, args.bits, args.threads)
+    if results is None:
+        return 1
+    foot = pixel_footprint(pst, scene, workdir)
+    ref = read_rgb(results[0]["dir"] / "reference.png")
+    h, w = ref.shape[:2]
+    crops = scale_crops(args.crop, w, h)
+    path = figdir / "fig10.png"
+    write_png(path, mosaic(results, ref, crops, args.tile, args.columns))
+    progress(f"fig10: {rel(path)}")
     path = figdir / "fig10.md"
-    atomic.write_text(path, "\n".join(md))
+    atomic.write_text(path, captions(out, scene, base_path, base, results, crops, w, h, foot))
     progress(f"fig10: {rel(path)}")
     return 0
-

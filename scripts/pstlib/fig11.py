@@ -11,85 +11,74 @@ from .images import Canvas, fit, read_rgb, write_png
 from .paths import ROOT
 
 
-def fig11(args):
-    out = Path(args.out)
-    figdir = out / "figures"
-    runs = load_regress(out / "regress.json")
-    scenes = []
-    if out.is_dir():
-        for d in out.iterdir():
-            if d.is_dir() and (d / "full" / "rtl.png").exists() and (d / "reduced" / "rtl.png").exists():
-                scenes.append(d.name)
-    if not scenes:
-        raise InputMissing(f"no {rel(out)}/<scene>/full/rtl.png with {rel(out)}/<scene>/reduced/rtl.png: run "
-                           f"`{REGRESS_CMD.format(out=rel(out))}` first")
-    scenes.sort(key=scene_order)
-    progress(f"fig11: {len(scenes)} scenes: {', '.join(scenes)}")
+def scene_row(out: Path, name: str, runs: dict) -> dict:
+    """One scene's images (reference, full and reduced RTL, their differences) and regress entries."""
+    d = out / name
+    need = [d / "full" / "reference.png", d / "full" / "difference.png", d / "reduced" / "difference.png"]
+    for p in need:
+        if not p.exists():
+            raise InputMissing(f"{rel(p)} is missing: run `{REGRESS_CMD.format(out=rel(out))}` first")
+    ref = read_rgb(d / "full" / "reference.png")
+    full = read_rgb(d / "full" / "rtl.png")
+    red = read_rgb(d / "reduced" / "rtl.png")
+    dfull = read_rgb(d / "full" / "difference.png")
+    dred = read_rgb(d / "reduced" / "difference.png")
+    if (d / "reduced" / "reference.png").exists():
+        ref2 = read_rgb(d / "reduced" / "reference.png")
+        if ref2.shape != ref.shape or np.any(ref2 != ref):
+            progress(f"fig11: warning: {name}: full/reference.png and reduced/reference.png differ; "
+                     "using full's")
+    if not (ref.shape == full.shape == red.shape == dfull.shape == dred.shape):
+        raise InputMissing(f"{rel(d)}: images of different sizes: run `{REGRESS_CMD.format(out=rel(out))}` again")
+    ef, er = runs.get((name, "full")), runs.get((name, "reduced"))
+    for prof, e in (("full", ef), ("reduced", er)):
+        if e is None:
+            progress(f"fig11: warning: {rel(out / 'regress.json')} has no {name} x {prof} entry (PSNR n/a)")
+        elif (e.get("width"), e.get("height")) != (ref.shape[1], ref.shape[0]):
+            progress(f"fig11: warning: {name} x {prof}: regress.json is for {e.get('width')}x{e.get('height')}, "
+                     f"the images are {ref.shape[1]}x{ref.shape[0]}: stale? rerun the regression")
+    return dict(name=name, ref=ref, full=full, red=red, dfull=dfull, dred=dred, ef=ef, er=er)
 
-    rows = []
-    for n, name in enumerate(scenes, 1):
-        d = out / name
-        need = [d / "full" / "reference.png", d / "full" / "difference.png", d / "reduced" / "difference.png"]
-        for p in need:
-            if not p.exists():
-                raise InputMissing(f"{rel(p)} is missing: run `{REGRESS_CMD.format(out=rel(out))}` first")
-        ref = read_rgb(d / "full" / "reference.png")
-        full = read_rgb(d / "full" / "rtl.png")
-        red = read_rgb(d / "reduced" / "rtl.png")
-        dfull = read_rgb(d / "full" / "difference.png")
-        dred = read_rgb(d / "reduced" / "difference.png")
-        if (d / "reduced" / "reference.png").exists():
-            ref2 = read_rgb(d / "reduced" / "reference.png")
-            if ref2.shape != ref.shape or np.any(ref2 != ref):
-                progress(f"fig11: warning: {name}: full/reference.png and reduced/reference.png differ; "
-                         "using full's")
-        if not (ref.shape == full.shape == red.shape == dfull.shape == dred.shape):
-            raise InputMissing(f"{rel(d)}: images of different sizes: run `{REGRESS_CMD.format(out=rel(out))}` again")
-        ef, er = runs.get((name, "full")), runs.get((name, "reduced"))
-        for prof, e in (("full", ef), ("reduced", er)):
-            if e is None:
-                progress(f"fig11: warning: {rel(out / 'regress.json')} has no {name} x {prof} entry (PSNR n/a)")
-            elif (e.get("width"), e.get("height")) != (ref.shape[1], ref.shape[0]):
-                progress(f"fig11: warning: {name} x {prof}: regress.json is for {e.get('width')}x{e.get('height')}, "
-                         f"the images are {ref.shape[1]}x{ref.shape[0]}: stale? rerun the regression")
-        rows.append(dict(name=name, ref=ref, full=full, red=red, dfull=dfull, dred=dred, ef=ef, er=er))
 
-        # One scene: 3 x 2 tiles at native size.
-        h, w = ref.shape[:2]
-        gap, head = 8, 30
-        c = Canvas(3 * w + 4 * gap, 2 * (h + head) + 3 * gap)
-        tiles = [
-            (0, 0, ref, "reference (double precision)"),
-            (1, 0, full, f"full{gates_label(out, 'full', '1.25M')}: {fmt_db(ef)} dB"),
-            (2, 0, red, f"reduced{gates_label(out, 'reduced', '100k')}: {fmt_db(er)} dB"),
-            (1, 1, dfull, "|full - reference| x 8"),
-            (2, 1, dred, "|reduced - reference| x 8"),
-        ]
-        for col, row, img, label in tiles:
-            x = gap + col * (w + gap)
-            y = gap + row * (h + head + gap)
-            c.text(x + 4, y + 21, label, 19)
-            c.paste(img, x, y + head)
-        x, y = gap, gap + (h + head + gap) + head
-        fig = PAPER_FIGURE.get(name, "")
-        c.text(x + 12, y + 40, f"{name}", 30)
-        if fig:
-            in11 = name in PAPER_ORDER[:6]
-            c.text(x + 12, y + 76, f"paper {fig}" + ("; reduced: Fig. 11" if in11 else ""), 20)
-        exact = [e.get("passed") and e.get("mismatches") == 0 for e in (ef, er) if e]
-        if len(exact) == 2 and all(exact):
-            c.text(x + 12, y + 116, "RTL images, bit-exact", 18, (0.75, 0.75, 0.75))
-            c.text(x + 12, y + 140, "against the golden model.", 18, (0.75, 0.75, 0.75))
-        elif not all(exact):
-            c.text(x + 12, y + 116, "RTL DIFFERS from the", 18, (1.0, 0.4, 0.4))
-            c.text(x + 12, y + 140, "golden model (regress.json).", 18, (1.0, 0.4, 0.4))
-        c.text(x + 12, y + 176, "Bottom row: per-channel", 18, (0.75, 0.75, 0.75))
-        c.text(x + 12, y + 200, "|RTL - reference| x 8.", 18, (0.75, 0.75, 0.75))
-        path = figdir / f"fig11_{name}.png"
-        write_png(path, c.finish())
-        progress(f"fig11: [{n}/{len(scenes)}] {rel(path)}")
+def scene_image(out: Path, r: dict):
+    """One scene: 3 x 2 tiles at native size, the scene's name and the bit-exactness in the corner."""
+    name, ref, full, red, dfull, dred, ef, er = (r[k] for k in ("name", "ref", "full", "red", "dfull", "dred",
+                                                              "ef", "er"))
+    h, w = ref.shape[:2]
+    gap, head = 8, 30
+    c = Canvas(3 * w + 4 * gap, 2 * (h + head) + 3 * gap)
+    tiles = [
+        (0, 0, ref, "reference (double precision)"),
+        (1, 0, full, f"full{gates_label(out, 'full', '1.25M')}: {fmt_db(ef)} dB"),
+        (2, 0, red, f"reduced{gates_label(out, 'reduced', '100k')}: {fmt_db(er)} dB"),
+        (1, 1, dfull, "|full - reference| x 8"),
+        (2, 1, dred, "|reduced - reference| x 8"),
+    ]
+    for col, row, img, label in tiles:
+        x = gap + col * (w + gap)
+        y = gap + row * (h + head + gap)
+        c.text(x + 4, y + 21, label, 19)
+        c.paste(img, x, y + head)
+    x, y = gap, gap + (h + head + gap) + head
+    fig = PAPER_FIGURE.get(name, "")
+    c.text(x + 12, y + 40, f"{name}", 30)
+    if fig:
+        in11 = name in PAPER_ORDER[:6]
+        c.text(x + 12, y + 76, f"paper {fig}" + ("; reduced: Fig. 11" if in11 else ""), 20)
+    exact = [e.get("passed") and e.get("mismatches") == 0 for e in (ef, er) if e]
+    if len(exact) == 2 and all(exact):
+        c.text(x + 12, y + 116, "RTL images, bit-exact", 18, (0.75, 0.75, 0.75))
+        c.text(x + 12, y + 140, "against the golden model.", 18, (0.75, 0.75, 0.75))
+    elif not all(exact):
+        c.text(x + 12, y + 116, "RTL DIFFERS from the", 18, (1.0, 0.4, 0.4))
+        c.text(x + 12, y + 140, "golden model (regress.json).", 18, (1.0, 0.4, 0.4))
+    c.text(x + 12, y + 176, "Bottom row: per-channel", 18, (0.75, 0.75, 0.75))
+    c.text(x + 12, y + 200, "|RTL - reference| x 8.", 18, (0.75, 0.75, 0.75))
+    return c.finish()
 
-    # Overview: one row per scene, five columns.
+
+def overview_image(rows: list):
+    """Every scene, one row each, five columns."""
     T, gap, head, side = 200, 6, 28, 130
     cols = ["reference", "full (1.25M)", "reduced (100k)", "|full - ref| x8", "|reduced - ref| x8"]
     c = Canvas(side + 5 * (T + gap) + gap, head + len(rows) * (T + gap) + gap)
@@ -105,11 +94,11 @@ def fig11(args):
             img = fit(r[key], T, T)
             x = side + gap + k * (T + gap) + (T - img.shape[1]) // 2
             c.paste(img, x, y + (T - img.shape[0]) // 2)
-    path = figdir / "fig11.png"
-    write_png(path, c.finish())
-    progress(f"fig11: {rel(path)}")
+    return c.finish()
 
-    # Captions.
+
+def captions(out: Path, rows: list) -> str:
+    """fig11.md."""
     size = f"{rows[0]['ref'].shape[1]} x {rows[0]['ref'].shape[0]}"
     md = []
     md.append("# Figure 11: 100,000-gate simulations of Figures 1 through 6\n")
@@ -180,8 +169,33 @@ def fig11(args):
             md.append("Driver notes for reduced: " + " ".join(n.strip() for n in notes) + "\n")
     if not Canvas.labelled():
         md.append("*(No font was usable for labels inside the images: read them from the captions.)*\n")
+    return "\n".join(md)
+
+
+def fig11(args):
+    out = Path(args.out)
+    figdir = out / "figures"
+    runs = load_regress(out / "regress.json")
+    scenes = []
+    if out.is_dir():
+        for d in out.iterdir():
+            if d.is_dir() and (d / "full" / "rtl.png").exists() and (d / "reduced" / "rtl.png").exists():
+                scenes.append(d.name)
+    if not scenes:
+        raise InputMissing(f"no {rel(out)}/<scene>/full/rtl.png with {rel(out)}/<scene>/reduced/rtl.png: run "
+                           f"`{REGRESS_CMD.format(out=rel(out))}` first")
+    scenes.sort(key=scene_order)
+    progress(f"fig11: {len(scenes)} scenes: {', '.join(scenes)}")
+    rows = []
+    for n, name in enumerate(scenes, 1):
+        rows.append(scene_row(out, name, runs))
+        path = figdir / f"fig11_{name}.png"
+        write_png(path, scene_image(out, rows[-1]))
+        progress(f"fig11: [{n}/{len(scenes)}] {rel(path)}")
+    path = figdir / "fig11.png"
+    write_png(path, overview_image(rows))
+    progress(f"fig11: {rel(path)}")
     path = figdir / "fig11.md"
-    atomic.write_text(path, "\n".join(md))
+    atomic.write_text(path, captions(out, rows))
     progress(f"fig11: {rel(path)}")
     return 0
-

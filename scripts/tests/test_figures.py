@@ -111,3 +111,10 @@ def test_png_round_trip_and_fit(tmp_path):
     back = images.read_rgb(p)
     assert (back == img).all()
     assert images.fit(back, 10, 10).shape == (5, 10, 3)
+
+
+def test_crops_scale_from_512_and_clip():
+    assert fig10.scale_crops([[132, 210, 40, 40]], 256, 256) == [[66, 105, 20, 20]]
+    assert fig10.scale_crops([[500, 0, 40, 10]], 512, 512) == [[500, 0, 12, 10]]
+    with pytest.raises(figdata.InputMissing, match="lies outside"):
+        fig10.scale_crops([[600, 0, 10, 10]], 512, 512)
