@@ -6,7 +6,7 @@ import re
 import tomllib
 
 from . import atomic, tomledit
-from .rules import validate
+from .rules import ENUMS, validate
 
 DEFAULT_SCENES = ["wood_teapot", "marble", "seascape", "fire", "planet", "zoneplate"]
 QUICK = {"base": "reduced", "knobs": "coord_frac,octaves,hash", "scenes": "marble,zoneplate", "size": 64,
@@ -71,12 +71,12 @@ KNOBS = {
     "colour_bits": _knob("pipeline.colour_bits", [5, 6, 7, 8], "pipeline", "colour_bits"),
     "octaves": ("pipeline.octaves (noise_units: all of them if the base has one pass, else the "
                 "largest divisor)", [1, 2, 3, 4, 6, 8], _apply_octaves, _get("pipeline", "octaves")),
-    "interp": _knob("noise.interp", ["scurve", "linear"], "noise", "interp"),
-    "hash": _knob("noise.hash", ["rayshade", "perm256"], "noise", "hash"),
-    "corner": _knob("noise.corner", ["value_gradient", "value"], "noise", "corner"),
-    "norm": _knob("filter.norm", ["euclid", "max_half_min", "l1"], "filter", "norm"),
+    "interp": _knob("noise.interp", ENUMS[("noise", "interp")], "noise", "interp"),
+    "hash": _knob("noise.hash", ENUMS[("noise", "hash")], "noise", "hash"),
+    "corner": _knob("noise.corner", ENUMS[("noise", "corner")], "noise", "corner"),
+    "norm": _knob("filter.norm", ENUMS[("filter", "norm")], "filter", "norm"),
     "datapath": _knob("pipeline.datapath (gates and cycles only: the images are the same bit for bit)",
-                      ["parallel", "serial"], "pipeline", "datapath"),
+                      ENUMS[("pipeline", "datapath")], "pipeline", "datapath"),
     "noise_steps": _knob("pipeline.noise_steps (gates and cycles only: the images are the same bit for bit)",
                          [1, 2, 4, 8], "pipeline", "noise_steps"),
     "filter": ("every texture's filter (scene copies; not a profile key)", ["none", "mip", "mip_linear", "sat"],
