@@ -207,10 +207,11 @@ def make_points(a, out: pathlib.Path):
                 change = f"{k} = {v} ({desc})"
                 if k == "octaves":
                     change += f"; noise_units = {doc['pipeline']['noise_units']}"
+                body = tomledit.without_leading_comment(base_text)
                 text = tomledit.with_comment(
-                    tomledit.set_values(base_text, tomledit.changes_between(a.base_doc, doc)),
+                    "\n" + tomledit.set_values(body, tomledit.changes_between(a.base_doc, doc)),
                     f"Sweep point {name}: profile {a.base_name} ({a.base_path.name}) with\n{change}.\n"
-                    f"Written by scripts/sweep.py; the profile's own comments follow.\n")
+                    f"Written by scripts/sweep.py; see {a.base_path.name} for the keys.")
                 path = pdir / f"{name}.toml"
                 atomic.write_if_changed(path, text)
                 synth_name = name

@@ -129,6 +129,15 @@ def changes_between(old: dict, new: dict, path: tuple = ()) -> dict:
     return out
 
 
+def without_leading_comment(text: str) -> str:
+    """TEXT without the comment lines (and blank lines) before its first key or table."""
+    lines = text.splitlines(keepends=True)
+    i = 0
+    while i < len(lines) and (not lines[i].strip() or lines[i].lstrip().startswith("#")):
+        i += 1
+    return "".join(lines[i:])
+
+
 def with_comment(text: str, comment: str) -> str:
     """TEXT under COMMENT's lines as # comments."""
     return "".join(f"# {line}\n" if line else "#\n" for line in comment.splitlines()) + text

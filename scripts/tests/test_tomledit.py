@@ -90,3 +90,8 @@ def test_real_profile_round_trip():
 
 def test_with_comment():
     assert tomledit.with_comment("a = 1\n", "one\n\ntwo") == "# one\n#\n# two\na = 1\n"
+
+
+def test_without_leading_comment():
+    assert tomledit.without_leading_comment(PROFILE) == PROFILE[len("# a profile\n"):]
+    assert tomledit.without_leading_comment("# x\n\n# y\n[t]\n# z\na = 1\n") == "[t]\n# z\na = 1\n"
