@@ -58,7 +58,7 @@ from pstlib.paths import ROOT
 from pstlib.plots import plot_all
 from pstlib.results import PSNR_CAP, psnr_vs_base, row_of, rtl_subset, summarize
 from pstlib.rtlcheck import rtl_check
-from pstlib.rules import validate
+from pstlib.contract import validate
 from pstlib.sweep_report import write_reports
 from pstlib.runner import STOP, read_json, reusable, run_point, run_points, say, stop_children, synth_cache_valid
 from pstlib.sweep import DEFAULT_SCENES, KNOBS, QUICK, ident, make_points, parse_values

@@ -16,7 +16,7 @@ from . import atomic, tomledit
 from .figdata import BUILD_CMD, InputMissing, fmt_db, fmt_pct, load_regress, progress, rel
 from .images import Canvas, draw_box, fit, read_rgb, write_png, zoom_nearest
 from .paths import ROOT
-from .rules import validate
+from .contract import validate
 
 
 def profile_for_bits(base_text, base, b, base_path):

@@ -6,7 +6,7 @@ import re
 import tomllib
 
 from . import atomic, tomledit
-from .rules import ENUMS, validate
+from .contract import ENUMS, RANGES, validate
 
 DEFAULT_SCENES = ["wood_teapot", "marble", "seascape", "fire", "planet", "zoneplate"]
 QUICK = {"base": "reduced", "knobs": "coord_frac,octaves,hash", "scenes": "marble,zoneplate", "size": 64,
@@ -78,7 +78,7 @@ KNOBS = {
     "datapath": _knob("pipeline.datapath (gates and cycles only: the images are the same bit for bit)",
                       ENUMS[("pipeline", "datapath")], "pipeline", "datapath"),
     "noise_steps": _knob("pipeline.noise_steps (gates and cycles only: the images are the same bit for bit)",
-                         [1, 2, 4, 8], "pipeline", "noise_steps"),
+                         list(RANGES[("pipeline", "noise_steps")]), "pipeline", "noise_steps"),
     "filter": ("every texture's filter (scene copies; not a profile key)", ["none", "mip", "mip_linear", "sat"],
                None, lambda d: None),
 }

@@ -40,7 +40,7 @@ def test_profile_for_bits_lowers_lattice_and_offset_fractions_when_the_transform
 def test_profile_for_bits_refuses_what_the_hardware_cannot_take():
     text = FULL.read_text()
     base = tomllib.loads(text)
-    with pytest.raises(ValueError, match="formats.coord: int \\+ frac = 41 > 40"):
+    with pytest.raises(ValueError, match="formats.coord: int \\+ frac must be at most 40 \\(is 41\\)"):
         fig10.profile_for_bits(text, base, 29, "full.toml")
 
 

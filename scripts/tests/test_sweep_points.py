@@ -5,7 +5,7 @@ import tomllib
 import pytest
 
 from conftest import ROOT
-from pstlib import rules, sweep
+from pstlib import contract, sweep
 
 REDUCED = ROOT / "rtl" / "configs" / "reduced.toml"
 FULL = ROOT / "rtl" / "configs" / "full.toml"
@@ -16,26 +16,21 @@ def load(p):
 
 
 def test_shipped_profiles_are_valid():
-    assert rules.validate(load(FULL)) == []
-    assert rules.validate(load(REDUCED)) == []
+    assert contract.validate(load(FULL)) == []
+    assert contract.validate(load(REDUCED)) == []
 
 
-@pytest.mark.parametrize("edit, complaint", [
-    (lambda d: d["pipeline"].update(octaves=17), "pipeline.octaves = 17 outside [1, 16]"),
-    (lambda d: d["noise"].update(hash="md5"), "noise.hash not one of rayshade, perm256"),
-    (lambda d: d["pipeline"].update(octaves=6, noise_units=4), "pipeline.noise_units must divide pipeline.octaves"),
-    (lambda d: d["pipeline"].update(datapath="serial", noise_steps=2),
-     "pipeline.datapath = serial needs pipeline.noise_steps >= 4"),
-    (lambda d: d["pipeline"].update(noise_steps=3), "pipeline.noise_steps must be 1, 2, 4 or 8"),
-    (lambda d: d["formats"]["coord"].update(frac=29), "formats.coord: int + frac = 41 > 40"),
-    (lambda d: (d["formats"]["matrix"].update(frac=0), d["formats"]["coord"].update(frac=10)),
-     "matrix.frac + coord.frac = 10 < offset.frac"),
-    (lambda d: d["formats"].update(width_frac=-8), "formats.width_frac = -8 outside [0, 24]"),
-])
-def test_validate_names_what_is_wrong(edit, complaint):
-    doc = load(FULL)
-    edit(doc)
-    assert any(b.startswith(complaint) for b in rules.validate(doc)), rules.validate(doc)
+def test_invalid_points_are_skipped_with_the_reason():
+    full = load(FULL)                       # matrix.frac 16: coord.frac 0 leaves 16 >= lattice_frac 16
+    assert sweep.point_profile(full, "coord_frac", 0)[1] == []
+    base = dict(full, formats=dict(full["formats"], matrix={"int": 8, "frac": 4}))
+    _, bad = sweep.point_profile(base, "coord_frac", 10)          # 4 + 10 < 16
+    assert [b.split(":")[0] for b in bad] == ["noise.lattice_frac", "formats.offset"]
+    _, bad = sweep.point_profile(load(REDUCED), "noise_steps", 2)  # reduced is serial
+    assert bad == ["pipeline.datapath: serial needs pipeline.noise_steps >= 4"]
+    _, bad = sweep.point_profile(full, "octaves", 17)            # full's 8 units follow its 8 octaves
+    assert bad == ["pipeline.octaves: must be an integer in [1, 16] (is 17)",
+                   "pipeline.noise_units: must be an integer in [1, 16] (is 17)"]
 
 
 def test_point_names_are_c_identifiers():
@@ -64,7 +59,7 @@ def test_amp_frac_knob_moves_three_formats_and_invalid_values_are_reported():
     doc, bad = sweep.point_profile(red, "coord_frac", 30)     # 10 + 30 = 40 bits: the most
     assert bad == []
     doc, bad = sweep.point_profile(red, "coord_frac", 31)
-    assert bad == ["formats.coord: int + frac = 41 > 40"]
+    assert bad == ["formats.coord: int + frac must be at most 40 (is 41)"]
 
 
 def test_parse_values():
