@@ -50,18 +50,17 @@ import pathlib
 import shutil
 import sys
 import time
-import tomllib
 
 from pstlib import atomic
+from pstlib.contract import ProfileError, read_profile
 from pstlib.fmt import fnum, kge, tail
 from pstlib.paths import ROOT
 from pstlib.plots import plot_all
 from pstlib.results import PSNR_CAP, psnr_vs_base, row_of, rtl_subset, summarize
 from pstlib.rtlcheck import rtl_check
-from pstlib.contract import validate
-from pstlib.sweep_report import write_reports
 from pstlib.runner import STOP, read_json, reusable, run_point, run_points, say, stop_children, synth_cache_valid
 from pstlib.sweep import DEFAULT_SCENES, KNOBS, QUICK, ident, make_points, parse_values
+from pstlib.sweep_report import write_reports
 
 
 def parse_args(argv):
@@ -106,12 +105,9 @@ def parse_args(argv):
     if not a.base_path.is_file():
         ap.error(f"--base: {a.base}: no such profile (full, reduced or a profile file)")
     try:
-        a.base_doc = tomllib.loads(a.base_path.read_text())
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as e:
-        ap.error(f"--base: {a.base_path}: {e}")
-    problems = validate(a.base_doc)
-    if problems:
-        ap.error(f"--base: {a.base_path}: {'; '.join(problems)}")
+        a.base_doc = read_profile(a.base_path)
+    except (ProfileError, UnicodeDecodeError) as e:
+        ap.error(f"--base: {e}")
     a.base_name = ident(a.base_path.stem)
 
     a.knob_list = [k.strip() for k in a.knobs.split(",") if k.strip()]
