@@ -5,7 +5,7 @@ set -euo pipefail
 
 PACKAGES=(
   build-essential cmake ninja-build ccache pkg-config git
-  verilator yosys
+  verilator yosys opensta
   libglm-dev libopenimageio-dev openimageio-tools
   libcli11-dev libtomlplusplus-dev nlohmann-json3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
@@ -25,13 +25,13 @@ for p in "${PACKAGES[@]}"; do
   fi
 done
 
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
 if [ ${#missing[@]} -eq 0 ]; then
   echo "setup: all ${#PACKAGES[@]} packages present"
 else
   echo "setup: installing ${missing[*]}"
-  SUDO=""
-  if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
-  export DEBIAN_FRONTEND=noninteractive
   $SUDO apt-get update -q
   $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"
 fi
@@ -44,4 +44,21 @@ if [ ! -f "$BROWSER_DIR/node_modules/.package-lock.json" ] ||
   echo "setup: npm ci in $BROWSER_DIR"
   (cd "$BROWSER_DIR" && PLAYWRIGHT_SKIP_BROWSER_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error &&
    cp package-lock.json node_modules/.lock-installed)
+fi
+
+# The OSU 0.18 um standard-cell library (scripts/synth.py): Debian's qflow-tech-osu018 depends
+# on all of qflow, so its files alone are unpacked into a cache (apt-get download + dpkg-deb).
+OSU_LIB=usr/share/qflow/tech/osu018/osu018_stdcells.lib
+OSU_DIR="${XDG_CACHE_HOME:-$HOME/.cache}/pst/osu018"
+if [ ! -f "/$OSU_LIB" ] && [ ! -f "$OSU_DIR/$OSU_LIB" ]; then
+  echo "setup: unpacking qflow-tech-osu018 into $OSU_DIR"
+  dl=$(mktemp -d)
+  if ! (cd "$dl" && apt-get download -q qflow-tech-osu018 2>/dev/null); then
+    $SUDO apt-get update -q
+    (cd "$dl" && apt-get download -q qflow-tech-osu018)
+  fi
+  mkdir -p "$OSU_DIR"
+  dpkg-deb -x "$dl"/qflow-tech-osu018_*.deb "$OSU_DIR"
+  rm -rf "$dl"
+  test -f "$OSU_DIR/$OSU_LIB"
 fi

@@ -1,0 +1,75 @@
+#!/usr/bin/python3
+"""Checks the main job's silicon and quality figures against scripts/synth/baseline.json.
+
+    scripts/check_baseline.py [--out out] [--baseline FILE] [--update]
+
+Reads OUT/synth/<profile>.json (scripts/synth.py) and OUT/regress.json (`pst regress`) for
+every profile in the baseline and fails (exit 1) when a figure moved by more than 2 %: logic
+GE (total and per block), flip-flops, memory GE, total GE, ROM/RAM bits, clocks per pixel,
+Fmax, PSNR per scene. A change that moves a figure on purpose updates the file in the same
+commit: `scripts/check_baseline.py --update` after the main job (scripts/run.sh). Exit 2 when
+an input is missing. Tool versions are recorded and shown, not compared.
+"""
+import argparse
+import json
+import pathlib
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(ROOT / "scripts"))
+from pstlib import baseline  # noqa: E402
+
+PROFILES = ("reduced", "full")
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--out", default=str(ROOT / "out"))
+    ap.add_argument("--baseline", default=str(ROOT / "scripts" / "synth" / "baseline.json"))
+    ap.add_argument("--update", action="store_true", help="write the current figures as the baseline")
+    args = ap.parse_args()
+    out = pathlib.Path(args.out)
+    path = pathlib.Path(args.baseline)
+    base = json.loads(path.read_text()) if path.exists() else None
+    if base is None and not args.update:
+        print(f"error: {path}: no baseline (write one with --update)", file=sys.stderr)
+        return 2
+    names = PROFILES if args.update or base is None else tuple(base["profiles"])
+    synth, tools = {}, {}
+    for n in names:
+        f = out / "synth" / f"{n}.json"
+        if not f.exists():
+            print(f"error: {f}: missing (run scripts/synth.py {n})", file=sys.stderr)
+            return 2
+        synth[n] = json.loads(f.read_text())
+        tools = synth[n].get("tools", tools)
+        if not synth[n].get("timing"):
+            print(f"error: {f}: no timing (scripts/synth.py ran with --no-sta)", file=sys.stderr)
+            return 2
+    reg_path = out / "regress.json"
+    if not reg_path.exists():
+        print(f"error: {reg_path}: missing (run pst regress)", file=sys.stderr)
+        return 2
+    current = baseline.collect(synth, json.loads(reg_path.read_text()))
+    if args.update:
+        path.write_text(json.dumps({"tolerance": baseline.TOLERANCE, "tools": tools, "profiles": current},
+                                   indent=2, sort_keys=True) + "\n")
+        print(f"baseline: wrote {path}")
+        return 0
+    if base.get("tools") != tools:
+        print(f"baseline: note: tools {tools} differ from the baseline's {base.get('tools')}")
+    moved = baseline.compare(base["profiles"], current, base.get("tolerance", baseline.TOLERANCE))
+    if not moved:
+        n = len(baseline._flatten(current))
+        print(f"baseline: {n} figures within {100 * base.get('tolerance', baseline.TOLERANCE):g} % of {path.name}")
+        return 0
+    print(f"baseline: {len(moved)} figures moved beyond {100 * base.get('tolerance', baseline.TOLERANCE):g} % "
+          f"(update {path} with --update if the change is intended):")
+    for key, old, new, rel in moved:
+        change = f"{100 * rel:+.1f} %" if rel is not None else "added/removed/changed"
+        print(f"  {key}: {old} -> {new} ({change})")
+    return 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
