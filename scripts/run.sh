@@ -3,9 +3,11 @@
 #   1. every scene through the reference model (filtered, unfiltered, filter width, ground truth)
 #   2. the RTL regression: every scene through every profile at 512x512, checked bit for bit
 #      against the golden model, with the images
-#   3. gate counts of both profiles, Figures 10 and 11, a quick precision sweep
+#   3. silicon figures of both profiles (OSU018 area, OpenSTA timing, memories), Figures 10
+#      and 11, a quick precision sweep
 #   4. out/report.md and out/report.html (the same data; the HTML page has an image viewer per
 #      scene and sortable tables, opens from file://), the pages a designer opens first
+#   5. the figures against scripts/synth/baseline.json (fails on a move > 2 %)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 START=$(date +%s)
@@ -22,8 +24,8 @@ done
 echo "== RTL regression at ${SIZE}x${SIZE}"
 rc=0
 ./build/pst regress --size "$SIZE" --profile full --profile reduced -o out/regress.json --images out || rc=$?
-echo "== gate counts (Yosys), quick precision sweep, figures"
-# full's synthesis (one core, about 3 minutes) runs beside the quick sweep, whose base point is
+echo "== silicon figures (Yosys + OpenSTA), quick precision sweep, figures"
+# full's synthesis and timing (one core) run beside the quick sweep, whose base point is
 # the reduced profile's synthesis (out/synth/reduced.{json,md}).
 /usr/bin/python3 scripts/synth.py full --quiet & full_synth=$!
 /usr/bin/python3 scripts/sweep.py --quick || rc=1
@@ -33,4 +35,6 @@ wait "$full_synth" || rc=1
 /usr/bin/python3 scripts/figures.py fig10 --out out || rc=1
 /usr/bin/python3 scripts/report.py out --md out/report.md --html out/report.html || rc=1
 echo "report: out/report.md, out/report.html ($(( $(date +%s) - START )) s)"
+echo "== baseline (scripts/synth/baseline.json)"
+/usr/bin/python3 scripts/check_baseline.py --out out || rc=1
 exit $rc

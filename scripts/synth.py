@@ -162,7 +162,7 @@ def yosys_script(profile: pathlib.Path, rom_dir: pathlib.Path, lib: pathlib.Path
         "opt_clean -purge",
         f"tee -q -o {tmp}/stat.json stat -json",
         "rename -enumerate",
-        f"write_verilog -noattr {tmp}/netlist.v",
+        f"write_verilog -noattr -simple-lhs {tmp}/netlist.v",
     ]
     if old_basis:
         lines += [
@@ -278,7 +278,7 @@ def synth_memory(mem: dict, lib: pathlib.Path, cache: pathlib.Path, yosys: str, 
             f"dfflibmap -liberty {lib}",
             "opt_clean -purge",
             f"tee -q -o {tmp}/stat.json stat -json",
-            f"write_verilog -noattr {tmp}/net.v",
+            f"write_verilog -noattr -simple-lhs {tmp}/net.v",
         ]) + "\n"
         secs = run_yosys(yosys, script, tmp, "mem")
         stat = parse_stat_json((tmp / "stat.json").read_text())
@@ -497,7 +497,8 @@ def main() -> int:
                 times["sta"], sta_out = run_sta(args.sta, tcl, tmp, "sta")
                 rep = (tmp / "checks.txt").read_text()
                 (out / f"{name}.sta.txt").write_text(rep)
-                timing = timing_result(rep, sta_out)
+                mods = sta.netlist_instances(netlist)
+                timing = timing_result(rep, sta_out, lambda pt: sta.register_name(pt, mods, top))
     except RuntimeError as e:
         print(f"error: {profile}: {e}", file=sys.stderr)
         return 1
@@ -512,7 +513,7 @@ def main() -> int:
     return 0
 
 
-def timing_result(rep: str, sta_out: str) -> dict:
+def timing_result(rep: str, sta_out: str, name=lambda p: p) -> dict:
     period = sta.sdc_period(SDC.read_text())
     groups = sta.parse_groups(sta_out)
     paths = sta.parse_checks(rep)
@@ -522,9 +523,10 @@ def timing_result(rep: str, sta_out: str) -> dict:
     for p in paths:
         g = groups.get(p["group"], {"key": p["group"], "instance": "", "module": ""})
         stages.append({"group": g["key"], "stage": STAGE_OF.get(g["key"], g["key"]),
-                       "startpoint": p["startpoint"], "endpoint": p["endpoint"],
+                       "startpoint": name(p["startpoint"]), "endpoint": name(p["endpoint"]),
                        "arrival_ns": p["arrival"], "slack_ns": p["slack"],
-                       "min_period_ns": round(period - p["slack"], 3), "cells": len(p["cells"])})
+                       "min_period_ns": round(period - p["slack"], 3), "cells": len(p["cells"]),
+                       "through": p["through"]})
     worst = min(stages, key=lambda s: s["slack_ns"])
     return {"period_ns": period, "wns_ns": worst["slack_ns"], "fmax_mhz": round(sta.fmax_mhz(period, worst["slack_ns"]), 1),
             "worst": worst, "stages": stages}
@@ -584,7 +586,7 @@ def markdown(r: dict) -> str:
     t = r.get("throughput")
     md += ["| figure | value |", "|---|---:|",
            f"| logic | {r['logic_ge']:,} GE ({r['logic_area_um2'] / 1e6:.3f} mm^2) |",
-           f"| memories (cell-built, see below) | {r['memory_ge']:,} GE ({r['memory_area_um2'] / 1e6:.3f} mm^2) |",
+           f"| memories (see below) | {r['memory_ge']:,} GE ({r['memory_area_um2'] / 1e6:.3f} mm^2) |",
            f"| **total area** | **{r['total_ge']:,} GE ({r['total_area_mm2']:.3f} mm^2)** |",
            f"| flip-flops | {r['flip_flops']:,} |",
            f"| ROM / RAM bits | {r['rom_bits']:,} / {r['ram_bits']:,} |"]
@@ -602,7 +604,8 @@ def markdown(r: dict) -> str:
                f"| throughput | {t['mpixel_s']:.2f} Mpixel/s ({'meets' if t['meets_realtime'] else 'misses'} "
                f"640x480 60 Hz depth 2: {t['realtime_mpixel_s']} Mpixel/s) |",
                f"| area-time (logic GE x clocks/pixel) | {t['area_time_ge_clocks']:,} |",
-               f"| worst path | {w['stage']}: {w['startpoint']} -> {w['endpoint']}, {w['arrival_ns']:.2f} ns |"]
+               f"| worst path | {w['stage']}: {w['startpoint']} -> {w['endpoint']} through "
+               f"{', '.join(w.get('through', []))}, {w['arrival_ns']:.2f} ns ({w['cells']} cells) |"]
     md.append("")
     md += ["| block | logic GE (OSU018) | area um^2 | flip-flops | GE old basis (cells.lib) | modules (instances x GE each, depth in cells) |",
            "|---|---:|---:|---:|---:|---|"]
@@ -644,11 +647,11 @@ def markdown(r: dict) -> str:
     if r["timing"]:
         md += [f"Critical path per stage (OpenSTA, scripts/synth/pst.sdc: {r['timing']['period_ns']:g} ns target; "
                "worst path into each block's registers):\n",
-               "| stage (block) | start point | end point | arrival ns | slack ns | min period ns | cells |",
-               "|---|---|---|---:|---:|---:|---:|"]
+               "| stage (block) | start point | end point | through | arrival ns | slack ns | min period ns | cells |",
+               "|---|---|---|---|---:|---:|---:|---:|"]
         for s in sorted(r["timing"]["stages"], key=lambda s: s["slack_ns"]):
-            md.append(f"| {s['stage']} | `{s['startpoint']}` | `{s['endpoint']}` | {s['arrival_ns']:.2f} | "
-                      f"{s['slack_ns']:+.2f} | {s['min_period_ns']:.2f} | {s['cells']} |")
+            md.append(f"| {s['stage']} | `{s['startpoint']}` | `{s['endpoint']}` | {', '.join(s.get('through', []))} | "
+                      f"{s['arrival_ns']:.2f} | {s['slack_ns']:+.2f} | {s['min_period_ns']:.2f} | {s['cells']} |")
         md.append("")
     return "\n".join(md) + "\n"
 

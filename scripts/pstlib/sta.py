@@ -24,8 +24,7 @@ foreach pin [concat [all_registers -data_pins] [get_pins -hierarchical -quiet */
     set inst "(top)"
     set ref "pst_top"
   }
-  regsub {^.*\\} $ref {} base
-  regsub {^\$paramod\$[0-9a-f]+} $base {} base
+  if {![regexp {pst_[A-Za-z0-9_]+} $ref base]} { set base $ref }
   if {[string match "*pst_pipe_reg*" $base] || $inst eq "(top)"} { set key $inst } else { set key $base }
   dict lappend pst_groups $key $pin
   dict set pst_modules $key "$inst $base"
@@ -53,6 +52,46 @@ def sta_script(libs: list, netlist: str, top: str, sdc: str, report: str) -> str
 _POINT = re.compile(r"^(Startpoint|Endpoint): (\S+)(?: \((.*)\))?\s*$")
 
 
+def netlist_instances(netlist: str) -> dict:
+    """Module -> {instance: (cell or module type, net on its Q pin or None)} of a Yosys
+    structural netlist (write_verilog), escaped names unescaped."""
+    mods = {}
+    cur = None
+    inst = None
+    for line in netlist.splitlines():
+        m = re.match(r"module\s+(\\\S+|[A-Za-z_][\w$]*)", line)
+        if m:
+            cur = mods.setdefault(m.group(1).lstrip("\\"), {})
+            continue
+        if cur is None:
+            continue
+        m = re.match(r"\s+(\\\S+|[A-Za-z_][\w$]*)\s+(\\\S+|[A-Za-z_][\w$]*)\s*\($", line)
+        if m and m.group(1) not in ("module", "assign", "wire", "input", "output", "reg"):
+            inst = m.group(2).lstrip("\\")
+            cur[inst] = (m.group(1).lstrip("\\"), None)
+            continue
+        m = re.match(r"\s+\.Q\((.+)\)\s*,?\s*$", line)
+        if m and inst is not None:
+            cur[inst] = (cur[inst][0], m.group(1).strip().lstrip("\\").replace(" [", "["))
+    return mods
+
+
+def register_name(point: str, mods: dict, top: str) -> str:
+    """An OpenSTA start/end point (hier/inst path of a flip-flop) -> hier/<its Q net>; ports
+    and unknown names are returned as they are."""
+    parts = point.split("/")
+    module = top
+    for p in parts[:-1]:
+        cell = mods.get(module, {}).get(p)
+        if cell is None:
+            return point
+        module = cell[0]
+    cell = mods.get(module, {}).get(parts[-1])
+    if cell is None or cell[1] is None or re.fullmatch(r"_\d+_(\[\d+\])?", cell[1]):
+        return point
+    return f"{point} ({cell[1]})"
+
+
 def parse_groups(text: str) -> dict:
     """`group NAME KEY INSTANCE MODULE` lines -> NAME -> {key, instance, module}."""
     out = {}
@@ -77,7 +116,7 @@ def parse_checks(text: str) -> list:
         if m:
             if m.group(1) == "Startpoint":
                 cur = {"startpoint": m.group(2), "start_kind": m.group(3) or "", "endpoint": None,
-                       "end_kind": "", "group": None, "cells": [], "arrival": None, "required": None,
+                       "end_kind": "", "group": None, "cells": [], "through": [], "arrival": None, "required": None,
                        "slack": None}
                 paths.append(cur)
                 section = None
@@ -106,6 +145,9 @@ def parse_checks(text: str) -> list:
             if inst in (cur["startpoint"], cur["endpoint"]):
                 continue
             cur["cells"].append(pm.group(2))
+            block = inst.split("/")[0] if "/" in inst else "(top)"
+            if block not in cur["through"]:
+                cur["through"].append(block)
     return paths
 
 

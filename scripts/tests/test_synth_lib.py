@@ -107,6 +107,7 @@ def test_parse_opensta_report():
     assert p["cells"] == ["PST_MEMRD_0", "XOR2X1", "PST_MEMRD_0", "XNOR2X1", "OAI21X1", "AOI21X1", "XNOR2X1"]
     assert paths[1]["start_kind"] == "input port clocked by clk"
     assert paths[1]["cells"] == []
+    assert p["through"] == ["(top)"]
 
 
 def test_parse_groups():
@@ -199,3 +200,32 @@ def test_ram_model():
     assert m["flop_area_um2"] == pytest.approx(2527668, rel=1e-3)
     assert memarea.ram_model(dict(ram, read_ports=2))["flop_area_um2"] == pytest.approx(2114172, rel=1e-3)
     assert m["delay_ns"] == pytest.approx(1.652)
+
+
+NETLIST = r"""module \$paramod$ab\pst_pipe_reg (clk_i, d_i, q_o);
+  DFFPOSX1 _3_ (
+    .CLK(clk_i),
+    .D(d_i[0]),
+    .Q(q_o[0])
+  );
+endmodule
+
+module pst_top(clk_i);
+  DFFPOSX1 _7_ (
+    .CLK(clk_i),
+    .D(_1_),
+    .Q(_2_)
+  );
+  \$paramod$ab\pst_pipe_reg  u_reg_b (
+    .clk_i(clk_i)
+  );
+endmodule
+"""
+
+
+def test_register_names_from_the_netlist():
+    mods = sta.netlist_instances(NETLIST)
+    assert mods["pst_top"]["u_reg_b"] == ("$paramod$ab\\pst_pipe_reg", None)
+    assert sta.register_name("u_reg_b/_3_", mods, "pst_top") == "u_reg_b/_3_ (q_o[0])"
+    assert sta.register_name("_7_", mods, "pst_top") == "_7_"          # private net: no name
+    assert sta.register_name("rst_ni", mods, "pst_top") == "rst_ni"
