@@ -20,7 +20,8 @@ Method (the Markdown repeats it beside the figures):
   21-cell generic library written by hand, ABC's fast delay mapping) is kept as a second
   column for one release; its GE are not comparable with a real library's.
 - Memories stay memories (`memory -nomap`), outside the logic. Each distinct ROM is
-  synthesized alone to OSU018 cells with one read port (cached in DIR/memories/ by content)
+  synthesized alone to OSU018 cells with one read port (cached by content in
+  out/synth/memories/, --mem-cache)
   and counted once per read port (replication); OpenSTA gives its address-to-data delay
   (inputs driven by BUFX2, outputs loaded with 0.02 pF). RAMs: a per-bit SRAM-macro model per
   read port (scripts/pstlib/memarea.py says where its numbers come from).
@@ -373,6 +374,8 @@ def main() -> int:
     ap.add_argument("--no-sta", action="store_true", help="area only (no OpenSTA run)")
     ap.add_argument("--no-old-basis", action="store_true", help="skip the cells.lib column")
     ap.add_argument("--jobs", type=int, default=1, help="memory syntheses in parallel")
+    ap.add_argument("--mem-cache", default=str(ROOT / "out" / "synth" / "memories"),
+                    help="cache of the stand-alone memory syntheses (by content)")
     ap.add_argument("--keep", action="store_true", help="keep the netlists and tool logs in DIR/NAME.work/")
     ap.add_argument("--reuse", action="store_true", help=argparse.SUPPRESS)   # development: skip Yosys if kept
     ap.add_argument("--quiet", action="store_true")
@@ -441,7 +444,7 @@ def main() -> int:
                 if memarea.is_rom(m):
                     distinct.setdefault(memarea.memory_key(m, mem_flow_salt(lib)), m)
             with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, args.jobs)) as ex:
-                futs = {k: ex.submit(synth_memory, m, lib, out / "memories", args.yosys, args.sta, areas, ff_cells)
+                futs = {k: ex.submit(synth_memory, m, lib, pathlib.Path(args.mem_cache), args.yosys, args.sta, areas, ff_cells)
                         for k, m in distinct.items()}
                 mem_syn = {k: f.result() for k, f in futs.items()}
             times["memories"] = time.time() - t0
@@ -564,7 +567,6 @@ def assemble(name, profile, prof, a, a_old, ge, old_ge, memories, timing, times,
         "clocks_per_pixel": cpp,
         "clocks_per_pixel_regress": regress_cpp(pathlib.Path(args.regress), name),
         "paper_gates": PAPER_GATES.get(name),
-        "depth": {base_name(k): v for k, v in a["depth"].items()},
         "timing": timing,
     }
     if timing:
@@ -578,6 +580,10 @@ def assemble(name, profile, prof, a, a_old, ge, old_ge, memories, timing, times,
         res["mpixel_s"] = res["throughput"]["mpixel_s"]
         res["area_time_ge_clocks"] = res["throughput"]["area_time_ge_clocks"]
         res["worst_path_ns"] = round(timing["period_ns"] - timing["wns_ns"], 3)
+        stage_ns = {}
+        for s in timing["stages"]:
+            stage_ns[s["stage"]] = max(stage_ns.get(s["stage"], 0.0), s["min_period_ns"])
+        res["critical_path_ns"] = dict(sorted(stage_ns.items(), key=lambda kv: -kv[1]))
     return res
 
 
