@@ -93,7 +93,7 @@ class Canvas:
         self.px[y:y + h, x:x + w] = rgb
 
     def text(self, x, y, s, size=16, colour=HEADER_FG, align="left"):
-        """Baseline at y."""
+        """Baseline at y; a label whose baseline is outside the canvas is left out."""
         self.labels.append((x, y, s, size, colour, align))
 
     @classmethod
@@ -126,7 +126,8 @@ class Canvas:
         buf = oiio.ImageBuf(oiio.ImageSpec(w, h, 3, oiio.UINT8))
         buf.set_pixels(buf.roi, self.px)
         for x, y, s, size, colour, align in self.labels:
-            oiio.ImageBufAlgo.render_text(buf, int(x), int(y), s, int(size), font, tuple(colour), align)
+            if 0 < y <= h:        # OpenImageIO aborts on text wholly outside the image (small images)
+                oiio.ImageBufAlgo.render_text(buf, int(x), int(y), s, int(size), font, tuple(colour), align)
         return buf.get_pixels(oiio.UINT8)[:, :, :3]
 
     @classmethod

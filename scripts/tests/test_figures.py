@@ -118,3 +118,13 @@ def test_crops_scale_from_512_and_clip():
     assert fig10.scale_crops([[500, 0, 40, 10]], 512, 512) == [[500, 0, 12, 10]]
     with pytest.raises(figdata.InputMissing, match="lies outside"):
         fig10.scale_crops([[600, 0, 10, 10]], 512, 512)
+
+
+def test_labels_outside_a_small_canvas_are_left_out():
+    c = images.Canvas(100, 60)
+    c.text(4, 40, "inside", 18)
+    c.text(4, 120, "below the canvas", 18)       # OpenImageIO aborts on this one when drawn
+    px = c.finish()
+    assert px.shape == (60, 100, 3)
+    if images.Canvas.labelled():
+        assert (px != images.CANVAS).any()       # the label inside was drawn
