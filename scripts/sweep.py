@@ -18,7 +18,8 @@ Per point:
     against the base profile's (`vs base`, worst scene);
   - unless --no-synth, scripts/synth.py on the point (logic GE, ROM bits, RAM bits), cached as
     out/synth/<name>.json with a sidecar <name>.sweep.json of content hashes (the profile's
-    values; rtl/*.sv, scripts/synth.py, the cell library); --no-synth still uses a valid cache;
+    values; rtl/*.sv, scripts/synth.py with its pstlib modules and scripts/synth/ files); --no-synth
+    still uses a valid cache;
   - out/sweep/<base>/results/<name>.json, written through a temporary file and a rename.
     A point with a result is not recomputed (resumable; a result without synthesis gets only
     its synthesis added; other scenes / size / truth re-render it; --retry-failed reruns the

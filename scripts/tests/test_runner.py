@@ -130,3 +130,11 @@ def test_run_points_interrupted_stops_and_raises():
             runner.run(["/bin/true"])
     finally:
         runner.STOP.clear()
+
+
+def test_synth_inputs_cover_the_rtl_and_the_synthesis_scripts():
+    from conftest import ROOT
+    names = {p.relative_to(ROOT).as_posix() for p in runner.synth_inputs()}
+    assert {"scripts/synth.py", "rtl/pst_top.sv", "scripts/synth/cells.lib"} <= names
+    assert all((ROOT / n).is_file() for n in names)
+    assert "scripts/synth/baseline.json" not in names          # results, not inputs
