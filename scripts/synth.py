@@ -482,10 +482,14 @@ def main() -> int:
                 if not memarea.is_rom(m):
                     entry["flop_ram_ge"] = round(n * memarea.ram_model(m)["flop_area_um2"] / ge)
                 if memarea.is_rom(m) and m["read_ports"] > 1:
-                    pairs = hash_pairs(prof) if m["size"] == 4096 and base_name(m["module"]) == "pst_noise" else 0
+                    noise = base_name(m["module"]) == "pst_noise"
+                    pairs = hash_pairs(prof) if m["size"] == 4096 and noise else 0
+                    # value table: a value-gradient corner reads R[m..m+3] (pst_noise step 3)
+                    quads = m["read_ports"] // 4 if (noise and m["memory"].lstrip("\\") == "value_rom"
+                                                     and prof["noise"].get("corner") == "value_gradient") else 0
                     entry["port_options"] = [dict(o, area_um2=round(o["area"]), ge=round(o["area"] / ge),
                                                   total_ge=round(n * o["area"] / ge))
-                                             for o in memarea.port_options(m, rec["area_um2"], pairs)]
+                                             for o in memarea.port_options(m, rec["area_um2"], pairs, quads)]
                     for o in entry["port_options"]:
                         o.pop("area")
                 if n:

@@ -132,12 +132,14 @@ def memory_area(mem: dict, synth_area: float) -> float:
     return synth_area * (mem["read_ports"] if is_rom(mem) else 1)
 
 
-def port_options(mem: dict, port_area: float, pairs_even_odd: int = 0) -> list:
+def port_options(mem: dict, port_area: float, pairs_even_odd: int = 0, quads_mod4: int = 0) -> list:
     """Cost options of a many-ported ROM (port_area: one read port built from cells):
     - replicate: one copy per read port;
     - bank: `pairs_even_odd` pairs of lookups whose addresses always differ in bit 0 (T[v ^ L]
       and T[v ^ (L + 1)]: L and L + 1 differ in bit 0) share one copy split into even and odd
       halves (the same bits, two half-size arrays): copies = ports - pairs;
+    - bank mod 4: `quads_mod4` groups of four reads of consecutive addresses (R[m], ..,
+      R[m + 3]: distinct modulo 4) share one copy split into four banks: copies = ports - 3 quads;
     - schedule: the lookups over 1 or 2 ports, ceil(ports / k) cycles for what one takes now.
     Returns dicts (option, copies, area, cycles_factor, note)."""
     p = mem["read_ports"]
@@ -148,6 +150,11 @@ def port_options(mem: dict, port_area: float, pairs_even_odd: int = 0) -> list:
         out.append({"option": "bank even/odd", "copies": c, "area": c * port_area, "cycles_factor": 1,
                     "note": f"{pairs_even_odd} lookup pairs T[v^L], T[v^(L+1)] never collide in bit 0: "
                             "each pair reads one copy split in even/odd halves"})
+    if quads_mod4:
+        c = p - 3 * quads_mod4
+        out.append({"option": "bank by address mod 4", "copies": c, "area": c * port_area, "cycles_factor": 1,
+                    "note": f"{quads_mod4} groups of reads R[m..m+3] hit four different banks: each group "
+                            "reads one copy split in four quarter-size banks"})
     for k in (2, 1):
         if k < p:
             out.append({"option": f"schedule over {k} port{'s' if k > 1 else ''}", "copies": k,

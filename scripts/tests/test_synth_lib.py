@@ -83,6 +83,8 @@ def test_port_options():
     assert opts["bank even/odd"]["copies"] == 7
     assert opts["schedule over 2 ports"]["cycles_factor"] == 7
     assert opts["schedule over 1 port"]["cycles_factor"] == 14
+    quad = {o["option"]: o for o in memarea.port_options({"read_ports": 32}, 1.0, quads_mod4=8)}
+    assert quad["bank by address mod 4"]["copies"] == 8 and "bank even/odd" not in quad
 
 
 def test_memory_key_follows_content():
