@@ -12,6 +12,7 @@ PACKAGES=(
   python3-numpy python3-matplotlib python3-openimageio python3-pytest
   python3-markdown chromium         # HTML report (scripts/report.py) and its browser test
   clang-14 libclang-rt-14-dev     # scripts/fuzz.sh: libFuzzer and the sanitizer runtimes
+  ffmpeg                            # pst animate: frames -> video (VP9 webm)
 )
 # Node.js for the report's browser test (playwright-core): Debian's nodejs/npm unless a node
 # (and npm) is already on the PATH (e.g. another distribution's nodejs package, which has npm).

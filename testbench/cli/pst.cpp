@@ -5,6 +5,7 @@
 //   pst compare A B       RMS / PSNR between two images
 //   pst render SCENE --profile P   the same scene through the RTL (and golden) model of profile P
 //   pst regress           every scene x every profile through the RTL; non-zero exit on any mismatch
+//   pst animate SCENE     the scene's time track: frames, videos, flicker against the ground truth
 // Exit status: 0 success, 1 failure (including RTL mismatches), 2 bad input or usage.
 #include <algorithm>
 #include <chrono>
@@ -20,6 +21,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "animate.h"
 #include "driver.h"
 #include "fixed.h"
 #include "fragments.h"
@@ -480,6 +482,21 @@ int main(int argc, char** argv) {
     cmp->add_option("a", cmpA)->required()->check(CLI::ExistingFile);
     cmp->add_option("b", cmpB)->required()->check(CLI::ExistingFile);
 
+    AnimateArgs an;
+    auto* animate = app.add_subcommand("animate", "Render a scene's time track: PNG frames, videos, flicker.json");
+    animate->add_option("scene", an.scene, "Scene file with an [animation] track")->required()->check(CLI::ExistingFile);
+    animate->add_option("--frames", an.frames, "Frames (default: the scene's animation.frames)")->check(CLI::Range(1, 10000));
+    animate->add_option("--size", an.size, "Square image size, overrides the scene's")->check(CLI::Range(1, 4096));
+    animate->add_option("--truth", an.truth, "N x N ground truth per frame (the flicker metric needs it)")->check(CLI::Range(1, 64));
+    animate->add_option("--fps", an.fps, "Video frame rate (default: the scene's animation.fps)")->check(CLI::Range(0.1, 240.0));
+    animate->add_option("--profile", an.profiles, "Also through the hardware model(s) of these profiles, scoreboarded");
+    animate->add_option("--model", an.model, "Hardware model for --profile: rtl or golden")->check(CLI::IsMember({"rtl", "golden"}));
+    animate->add_option("-o,--out", an.outDir, "Output folder (default out/anim/<scene name>)");
+    animate->add_option("-j,--threads", an.threads, "Threads (default: all cores)")->check(CLI::Range(0, 256));
+    bool noVideo = false, animQuiet = false;
+    animate->add_flag("--no-video", noVideo, "PNG frames and flicker.json only");
+    animate->add_flag("-q,--quiet", animQuiet, "No progress on stderr");
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -515,6 +532,19 @@ int main(int argc, char** argv) {
             const std::string images = regImages.empty() ? dir.string() : regImages;
             const int rc = runRegress(regScenes, regSize, hw, json, images, regJunit);
             return std::max(rc, writeHtmlPage(regHtml, {"--regress", json, "--images", images}));
+        }
+        if (*animate) {
+            an.video = !noVideo;
+            an.loadProfile = profileByName;
+            // One line per frame and model (rewritten in place on a terminal).
+            if (!animQuiet)
+                an.progress = [name = fs::path(an.scene).stem().string(), tty = isatty(STDERR_FILENO)](
+                                  const std::string& stage, double frac) {
+                    std::fprintf(stderr, tty ? "\r%s: %-28s %5.1f%%" : "%s: %s %.1f%%\n", name.c_str(), stage.c_str(),
+                                 100.0 * frac);
+                    if (tty && frac >= 1.0) std::fprintf(stderr, "\n");
+                };
+            return runAnimate(an);
         }
         if (*frag) return runFragments(fragScene, fragSize, fragLayer, fragOut);
         if (*cmp) return runCompare(cmpA, cmpB);

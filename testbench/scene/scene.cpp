@@ -349,18 +349,171 @@ std::string readFile(const std::string& path) {
     return ss.str();
 }
 
-}  // namespace
 
-int Scene::layers() const {
-    int n = 1;
-    for (const auto& o : objects) n = std::max(n, o.layer + 1);
-    return n;
+// --- Time track: [animation] frames, fps, [[animation.track]] field + keys -----------------
+struct Seg {
+    std::string key;
+    int index = -1;    // key[N]
+    bool all = false;  // key[*]
+};
+
+bool parseFieldPath(const std::string& s, std::vector<Seg>* out) {
+    std::stringstream ss(s);
+    std::string part;
+    while (std::getline(ss, part, '.')) {
+        Seg g;
+        size_t b = part.find('[');
+        g.key = part.substr(0, b);
+        if (g.key.empty()) return false;
+        if (b != std::string::npos) {
+            if (part.back() != ']') return false;
+            std::string ix = part.substr(b + 1, part.size() - b - 2);
+            if (ix == "*") g.all = true;
+            else {
+                if (ix.empty() || ix.size() > 4 || ix.find_first_not_of("0123456789") != std::string::npos) return false;
+                g.index = std::stoi(ix);
+            }
+        }
+        out->push_back(g);
+    }
+    return !out->empty() && !s.empty() && s.back() != '.';
 }
 
-Scene parseScene(const std::string& text, const std::string& path, int width, int height) {
-    const Ctx c{path};
-    toml::table root = parseToml(text, path);
-    checkKeys(c, root, "", {"title", "image", "camera", "textures", "objects"});
+// The tables that hold the path's last key (several with [*]); "" or what does not resolve.
+std::vector<toml::table*> leafTables(toml::table& root, const std::vector<Seg>& segs, std::string* err) {
+    std::vector<toml::table*> cur{&root};
+    for (size_t i = 0; i + 1 < segs.size(); ++i) {
+        const Seg& g = segs[i];
+        std::vector<toml::table*> next;
+        for (toml::table* t : cur) {
+            toml::node* n = t->get(g.key);
+            if (!n) { *err = "'" + g.key + "' is not in the file"; return {}; }
+            if (g.all || g.index >= 0) {
+                toml::array* a = n->as_array();
+                if (!a) { *err = "'" + g.key + "' is not an array"; return {}; }
+                if (g.index >= int(a->size())) {
+                    *err = "'" + g.key + "' has " + std::to_string(a->size()) + " entries";
+                    return {};
+                }
+                for (size_t k = 0; k < a->size(); ++k) {
+                    if (g.index >= 0 && int(k) != g.index) continue;
+                    toml::table* e = a->get(k)->as_table();
+                    if (!e) { *err = "'" + g.key + "' entries are not tables"; return {}; }
+                    next.push_back(e);
+                }
+            } else {
+                toml::table* e = n->as_table();
+                if (!e) { *err = "'" + g.key + "' is not a table (index it: " + g.key + "[N] or [*])"; return {}; }
+                next.push_back(e);
+            }
+        }
+        cur = std::move(next);
+    }
+    if (segs.back().all || segs.back().index >= 0) {
+        *err = "the last part names a field, not an array entry";
+        return {};
+    }
+    return cur;
+}
+
+std::vector<Seg> trackPath(const Track& tr) {
+    std::vector<Seg> segs;
+    parseFieldPath(tr.field, &segs);
+    return segs;
+}
+
+void applyTrack(toml::table& root, const Track& tr, double t) {
+    std::string err;
+    const std::vector<Seg> segs = trackPath(tr);
+    const std::vector<double> v = tr.at(t);
+    for (toml::table* tb : leafTables(root, segs, &err)) {
+        if (v.size() == 1) tb->insert_or_assign(segs.back().key, v[0]);
+        else {
+            toml::array a;
+            for (double x : v) a.push_back(x);
+            tb->insert_or_assign(segs.back().key, std::move(a));
+        }
+    }
+}
+
+Animation parseAnimation(const Ctx& c, toml::table& root) {
+    Animation an;
+    const toml::node* node = find(root, "animation");
+    if (!node) return an;
+    const toml::table* at = node->as_table();
+    if (!at) c.fail(node, "animation", "expected a table");
+    checkKeys(c, *at, "animation", {"frames", "fps", "track"});
+    an.frames = getInt(c, *at, "animation", "frames", 0, 1, 10000);
+    an.fps = getNumber(c, *at, "animation", "fps", an.fps);
+    if (an.fps <= 0 || an.fps > 240) c.fail(find(*at, "fps"), "animation.fps", "must be in (0, 240]");
+    const toml::node* tn = find(*at, "track");
+    if (!tn) c.fail(at, "animation.track", "missing: one or more [[animation.track]] tables");
+    const toml::array* ta = tn->as_array();
+    if (!ta || !ta->is_array_of_tables() || ta->empty())
+        c.fail(tn, "animation.track", "expected one or more [[animation.track]] tables");
+    if (ta->size() > 256) c.fail(tn, "animation.track", "at most 256 tracks");
+    for (size_t i = 0; i < ta->size(); ++i) {
+        const std::string tp = "animation.track[" + std::to_string(i) + "]";
+        const toml::table& tt = *ta->get(i)->as_table();
+        checkKeys(c, tt, tp, {"field", "keys"});
+        Track tr;
+        std::ostringstream where;
+        where << c.file;
+        if (tt.source().begin.line > 0) where << ":" << tt.source().begin.line;
+        tr.where = where.str();
+        const toml::node* fn = find(tt, "field");
+        if (!fn) c.fail(&tt, join(tp, "field"), "missing");
+        tr.field = getString(c, tt, tp, "field", "");
+        std::vector<Seg> segs;
+        if (!parseFieldPath(tr.field, &segs))
+            c.fail(fn, join(tp, "field"), "'" + tr.field + "' is not a field path (e.g. camera.eye, "
+                                           "textures.NAME.octaves[*].offset, objects[0].tex_rotate)");
+        if (segs[0].key != "camera" && segs[0].key != "textures" && segs[0].key != "objects")
+            c.fail(fn, join(tp, "field"), "'" + tr.field + "': only camera, textures and objects fields can be animated");
+        std::string err;
+        std::vector<toml::table*> leaves = leafTables(root, segs, &err);
+        if (!err.empty()) c.fail(fn, join(tp, "field"), "'" + tr.field + "': " + err);
+        // An existing field fixes the number of values; a missing one (e.g. tex_rotate) is
+        // checked by the scene parser at every key below.
+        size_t want = 0;
+        for (toml::table* tb : leaves)
+            if (const toml::node* leaf = tb->get(segs.back().key)) {
+                if (leaf->is_number()) want = 1;
+                else if (leaf->is_array()) want = leaf->as_array()->size();
+                else c.fail(fn, join(tp, "field"), "'" + tr.field + "' is not a number or an array of numbers");
+            }
+        const toml::node* kn = find(tt, "keys");
+        if (!kn) c.fail(&tt, join(tp, "keys"), "missing");
+        const toml::array* ka = kn->as_array();
+        if (!ka || ka->empty()) c.fail(kn, join(tp, "keys"), "expected an array of [t, value...] keys");
+        if (ka->size() > 4096) c.fail(kn, join(tp, "keys"), "at most 4096 keys");
+        for (size_t k = 0; k < ka->size(); ++k) {
+            const std::string kp = join(tp, "keys") + "[" + std::to_string(k) + "]";
+            std::vector<double> v = asNumbers(c, *ka->get(k), kp, 2, 5);
+            TrackKey key{v[0], std::vector<double>(v.begin() + 1, v.end())};
+            if (key.t < 0 || key.t > 1) c.fail(ka->get(k), kp, "time must be in [0, 1] (the whole sequence)");
+            if (!tr.keys.empty() && key.t < tr.keys.back().t) c.fail(ka->get(k), kp, "times must not decrease");
+            if (want && key.value.size() != want)
+                c.fail(ka->get(k), kp, "'" + tr.field + "' takes " + std::to_string(want) + " number(s), got " +
+                                           std::to_string(key.value.size()));
+            if (!tr.keys.empty() && key.value.size() != tr.keys[0].value.size())
+                c.fail(ka->get(k), kp, "every key must have as many values as the first");
+            tr.keys.push_back(std::move(key));
+        }
+        an.tracks.push_back(std::move(tr));
+    }
+    return an;
+}
+
+// The message of an error raised by the scene parser, without its leading "FILE(:LINE): ".
+std::string innerMessage(const std::string& what, const std::string& file) {
+    if (what.rfind(file, 0) != 0) return what;
+    size_t p = what.find(": ", file.size());
+    return p == std::string::npos ? what : what.substr(p + 2);
+}
+
+Scene buildScene(const Ctx& c, const toml::table& root, const std::string& path, int width, int height) {
+    checkKeys(c, root, "", {"title", "image", "camera", "textures", "objects", "animation"});
     Scene sc;
     sc.path = path;
     sc.title = getString(c, root, "", "title", path);
@@ -407,8 +560,74 @@ Scene parseScene(const std::string& text, const std::string& path, int width, in
     return sc;
 }
 
+}  // namespace
+
+int Scene::layers() const {
+    int n = 1;
+    for (const auto& o : objects) n = std::max(n, o.layer + 1);
+    return n;
+}
+
+std::vector<double> Track::at(double t) const {
+    if (t <= keys.front().t) return keys.front().value;
+    if (t >= keys.back().t) return keys.back().value;
+    size_t k = 1;
+    while (keys[k].t < t) ++k;   // keys[k-1].t < t <= keys[k].t
+    const TrackKey &a = keys[k - 1], &b = keys[k];
+    const double u = b.t > a.t ? (t - a.t) / (b.t - a.t) : 1.0;
+    std::vector<double> v(a.value.size());
+    for (size_t i = 0; i < v.size(); ++i) v[i] = a.value[i] + (b.value[i] - a.value[i]) * u;
+    return v;
+}
+
+Scene parseScene(const std::string& text, const std::string& path, int width, int height) {
+    const Ctx c{path};
+    toml::table root = parseToml(text, path);
+    Animation an = parseAnimation(c, root);
+    Scene sc = buildScene(c, root, path, width, height);
+    // Every track at every key, alone, must give a valid scene (the scene parser's checks).
+    for (size_t i = 0; i < an.tracks.size(); ++i)
+        for (size_t k = 0; k < an.tracks[i].keys.size(); ++k) {
+            toml::table r = root;
+            applyTrack(r, an.tracks[i], an.tracks[i].keys[k].t);
+            try {
+                buildScene(c, r, path, 1, 1);
+            } catch (const InputError& e) {
+                const toml::node* kn = root["animation"]["track"][i]["keys"][k].node();
+                std::ostringstream os;
+                os << path;
+                if (kn && kn->source().begin.line > 0) os << ":" << kn->source().begin.line;
+                os << ": animation.track[" << i << "].keys[" << k << "]: " << innerMessage(e.what(), path);
+                throw InputError(os.str());
+            }
+        }
+    sc.animation = std::move(an);
+    return sc;
+}
+
+Scene parseSceneAt(const std::string& text, const std::string& path, double t, int width, int height) {
+    if (!std::isfinite(t) || t < 0 || t > 1) throw InputError(path + ": time " + std::to_string(t) + " is not in [0, 1]");
+    const Ctx c{path};
+    toml::table root = parseToml(text, path);
+    Animation an = parseAnimation(c, root);
+    for (const Track& tr : an.tracks) applyTrack(root, tr, t);
+    try {
+        Scene sc = buildScene(c, root, path, width, height);
+        sc.animation = std::move(an);
+        return sc;
+    } catch (const InputError& e) {
+        std::ostringstream os;
+        os << path << ": animation at t = " << t << ": " << innerMessage(e.what(), path);
+        throw InputError(os.str());
+    }
+}
+
 Scene loadScene(const std::string& path, int width, int height) {
     return parseScene(readFile(path), path, width, height);
+}
+
+Scene loadSceneAt(const std::string& path, double t, int width, int height) {
+    return parseSceneAt(readFile(path), path, t, width, height);
 }
 
 Texture parseTexture(const std::string& text, const std::string& path) {

@@ -1,0 +1,233 @@
+// `pst animate`: frames, videos and flicker of a scene's time track.
+#include "animate.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "driver.h"
+#include "hwrender.h"
+#include "imageio.h"
+#include "scene.h"
+
+extern "C" char** environ;
+
+namespace fs = std::filesystem;
+
+namespace pst {
+namespace {
+
+// Runs argv[0] from the PATH; true on exit status 0.
+bool spawn(std::vector<std::string> args) {
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid;
+    int status = 0;
+    return posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ) == 0 &&
+           waitpid(pid, &status, 0) >= 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+bool onPath(const std::string& exe) {
+    const char* p = std::getenv("PATH");
+    std::stringstream ss(p ? p : "");
+    std::string dir;
+    while (std::getline(ss, dir, ':'))
+        if (!dir.empty() && access((fs::path(dir) / exe).c_str(), X_OK) == 0) return true;
+    return false;
+}
+
+std::string frameName(int k) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "frame_%04d.png", k);
+    return buf;
+}
+
+// One image stream of the sequence: frames on disk, its error against the truth per frame.
+struct Stream {
+    std::string name;
+    Image prev;
+    std::vector<double> rms;       // vs the truth, per frame
+    std::vector<double> temporal;  // per frame k >= 1
+    size_t mismatches = 0;         // hardware streams: scoreboard mismatches over all frames
+    bool hardware = false;
+};
+
+double rmsOf(const std::vector<double>& v) {
+    double s = 0;
+    for (double x : v) s += x * x;
+    return v.empty() ? 0.0 : std::sqrt(s / double(v.size()));
+}
+double meanOf(const std::vector<double>& v) {
+    double s = 0;
+    for (double x : v) s += x;
+    return v.empty() ? 0.0 : s / double(v.size());
+}
+
+}  // namespace
+
+double temporalRms(const Image& prev, const Image& cur, const Image& truthPrev, const Image& truthCur) {
+    const size_t n = size_t(cur.width) * cur.height;
+    double s = 0;
+    for (size_t i = 0; i < n; ++i)
+        for (int c = 0; c < 3; ++c) {
+            const size_t j = i * 4 + c;
+            const double d = (double(cur.data[j]) - prev.data[j]) - (double(truthCur.data[j]) - truthPrev.data[j]);
+            s += d * d;
+        }
+    return n ? std::sqrt(s / double(3 * n)) : 0.0;
+}
+
+int runAnimate(const AnimateArgs& a) {
+    const Scene still = loadScene(a.scene, a.size, a.size);
+    const std::string stem = fs::path(a.scene).stem().string();
+    if (still.animation.empty())
+        throw InputError(a.scene + ": animation: the scene has no [animation] time track (scenes/README.md)");
+    const int frames = a.frames ? a.frames : still.animation.frames;
+    if (frames < 1) throw InputError("--frames: the scene's [animation] gives no frames; give --frames N");
+    const double fps = a.fps > 0 ? a.fps : still.animation.fps;
+    if (a.video && !onPath("ffmpeg"))
+        throw InputError("--video: ffmpeg is not on the PATH (scripts/setup.sh installs it; --no-video writes the frames only)");
+    std::vector<Profile> profiles;
+    for (const auto& name : a.profiles) {
+        profiles.push_back(a.loadProfile(name));
+        for (const auto& o : still.objects)
+            if (std::string why = hardwareUnsupported(profiles.back(), still.textures[o.texture]); !why.empty())
+                throw InputError(why);
+    }
+    const fs::path dir = a.outDir.empty() ? fs::path("out") / "anim" / stem : fs::path(a.outDir);
+
+    std::vector<Stream> streams{{"filtered"}, {"unfiltered"}};
+    for (const auto& p : profiles) {
+        streams.push_back({p.name});
+        streams.back().hardware = true;
+    }
+    std::vector<std::string> dirs;
+    for (const auto& s : streams) dirs.push_back(s.name);
+    if (a.truth > 0) dirs.push_back("truth");
+    for (const auto& d : dirs) fs::create_directories(dir / d);
+
+    Image truthPrev;
+    bool passed = true;
+    std::vector<std::string> notes;
+    const auto t0 = std::chrono::steady_clock::now();
+    const double steps = double(frames) * (1 + profiles.size());
+    for (int k = 0; k < frames; ++k) {
+        const double t = frames > 1 ? double(k) / double(frames - 1) : 0.0;
+        const Scene scene = loadSceneAt(a.scene, t, a.size, a.size);
+        RenderOptions ro;
+        ro.truthSamples = a.truth;
+        ro.threads = a.threads;
+        RenderResult r = render(scene, ro);
+        std::vector<Image> current{r.filtered, r.unfiltered};
+        if (a.progress) a.progress("frame " + std::to_string(k + 1) + "/" + std::to_string(frames) + " reference",
+                                   (k * (1 + profiles.size()) + 1) / steps);
+        for (size_t pi = 0; pi < profiles.size(); ++pi) {
+            const Profile& p = profiles[pi];
+            std::unique_ptr<RtlModel> rtl;
+            if (a.model == "rtl") rtl = makeRtlModel(p.name, a.sim);
+            HwRenderResult h = renderHardware(scene, p, rtl.get());
+            Stream& st = streams[2 + pi];
+            st.mismatches += h.mismatches;
+            if (rtl && !h.passed) {
+                passed = false;
+                std::cout << stem << " frame " << k << " [" << p.name << "]: " << h.scoreboard;
+            }
+            for (const auto& n : h.notes)
+                if (std::find(notes.begin(), notes.end(), p.name + ": " + n) == notes.end()) notes.push_back(p.name + ": " + n);
+            current.push_back(std::move(h.hardware));
+            if (a.progress) a.progress("frame " + std::to_string(k + 1) + "/" + std::to_string(frames) + " " + p.name,
+                                       (k * (1 + profiles.size()) + 2 + pi) / steps);
+        }
+        for (size_t si = 0; si < streams.size(); ++si) {
+            Stream& st = streams[si];
+            writeImage(current[si], (dir / st.name / frameName(k)).string());
+            if (a.truth > 0) {
+                st.rms.push_back(compareRgb(current[si], r.truth).rmsError);
+                if (k > 0) st.temporal.push_back(temporalRms(st.prev, current[si], truthPrev, r.truth));
+            }
+            st.prev = std::move(current[si]);
+        }
+        if (a.truth > 0) {
+            writeImage(r.truth, (dir / "truth" / frameName(k)).string());
+            truthPrev = std::move(r.truth);
+        }
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+
+    int rc = passed ? 0 : 1;
+    nlohmann::json j;
+    j["scene"] = a.scene;
+    j["title"] = still.title;
+    j["frames"] = frames;
+    j["fps"] = fps;
+    j["width"] = still.camera.width;
+    j["height"] = still.camera.height;
+    j["truth_samples"] = a.truth * a.truth;
+    j["seconds"] = seconds;
+    j["model"] = profiles.empty() ? "" : a.model;
+    j["passed"] = passed;
+    j["notes"] = notes;
+    j["metric"] = "temporal RMS error: per frame k >= 1, RMS over pixels and RGB of "
+                  "(X_k - X_{k-1}) - (T_k - T_{k-1}), T the ground truth; flicker = RMS over frames";
+    nlohmann::json sj = nlohmann::json::object();
+    for (const auto& st : streams) {
+        nlohmann::json e;
+        e["hardware"] = st.hardware;
+        if (st.hardware) e["mismatches"] = st.mismatches;
+        if (a.truth > 0) {
+            e["rms_vs_truth"] = st.rms;
+            e["temporal_rms"] = st.temporal;
+            e["mean_rms_vs_truth"] = meanOf(st.rms);
+            e["flicker"] = rmsOf(st.temporal);
+        }
+        sj[st.name] = e;
+    }
+    j["streams"] = sj;
+    std::ostringstream line;
+    line << stem << ": " << frames << " frames " << still.camera.width << "x" << still.camera.height << ", " << seconds
+         << " s";
+    if (a.truth > 0) {
+        const double ff = rmsOf(streams[0].temporal), fu = rmsOf(streams[1].temporal);
+        j["flicker_ratio_unfiltered_over_filtered"] = ff > 0 ? fu / ff : 0.0;
+        line << ", flicker (temporal RMS vs truth): filtered " << ff << ", unfiltered " << fu;
+        if (ff > 0) line << " (" << fu / ff << "x)";
+        for (size_t si = 2; si < streams.size(); ++si) line << ", " << streams[si].name << " " << rmsOf(streams[si].temporal);
+    }
+    for (size_t si = 2; si < streams.size(); ++si)
+        line << ", " << streams[si].name << " " << streams[si].mismatches << " mismatches";
+
+    if (a.video) {
+        for (const auto& d : dirs) {
+            const std::string out = (dir / (d + ".webm")).string();
+            char rate[32];
+            std::snprintf(rate, sizeof rate, "%g", fps);
+            // VP9 in WebM with 4:2:0 chroma: what every current browser plays. yuv420p needs even sizes.
+            if (!spawn({"ffmpeg", "-y", "-loglevel", "error", "-framerate", rate, "-i",
+                        (dir / d / "frame_%04d.png").string(), "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
+                        "-c:v", "libvpx-vp9", "-pix_fmt", "yuv420p", "-b:v", "0", "-crf", "30",
+                        "-deadline", "realtime", "-cpu-used", "8", "-row-mt", "1", out})) {
+                std::cerr << "error: ffmpeg did not write " << out << "\n";
+                rc = std::max(rc, 1);
+            } else {
+                j["videos"][d] = d + ".webm";
+            }
+        }
+    }
+    writeTextFile((dir / "flicker.json").string(), j.dump(2) + "\n");
+    std::cout << line.str() << " -> " << dir.string() << "\n";
+    for (const auto& n : notes) std::cout << "  note: " << n << "\n";
+    return rc;
+}
+
+}  // namespace pst
