@@ -3,8 +3,9 @@
 #   1. every scene through the reference model (filtered, unfiltered, filter width, ground truth)
 #   2. the RTL regression: every scene through every profile at 512x512, checked bit for bit
 #      against the golden model, with the images
+#   2b. the seascape fly-in (pst animate, 24 frames at 64x64): webm videos, out/flicker.md
 #   3. silicon figures of both profiles (OSU018 area, OpenSTA timing, memories), Figures 10
-#      and 11, a quick precision sweep
+#      and 11, a quick precision sweep (Flicker: temporalRms unit test, scripts/pstlib/flicker.py (table, plot; pytest) and scripts/flicker.py; ctests cli_animate_tiny and flicker_pytest; run.sh: the seascape fly-in at 64x64 (24 frames) -> out/flicker.md; docs)
 #   4. out/report.md and out/report.html (the same data; the HTML page has an image viewer per
 #      scene and sortable tables, opens from file://), the pages a designer opens first
 #   5. the figures against scripts/synth/baseline.json (fails on a move > 2 %)
@@ -24,6 +25,9 @@ done
 echo "== RTL regression at ${SIZE}x${SIZE}"
 rc=0
 ./build/pst regress --size "$SIZE" --profile full --profile reduced -o out/regress.json --images out || rc=$?
+echo "== animation: seascape fly-in, 24 frames at 64x64 through the reference and full's RTL, flicker vs a 4x4 truth"
+./build/pst animate scenes/seascape.toml --frames 24 --size 64 --truth 4 --profile full -o out/anim/seascape -q || rc=1
+/usr/bin/python3 scripts/flicker.py out/anim/seascape --md out/flicker.md || rc=1
 echo "== silicon figures (Yosys + OpenSTA), quick precision sweep, figures"
 # full's synthesis and timing (one core) run beside the quick sweep, whose base point is
 # the reduced profile's synthesis (out/synth/reduced.{json,md}).
