@@ -10,7 +10,7 @@
 //   ColourBits       bits per RGBA channel (1..8): RAM widths, output width.
 //   WidthFrac        fraction bits of W: window-end precision and the MIP blend weight.
 //   FilterRecipFrac  RF, fraction bits of the SAT reciprocal ROM: the division's precision.
-//   Datapath         0 (parallel): four channel units, rgba_o combinational. 1 (serial): one
+//   Datapath         parallel: four channel units, rgba_o combinational. serial: one
 //                    channel unit, channel c = step_i per cycle (0..3); adv_i stores the
 //                    channel, rgba_o is valid at step 3 (channels 0..2 from registers). The
 //                    arithmetic is the same bit for bit; the SAT table needs 3 read ports
@@ -18,10 +18,11 @@
 //
 // Tables: RAMs written through the register port (clk_i, we_i, addr_i, wdata_i); other
 // addresses are ignored. Reads are combinational (a later revision may register them).
-//   0x1000 + e      clut[e], e < N: RGBA packed, ColourBits each, R at bit 0
-//   0x2000 + 4e + c csat[e] channel c: sum of clut[0..e] channel c, ColourBits + Log2Clut bits
-//   0x4000 + e      MIP levels 1..Log2Clut concatenated: level k entry j at N - (N >> (k-1)) + j
-//                   (entry N-1 is writable and never read)
+// Addresses: pst_pkg::RegClut, RegSat, RegMip (docs/HARDWARE.md register map).
+//   RegClut + e      clut[e], e < N: RGBA packed, ColourBits each, R at bit 0
+//   RegSat + 4e + c  csat[e] channel c: sum of clut[0..e] channel c, ColourBits + Log2Clut bits
+//   RegMip + e       MIP levels 1..Log2Clut concatenated: level k entry j at N - (N >> (k-1)) + j
+//                    (entry N-1 is writable and never read)
 //
 // Arithmetic (f_i = f 2^FFrac signed, w_i = W 2^WidthFrac unsigned with W < 4N; u = f N):
 //   P = max(WidthFrac + 1, FFrac - Log2Clut): u and W/2 are exact at P fraction bits.
@@ -68,33 +69,38 @@
 //     channel = min(2^ColourBits - 1, (sum recip[count] + 2^(RF-1)) >> RF),
 //     recip[c] = round(2^RF / c) (ROM, c = 1..4N). Error against the exact sum / count:
 //     <= 1/2 + (sum / count) |c recip[c] - 2^RF| / 2^RF (final rounding + reciprocal).
+`include "pst_pkg.sv"
 `default_nettype none
 
 module pst_clut_filter #(
-  parameter int FInt            = 12,
-  parameter int FFrac           = 20,
-  parameter int Log2Clut        = 8,
-  parameter int ColourBits      = 8,
-  parameter int WidthFrac       = 8,
-  parameter int FilterRecipFrac = 18,
-  parameter int Datapath        = 0,
+  parameter int FInt            = pst_pkg::FIntDefault,
+  parameter int FFrac           = pst_pkg::FFracDefault,
+  parameter int Log2Clut        = pst_pkg::Log2ClutDefault,
+  parameter int ColourBits      = pst_pkg::ColourBitsDefault,
+  parameter int WidthFrac       = pst_pkg::WidthFracDefault,
+  parameter int FilterRecipFrac = pst_pkg::FilterRecipFracDefault,
+  parameter int Datapath        = pst_pkg::DatapathDefault,
   localparam int FW  = FInt + FFrac,              // f
-  localparam int WW  = Log2Clut + 2 + WidthFrac,  // W = w N in entries, < 4N
-  localparam int CB4 = 4 * ColourBits             // packed RGBA
+  localparam int WW  = Log2Clut + pst_pkg::WidthExtraIntBits + WidthFrac,  // W = w N in entries, < 4N
+  localparam int CB4 = 4 * ColourBits,            // packed RGBA
+  localparam int AB  = pst_pkg::RegAddrBits,
+  localparam int DB  = pst_pkg::RegDataBits,
+  localparam int KB  = pst_pkg::RegControlKindWidth,  // filter kind
+  localparam int SB  = pst_pkg::ColourStepBits
 ) (
   input  logic           clk_i,
   // Table write port (register map; other addresses are ignored).
   input  logic           we_i,
-  input  logic [15:0]    addr_i,
-  input  logic [31:0]    wdata_i,
+  input  logic [AB-1:0]  addr_i,
+  input  logic [DB-1:0]  wdata_i,
   // Filter input: colour index f, width W, wrap mode (0 mod, 1 clamp), kind.
   input  logic [FW-1:0]  f_i,
   input  logic [WW-1:0]  w_i,
   input  logic           clamp_i,
-  input  logic [1:0]     kind_i,
+  input  logic [KB-1:0]  kind_i,
   // Datapath = 1: the channel of this cycle and "store it" (unused when Datapath = 0).
   input  logic           rst_ni,
-  input  logic [1:0]     step_i,
+  input  logic [SB-1:0]  step_i,
   input  logic           adv_i,
   output logic [CB4-1:0] rgba_o
 );
@@ -125,18 +131,26 @@ module pst_clut_filter #(
   localparam int LW        = $clog2(Log2Clut + 2);      // level / leading-one index 0..Log2Clut+1
   localparam int RomDepth  = 4 * N + 1;                // recip[0..4N]
   localparam logic [CB-1:0] MaxC = {CB{1'b1}};
+  // Filter kinds (control register) and the serial channel steps.
+  localparam logic [KB-1:0] KindNone       = KB'(pst_pkg::FilterKindNone);
+  localparam logic [KB-1:0] KindMip        = KB'(pst_pkg::FilterKindMip);
+  localparam logic [KB-1:0] KindMipBlended = KB'(pst_pkg::FilterKindMipBlended);
+  localparam logic [KB-1:0] KindSat        = KB'(pst_pkg::FilterKindSat);
+  localparam logic [SB-1:0] LastStep       = SB'(pst_pkg::ColourSteps - 1);
 
   // ---------------------------------------------------------------------------------------
   // Table RAMs and the write decoder
   // ---------------------------------------------------------------------------------------
   logic [CB4-1:0]     clut_q [N];
+  localparam int SatStrideBits = $clog2(pst_pkg::RegSatStride);   // channels per SAT entry
   logic [SatBits-1:0] sat_q  [4*N];   // index {e, c}
   logic [CB4-1:0]     mip_q  [N];
 
   logic sel_clut, sel_sat, sel_mip;
-  assign sel_clut = addr_i[15:Log2Clut]   == (16 - Log2Clut)'(16'h1000 >> Log2Clut);
-  assign sel_sat  = addr_i[15:Log2Clut+2] == (14 - Log2Clut)'(16'h2000 >> (Log2Clut + 2));
-  assign sel_mip  = addr_i[15:Log2Clut]   == (16 - Log2Clut)'(16'h4000 >> Log2Clut);
+  assign sel_clut = addr_i[AB-1:Log2Clut] == (AB - Log2Clut)'(pst_pkg::RegClut >> Log2Clut);
+  assign sel_sat  = addr_i[AB-1:Log2Clut+SatStrideBits] ==
+                    (AB - Log2Clut - SatStrideBits)'(pst_pkg::RegSat >> (Log2Clut + SatStrideBits));
+  assign sel_mip  = addr_i[AB-1:Log2Clut] == (AB - Log2Clut)'(pst_pkg::RegMip >> Log2Clut);
 
   // Data bits above the RAM widths are ignored (used only when ColourBits = 8).
   logic unused_wdata;
@@ -144,7 +158,7 @@ module pst_clut_filter #(
 
   always_ff @(posedge clk_i) begin
     if (we_i && sel_clut) clut_q[addr_i[Log2Clut-1:0]] <= wdata_i[CB4-1:0];
-    if (we_i && sel_sat)  sat_q[addr_i[Log2Clut+1:0]]  <= wdata_i[SatBits-1:0];
+    if (we_i && sel_sat)  sat_q[addr_i[Log2Clut+SatStrideBits-1:0]] <= wdata_i[SatBits-1:0];
     if (we_i && sel_mip)  mip_q[addr_i[Log2Clut-1:0]]  <= wdata_i[CB4-1:0];
   end
 
@@ -229,7 +243,7 @@ module pst_clut_filter #(
   // ---------------------------------------------------------------------------------------
   logic [Log2Clut-1:0] clut_addr;
   logic [CB4-1:0]      clut_e, clut_first, clut_last;
-  assign clut_addr  = (kind_i == 2'd3) ? hidx : pidx;
+  assign clut_addr  = (kind_i == KindSat) ? hidx : pidx;
   assign clut_e     = clut_q[clut_addr];
   assign clut_first = clut_q[0];
   assign clut_last  = clut_q[N-1];
@@ -264,7 +278,7 @@ module pst_clut_filter #(
   logic [TFrac-1:0] t;
   always_comb begin
     t = '0;
-    if (kind_i == 2'd2 && lw < LW'(Log2Clut)) begin
+    if (kind_i == KindMipBlended && lw < LW'(Log2Clut)) begin
       t = TFrac'(TFrac'(w_i) << (LW'(Log2Clut - 1) - lw));
     end
   end
@@ -276,7 +290,7 @@ module pst_clut_filter #(
   // Per channel: MIP blend, SAT sum and division, output select. Lanes = 4 (parallel, lane =
   // channel) or 1 (serial, channel = step_i).
   // ---------------------------------------------------------------------------------------
-  localparam int Lanes = (Datapath == 0) ? 4 : 1;
+  localparam int Lanes = (Datapath == pst_pkg::DatapathParallel) ? pst_pkg::ColourSteps : 1;
   logic [Lanes*CB-1:0] lane_out;
 
   for (genvar l = 0; l < Lanes; l++) begin : g_ch
@@ -292,7 +306,7 @@ module pst_clut_filter #(
     logic [CB-1:0]           mean;    // <= 2^CB - 1: a mean of CB-bit entries
     logic [CB-1:0]           div_ch, sat_ch, out_ch;
 
-    assign ch    = (Datapath == 0) ? 2'(l) : step_i;
+    assign ch    = (Datapath == pst_pkg::DatapathParallel) ? SB'(l) : step_i;
     assign ca    = CB'(lev_a >> (ch * CB));
     assign cb    = CB'(lev_b >> (ch * CB));
     assign first = CB'(clut_first >> (ch * CB));
@@ -329,16 +343,16 @@ module pst_clut_filter #(
         sat_ch = div_ch;
       end
       unique case (kind_i)
-        2'd0:         out_ch = entry;
-        2'd1, 2'd2:   out_ch = mip_point ? entry : mip_ch;
-        default:      out_ch = sat_ch;
+        KindNone:                out_ch = entry;
+        KindMip, KindMipBlended: out_ch = mip_point ? entry : mip_ch;
+        default:                 out_ch = sat_ch;
       endcase
     end
 
     assign lane_out[l*CB +: CB] = out_ch;
   end
 
-  if (Datapath == 0) begin : g_out_par
+  if (Datapath == pst_pkg::DatapathParallel) begin : g_out_par
     assign rgba_o = lane_out;
     logic unused_serial;
     assign unused_serial = ^{rst_ni, step_i, adv_i};
@@ -347,7 +361,7 @@ module pst_clut_filter #(
     logic [3*CB-1:0] ch_q;
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) ch_q <= '0;
-      else if (adv_i && step_i != 2'd3) ch_q[step_i*CB +: CB] <= lane_out;
+      else if (adv_i && step_i != LastStep) ch_q[step_i*CB +: CB] <= lane_out;
     end
     assign rgba_o = {lane_out, ch_q};
   end
@@ -361,11 +375,11 @@ module pst_clut_filter #(
     if (TFrac < 1) $error("pst_clut_filter: Log2Clut - 1 + WidthFrac must be >= 1");
   end
   // The window is never wider than ceil(W) <= 4N entries (the ROM's depth).
-  assert property (@(posedge clk_i) (kind_i == 2'd3) |-> (count <= CountBits'(4 * N)));
+  assert property (@(posedge clk_i) (kind_i == KindSat) |-> (count <= CountBits'(4 * N)));
   // The point index is inside the table in clamp mode whatever f is.
   assert property (@(posedge clk_i) (clamp_i && iu < 0) |-> (pidx == '0));
   // In mod mode below W = N the window covers at most N entries.
-  assert property (@(posedge clk_i) (kind_i == 2'd3 && !clamp_i && !w_ge_n) |-> (count <= CountBits'(N)));
+  assert property (@(posedge clk_i) (kind_i == KindSat && !clamp_i && !w_ge_n) |-> (count <= CountBits'(N)));
 `endif
 
 endmodule

@@ -24,28 +24,32 @@
 //   JacobianInt, JacobianFrac   j_i entry format (ds/dx, ds/dy).
 //   Log2Clut                    N = 2^Log2Clut entries: the scale to entries and W's range.
 //   WidthFrac                   fraction bits of W.
-//   FilterNorm                  which norm is built (0 euclid, 1 max_half_min, 2 l1).
+//   FilterNorm                  which norm is built (pst_pkg::FilterNormEuclid, ...MaxHalfMin,
+//                               ...L1).
 //   Serial                      0: all six products at once; 1: one product per cycle
 //                               (the profile's datapath = "serial").
+// Steps (Serial): pst_pkg::WidthProducts products, then for the euclidean norm
+// pst_pkg::WidthEuclidSquares squares and NSq root cycles; NSteps in all (16 in reduced).
+`include "pst_pkg.sv"
 `default_nettype none
 
 module pst_filter_width #(
-  parameter int GradInt      = 16,
-  parameter int GradFrac     = 16,
-  parameter int JacobianInt  = 8,
-  parameter int JacobianFrac = 24,
-  parameter int Log2Clut     = 8,
-  parameter int WidthFrac    = 8,
-  parameter int FilterNorm   = 0,
+  parameter int GradInt      = pst_pkg::GradIntDefault,
+  parameter int GradFrac     = pst_pkg::GradFracDefault,
+  parameter int JacobianInt  = pst_pkg::JacobianIntDefault,
+  parameter int JacobianFrac = pst_pkg::JacobianFracDefault,
+  parameter int Log2Clut     = pst_pkg::Log2ClutDefault,
+  parameter int WidthFrac    = pst_pkg::WidthFracDefault,
+  parameter int FilterNorm   = pst_pkg::FilterNormDefault,
   parameter bit Serial       = 1'b0,
   // Derived widths (not profile keys).
   localparam int GW = GradInt + GradFrac,           // one grad_i component
   localparam int JW = JacobianInt + JacobianFrac,   // one j_i entry
-  localparam int WW = Log2Clut + 2 + WidthFrac      // W = w N in entries, < 4N
+  localparam int WW = Log2Clut + pst_pkg::WidthExtraIntBits + WidthFrac      // W = w N in entries, < 4N
 ) (
   input  logic            clk_i,    // Serial only: partial-sum registers
   input  logic            rst_ni,
-  input  logic [4:0]      step_i,   // Serial only: product 3 d + k (0..5), then the norm's steps
+  input  logic [pst_pkg::StepBits-1:0] step_i,   // Serial only: product 3 d + k (0..5), then the norm's steps
   input  logic            adv_i,    // Serial only: store this step's partial sums
   output logic            done_o,   // Serial only: w_o is valid (the last step; always 1 if not Serial)
   input  logic [3*GW-1:0] grad_i,   // element k at [k*GW +: GW]
@@ -67,7 +71,13 @@ module pst_filter_width #(
   // Serial euclid: root digits NIt = ceil(SqW / 2) = WW + 1, two per cycle over NSq cycles.
   localparam int NIt  = WW + 1;
   localparam int NSq  = (NIt + 1) / 2;
-  localparam int LastStep = (!Serial) ? 0 : (FilterNorm == 0) ? 7 + NSq : 5;
+  localparam bit Euclid = (FilterNorm == pst_pkg::FilterNormEuclid);
+  // Serial steps: products 0 .. SqStep - 1, squares SqStep, SqStep + 1, root from RootStep.
+  localparam int SqStep   = pst_pkg::WidthProducts;
+  localparam int RootStep = SqStep + pst_pkg::WidthEuclidSquares;
+  localparam int NSteps   = (!Serial) ? 1 : Euclid ? RootStep + NSq : pst_pkg::WidthProducts;
+  localparam int LastStep = NSteps - 1;
+  localparam int SB = pst_pkg::StepBits;
   // (Not '1: Yosys 0.23 reads '1 in a parameter declaration as the 1-bit value 1.)
   localparam logic [WW-1:0] WMax = {WW{1'b1}};
 
@@ -91,9 +101,9 @@ module pst_filter_width #(
     logic signed [JW-1:0] jk;
     logic signed [XW-1:0] gx_q, gy_q, sum;
     logic                 prod_step;   // steps 0..5: the dot products
-    assign prod_step = (step_i <= 5'd5);
-    assign d = (step_i >= 5'd3) ? 2'd1 : 2'd0;
-    assign k = 2'((step_i >= 5'd3) ? step_i - 5'd3 : step_i);
+    assign prod_step = (32'(step_i) < SqStep);
+    assign d = (step_i >= SB'(3)) ? 2'd1 : 2'd0;
+    assign k = 2'((step_i >= SB'(3)) ? step_i - SB'(3) : step_i);
     always_comb begin
       gk = grad_i[0*GW +: GW];
       jk = j_i[0*JW +: JW];
@@ -136,13 +146,13 @@ module pst_filter_width #(
 
   // Step 4: the norm (at most WW + 1 bits), then saturate to WW bits.
   logic [WW:0] nrm;
-  if (FilterNorm == 0 && !Serial) begin : g_euclid
+  if (Euclid && !Serial) begin : g_euclid
     logic [SqW-1:0] sumsq;
     logic [WW:0]    root;   // pst_isqrt: ceil(SqW / 2) = WW + 1 bits
     assign sumsq = SqW'(ax) * SqW'(ax) + SqW'(ay) * SqW'(ay);
     pst_isqrt #(.InWidth(SqW)) u_isqrt (.x_i (sumsq), .y_o (root));
     assign nrm = root;
-  end else if (FilterNorm == 0) begin : g_euclid_ser
+  end else if (Euclid) begin : g_euclid_ser
     // xs_q: ax^2 (step 6), ax^2 + ay^2 (step 7), then shifted left two digits (4 bits) a cycle;
     // the digits are taken from its top. 4 NSq >= SqW bits (zero-extended).
     localparam int XPW = 4 * NSq;
@@ -151,10 +161,10 @@ module pst_filter_width #(
     logic [RW-1:0]  rem_q, root_q, rem_d, root_d;
     logic           sqrt_step, first;
     logic [WW-1:0]  a_sq;   // ax at step 6, ay at step 7
-    assign a_sq      = (step_i == 5'd6) ? ax : ay;
+    assign a_sq      = (32'(step_i) == SqStep) ? ax : ay;
     assign sq        = XPW'(a_sq) * XPW'(a_sq);
-    assign sqrt_step = (step_i >= 5'd8);
-    assign first     = (step_i == 5'd8);
+    assign sqrt_step = (32'(step_i) >= RootStep);
+    assign first     = (32'(step_i) == RootStep);
     always_comb begin
       logic [RW-1:0] r, q, trial;
       r = first ? '0 : rem_q;
@@ -171,8 +181,8 @@ module pst_filter_width #(
       end
       rem_d  = r;
       root_d = q;
-      if (step_i == 5'd6) xs_d = sq;
-      else if (step_i == 5'd7) xs_d = xs_q + sq;
+      if (32'(step_i) == SqStep) xs_d = sq;
+      else if (32'(step_i) == SqStep + 1) xs_d = xs_q + sq;
       else xs_d = xs_q << 4;
     end
     always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -180,7 +190,7 @@ module pst_filter_width #(
         xs_q   <= '0;
         rem_q  <= '0;
         root_q <= '0;
-      end else if (adv_i && step_i >= 5'd6) begin
+      end else if (adv_i && 32'(step_i) >= SqStep) begin
         xs_q <= xs_d;
         if (sqrt_step) begin
           rem_q  <= rem_d;
@@ -191,7 +201,7 @@ module pst_filter_width #(
     assign nrm = root_d[WW:0];   // the last step's root: floor(sqrt(ax^2 + ay^2)) < 2^(WW+1)
     logic unused_root;
     assign unused_root = ^root_d[RW-1:WW+1];
-  end else if (FilterNorm == 1) begin : g_max_half_min
+  end else if (FilterNorm == pst_pkg::FilterNormMaxHalfMin) begin : g_max_half_min
     logic [WW-1:0] amax, amin;
     assign amax = (ax >= ay) ? ax : ay;
     assign amin = (ax >= ay) ? ay : ax;
@@ -204,8 +214,9 @@ module pst_filter_width #(
   // Assertions
 `ifndef SYNTHESIS
   initial begin
-    assert (FilterNorm >= 0 && FilterNorm <= 2)
-      else $error("pst_filter_width: FilterNorm must be 0 (euclid), 1 (max_half_min) or 2 (l1)");
+    assert (Euclid || FilterNorm == pst_pkg::FilterNormMaxHalfMin || FilterNorm == pst_pkg::FilterNormL1)
+      else $error("pst_filter_width: FilterNorm must be euclid, max_half_min or l1");
+    assert (NSteps - 1 <= pst_pkg::StepMax) else $error("pst_filter_width: %0d steps do not fit step_i", NSteps);
   end
   // W is at least the larger component and at most their sum (every norm).
   always_comb begin

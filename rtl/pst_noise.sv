@@ -58,10 +58,11 @@
 // ROM images: `PST_ROM_DIR/{hash4096,perm256,value16}.memh, written by sim/tools/pst_roms.
 //
 // Ports:
-//   lat_i  [35:0]          3 x 12-bit lattice index (after +576, mod 4096), axis k at [12k +: 12]
-//   frac_i [3*LF-1:0]      3 x unsigned fraction u
-//   n_o    [4+OF-1:0]      noise value, signed Q4.OF
-//   grad_o [3*(6+OF)-1:0]  dn/dx, dn/dy, dn/dz wrt the lattice coordinates, signed Q6.OF each
+//   lat_i  [LatticeWidth-1:0]  3 x 12-bit lattice index (after +576, mod 4096), axis k at [12k +: 12]
+//   frac_i [3*LF-1:0]          3 x unsigned fraction u
+//   n_o    [NW-1:0]            noise value, signed Q4.OF (pst_pkg::NoiseIntBits)
+//   grad_o [3*NGW-1:0]         dn/dx, dn/dy, dn/dz wrt the lattice coordinates, signed Q6.OF each
+`include "pst_pkg.sv"
 `default_nettype none
 
 `ifndef PST_ROM_DIR
@@ -69,25 +70,28 @@
 `endif
 
 module pst_noise #(
-  parameter int NoiseInterp = 0,
-  parameter int NoiseCorner = 0,
-  parameter int NoiseHash = 0,
-  parameter int NoiseValueFrac = 15,
-  parameter int NoiseLatticeFrac = 16,
-  parameter int NoiseOutFrac = 16,
-  parameter int NoiseSteps = 1,
-  parameter int NoiseGuardBits = 4,
+  parameter int NoiseInterp = pst_pkg::NoiseInterpDefault,
+  parameter int NoiseCorner = pst_pkg::NoiseCornerDefault,
+  parameter int NoiseHash = pst_pkg::NoiseHashDefault,
+  parameter int NoiseValueFrac = pst_pkg::NoiseValueFracDefault,
+  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault,
+  parameter int NoiseOutFrac = pst_pkg::NoiseOutFracDefault,
+  parameter int NoiseSteps = pst_pkg::NoiseStepsDefault,
+  parameter int NoiseGuardBits = pst_pkg::NoiseGuardBitsDefault,
   localparam int LF = NoiseLatticeFrac,  // fraction bits of u
-  localparam int OF = NoiseOutFrac       // fraction bits of the outputs
+  localparam int OF = NoiseOutFrac,      // fraction bits of the outputs
+  localparam int NW = pst_pkg::NoiseIntBits + NoiseOutFrac,      // n_o
+  localparam int NGW = pst_pkg::NoiseGradIntBits + NoiseOutFrac, // one grad_o component
+  localparam int LB = pst_pkg::LatticeBits                       // one lattice index
 ) (
-  input  wire logic               clk_i,    // NoiseSteps > 1: held lerp nodes
-  input  wire logic               rst_ni,
-  input  wire logic [2:0]         step_i,   // 0..NoiseSteps-1: the corners of this cycle
-  input  wire logic               adv_i,    // store this step's held nodes
-  input  wire logic [35:0]        lat_i,
-  input  wire logic [3*LF-1:0]    frac_i,
-  output logic signed [4+OF-1:0]  n_o,
-  output logic [3*(6+OF)-1:0]     grad_o
+  input  logic               clk_i,    // NoiseSteps > 1: held lerp nodes
+  input  logic               rst_ni,
+  input  logic [2:0]         step_i,   // 0..NoiseSteps-1: the corners of this cycle
+  input  logic               adv_i,    // store this step's held nodes
+  input  logic [pst_pkg::LatticeWidth-1:0] lat_i,
+  input  logic [3*LF-1:0]    frac_i,
+  output logic signed [NW-1:0]  n_o,
+  output logic [3*NGW-1:0]      grad_o
 );
 
   // Guard bits of the internal nodes below the output LSB (golden: noiseNodeFrac).
@@ -101,7 +105,7 @@ module pst_noise #(
   // Value-table entries as read (Q1.VF: the top VF + 1 bits of the 16-bit image).
   localparam int RW = NoiseValueFrac + 1;
   // Hash table entry / index width: 12 (Rayshade) or 8 (perm256).
-  localparam int HW = (NoiseHash == 0) ? 12 : 8;
+  localparam int HW = (NoiseHash == pst_pkg::NoiseHashRayshade) ? LB : 8;
   // Corners per step, lerp levels inside a step (axes 0..KC-1), serial levels (axes KC..2).
   localparam int CPS = 8 / NoiseSteps;
   localparam int KC  = $clog2(CPS);
@@ -129,19 +133,19 @@ module pst_noise #(
   logic [CPS*3-1:0] cidx;  // corner index c per corner of the step
 
   for (genvar k = 0; k < 3; k++) begin : g_idx
-    logic [11:0] l_next;  // L + 1 mod 4096
-    assign l_next = lat_i[12*k +: 12] + 12'd1;
-    assign idx[(2*k)*HW +: HW]   = lat_i[12*k +: HW];
+    logic [LB-1:0] l_next;  // L + 1 mod 4096
+    assign l_next = lat_i[LB*k +: LB] + LB'(1);
+    assign idx[(2*k)*HW +: HW]   = lat_i[LB*k +: HW];
     assign idx[(2*k+1)*HW +: HW] = l_next[HW-1:0];
-    if (HW < 12) begin : g_unused_high
+    if (HW < LB) begin : g_unused_high
       logic unused_l;
-      assign unused_l = ^{lat_i[12*k+HW +: 12-HW], l_next[11:HW]};
+      assign unused_l = ^{lat_i[LB*k+HW +: LB-HW], l_next[LB-1:HW]};
     end
   end
 
   // The hash table T (Rayshade's 4096 x 12 or the 256 x 8 permutation).
   logic [HW-1:0] rom [1 << HW];
-  if (NoiseHash == 0) begin : g_rayshade
+  if (NoiseHash == pst_pkg::NoiseHashRayshade) begin : g_rayshade
     initial $readmemh({`PST_ROM_DIR, "/hash4096.memh"}, rom);
   end else begin : g_perm256
     initial $readmemh({`PST_ROM_DIR, "/perm256.memh"}, rom);
@@ -201,7 +205,7 @@ module pst_noise #(
   for (genvar i = 0; i < CPS; i++) begin : g_corner
     logic [4*RW-1:0] r;  // R[m + k] at [k*RW +: RW]
     for (genvar k = 0; k < 4; k++) begin : g_r
-      if (k == 0 || NoiseCorner == 0) begin : g_read
+      if (k == 0 || NoiseCorner == pst_pkg::NoiseCornerValueGradient) begin : g_read
         logic [15:0] r16;
         assign r16 = value_rom[{1'b0, m[i*8 +: 8]} + 9'(k)];
         assign r[k*RW +: RW] = r16[15 -: RW];  // floor: value16 >>> (15 - VF)
@@ -290,7 +294,7 @@ module pst_noise #(
   assign root = chain[LS*NodeW +: NodeW];
   assign n_o = {root[VW-1], root[GuardBits +: VW-GuardBits]};
   for (genvar k = 0; k < 3; k++) begin : g_grad_out
-    assign grad_o[k*(6+OF) +: 6+OF] = {root[VW+(k+1)*GW-1], root[VW+k*GW+GuardBits +: GW-GuardBits]};
+    assign grad_o[k*NGW +: NGW] = {root[VW+(k+1)*GW-1], root[VW+k*GW+GuardBits +: GW-GuardBits]};
   end
   logic unused_guard;
   assign unused_guard = ^{root[0 +: GuardBits], root[VW +: GuardBits], root[VW+GW +: GuardBits],
@@ -299,11 +303,15 @@ module pst_noise #(
   // Assertions
 `ifndef SYNTHESIS
   initial begin
-    if (NoiseInterp < 0 || NoiseInterp > 1) $error("pst_noise: NoiseInterp must be 0 or 1");
-    if (NoiseCorner < 0 || NoiseCorner > 1) $error("pst_noise: NoiseCorner must be 0 or 1");
-    if (NoiseHash < 0 || NoiseHash > 1) $error("pst_noise: NoiseHash must be 0 or 1");
-    if (NoiseValueFrac < 1 || NoiseValueFrac > 15) $error("pst_noise: NoiseValueFrac must be 1..15");
-    if (NoiseLatticeFrac < 1) $error("pst_noise: NoiseLatticeFrac must be >= 1");
+    if (NoiseInterp != pst_pkg::NoiseInterpScurve && NoiseInterp != pst_pkg::NoiseInterpLinear)
+      $error("pst_noise: NoiseInterp must be scurve or linear");
+    if (NoiseCorner != pst_pkg::NoiseCornerValueGradient && NoiseCorner != pst_pkg::NoiseCornerValue)
+      $error("pst_noise: NoiseCorner must be value_gradient or value");
+    if (NoiseHash != pst_pkg::NoiseHashRayshade && NoiseHash != pst_pkg::NoiseHashPerm256)
+      $error("pst_noise: NoiseHash must be rayshade or perm256");
+    if (NoiseValueFrac < pst_pkg::NoiseValueFracMin || NoiseValueFrac > pst_pkg::NoiseValueFracMax)
+      $error("pst_noise: NoiseValueFrac out of range");
+    if (NoiseLatticeFrac < pst_pkg::NoiseLatticeFracMin) $error("pst_noise: NoiseLatticeFrac out of range");
     if (NoiseSteps != 1 && NoiseSteps != 2 && NoiseSteps != 4 && NoiseSteps != 8)
       $error("pst_noise: NoiseSteps must be 1, 2, 4 or 8");
   end

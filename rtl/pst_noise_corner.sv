@@ -21,12 +21,13 @@
 //   u_i    [3*LF-1:0]  u per axis, unsigned
 //   node_o [NodeW-1:0] v at [0 +: VW], d/dp_k at [VW + k*GW +: GW] (VW = 3 + NodeFrac,
 //                      GW = 5 + NodeFrac, NodeW = VW + 3 GW), signed
+`include "pst_pkg.sv"
 `default_nettype none
 
 module pst_noise_corner #(
-  parameter int NoiseCorner = 0,
-  parameter int NoiseValueFrac = 15,
-  parameter int NoiseLatticeFrac = 16,
+  parameter int NoiseCorner = pst_pkg::NoiseCornerDefault,
+  parameter int NoiseValueFrac = pst_pkg::NoiseValueFracDefault,
+  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault,
   parameter int NodeFrac = 20,
   localparam int RW = NoiseValueFrac + 1,   // Q1.VF value-table entry
   localparam int LF = NoiseLatticeFrac,     // fraction bits of u
@@ -34,9 +35,9 @@ module pst_noise_corner #(
   localparam int GW = 5 + NodeFrac,         // node derivative Q5.NodeFrac: |g| < 16
   localparam int NodeW = VW + 3 * GW
 ) (
-  input  wire logic [2:0]      corner_i,
-  input  wire logic [4*RW-1:0] r_i,
-  input  wire logic [3*LF-1:0] u_i,
+  input  logic [2:0]      corner_i,
+  input  logic [4*RW-1:0] r_i,
+  input  logic [3*LF-1:0] u_i,
   output logic [NodeW-1:0]     node_o
 );
 
@@ -60,7 +61,7 @@ module pst_noise_corner #(
 
   logic signed [ExW-1:0] v_exact;
 
-  if (NoiseCorner == 0) begin : g_value_gradient
+  if (NoiseCorner == pst_pkg::NoiseCornerValueGradient) begin : g_value_gradient
     logic [3*PW-1:0] prod;  // R[m+1+k] * d_k at [k*PW +: PW], exact
     for (genvar k = 0; k < 3; k++) begin : g_axis
       logic                 corner_bit;

@@ -17,11 +17,12 @@
 //   a_i, b_i, node_o [NodeW-1:0]  v at [0 +: VW], g_k at [VW + k*GW +: GW], signed
 //   s_i  [LF-1:0]   unsigned weight of b_i
 //   ds_i [LF+1:0]   unsigned ds/du (unused for linear)
+`include "pst_pkg.sv"
 `default_nettype none
 
 module pst_noise_lerp #(
-  parameter int NoiseInterp = 0,
-  parameter int NoiseLatticeFrac = 16,
+  parameter int NoiseInterp = pst_pkg::NoiseInterpDefault,
+  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault,
   parameter int NodeFrac = 20,
   parameter int Axis = 0,
   localparam int LF = NoiseLatticeFrac,     // fraction bits of s, ds
@@ -29,10 +30,10 @@ module pst_noise_lerp #(
   localparam int GW = 5 + NodeFrac,         // node derivative Q5.NodeFrac
   localparam int NodeW = VW + 3 * GW
 ) (
-  input  wire logic [NodeW-1:0] a_i,
-  input  wire logic [NodeW-1:0] b_i,
-  input  wire logic [LF-1:0]    s_i,
-  input  wire logic [LF+1:0]    ds_i,
+  input  logic [NodeW-1:0] a_i,
+  input  logic [NodeW-1:0] b_i,
+  input  logic [LF-1:0]    s_i,
+  input  logic [LF+1:0]    ds_i,
   output logic [NodeW-1:0]      node_o
 );
 
@@ -46,7 +47,7 @@ module pst_noise_lerp #(
 
   // The own-axis product term floor((b.v - a.v) ds / 2^LF), sign-extended to OwnW.
   logic signed [OwnW-1:0] own_term;
-  if (NoiseInterp == 0) begin : g_scurve
+  if (NoiseInterp == pst_pkg::NoiseInterpScurve) begin : g_scurve
     // (DW) x (LF+3) signed product: DW + LF + 3 bits, exact.
     localparam int QW = DW + LF + 3;
     logic signed [QW-1:0] dv_ext, ds_ext, q;

@@ -17,19 +17,20 @@
 //   s_o  [LF-1:0]   weight, unsigned, LF fraction bits (< 1)
 //   ds_o [LF+1:0]   derivative, unsigned, LF fraction bits; two integer bits: <= 1.5 for
 //                   LF >= 2, 3 at LF = 1, and 1 (= 2^LF) for linear
+`include "pst_pkg.sv"
 `default_nettype none
 
 module pst_noise_weight #(
-  parameter int NoiseInterp = 0,
-  parameter int NoiseLatticeFrac = 16,
+  parameter int NoiseInterp = pst_pkg::NoiseInterpDefault,
+  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault,
   localparam int LF = NoiseLatticeFrac  // fraction bits of u, s, ds
 ) (
-  input  wire logic [LF-1:0] u_i,
+  input  logic [LF-1:0] u_i,
   output logic [LF-1:0]      s_o,
   output logic [LF+1:0]      ds_o
 );
 
-  if (NoiseInterp == 0) begin : g_scurve
+  if (NoiseInterp == pst_pkg::NoiseInterpScurve) begin : g_scurve
     logic [2*LF-1:0] uu;          // U * U, exact
     logic [LF-1:0]   u2;          // floor(u^2), LF fraction bits
     logic [LF+1:0]   three_m_2u;  // 3 - 2u in (1, 3], LF fraction bits
@@ -54,7 +55,7 @@ module pst_noise_weight #(
 
   // Assertions
 `ifndef SYNTHESIS
-  if (NoiseInterp == 0) begin : g_assert_scurve
+  if (NoiseInterp == pst_pkg::NoiseInterpScurve) begin : g_assert_scurve
     always_comb begin
       assert (g_scurve.su[2*LF+1:2*LF] == 2'b00) else $error("pst_noise_weight: s >= 1");
       assert (g_scurve.ds6[LF+2] == 1'b0) else $error("pst_noise_weight: ds overflow");

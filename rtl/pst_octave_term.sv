@@ -17,22 +17,23 @@
 //   GradInt, GradFrac               gterm_o component format (grad_s f).
 //   Rows                            3: all of GM g; 1: one row (the caller hands in that row of
 //                                   GM: the serial datapath, one row per cycle).
+`include "pst_pkg.sv"
 `default_nettype none
 
 module pst_octave_term #(
-  parameter int NoiseOutFrac   = 16,
-  parameter int AmplitudeInt   = 2,
-  parameter int AmplitudeFrac  = 16,
-  parameter int GradMatrixInt  = 8,
-  parameter int GradMatrixFrac = 16,
-  parameter int FInt           = 12,
-  parameter int FFrac          = 20,
-  parameter int GradInt        = 16,
-  parameter int GradFrac       = 16,
+  parameter int NoiseOutFrac   = pst_pkg::NoiseOutFracDefault,
+  parameter int AmplitudeInt   = pst_pkg::AmplitudeIntDefault,
+  parameter int AmplitudeFrac  = pst_pkg::AmplitudeFracDefault,
+  parameter int GradMatrixInt  = pst_pkg::GradMatrixIntDefault,
+  parameter int GradMatrixFrac = pst_pkg::GradMatrixFracDefault,
+  parameter int FInt           = pst_pkg::FIntDefault,
+  parameter int FFrac          = pst_pkg::FFracDefault,
+  parameter int GradInt        = pst_pkg::GradIntDefault,
+  parameter int GradFrac       = pst_pkg::GradFracDefault,
   parameter int Rows           = 3,
   // Derived widths (not profile keys).
-  localparam int NW  = 4 + NoiseOutFrac,                  // noise value Q4.NoiseOutFrac
-  localparam int NGW = 6 + NoiseOutFrac,                  // noise gradient Q6.NoiseOutFrac
+  localparam int NW  = pst_pkg::NoiseIntBits + NoiseOutFrac,                  // noise value Q4.NoiseOutFrac
+  localparam int NGW = pst_pkg::NoiseGradIntBits + NoiseOutFrac,                  // noise gradient Q6.NoiseOutFrac
   localparam int AW  = AmplitudeInt + AmplitudeFrac,      // a_i
   localparam int GMW = GradMatrixInt + GradMatrixFrac,    // one GM entry
   localparam int FW  = FInt + FFrac,                      // fterm_o
@@ -50,39 +51,27 @@ module pst_octave_term #(
   localparam int PW  = AW + NW;
   // GM . g: three GMW x NGW products, |sum| <= 3 * 2^(GMW+NGW-2) -> GMW + NGW + 2 bits.
   localparam int DW  = GMW + NGW + 2;
-  // Shifts from the exact fraction bits to the output formats (negative = left shift).
-  localparam int FSh  = AmplitudeFrac + NoiseOutFrac - FFrac;
-  localparam int GSh  = GradMatrixFrac + NoiseOutFrac - GradFrac;
-  localparam int FShR = (FSh > 0) ? FSh : 0;
-  localparam int FShL = (FSh < 0) ? -FSh : 0;
-  localparam int GShR = (GSh > 0) ? GSh : 0;
-  localparam int GShL = (GSh < 0) ? -GSh : 0;
-  // Shifted widths: room for the left shift and for the output's sign check.
-  localparam int FSW = (PW + FShL > FW) ? PW + FShL : FW + 1;
-  localparam int GSW = (DW + GShL > GW) ? DW + GShL : GW + 1;
 
   // fterm = sat_F(floor(a n to FFrac)).
-  logic signed [PW-1:0]  an;
-  logic signed [FSW-1:0] fs;
+  logic signed [PW-1:0] an;
   assign an = PW'($signed(a_i)) * PW'($signed(n_i));
-  assign fs = (FSW'(an) <<< FShL) >>> FShR;
-  always_comb begin
-    if (fs[FSW-1:FW-1] == '0 || fs[FSW-1:FW-1] == '1) fterm_o = fs[FW-1:0];
-    else fterm_o = {fs[FSW-1], {(FW-1){~fs[FSW-1]}}};
-  end
+  pst_floor_sat #(
+    .InWidth (PW), .InFrac (AmplitudeFrac + NoiseOutFrac), .OutWidth (FW), .OutFrac (FFrac)
+  ) u_f_sat (
+    .x_i (an), .y_o (fterm_o)
+  );
 
   // gterm_r = sat_Grad(floor(sum_c GM[r][c] g[c] to GradFrac)).
   for (genvar r = 0; r < Rows; r++) begin : g_row
-    logic signed [DW-1:0]  dot;
-    logic signed [GSW-1:0] gs;
+    logic signed [DW-1:0] dot;
     assign dot = DW'($signed(gm_i[(3*r+0)*GMW +: GMW])) * DW'($signed(g_i[0*NGW +: NGW])) +
                  DW'($signed(gm_i[(3*r+1)*GMW +: GMW])) * DW'($signed(g_i[1*NGW +: NGW])) +
                  DW'($signed(gm_i[(3*r+2)*GMW +: GMW])) * DW'($signed(g_i[2*NGW +: NGW]));
-    assign gs = (GSW'(dot) <<< GShL) >>> GShR;
-    always_comb begin
-      if (gs[GSW-1:GW-1] == '0 || gs[GSW-1:GW-1] == '1) gterm_o[r*GW +: GW] = gs[GW-1:0];
-      else gterm_o[r*GW +: GW] = {gs[GSW-1], {(GW-1){~gs[GSW-1]}}};
-    end
+    pst_floor_sat #(
+      .InWidth (DW), .InFrac (GradMatrixFrac + NoiseOutFrac), .OutWidth (GW), .OutFrac (GradFrac)
+    ) u_g_sat (
+      .x_i (dot), .y_o (gterm_o[r*GW +: GW])
+    );
   end
 
   // Assertions

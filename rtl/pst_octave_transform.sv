@@ -25,29 +25,31 @@
 //   s_i    3 x CW signed, element k at [k*CW +: CW]
 //   m_i    Rows x 3 x MW signed, row-major: element 3*r + c at [(3*r+c)*MW +: MW]
 //   o_i    Rows x OW signed
-//   lat_o  Rows x 12-bit lattice index (after the +576 offset, mod 4096)
+//   lat_o  Rows x pst_pkg::LatticeBits (12) lattice index (after the +576 offset, mod 4096)
 //   frac_o Rows x NoiseLatticeFrac-bit unsigned fraction
+`include "pst_pkg.sv"
 `default_nettype none
 
 module pst_octave_transform #(
-  parameter int CoordInt = 12,
-  parameter int CoordFrac = 20,
-  parameter int MatrixInt = 8,
-  parameter int MatrixFrac = 16,
-  parameter int OffsetInt = 13,
-  parameter int OffsetFrac = 16,
-  parameter int NoiseLatticeFrac = 16,
+  parameter int CoordInt = pst_pkg::CoordIntDefault,
+  parameter int CoordFrac = pst_pkg::CoordFracDefault,
+  parameter int MatrixInt = pst_pkg::MatrixIntDefault,
+  parameter int MatrixFrac = pst_pkg::MatrixFracDefault,
+  parameter int OffsetInt = pst_pkg::OffsetIntDefault,
+  parameter int OffsetFrac = pst_pkg::OffsetFracDefault,
+  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault,
   parameter int Rows = 3,
   // Derived widths (do not override).
   localparam int CW = CoordInt + CoordFrac,   // s element width
   localparam int MW = MatrixInt + MatrixFrac, // M element width
   localparam int OW = OffsetInt + OffsetFrac, // o element width
-  localparam int LF = NoiseLatticeFrac
+  localparam int LF = NoiseLatticeFrac,
+  localparam int LB = pst_pkg::LatticeBits        // one lattice index
 ) (
-  input  wire logic [3*CW-1:0] s_i,
-  input  wire logic [Rows*3*MW-1:0] m_i,
-  input  wire logic [Rows*OW-1:0]   o_i,
-  output logic [Rows*12-1:0]        lat_o,
+  input  logic [3*CW-1:0] s_i,
+  input  logic [Rows*3*MW-1:0] m_i,
+  input  logic [Rows*OW-1:0]   o_i,
+  output logic [Rows*LB-1:0]        lat_o,
   output logic [Rows*LF-1:0]        frac_o
 );
 
@@ -59,10 +61,10 @@ module pst_octave_transform #(
   localparam int ProdW = MW + CW;
   // Three products (+2 bits) and the shifted offset (OW + OffShift bits), plus one carry bit.
   localparam int SumW = ((ProdW + 2 > OW + OffShift) ? ProdW + 2 : OW + OffShift) + 1;
-  // The lattice index is bits [AccFrac +: 12]: make sure they exist (sign-extended).
-  localparam int AccW = (SumW > AccFrac + 12) ? SumW : AccFrac + 12;
+  // The lattice index is bits [AccFrac +: LB]: make sure they exist (sign-extended).
+  localparam int AccW = (SumW > AccFrac + LB) ? SumW : AccFrac + LB;
   // Offset of Rayshade's 1e6 lattice shift modulo 4096.
-  localparam logic [11:0] LatticeOffset = 12'd576;
+  localparam logic [LB-1:0] LatticeOffset = LB'(pst_pkg::LatticeOffset);
 
   for (genvar r = 0; r < Rows; r++) begin : g_axis
     logic [3*ProdW-1:0]      prod;  // three exact products, j at [j*ProdW +: ProdW]
@@ -88,18 +90,18 @@ module pst_octave_transform #(
                + {{(AccW-ProdW){prod[3*ProdW-1]}}, prod[2*ProdW +: ProdW]}
                + off_ext;
 
-    // floor to LF fraction bits, then split: the low LF bits are u, the next 12 the lattice.
+    // floor to LF fraction bits, then split: the low LF bits are u, the next LB the lattice.
     assign frac_o[r*LF +: LF] = acc[AccFrac-LF +: LF];
-    assign lat_o[r*12 +: 12]  = acc[AccFrac +: 12] + LatticeOffset;
+    assign lat_o[r*LB +: LB]  = acc[AccFrac +: LB] + LatticeOffset;
 
-    // Bits below the LF fraction and above the 12-bit lattice index do not reach the noise.
+    // Bits below the LF fraction and above the lattice index do not reach the noise.
     logic unused_acc;
-    if (AccFrac - LF > 0 && AccW > AccFrac + 12) begin : g_unused_both
-      assign unused_acc = ^{acc[AccFrac-LF-1:0], acc[AccW-1:AccFrac+12]};
+    if (AccFrac - LF > 0 && AccW > AccFrac + LB) begin : g_unused_both
+      assign unused_acc = ^{acc[AccFrac-LF-1:0], acc[AccW-1:AccFrac+LB]};
     end else if (AccFrac - LF > 0) begin : g_unused_low
       assign unused_acc = ^acc[AccFrac-LF-1:0];
-    end else if (AccW > AccFrac + 12) begin : g_unused_high
-      assign unused_acc = ^acc[AccW-1:AccFrac+12];
+    end else if (AccW > AccFrac + LB) begin : g_unused_high
+      assign unused_acc = ^acc[AccW-1:AccFrac+LB];
     end else begin : g_unused_none
       assign unused_acc = 1'b0;
     end

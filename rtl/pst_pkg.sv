@@ -54,6 +54,42 @@ package pst_pkg;
   localparam int WidthFracMin = 0;
   localparam int WidthFracMax = 24;
 
+  // Parameter defaults of every module: the profile full (rtl/configs/full.toml).
+  localparam int OctavesDefault = 8;
+  localparam int NoiseUnitsDefault = 8;
+  localparam int NoiseStepsDefault = 1;
+  localparam int Log2ClutDefault = 8;
+  localparam int ColourBitsDefault = 8;
+  localparam int DatapathDefault = DatapathParallel;
+  localparam int NoiseInterpDefault = NoiseInterpScurve;
+  localparam int NoiseCornerDefault = NoiseCornerValueGradient;
+  localparam int NoiseHashDefault = NoiseHashRayshade;
+  localparam int NoiseValueFracDefault = 15;
+  localparam int NoiseLatticeFracDefault = 16;
+  localparam int NoiseOutFracDefault = 16;
+  localparam int NoiseGuardBitsDefault = 4;
+  localparam int FilterNormDefault = FilterNormEuclid;
+  localparam int FilterRecipFracDefault = 18;
+  localparam int CoordIntDefault = 12;
+  localparam int CoordFracDefault = 20;
+  localparam int JacobianIntDefault = 8;
+  localparam int JacobianFracDefault = 24;
+  localparam int MatrixIntDefault = 8;
+  localparam int MatrixFracDefault = 16;
+  localparam int OffsetIntDefault = 13;
+  localparam int OffsetFracDefault = 16;
+  localparam int AmplitudeIntDefault = 2;
+  localparam int AmplitudeFracDefault = 16;
+  localparam int GradMatrixIntDefault = 8;
+  localparam int GradMatrixFracDefault = 16;
+  localparam int QuadricIntDefault = 8;
+  localparam int QuadricFracDefault = 16;
+  localparam int FIntDefault = 12;
+  localparam int FFracDefault = 20;
+  localparam int GradIntDefault = 16;
+  localparam int GradFracDefault = 16;
+  localparam int WidthFracDefault = 8;
+
   // Register map (docs/HARDWARE.md).
   localparam int RegAddrBits = 16;
   localparam int RegDataBits = 32;

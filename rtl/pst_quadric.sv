@@ -17,17 +17,18 @@
 //   QuadricInt, QuadricFrac   coefficient format of coef_i.
 //   FInt, FFrac               q_o format (the colour index f): where q is floored and clamped.
 //   GradInt, GradFrac         gradq_o component format.
+`include "pst_pkg.sv"
 `default_nettype none
 
 module pst_quadric #(
-  parameter int CoordInt    = 12,
-  parameter int CoordFrac   = 20,
-  parameter int QuadricInt  = 8,
-  parameter int QuadricFrac = 16,
-  parameter int FInt        = 12,
-  parameter int FFrac       = 20,
-  parameter int GradInt     = 16,
-  parameter int GradFrac    = 16,
+  parameter int CoordInt    = pst_pkg::CoordIntDefault,
+  parameter int CoordFrac   = pst_pkg::CoordFracDefault,
+  parameter int QuadricInt  = pst_pkg::QuadricIntDefault,
+  parameter int QuadricFrac = pst_pkg::QuadricFracDefault,
+  parameter int FInt        = pst_pkg::FIntDefault,
+  parameter int FFrac       = pst_pkg::FFracDefault,
+  parameter int GradInt     = pst_pkg::GradIntDefault,
+  parameter int GradFrac    = pst_pkg::GradFracDefault,
   // Derived widths (not profile keys).
   localparam int CW = CoordInt + CoordFrac,       // one texture coordinate
   localparam int QW = QuadricInt + QuadricFrac,   // one coefficient
@@ -45,16 +46,6 @@ module pst_quadric #(
   localparam int VW  = QW + CW + 1;
   // q: s . v < 3 * 2^(CW-1) * 2^(QW+CW) and the linear part < 2^(QW+2CW-1): |q| < 2^(QW+2CW+2).
   localparam int QXW = QW + 2 * CW + 3;
-  // Shifts from the exact fraction bits to the output formats (negative = left shift).
-  localparam int QSh  = QuadricFrac + 2 * CoordFrac - FFrac;
-  localparam int GSh  = QuadricFrac + CoordFrac - GradFrac;
-  localparam int QShR = (QSh > 0) ? QSh : 0;
-  localparam int QShL = (QSh < 0) ? -QSh : 0;
-  localparam int GShR = (GSh > 0) ? GSh : 0;
-  localparam int GShL = (GSh < 0) ? -GSh : 0;
-  // Shifted widths: room for the left shift and for the output's sign check.
-  localparam int QSW = (QXW + QShL > FW) ? QXW + QShL : FW + 1;
-  localparam int GSW = (VW + 1 + GShL > GW) ? VW + 1 + GShL : GW + 1;
 
   // The coefficients A..J of eq. 3 and the coordinates s, t, r as signed values.
   logic signed [QW-1:0] ca, cb, cc, cd, ce, cf, cg, ch, ci, cj;
@@ -75,25 +66,22 @@ module pst_quadric #(
   assign lin = QXW'(cd) * QXW'(s0) + QXW'(cg) * QXW'(s1) + QXW'(ci) * QXW'(s2);
   assign qx  = sv + (lin <<< CoordFrac) + (QXW'(cj) <<< (2 * CoordFrac));
 
-  // Step 3: floor to FFrac, saturate to FW bits: in range iff the bits above FW-1 all equal
-  // the sign.
-  logic signed [QSW-1:0] qs;
-  assign qs = (QSW'(qx) <<< QShL) >>> QShR;
-  always_comb begin
-    if (qs[QSW-1:FW-1] == '0 || qs[QSW-1:FW-1] == '1) q_o = qs[FW-1:0];
-    else q_o = {qs[QSW-1], {(FW-1){~qs[QSW-1]}}};
-  end
+  // Step 3: floor to FFrac, saturate to FW bits.
+  pst_floor_sat #(
+    .InWidth (QXW), .InFrac (QuadricFrac + 2 * CoordFrac), .OutWidth (FW), .OutFrac (FFrac)
+  ) u_q_sat (
+    .x_i (qx), .y_o (q_o)
+  );
 
-  // grad q = 2 v, floor to GradFrac, saturate to GW bits.
+  // grad q = 2 v (v << 1, exact), floor to GradFrac, saturate to GW bits.
   logic [3*VW-1:0] v;   // v_r at [r*VW +: VW]
   assign v = {v2, v1, v0};
   for (genvar r = 0; r < 3; r++) begin : g_grad
-    logic signed [GSW-1:0] gs;
-    assign gs = ((GSW'($signed(v[r*VW +: VW])) <<< 1) <<< GShL) >>> GShR;
-    always_comb begin
-      if (gs[GSW-1:GW-1] == '0 || gs[GSW-1:GW-1] == '1) gradq_o[r*GW +: GW] = gs[GW-1:0];
-      else gradq_o[r*GW +: GW] = {gs[GSW-1], {(GW-1){~gs[GSW-1]}}};
-    end
+    pst_floor_sat #(
+      .InWidth (VW + 1), .InFrac (QuadricFrac + CoordFrac), .OutWidth (GW), .OutFrac (GradFrac)
+    ) u_grad_sat (
+      .x_i ({v[r*VW +: VW], 1'b0}), .y_o (gradq_o[r*GW +: GW])
+    );
   end
 
   // Assertions

@@ -23,30 +23,31 @@
 //
 // Parameters: as pst_quadric (CoordInt/Frac, QuadricInt/Frac: multiplier widths and the step
 // count; FInt/Frac, GradInt/Frac: output formats).
+`include "pst_pkg.sv"
 `default_nettype none
 
 module pst_quadric_serial #(
-  parameter int CoordInt    = 12,
-  parameter int CoordFrac   = 20,
-  parameter int QuadricInt  = 8,
-  parameter int QuadricFrac = 16,
-  parameter int FInt        = 12,
-  parameter int FFrac       = 20,
-  parameter int GradInt     = 16,
-  parameter int GradFrac    = 16,
+  parameter int CoordInt    = pst_pkg::CoordIntDefault,
+  parameter int CoordFrac   = pst_pkg::CoordFracDefault,
+  parameter int QuadricInt  = pst_pkg::QuadricIntDefault,
+  parameter int QuadricFrac = pst_pkg::QuadricFracDefault,
+  parameter int FInt        = pst_pkg::FIntDefault,
+  parameter int FFrac       = pst_pkg::FFracDefault,
+  parameter int GradInt     = pst_pkg::GradIntDefault,
+  parameter int GradFrac    = pst_pkg::GradFracDefault,
   // Derived widths (not profile keys).
   localparam int CW = CoordInt + CoordFrac,       // one texture coordinate
   localparam int QW = QuadricInt + QuadricFrac,   // one coefficient
   localparam int FW = FInt + FFrac,               // q_o
   localparam int GW = GradInt + GradFrac          // one gradq_o component
 ) (
-  input  wire logic              clk_i,
-  input  wire logic              rst_ni,
-  input  wire logic [4:0]        step_i,   // 0..NSteps-1: this cycle's product; >= NSteps: hold
-  input  wire logic              adv_i,    // store this step's partial sums (leaving the step)
+  input  logic              clk_i,
+  input  logic              rst_ni,
+  input  logic [4:0]        step_i,   // 0..NSteps-1: this cycle's product; >= NSteps: hold
+  input  logic              adv_i,    // store this step's partial sums (leaving the step)
   output logic                   done_o,   // q_o and gradq_o are valid (step_i >= NSteps - 1)
-  input  wire logic [3*CW-1:0]   s_i,      // s, t, r; element k at [k*CW +: CW]
-  input  wire logic [10*QW-1:0]  coef_i,   // A..J; element k at [k*QW +: QW]
+  input  logic [3*CW-1:0]   s_i,      // s, t, r; element k at [k*CW +: CW]
+  input  logic [10*QW-1:0]  coef_i,   // A..J; element k at [k*QW +: QW]
   output logic [FW-1:0]          q_o,
   output logic [3*GW-1:0]        gradq_o   // element k at [k*GW +: GW]
 );
@@ -57,14 +58,6 @@ module pst_quadric_serial #(
   // q: |s_r u_r| < 2^(CW-1) 2^(QW+CW+1), three of them plus J << 2 CoordFrac: as pst_quadric,
   // QW + 2 CW + 3 bits.
   localparam int QXW = QW + 2 * CW + 3;
-  localparam int QSh  = QuadricFrac + 2 * CoordFrac - FFrac;
-  localparam int GSh  = QuadricFrac + CoordFrac - GradFrac;
-  localparam int QShR = (QSh > 0) ? QSh : 0;
-  localparam int QShL = (QSh < 0) ? -QSh : 0;
-  localparam int GShR = (GSh > 0) ? GSh : 0;
-  localparam int GShL = (GSh < 0) ? -GSh : 0;
-  localparam int QSW = (QXW + QShL > FW) ? QXW + QShL : FW + 1;
-  localparam int GSW = (VW + 1 + GShL > GW) ? VW + 1 + GShL : GW + 1;
   // u_r in NChunks chunks of L bits (the top one signed, TopW <= L bits), RS steps a row.
   localparam int L      = QW - 1;
   localparam int NChunks = (UW + L - 1) / L;
@@ -134,14 +127,13 @@ module pst_quadric_serial #(
   assign v    = vsum + (VW'(k3) <<< CoordFrac);
   assign u    = UW'(v) + (UW'(k3) <<< CoordFrac);
 
-  // Step 3: grad q_r = 2 v_r, floor to GradFrac, saturate to GW bits.
-  logic signed [GSW-1:0] gs;
-  logic [GW-1:0]         grow;
-  assign gs = ((GSW'(v) <<< 1) <<< GShL) >>> GShR;
-  always_comb begin
-    if (gs[GSW-1:GW-1] == '0 || gs[GSW-1:GW-1] == '1) grow = gs[GW-1:0];
-    else grow = {gs[GSW-1], {(GW-1){~gs[GSW-1]}}};
-  end
+  // Step 3: grad q_r = 2 v_r (v_r << 1, exact), floor to GradFrac, saturate to GW bits.
+  logic [GW-1:0] grow;
+  pst_floor_sat #(
+    .InWidth (VW + 1), .InFrac (QuadricFrac + CoordFrac), .OutWidth (GW), .OutFrac (GradFrac)
+  ) u_grad_sat (
+    .x_i ({v, 1'b0}), .y_o (grow)
+  );
 
   // The chunk partial product s_r chunk_j << j L, added to the q sum.
   logic signed [QXW-1:0] part, acc_q, sum;
@@ -174,13 +166,12 @@ module pst_quadric_serial #(
 
   // Step 4: q = sum + (J << 2 CoordFrac), floor to FFrac, saturate to FW bits.
   logic signed [QXW-1:0] qx;
-  logic signed [QSW-1:0] qs;
   assign qx = sum + (QXW'(cj) <<< (2 * CoordFrac));
-  assign qs = (QSW'(qx) <<< QShL) >>> QShR;
-  always_comb begin
-    if (qs[QSW-1:FW-1] == '0 || qs[QSW-1:FW-1] == '1) q_o = qs[FW-1:0];
-    else q_o = {qs[QSW-1], {(FW-1){~qs[QSW-1]}}};
-  end
+  pst_floor_sat #(
+    .InWidth (QXW), .InFrac (QuadricFrac + 2 * CoordFrac), .OutWidth (FW), .OutFrac (FFrac)
+  ) u_q_sat (
+    .x_i (qx), .y_o (q_o)
+  );
 
   // Every row's gradient is stored by the last step (row 2's at step 2 RS + 2).
   assign gradq_o = grad_q;

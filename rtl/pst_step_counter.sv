@@ -10,11 +10,11 @@
 module pst_step_counter #(
   parameter int Width = 2
 ) (
-  input  wire logic             clk_i,
-  input  wire logic             rst_ni,
-  input  wire logic             valid_i,   // a fragment is in the stage
-  input  wire logic             done_i,    // its result is valid this cycle
-  input  wire logic             ready_i,   // the next stage takes it
+  input  logic             clk_i,
+  input  logic             rst_ni,
+  input  logic             valid_i,   // a fragment is in the stage
+  input  logic             done_i,    // its result is valid this cycle
+  input  logic             ready_i,   // the next stage takes it
   output logic [Width-1:0]      step_o
 );
 

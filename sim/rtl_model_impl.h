@@ -14,6 +14,7 @@
 #include <verilated.h>
 #include <verilated_fst_c.h>
 
+#include "contract.h"
 #include "fixed.h"
 #include "rtl_model.h"
 #include "verilated_port.h"
@@ -155,7 +156,9 @@ private:
     }
 
     void sampleProbes(std::map<uint32_t, ProbeFx>& probes, int active) const {
-        const int lf = p_.noiseLatticeFrac, nw = 4 + p_.noiseOutFrac, ngw = 6 + p_.noiseOutFrac;
+        namespace c = contract;
+        const int lf = p_.noiseLatticeFrac, nw = c::kNoiseIntBits + p_.noiseOutFrac,
+                  ngw = c::kNoiseGradIntBits + p_.noiseOutFrac;
         ProbeFx& pr = probes[top_->probe_tag_o];
         const int pass = int(top_->probe_pass_o);
         const int n = std::min(active, p_.octaves);
@@ -169,7 +172,7 @@ private:
             const int i = pass * p_.noiseUnits + u;
             if (i >= n) break;
             for (int k = 0; k < 3; ++k) {
-                pr.lat[i][k] = int(port::get(top_->probe_lat_o, u * 36 + 12 * k, 12));
+                pr.lat[i][k] = int(port::get(top_->probe_lat_o, u * c::kLatticeWidth + c::kLatticeBits * k, c::kLatticeBits));
                 pr.frac[i][k] = int64_t(port::get(top_->probe_frac_o, (u * 3 + k) * lf, lf));
                 pr.g[i][k] = port::getSigned(top_->probe_g_o, (u * 3 + k) * ngw, ngw);
             }

@@ -13,6 +13,8 @@
 
 #include <algorithm>
 
+#include "contract.h"
+
 namespace pst {
 namespace {
 
@@ -30,6 +32,18 @@ int magnitudeBits(i128 v) {
 }
 
 }  // namespace
+
+int quadricSerialSteps(const Profile& p) {
+    const int QW = p.quadric.width(), CW = p.coord.width();
+    const int chunks = (QW + CW + 2 + QW - 2) / (QW - 1);  // u_r (QW + CW + 2 bits) in QW - 1-bit chunks
+    return contract::kSerialRows * (contract::kSerialRows + chunks);
+}
+
+int filterWidthSerialSteps(const Profile& p) {
+    const int rootSteps = (widthBits(p) + 2) / 2;  // ceil((WW + 1) / 2) root cycles, two digits each
+    return contract::kWidthProducts +
+           (p.filterNorm == GradNorm::Euclid ? contract::kWidthEuclidSquares + rootSteps : 0);
+}
 
 int64_t shiftSatSigned(i128 v, int sh, int bits) {
     if (sh >= 0) return fx::satSigned(fx::floorShift(v, sh), bits);

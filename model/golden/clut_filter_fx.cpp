@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "contract.h"
 #include "fixed.h"
 
 namespace pst {
@@ -104,11 +105,19 @@ std::vector<std::pair<uint16_t, uint32_t>> clutRegisterWrites(const Profile& p, 
         throw std::invalid_argument("clutRegisterWrites: table sizes do not match profile '" + p.name + "'");
     std::vector<std::pair<uint16_t, uint32_t>> w;
     w.reserve(size_t(6 * N));
-    for (int e = 0; e < N; ++e) w.push_back({uint16_t(0x1000 + e), t.clut[e]});
+    for (int e = 0; e < N; ++e) w.push_back({uint16_t(contract::kRegClut + e), t.clut[e]});
     for (int e = 0; e < N; ++e)
-        for (int c = 0; c < 4; ++c) w.push_back({uint16_t(0x2000 + 4 * e + c), t.sat[e][c]});
-    for (int e = 0; e < N - 1; ++e) w.push_back({uint16_t(0x4000 + e), t.mip[e]});
+        for (int c = 0; c < 4; ++c)
+            w.push_back({uint16_t(contract::kRegSat + contract::kRegSatStride * e + c), t.sat[e][c]});
+    for (int e = 0; e < N - 1; ++e) w.push_back({uint16_t(contract::kRegMip + e), t.mip[e]});
     return w;
+}
+
+bool isClutTableAddress(const Profile& p, uint16_t addr) {
+    using namespace contract;
+    const int N = p.clutSize(), a = addr;
+    return (a >= kRegClut && a < kRegClut + N) || (a >= kRegSat && a < kRegSat + kRegSatStride * N) ||
+           (a >= kRegMip && a < kRegMip + N);
 }
 
 // ---- the filter ----------------------------------------------------------------------------
@@ -138,12 +147,13 @@ ClutFilterFx::ClutFilterFx(const Profile& p) {
 void ClutFilterFx::write(uint16_t addr, uint32_t data) {
     const uint32_t a = addr;
     const uint32_t rgbaMask = uint32_t(mask(4 * cb_)), satMask = uint32_t(mask(satBits_));
-    if ((a >> log2N_) == (0x1000u >> log2N_)) {
+    const uint32_t satSpan = uint32_t(contract::kRegSatStride * n_);  // a power of two
+    if ((a >> log2N_) == (uint32_t(contract::kRegClut) >> log2N_)) {
         t_.clut[a & uint32_t(n_ - 1)] = data & rgbaMask;
-    } else if ((a >> (log2N_ + 2)) == (0x2000u >> (log2N_ + 2))) {
-        const uint32_t i = a & uint32_t(4 * n_ - 1);
-        t_.sat[i >> 2][i & 3] = data & satMask;
-    } else if ((a >> log2N_) == (0x4000u >> log2N_)) {
+    } else if (a / satSpan == contract::kRegSat / satSpan) {
+        const uint32_t i = a % satSpan;
+        t_.sat[i / contract::kRegSatStride][i % contract::kRegSatStride] = data & satMask;
+    } else if ((a >> log2N_) == (uint32_t(contract::kRegMip) >> log2N_)) {
         t_.mip[a & uint32_t(n_ - 1)] = data & rgbaMask;
     }
 }
@@ -151,10 +161,10 @@ void ClutFilterFx::write(uint16_t addr, uint32_t data) {
 void ClutFilterFx::load(const ClutTables& t) {
     if (int(t.clut.size()) != n_ || int(t.sat.size()) != n_ || int(t.mip.size()) != n_ - 1)
         throw std::invalid_argument("ClutFilterFx::load: table sizes do not match the profile");
-    for (int e = 0; e < n_; ++e) write(uint16_t(0x1000 + e), t.clut[e]);
+    for (int e = 0; e < n_; ++e) write(uint16_t(contract::kRegClut + e), t.clut[e]);
     for (int e = 0; e < n_; ++e)
-        for (int c = 0; c < 4; ++c) write(uint16_t(0x2000 + 4 * e + c), t.sat[e][c]);
-    for (int e = 0; e < n_ - 1; ++e) write(uint16_t(0x4000 + e), t.mip[e]);
+        for (int c = 0; c < 4; ++c) write(uint16_t(contract::kRegSat + contract::kRegSatStride * e + c), t.sat[e][c]);
+    for (int e = 0; e < n_ - 1; ++e) write(uint16_t(contract::kRegMip + e), t.mip[e]);
 }
 
 uint32_t ClutFilterFx::level(int k, uint32_t j) const {

@@ -2,11 +2,11 @@
 // rtl/pst_clut_filter.sv computes it, plus the driver-side table builder.
 //
 // Tables (the hardware RAM contents, written through the register port):
-//   clut[e]        e < N: RGBA packed, ColourBits each, R at bit 0                (0x1000 + e)
+//   clut[e]        e < N: RGBA packed, ColourBits each, R at bit 0                (reg clut + e)
 //   csat[e][c]     e < N, c < 4: sum of the quantized entries 0..e of channel c,
-//                  ColourBits + Log2Clut bits, exact (eq. 13)                     (0x2000 + 4e + c)
+//                  ColourBits + Log2Clut bits, exact (eq. 13)                     (reg sat + 4e + c)
 //   mip[base(k)+j] MIP level k = 1..Log2Clut, entry j < N >> k, base(k) = N - (N >> (k-1))
-//                  (level 1 at 0, level 2 at N/2, ..., level Log2Clut at N-2)     (0x4000 + e)
+//                  (level 1 at 0, level 2 at N/2, ..., level Log2Clut at N-2)     (reg mip + e)
 // The driver quantizes each colour channel to round(c (2^ColourBits - 1)) (ties away from
 // zero) after clamping c to [0, 1] (NaN -> 0). MIP entry j of level k is the mean of the
 // 2^k quantized level-0 entries j 2^k .. (j+1) 2^k - 1, ROUNDED HALF UP ONCE:
@@ -95,11 +95,16 @@ struct ClutTrace {
     uint64_t t = 0;          // MIP blend weight at tFrac bits
 };
 
+// Whether `addr` is in one of the table ranges (clut, sat, mip of contract.h) for this profile's
+// N, written as ranges (the module and ClutFilterFx::write decode them by shifts).
+bool isClutTableAddress(const Profile& p, uint16_t addr);
+
 class ClutFilterFx {
 public:
     explicit ClutFilterFx(const Profile& p);  // std::invalid_argument if the widths are unsupported
 
-    // A register write (the module decodes 0x1000/0x2000/0x4000 and ignores other addresses).
+    // A register write (the module decodes the clut, sat and mip ranges of contract.h and
+    // ignores other addresses).
     void write(uint16_t addr, uint32_t data);
     // Writes every table entry (same as the writes of clutRegisterWrites).
     void load(const ClutTables& t);

@@ -24,6 +24,7 @@
 #include <gtest/gtest.h>
 
 #include "colormap.h"
+#include "contract.h"
 #include "fixed.h"
 #include "profile.h"
 
@@ -296,10 +297,10 @@ TEST(ClutFilterFx, TablesAreQuantizedSummedAndMipMapped) {
         // Register writes: addresses and count.
         const auto w = clutRegisterWrites(p, t);
         ASSERT_EQ(int(w.size()), N + 4 * N + N - 1);
-        EXPECT_EQ(w.front().first, 0x1000);
-        EXPECT_EQ(w[N].first, 0x2000);
-        EXPECT_EQ(w[5 * N].first, 0x4000);
-        EXPECT_EQ(w.back().first, 0x4000 + N - 2);
+        EXPECT_EQ(w.front().first, contract::kRegClut);
+        EXPECT_EQ(w[N].first, contract::kRegSat);
+        EXPECT_EQ(w[5 * N].first, contract::kRegMip);
+        EXPECT_EQ(w.back().first, contract::kRegMip + N - 2);
         ClutFilterFx fx(p);
         for (const auto& x : w) fx.write(x.first, x.second);
         EXPECT_EQ(fx.tables().clut, t.clut);
@@ -320,20 +321,19 @@ TEST(ClutFilterFx, OtherAddressesAreIgnored) {
         SCOPED_TRACE(p.name);
         const int N = p.clutSize();
         ClutFilterFx fx(p);
+        using namespace contract;
         const uint16_t outside[] = {0x0000,
-                                    0x0FFF,
-                                    uint16_t(0x1000 + N),
-                                    0x1FFF,
-                                    uint16_t(0x2000 + 4 * N),
-                                    0x3FFF,
-                                    uint16_t(0x4000 + N),
+                                    uint16_t(kRegClut - 1),
+                                    uint16_t(kRegClut + N),
+                                    uint16_t(kRegSat - 1),
+                                    uint16_t(kRegSat + kRegSatStride * N),
+                                    uint16_t(kRegMip - 1),
+                                    uint16_t(kRegMip + N),
                                     0x8000,
                                     0xFFFF};
         for (uint16_t a : outside) {
-            // Skip what is a table address for this N (0x2000 + 4N is the MIP range at N = 2048).
-            const bool inTable = (a >= 0x1000 && a < 0x1000 + N) || (a >= 0x2000 && a < 0x2000 + 4 * N) ||
-                                 (a >= 0x4000 && a < 0x4000 + N);
-            if (!inTable) fx.write(a, 0xFFFFFFFFu);
+            // Skip what is a table address for this N (the SAT's end is the MIP range at N = 2048).
+            if (!isClutTableAddress(p, a)) fx.write(a, 0xFFFFFFFFu);
         }
         for (int e = 0; e < N; ++e) {
             ASSERT_EQ(fx.tables().clut[e], 0u);
@@ -341,7 +341,7 @@ TEST(ClutFilterFx, OtherAddressesAreIgnored) {
             for (int c = 0; c < 4; ++c) ASSERT_EQ(fx.tables().sat[e][c], 0u);
         }
         // Data is truncated to the RAM widths.
-        fx.write(0x2000, 0xFFFFFFFFu);
+        fx.write(contract::kRegSat, 0xFFFFFFFFu);
         EXPECT_EQ(fx.tables().sat[0][0], (1u << (p.colourBits + p.log2Clut)) - 1);
     }
 }

@@ -36,6 +36,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "contract.h"
 #include "fixed.h"
 #include "noise.h"
 
@@ -46,8 +47,9 @@ using fx::i128;
 
 namespace {
 
-constexpr int kLatticeOffsetMod4096 = 1000000 % 4096;  // 576
-static_assert(kLatticeOffsetMod4096 == 576, "Rayshade's 1e6 offset mod 4096");
+constexpr int kLatticeMask = (1 << contract::kLatticeBits) - 1;  // Rayshade hashes & 0xfff
+static_assert(contract::kLatticeOffset == 1000000 % (1 << contract::kLatticeBits),
+              "the contract's lattice offset is Rayshade's 1e6 offset mod 4096");
 
 void checkFits(i128 v, int bits, const char* what) {
     if (v < fx::minSigned(bits) || v > fx::maxSigned(bits))
@@ -81,7 +83,7 @@ void octaveTransformFx(const Profile& prof, const int64_t s[3], const int64_t M[
         for (int j = 0; j < 3; ++j) acc += i128(Mw[3 * r + j]) * sw[j];
         const i128 p = floorShift(acc, accFrac - LF);
         frac[r] = int64_t(p & ((i128(1) << LF) - 1));
-        lat[r] = int((floorShift(p, LF) + kLatticeOffsetMod4096) & 0xfff);
+        lat[r] = int((floorShift(p, LF) + contract::kLatticeOffset) & kLatticeMask);
     }
 }
 
@@ -109,7 +111,7 @@ void noiseFx(const Profile& prof, const int lat[3], const int64_t frac[3], int64
     int L[3];
     int64_t U[3], s[3], ds[3];
     for (int k = 0; k < 3; ++k) {
-        L[k] = lat[k] & 0xfff;
+        L[k] = lat[k] & kLatticeMask;
         U[k] = frac[k] & ((int64_t(1) << LF) - 1);
         // Weights.
         if (scurve) {
@@ -125,7 +127,7 @@ void noiseFx(const Profile& prof, const int lat[3], const int64_t frac[3], int64
     // Hash: 2 + 4 + 8 lookups, corner c = bx + 2 by + 4 bz.
     const NoiseTables& tables = NoiseTables::get();
     const bool perm = prof.noise.hash == NoiseHash::Perm256;
-    const int idxMask = perm ? 0xff : 0xfff;
+    const int idxMask = perm ? 0xff : kLatticeMask;
     auto T = [&](int i) { return perm ? int(tables.perm[size_t(i)]) : int(tables.hash[size_t(i)]); };
     int X[3][2];
     for (int k = 0; k < 3; ++k) {

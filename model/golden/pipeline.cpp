@@ -4,6 +4,7 @@
 
 #include "arith_fx.h"
 #include "clut_filter_fx.h"
+#include "contract.h"
 #include "fixed.h"
 #include "noise_fx.h"
 
@@ -27,30 +28,36 @@ GoldenPipeline::~GoldenPipeline() = default;
 GoldenPipeline::GoldenPipeline(const GoldenPipeline& o)
     : profile_(o.profile_), fault_(o.fault_), ctrl_(o.ctrl_), active_(o.active_), oct_(o.oct_),
       clut_(std::make_unique<ClutFilterFx>(*o.clut_)) {
-    std::copy(o.quad_, o.quad_ + 10, quad_);
+    std::copy(std::begin(o.quad_), std::end(o.quad_), quad_);
 }
 GoldenPipeline& GoldenPipeline::operator=(const GoldenPipeline& o) {
     if (this != &o) *this = GoldenPipeline(o);
     return *this;
 }
 
-// Register map of docs/HARDWARE.md; signed fields are the low bits of the word, sign-extended.
+// Register map of docs/HARDWARE.md (contract.h); signed fields are the low bits of the word,
+// sign-extended.
 void GoldenPipeline::write(uint16_t addr, uint32_t data) {
+    namespace c = contract;
     const Profile& p = profile_;
-    if (addr == 0x0000) {
-        ctrl_ = data & 7u;  // [0] clamp, [2:1] filter kind
-    } else if (addr == 0x0001) {
+    if (addr == c::kRegControl) {
+        ctrl_ = data & ((1u << c::kRegControlBits) - 1);  // [0] clamp, [2:1] filter kind
+    } else if (addr == c::kRegActive) {
         const int bits = [&] { int b = 0; while ((1 << b) < p.octaves + 1) ++b; return b; }();
         active_ = int(fx::wrapUnsigned(data, bits));  // the RTL keeps $clog2(Octaves + 1) bits
-    } else if (addr >= 0x0010 && addr < 0x001a) {
-        quad_[addr - 0x0010] = fx::wrapSigned(data, p.quadric.width());
-    } else if (addr >= 0x0100 && addr < 0x0100 + 32 * p.octaves) {
-        Octave& o = oct_[(addr - 0x0100) / 32];
-        const int k = (addr - 0x0100) % 32;
-        if (k < 9) o.m[k] = fx::wrapSigned(data, p.matrix.width());
-        else if (k < 12) o.o[k - 9] = fx::wrapSigned(data, p.offset.width());
-        else if (k == 12) o.a = fx::wrapSigned(data, p.amplitude.width());
-        else if (k < 22) o.gm[k - 13] = fx::wrapSigned(data, p.gradMatrix.width());
+    } else if (addr >= c::kRegQuadric && addr < c::kRegQuadric + c::kRegQuadricCount) {
+        quad_[addr - c::kRegQuadric] = fx::wrapSigned(data, p.quadric.width());
+    } else if (addr >= c::kRegOctave && addr < c::kRegOctave + c::kRegOctaveStride * p.octaves) {
+        Octave& o = oct_[(addr - c::kRegOctave) / c::kRegOctaveStride];
+        const int k = (addr - c::kRegOctave) % c::kRegOctaveStride;
+        if (k >= c::kRegOctaveM && k < c::kRegOctaveM + c::kRegOctaveMCount)
+            o.m[k - c::kRegOctaveM] = fx::wrapSigned(data, p.matrix.width());
+        else if (k >= c::kRegOctaveO && k < c::kRegOctaveO + c::kRegOctaveOCount)
+            o.o[k - c::kRegOctaveO] = fx::wrapSigned(data, p.offset.width());
+        else if (k == c::kRegOctaveA)
+            o.a = fx::wrapSigned(data, p.amplitude.width());
+        else if (k >= c::kRegOctaveGm && k < c::kRegOctaveGm + c::kRegOctaveGmCount)
+            o.gm[k - c::kRegOctaveGm] = fx::wrapSigned(data, p.gradMatrix.width());
     }
     clut_->write(addr, data);  // decodes the table ranges itself
 }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "contract.h"
 #include "profile.h"
 
 namespace pst {
@@ -27,9 +28,9 @@ enum class Stage { Transform, Noise, Quadric, Accumulate, FilterWidth, ClutFilte
 const char* toString(Stage s);
 
 struct StageTrace {
-    static constexpr int kMaxOctaves = 16;
+    static constexpr int kMaxOctaves = contract::kOctavesMax;
     int octaves = 0;                        // active octaves
-    int lat[kMaxOctaves][3] = {};           // stage 1: lattice index (after +576, mod 4096)
+    int lat[kMaxOctaves][3] = {};           // stage 1: lattice index (after + LatticeOffset, mod 2^LatticeBits)
     int64_t frac[kMaxOctaves][3] = {};      // stage 1: lattice fraction
     int64_t n[kMaxOctaves] = {};            // stage 2: noise value
     int64_t g[kMaxOctaves][3] = {};         // stage 2: noise gradient
@@ -73,9 +74,10 @@ private:
     Stage fault_ = Stage::Count;
     uint32_t ctrl_ = 0;
     int active_ = 0;
-    int64_t quad_[10] = {};
+    int64_t quad_[contract::kRegQuadricCount] = {};
     struct Octave {
-        int64_t m[9] = {}, o[3] = {}, a = 0, gm[9] = {};
+        int64_t m[contract::kRegOctaveMCount] = {}, o[contract::kRegOctaveOCount] = {}, a = 0,
+                gm[contract::kRegOctaveGmCount] = {};
     };
     std::vector<Octave> oct_;
     std::unique_ptr<ClutFilterFx> clut_;

@@ -5,6 +5,7 @@
 
 #include <toml++/toml.h>
 
+#include "contract.h"
 #include "input_error.h"
 
 namespace pst {
@@ -36,36 +37,19 @@ struct Reader {
             fail(n, field, "must be in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
         return int(v->get());
     }
-    template <typename E>
-    E choice(const toml::table& t, const std::string& sec, const char* key,
-             bool (*parse)(const std::string&, E*)) const {
-        const toml::node* n = t.get(key);
-        const std::string field = sec + "." + key;
-        if (!n || !n->is_string()) fail(n ? n : &t, field, "expected a string");
-        E e;
-        if (!parse(n->as_string()->get(), &e)) fail(n, field, "unknown value '" + n->as_string()->get() + "'");
-        return e;
-    }
     FixedFormat format(const toml::table& t, const char* key, int maxWidth) const {
         const std::string field = std::string("formats.") + key;
         const toml::node* n = t.get(key);
         if (!n || !n->is_table()) fail(n ? n : &t, field, "expected { int = I, frac = F }");
         FixedFormat f;
-        f.intBits = integer(*n->as_table(), field, "int", 1, 62);
-        f.fracBits = integer(*n->as_table(), field, "frac", 0, 62);
+        f.intBits = integer(*n->as_table(), field, "int", contract::kFormatIntMin, contract::kFormatIntMax);
+        f.fracBits = integer(*n->as_table(), field, "frac", contract::kFormatFracMin, contract::kFormatFracMax);
         if (f.width() > maxWidth) fail(n, field, "int + frac must be at most " + std::to_string(maxWidth));
         return f;
     }
 };
 
 }  // namespace
-
-bool parseDatapath(const std::string& s, Datapath* d) {
-    if (s == "parallel") *d = Datapath::Parallel;
-    else if (s == "serial") *d = Datapath::Serial;
-    else return false;
-    return true;
-}
 
 Profile parseProfile(const std::string& text, const std::string& path) {
     toml::table root;
@@ -75,44 +59,84 @@ Profile parseProfile(const std::string& text, const std::string& path) {
         throw InputError(path + ":" + std::to_string(e.source().begin.line) + ": " + std::string(e.description()));
     }
     const Reader r{path, root};
+    // Every key of the schema (rtl/contract.toml, through the generated contract.h) into one
+    // value array indexed by RTL parameter; enums as their index.
+    namespace c = contract;
+    int v[c::kNumParams] = {};
+    const toml::node* where[c::kNumParams] = {};
+    for (const c::KeySpec& k : c::kSchema) {
+        const toml::table& t = r.section(k.section);
+        const std::string field = std::string(k.section) + "." + k.key;
+        where[k.param] = t.get(k.key);
+        switch (k.kind) {
+            case c::KeyKind::Range:
+                v[k.param] = r.integer(t, k.section, k.key, k.lo, k.hi);
+                break;
+            case c::KeyKind::Values: {
+                v[k.param] = r.integer(t, k.section, k.key, k.lo, k.hi);
+                std::string list;
+                bool ok = false;
+                for (int i = 0; i < k.nValues; ++i) {
+                    ok |= v[k.param] == k.values[i];
+                    list += (i == 0 ? "" : i + 1 == k.nValues ? " or " : ", ") + std::to_string(k.values[i]);
+                }
+                if (!ok) r.fail(where[k.param], field, "must be " + list);
+                break;
+            }
+            case c::KeyKind::Enum: {
+                const toml::node* n = where[k.param];
+                if (!n || !n->is_string()) r.fail(n ? n : &t, field, "expected a string");
+                const std::string& s = n->as_string()->get();
+                v[k.param] = -1;
+                for (int i = 0; i < k.nValues; ++i)
+                    if (s == k.names[i]) v[k.param] = i;
+                if (v[k.param] < 0) r.fail(n, field, "unknown value '" + s + "'");
+                break;
+            }
+            case c::KeyKind::Format: {
+                const FixedFormat f = r.format(t, k.key, k.maxWidth);
+                v[k.param] = f.intBits;
+                v[k.param + 1] = f.fracBits;
+                break;
+            }
+        }
+    }
+    for (const c::Constraint& k : c::kConstraints) {
+        if (k.holds(v)) continue;
+        const std::string field = k.field;
+        const std::string::size_type dot = field.find('.');
+        const toml::node* n = root.at_path(field).node();
+        r.fail(n ? n : root.get(field.substr(0, dot)), field, k.message);
+    }
+
     Profile p;
     p.path = path;
-    const auto& pipe = r.section("pipeline");
-    p.octaves = r.integer(pipe, "pipeline", "octaves", 1, 16);
-    p.noiseUnits = r.integer(pipe, "pipeline", "noise_units", 1, 16);
-    if (p.octaves % p.noiseUnits != 0)
-        r.fail(pipe.get("noise_units"), "pipeline.noise_units", "must divide pipeline.octaves");
-    p.noiseSteps = r.integer(pipe, "pipeline", "noise_steps", 1, 8);
-    if (p.noiseSteps != 1 && p.noiseSteps != 2 && p.noiseSteps != 4 && p.noiseSteps != 8)
-        r.fail(pipe.get("noise_steps"), "pipeline.noise_steps", "must be 1, 2, 4 or 8");
-    p.log2Clut = r.integer(pipe, "pipeline", "log2_clut", 1, 11);  // the SAT range (0x2000 + 4e) must stay below 0x4000
-    p.colourBits = r.integer(pipe, "pipeline", "colour_bits", 1, 8);
-    p.datapath = r.choice(pipe, "pipeline", "datapath", parseDatapath);
-    if (p.datapath == Datapath::Serial && p.noiseSteps < 4)
-        r.fail(pipe.get("datapath"), "pipeline.datapath", "serial needs pipeline.noise_steps >= 4");
-    const auto& noise = r.section("noise");
-    p.noise.interp = r.choice(noise, "noise", "interp", parseNoiseInterp);
-    p.noise.corner = r.choice(noise, "noise", "corner", parseNoiseCorner);
-    p.noise.hash = r.choice(noise, "noise", "hash", parseNoiseHash);
-    p.noiseValueFrac = r.integer(noise, "noise", "value_frac", 1, 15);
-    p.noiseLatticeFrac = r.integer(noise, "noise", "lattice_frac", 1, 20);
-    p.noiseOutFrac = r.integer(noise, "noise", "out_frac", 1, 24);
-    p.noiseGuardBits = r.integer(noise, "noise", "guard_bits", 1, 8);
-    const auto& filt = r.section("filter");
-    p.filterNorm = r.choice(filt, "filter", "norm", parseGradNorm);
-    p.filterRecipFrac = r.integer(filt, "filter", "recip_frac", 4, 24);
-    const auto& fm = r.section("formats");
-    // Register formats are written through the 32-bit register port: at most 32 bits.
-    p.coord = r.format(fm, "coord", 40);
-    p.jacobian = r.format(fm, "jacobian", 40);
-    p.matrix = r.format(fm, "matrix", 32);
-    p.offset = r.format(fm, "offset", 32);
-    p.amplitude = r.format(fm, "amplitude", 32);
-    p.gradMatrix = r.format(fm, "grad_matrix", 32);
-    p.quadric = r.format(fm, "quadric", 32);
-    p.f = r.format(fm, "f", 48);
-    p.grad = r.format(fm, "grad", 48);
-    p.widthFrac = r.integer(fm, "formats", "width_frac", 0, 24);
+    p.octaves = v[c::Octaves];
+    p.noiseUnits = v[c::NoiseUnits];
+    p.noiseSteps = v[c::NoiseSteps];
+    p.log2Clut = v[c::Log2Clut];
+    p.colourBits = v[c::ColourBits];
+    p.datapath = Datapath(v[c::Datapath]);
+    p.noise.interp = NoiseInterp(v[c::NoiseInterp]);
+    p.noise.corner = NoiseCorner(v[c::NoiseCorner]);
+    p.noise.hash = NoiseHash(v[c::NoiseHash]);
+    p.noiseValueFrac = v[c::NoiseValueFrac];
+    p.noiseLatticeFrac = v[c::NoiseLatticeFrac];
+    p.noiseOutFrac = v[c::NoiseOutFrac];
+    p.noiseGuardBits = v[c::NoiseGuardBits];
+    p.filterNorm = GradNorm(v[c::FilterNorm]);
+    p.filterRecipFrac = v[c::FilterRecipFrac];
+    const auto fmt = [&](c::Param i) { return FixedFormat{v[i], v[i + 1]}; };
+    p.coord = fmt(c::CoordInt);
+    p.jacobian = fmt(c::JacobianInt);
+    p.matrix = fmt(c::MatrixInt);
+    p.offset = fmt(c::OffsetInt);
+    p.amplitude = fmt(c::AmplitudeInt);
+    p.gradMatrix = fmt(c::GradMatrixInt);
+    p.quadric = fmt(c::QuadricInt);
+    p.f = fmt(c::FInt);
+    p.grad = fmt(c::GradInt);
+    p.widthFrac = v[c::WidthFrac];
     p.name = path.substr(path.find_last_of('/') + 1);
     if (auto dot = p.name.rfind(".toml"); dot != std::string::npos) p.name.resize(dot);
     return p;

@@ -1,9 +1,11 @@
 // A hardware profile (rtl/configs/NAME.toml): the widths and choices of one build of the
-// pipeline. The RTL gets the same numbers as -G parameters through scripts/profile.py.
+// pipeline. The RTL gets the same numbers as -G parameters through scripts/profile.py; the
+// schema (keys, ranges, enums, cross-constraints) is rtl/contract.toml's, through contract.h.
 #pragma once
 
 #include <string>
 
+#include "contract.h"
 #include "noise.h"
 #include "texture.h"
 
@@ -19,10 +21,10 @@ struct FixedFormat {
 
 // How the quadric, filter-width and colour-table units are built: every product every cycle
 // (parallel), or one row / one channel per cycle (serial: fewer multipliers; the octave
-// transform and term rows take 3 + 3 more cycles per pixel, see rtl/pst_top.sv; needs
+// transform and term rows take 3 + 3 more cycles per pixel, see rtl/pst_octave_stage.sv; needs
 // noise_steps >= 4). The arithmetic is the same bit for bit.
+// The order is rtl/contract.toml's (pipeline.datapath), checked by profile_test.
 enum class Datapath { Parallel, Serial };
-bool parseDatapath(const std::string& s, Datapath* d);
 
 struct Profile {
     std::string name;
@@ -50,13 +52,13 @@ struct Profile {
 
     int clutSize() const { return 1 << log2Clut; }
     int octavePasses() const { return (octaves + noiseUnits - 1) / noiseUnits; }
-    // The octave stage's nominal cycles per fragment (rtl/pst_top.sv Cycles): the pipeline's
-    // rate as long as the other serial units are shorter (filter width 6, or 16 with euclid;
-    // colour filter 4; the serial quadric 18 with reduced's widths, so a profile with fewer
-    // octave cycles runs at the quadric's rate). Used for simulation timeouts; `pst regress`
-    // reports the measured rate.
+    // The octave stage's nominal cycles per fragment (rtl/pst_octave_stage.sv Cycles): the
+    // pipeline's rate as long as the other serial units are shorter (docs/HARDWARE.md lists
+    // every stage's cycles; a profile whose serial quadric, quadricSerialSteps, takes longer
+    // runs at the quadric's rate). Used for simulation timeouts; `pst regress` reports the
+    // measured rate.
     int cyclesPerPixel() const {
-        return octavePasses() * noiseSteps + (datapath == Datapath::Serial ? 6 : 0);
+        return octavePasses() * noiseSteps + (datapath == Datapath::Serial ? contract::kSerialOctaveExtraCycles : 0);
     }
     // W = w N in entries: unsigned, log2Clut + 2 integer bits, widthFrac fraction bits.
     int widthIntBits() const { return log2Clut + 2; }

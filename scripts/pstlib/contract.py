@@ -2,8 +2,8 @@
 """The hardware contract (rtl/contract.toml): profile schema, register map, fixed constants.
 
 One description, read here, is the profile schema of every script and the source of the
-generated files each other side uses (rtl/pst_pkg.sv, model/golden/contract.h, the register
-table of docs/HARDWARE.md).
+generated files each other side uses (rtl/pst_pkg.sv, rtl/pst_profile_checks.svh,
+model/golden/contract.h, the register table of docs/HARDWARE.md).
 
 API (import as `from pstlib import contract`, with scripts/ on sys.path):
   load(path=None) -> Contract          the description (cached; default rtl/contract.toml)
@@ -17,7 +17,8 @@ API (import as `from pstlib import contract`, with scripts/ on sys.path):
   parameters(doc) -> [(Name, int)]     the RTL parameters of a valid profile (enums as indices)
   read_profile(path) -> dict           tomllib-loaded and validated; raises ProfileError whose str()
                                        is "PATH:LINE: FIELD: what is wrong"
-  sv_package(c), cpp_header(c), hardware_md_table(c)   the generated texts
+  sv_package(c), sv_checks(c), cpp_header(c), hardware_md_table(c)   the generated texts
+  stage_cycles(doc) -> {stage: cycles}  cycles per stage and per pixel of a profile (docs table)
   GENERATED      {relative path: generator} of every generated file
 
 CLI:
@@ -90,6 +91,7 @@ class Contract:
     enums: dict                 # extra enums (filter_kind ...): name -> [values]
     constants: dict             # name -> (value, doc)
     raw: dict = field(repr=False, default_factory=dict)
+    defaults: str = ""          # the profile whose values are the RTL parameter defaults
 
     def key(self, section: str, key: str) -> Key:
         for k in self.keys:
@@ -136,7 +138,8 @@ def load(path: str | Path | None = None) -> Contract:
         else:
             constants[n] = (v["value"], v.get("doc", ""))
     return Contract(path, keys, tuple(schema["format_int"]), tuple(schema["format_frac"]), constraints,
-                    raw["registers"], raw.get("enums", {}), constants, raw)
+                    raw["registers"], raw.get("enums", {}), constants, raw,
+                    schema.get("defaults", {}).get("profile", ""))
 
 
 def _tables():
@@ -346,6 +349,15 @@ def sv_package(c: Contract) -> str:
             p = k.params[0]
             L.append(f"  localparam int {p}Min = {k.lo};")
             L.append(f"  localparam int {p}Max = {k.hi};")
+    if c.defaults:
+        root = c.path.parent.parent
+        with open(root / c.defaults, "rb") as f:
+            dflt = parameters(tomllib.load(f), c)
+        L += ["", f"  // Parameter defaults of every module: the profile {Path(c.defaults).stem} ({c.defaults})."]
+        enums = c.enum_of_param()
+        for name, value in dflt:
+            shown = f"{name}{camel(enums[name].enum[value])}" if name in enums else str(value)
+            L.append(f"  localparam int {name}Default = {shown};")
     L += ["", "  // Register map (docs/HARDWARE.md).",
           f"  localparam int RegAddrBits = {c.registers['addr_bits']};",
           f"  localparam int RegDataBits = {c.registers['data_bits']};"]
@@ -377,6 +389,37 @@ def sv_package(c: Contract) -> str:
         L.append(f"  localparam int {name} = {v};  // {doc}")
     L += ["", "  /* verilator lint_on UNUSEDPARAM */", "", "endpackage", "", "`default_nettype wire",
           "`endif  // PST_PKG_SV", ""]
+    return "\n".join(L)
+
+
+def sv_checks(c: Contract) -> str:
+    """The profile's ranges and cross-constraints as elaboration-time assertions over pst_top's
+    parameters (included by pst_top outside synthesis)."""
+    L = [f"// {HEADER}",
+         "// The profile schema's ranges and cross-constraints (rtl/contract.toml) over pst_top's",
+         "// parameters, checked at elaboration. Included by pst_top (`ifndef SYNTHESIS).",
+         "initial begin"]
+    for k in c.keys:
+        if k.kind == "enum":
+            p = k.params[0]
+            L.append(f'  assert ({p} >= 0 && {p} < {len(k.enum)}) else $fatal(1, "{k.field}: unknown value");')
+        elif k.kind == "values":
+            p = k.params[0]
+            cond = " || ".join(f"{p} == {v}" for v in k.values)
+            L.append(f'  assert ({cond}) else $fatal(1, "{k.field}: must be one of {", ".join(map(str, k.values))}");')
+        elif k.kind == "range":
+            p = k.params[0]
+            L.append(f'  assert ({p} >= {k.lo} && {p} <= {k.hi}) else $fatal(1, "{k.field}: must be in [{k.lo}, {k.hi}]");')
+        else:
+            i, f = k.params
+            L.append(f"  assert ({i} >= {c.format_int[0]} && {i} <= {c.format_int[1]} && {f} >= {c.format_frac[0]} && "
+                     f"{f} <= {c.format_frac[1]} && {i} + {f} <= {k.max_width})")
+            L.append(f'    else $fatal(1, "{k.field}: int in [{c.format_int[0]}, {c.format_int[1]}], frac in '
+                     f'[{c.format_frac[0]}, {c.format_frac[1]}], int + frac <= {k.max_width}");')
+    for con in c.constraints:
+        L.append(f"  assert ({translate(con.expr, 'sv', c)})")
+        L.append(f'    else $fatal(1, "{con.field}: {con.message}");')
+    L += ["end", ""]
     return "\n".join(L)
 
 
@@ -467,6 +510,8 @@ def cpp_header(c: Contract) -> str:
 
 MD_BEGIN = "<!-- BEGIN register map: generated by scripts/pstlib/contract.py from rtl/contract.toml -->"
 MD_END = "<!-- END register map -->"
+CYCLES_BEGIN = "<!-- BEGIN cycles: generated by scripts/pstlib/contract.py from rtl/contract.toml and rtl/configs -->"
+CYCLES_END = "<!-- END cycles -->"
 
 
 def hardware_md_table(c: Contract) -> str:
@@ -477,16 +522,55 @@ def hardware_md_table(c: Contract) -> str:
     return "\n".join(L)
 
 
-def _hardware_md(c: Contract, current: str) -> str:
-    start, end = current.find(MD_BEGIN), current.find(MD_END)
-    if start < 0 or end < 0:
-        raise ValueError(f"docs/HARDWARE.md: markers {MD_BEGIN!r} ... {MD_END!r} missing")
-    return current[:start] + hardware_md_table(c) + current[end + len(MD_END):]
+def stage_cycles(doc: dict, c: Contract | None = None) -> dict[str, int]:
+    """Cycles a fragment spends in each stage of a (valid) profile: the golden model's
+    quadricSerialSteps / filterWidthSerialSteps (model/golden/arith_fx.cpp, which the arith
+    unit test checks against the RTL) and pst_octave_stage's Cycles, from the contract's
+    constants. The pipeline's clocks per pixel is the largest of them."""
+    c = c or load()
+    k = {n: v for n, (v, _) in c.constants.items()}
+    v = dict(parameters(doc, c))
+    serial = v["Datapath"] == c.key("pipeline", "datapath").enum.index("serial")
+    euclid = v["FilterNorm"] == c.key("filter", "norm").enum.index("euclid")
+    qw, cw = v["QuadricInt"] + v["QuadricFrac"], v["CoordInt"] + v["CoordFrac"]
+    ww = v["Log2Clut"] + k["WidthExtraIntBits"] + v["WidthFrac"]
+    octave = v["Octaves"] // v["NoiseUnits"] * v["NoiseSteps"] + (k["SerialOctaveExtraCycles"] if serial else 0)
+    quadric = k["SerialRows"] * (k["SerialRows"] + (qw + cw + 2 + qw - 2) // (qw - 1)) if serial else 1
+    width = (k["WidthProducts"] + (k["WidthEuclidSquares"] + (ww + 2) // 2 if euclid else 0)) if serial else 1
+    colour = k["ColourSteps"] if serial else 1
+    return {"octave": octave, "quadric": quadric, "width": width, "colour": colour,
+            "pixel": max(octave, quadric, width, colour)}
+
+
+def cycles_md_table(c: Contract, root: Path) -> str:
+    L = [CYCLES_BEGIN,
+         "| profile | octave stage [A] | serial quadric (in [A]) | filter width [B] | colour filter [C] | clocks per pixel |",
+         "|---|---|---|---|---|---|"]
+    for path in sorted((root / "rtl" / "configs").glob("*.toml")):
+        with open(path, "rb") as f:
+            n = stage_cycles(tomllib.load(f), c)
+        L.append(f"| {path.stem} | {n['octave']} | {n['quadric'] if n['quadric'] > 1 else '-'} | {n['width']} | "
+                 f"{n['colour']} | {n['pixel']} |")
+    L.append(CYCLES_END)
+    return "\n".join(L)
+
+
+def _replace_block(text: str, begin: str, end: str, block: str) -> str:
+    start, stop = text.find(begin), text.find(end)
+    if start < 0 or stop < 0:
+        raise ValueError(f"docs/HARDWARE.md: markers {begin!r} ... {end!r} missing")
+    return text[:start] + block + text[stop + len(end):]
+
+
+def _hardware_md(c: Contract, current: str, root: Path = ROOT) -> str:
+    text = _replace_block(current, MD_BEGIN, MD_END, hardware_md_table(c))
+    return _replace_block(text, CYCLES_BEGIN, CYCLES_END, cycles_md_table(c, root))
 
 
 GENERATED = {
-    "rtl/pst_pkg.sv": lambda c, cur: sv_package(c),
-    "model/golden/contract.h": lambda c, cur: cpp_header(c),
+    "rtl/pst_pkg.sv": lambda c, cur, root: sv_package(c),
+    "rtl/pst_profile_checks.svh": lambda c, cur, root: sv_checks(c),
+    "model/golden/contract.h": lambda c, cur, root: cpp_header(c),
     "docs/HARDWARE.md": _hardware_md,
 }
 
@@ -498,7 +582,7 @@ def generate(root: Path, contract: Contract | None = None) -> dict[str, str]:
     for rel, gen in GENERATED.items():
         p = root / rel
         cur = p.read_text() if p.exists() else ""
-        out[rel] = gen(c, cur)
+        out[rel] = gen(c, cur, root)
     return out
 
 

@@ -73,6 +73,15 @@ def test_validate_names_the_field(edit, field):
     assert any(b.split(": ", 1)[0] == field for b in bad), bad
 
 
+def test_stage_cycles():
+    # reduced: 4 octaves x 4 steps + 6 serial rows = 22 cycles per pixel (`pst regress` measures
+    # 22); its serial quadric takes 18 steps, its euclidean filter width 16 (the RTL's, checked
+    # by sim/unit/arith_unit_test against the golden model); full is one pixel per clock.
+    assert contract.stage_cycles(reduced()) == {"octave": 22, "quadric": 18, "width": 16, "colour": 4, "pixel": 22}
+    with open(ROOT / "rtl" / "configs" / "full.toml", "rb") as f:
+        assert contract.stage_cycles(tomllib.load(f))["pixel"] == 1
+
+
 def test_constraint_translation():
     e = "Datapath != Datapath.serial || NoiseSteps >= 4"
     assert contract.translate(e, "py") == "v['Datapath'] != 1 or v['NoiseSteps'] >= 4"
@@ -116,6 +125,9 @@ def test_one_line_edit_changes_generated_files(tmp_path):
     assert "addr = 0x1000" in src
     (tmp_path / "rtl").mkdir()
     (tmp_path / "rtl" / "contract.toml").write_text(src.replace("addr = 0x1000", "addr = 0x1800"))
+    (tmp_path / "rtl" / "configs").mkdir()
+    for f in (ROOT / "rtl" / "configs").glob("*.toml"):
+        (tmp_path / "rtl" / "configs" / f.name).write_text(f.read_text())
     (tmp_path / "docs").mkdir()
     (tmp_path / "docs" / "HARDWARE.md").write_text((ROOT / "docs" / "HARDWARE.md").read_text())
     gen = contract.generate(tmp_path, contract.load(tmp_path / "rtl" / "contract.toml"))

@@ -18,11 +18,13 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <verilated.h>
 
 #include "Vpst_arith_unit_top.h"
 #include "arith_fx.h"
+#include "contract.h"
 #include "fixed.h"
 #include "verilated_port.h"
 #include "profile.h"
@@ -147,7 +149,7 @@ protected:
         Vpst_arith_unit_top& d = *top_;
         clearPort(d.quad_s_i), clearPort(d.quad_coef_i);
         clearPort(d.term_n_i), clearPort(d.term_g_i), clearPort(d.term_a_i), clearPort(d.term_gm_i);
-        clearPort(d.fw_grad_i), clearPort(d.fw_j_i), clearPort(d.sqrt_x_i);
+        clearPort(d.fw_grad_i), clearPort(d.fw_j_i), clearPort(d.sqrt_x_i), clearPort(d.fs_x_i);
         // The serial variants: out of reset, at step 0, clock low.
         d.clk_i = 0, d.rst_ni = 1, d.ser_step_i = 0, d.ser_adv_i = 0, d.quad_ser_step_i = 0, d.quad_ser_adv_i = 0;
         ASSERT_TRUE(eval()) << "an RTL assertion fired on all-zero inputs";
@@ -168,7 +170,7 @@ protected:
 
     const Profile& P = prof();
     const int CW = P.coord.width(), QW = P.quadric.width(), FW = P.f.width(), GW = P.grad.width();
-    const int NW = 4 + P.noiseOutFrac, NGW = 6 + P.noiseOutFrac, AW = P.amplitude.width();
+    const int NW = pst::contract::kNoiseIntBits + P.noiseOutFrac, NGW = pst::contract::kNoiseGradIntBits + P.noiseOutFrac, AW = P.amplitude.width();
     const int GMW = P.gradMatrix.width(), JW = P.jacobian.width(), WW = pst::widthBits(P);
     const int SqW = 2 * WW + 1;
 
@@ -334,6 +336,27 @@ protected:
             std::ostringstream os;
             if (!assertOk) os << "  (an RTL assertion fired)\n";
             os << "  x " << x << "  golden " << g << "  rtl " << r;
+            return os.str();
+        });
+    }
+
+    // pst_floor_sat config c (pst_arith_unit_top's fs_* table) on x against shiftSatSigned.
+    struct FloorSatFormat {
+        int inW, inFrac, outW, outFrac;
+    };
+    static constexpr FloorSatFormat kFloorSat[5] = {{40, 20, 16, 8}, {12, 4, 20, 10}, {20, 6, 10, 6},
+                                                    {10, 2, 6, 6}, {60, 30, 48, 20}};
+    void floorSat(Tally& t, int c, int64_t x) {
+        Vpst_arith_unit_top& d = *top_;
+        const FloorSatFormat& f = kFloorSat[c];
+        setBits(d.fs_x_i, 64 * c, f.inW, uint64_t(x));
+        const bool assertOk = eval();
+        const int64_t r = getSigned(d.fs_y_o, 64 * c, f.outW);
+        const int64_t g = pst::shiftSatSigned(x, f.inFrac - f.outFrac, f.outW);
+        t.check(assertOk && r == g, [&] {
+            std::ostringstream os;
+            os << "  format " << c << " (" << f.inW << "." << f.inFrac << " -> " << f.outW << "." << f.outFrac
+               << ")  x " << x << "  golden " << g << "  rtl " << r;
             return os.str();
         });
     }
@@ -611,6 +634,35 @@ TEST_F(ArithUnit, Isqrt) {
         if (k2 < xmax) isqrt(special, k2 + 1);
     }
     for (int i = 0; i < kRandom; ++i) isqrt(random, rng.uval(SqW));
+    EXPECT_EQ(special.mismatches + random.mismatches, 0);
+}
+
+// The serial units take the step counts the golden model (and docs/HARDWARE.md) give.
+TEST_F(ArithUnit, SerialStepCounts) {
+    EXPECT_EQ(quadricSteps(), pst::quadricSerialSteps(P));
+    EXPECT_EQ(widthSteps(), pst::filterWidthSerialSteps(P));  // the profile's norm
+    EXPECT_LE(quadricSteps() - 1, pst::contract::kStepMax);
+    EXPECT_LE(widthSteps(true) - 1, pst::contract::kStepMax);
+}
+
+TEST_F(ArithUnit, FloorSat) {
+    Rng rng(5);
+    Tally special{"floor_sat special"}, random{"floor_sat random"};
+    for (int c = 0; c < 5; ++c) {
+        const FloorSatFormat& f = kFloorSat[c];
+        const int sh = f.inFrac - f.outFrac;
+        const int64_t lo = fx::minSigned(f.inW), hi = fx::maxSigned(f.inW);
+        // The input extremes and the values around each saturation threshold (where the
+        // shifted value leaves the output range), clipped to the input range.
+        std::vector<int64_t> xs = {lo, hi, 0, -1, 1, lo + 1, hi - 1};
+        for (const i128 edge : {i128(fx::maxSigned(f.outW)) + 1, i128(fx::minSigned(f.outW))}) {
+            const i128 x0 = sh >= 0 ? edge * (i128(1) << sh) : floorDiv(edge, i128(1) << -sh);
+            for (int dx = -2; dx <= 2; ++dx)
+                if (x0 + dx >= lo && x0 + dx <= hi) xs.push_back(int64_t(x0 + dx));
+        }
+        for (int64_t x : xs) floorSat(special, c, x);
+        for (int i = 0; i < kRandom / 10; ++i) floorSat(random, c, rng.sval(f.inW));
+    }
     EXPECT_EQ(special.mismatches + random.mismatches, 0);
 }
 

@@ -22,6 +22,7 @@
 
 #include "Vpst_clut_filter.h"
 #include "clut_filter_fx.h"
+#include "contract.h"
 #include "fixed.h"
 #include "profile.h"
 
@@ -32,6 +33,10 @@ using pst::ClutTrace;
 using pst::Profile;
 using pst::fx::i128;
 namespace fx = pst::fx;
+using pst::contract::kRegClut;
+using pst::contract::kRegMip;
+using pst::contract::kRegSat;
+using pst::contract::kRegSatStride;
 
 // --- Port access: any verilated port type (CData..QData or VlWide<N>), fields <= 64 bits ---
 template <typename T>
@@ -180,18 +185,16 @@ void loadTables(Bench& b, std::mt19937_64& rng, int style) {
     auto unmapped = [&]() -> uint16_t {
         for (;;) {
             const uint16_t a = uint16_t(rng());
-            const bool inTable = (a >= 0x1000 && a < 0x1000 + N) || (a >= 0x2000 && a < 0x2000 + 4 * N) ||
-                                 (a >= 0x4000 && a < 0x4000 + N);
-            if (!inTable) return a;
+            if (!pst::isClutTableAddress(p, a)) return a;
         }
     };
     for (const auto& w : writes) {
         b.write(w.first, w.second);
         if (rng() % 8 == 0) b.write(unmapped(), uint32_t(rng()));
-        if (rng() % 16 == 0) b.write(uint16_t(0x1000 + rng() % N), uint32_t(rng()), /*we=*/false);  // not written
+        if (rng() % 16 == 0) b.write(uint16_t(kRegClut + rng() % N), uint32_t(rng()), /*we=*/false);  // not written
     }
     // The last MIP address (entry N-1) is writable and never read: write junk there too.
-    b.write(uint16_t(0x4000 + N - 1), uint32_t(rng()));
+    b.write(uint16_t(kRegMip + N - 1), uint32_t(rng()));
 }
 
 void specialVectors(Bench& b) {
@@ -271,8 +274,8 @@ TEST(ClutUnit, WriteEnableAndRewrite) {
     loadTables(b, rng, 0);
     const int N = prof().clutSize();
     for (int k = 0; k < 64; ++k) {
-        const uint16_t a = uint16_t(rng() % 3 == 0 ? 0x1000 + rng() % N : rng() % 3 == 1 ? 0x2000 + rng() % (4 * N)
-                                                                                         : 0x4000 + rng() % (N - 1));
+        const uint16_t a = uint16_t(rng() % 3 == 0 ? kRegClut + rng() % N : rng() % 3 == 1 ? kRegSat + rng() % (kRegSatStride * N)
+                                                                                         : kRegMip + rng() % (N - 1));
         b.write(a, uint32_t(rng()), /*we=*/false);
         b.write(uint16_t(a ^ 1), uint32_t(rng()));
         randomVectors(b, rng, 50);

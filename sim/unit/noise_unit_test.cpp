@@ -16,6 +16,7 @@
 #include <gtest/gtest.h>
 
 #include "Vpst_noise_unit_top.h"
+#include "contract.h"
 #include "fixed.h"
 #include "verilated_port.h"
 #include "noise_fx.h"
@@ -24,6 +25,9 @@
 
 namespace pst {
 namespace {
+
+constexpr int kLB = contract::kLatticeBits;             // one lattice index
+constexpr int kLatMask = (1 << contract::kLatticeBits) - 1;
 
 // ---- generic port access (sim/verilated_port.h) -------------------------------------------
 template <typename T>
@@ -102,7 +106,7 @@ protected:
         ++vectors_;
         bool ok = true;
         for (int k = 0; k < 3; ++k) {
-            const uint64_t rl = getField(top_->ot_lat_o, 12 * k, 12);
+            const uint64_t rl = getField(top_->ot_lat_o, kLB * k, kLB);
             const uint64_t rf = getField(top_->ot_frac_o, LF * k, LF);
             if (rl != uint64_t(lat[k]) || rf != uint64_t(frac[k])) ok = false;
         }
@@ -115,7 +119,7 @@ protected:
             os << " o";
             for (auto x : v.o) os << " " << x;
             for (int k = 0; k < 3; ++k)
-                os << "\n  axis " << k << ": rtl lat " << getField(top_->ot_lat_o, 12 * k, 12) << " frac "
+                os << "\n  axis " << k << ": rtl lat " << getField(top_->ot_lat_o, kLB * k, kLB) << " frac "
                    << getField(top_->ot_frac_o, LF * k, LF) << ", golden lat " << lat[k] << " frac " << frac[k];
             ADD_FAILURE() << os.str();
         }
@@ -125,8 +129,9 @@ protected:
     // ---- stage 2 ----
     bool checkNoise(const int lat[3], const int64_t frac[3]) {
         const int LF = prof_.noiseLatticeFrac, OF = prof_.noiseOutFrac;
+        const int NW = contract::kNoiseIntBits + OF, NGW = contract::kNoiseGradIntBits + OF;
         for (int k = 0; k < 3; ++k) {
-            setField(top_->nz_lat_i, 12 * k, 12, uint64_t(lat[k]));
+            setField(top_->nz_lat_i, kLB * k, kLB, uint64_t(lat[k]));
             setField(top_->nz_frac_i, LF * k, LF, uint64_t(frac[k]));
         }
         // NoiseSteps > 1: steps 0..S-2 stored on a clock edge each, the result live at S-1.
@@ -146,18 +151,18 @@ protected:
         NoiseFxTrace tr;
         noiseFx(prof_, lat, frac, &n, g, &tr);
         ++vectors_;
-        const uint64_t rn = getField(top_->nz_n_o, 0, 4 + OF);
+        const uint64_t rn = getField(top_->nz_n_o, 0, NW);
         uint64_t rg[3];
-        bool ok = rn == fx::wrapUnsigned(n, 4 + OF);
+        bool ok = rn == fx::wrapUnsigned(n, NW);
         for (int k = 0; k < 3; ++k) {
-            rg[k] = getField(top_->nz_grad_o, k * (6 + OF), 6 + OF);
-            ok = ok && rg[k] == fx::wrapUnsigned(g[k], 6 + OF);
+            rg[k] = getField(top_->nz_grad_o, k * (NGW), NGW);
+            ok = ok && rg[k] == fx::wrapUnsigned(g[k], NGW);
         }
         if (!ok && ++mismatches_ <= 10) {
             std::ostringstream os;
             os << "noise mismatch: lat " << lat[0] << " " << lat[1] << " " << lat[2] << " frac " << frac[0] << " "
-               << frac[1] << " " << frac[2] << "\n  rtl n " << fx::wrapSigned(rn, 4 + OF) << " grad";
-            for (int k = 0; k < 3; ++k) os << " " << fx::wrapSigned(rg[k], 6 + OF);
+               << frac[1] << " " << frac[2] << "\n  rtl n " << fx::wrapSigned(rn, NW) << " grad";
+            for (int k = 0; k < 3; ++k) os << " " << fx::wrapSigned(rg[k], NGW);
             os << "\n  golden n " << n << " grad " << g[0] << " " << g[1] << " " << g[2] << "\n  golden m";
             for (int c = 0; c < 8; ++c) os << " " << tr.m[c];
             os << " s " << tr.s[0] << " " << tr.s[1] << " " << tr.s[2] << " ds " << tr.ds[0] << " " << tr.ds[1]
@@ -272,7 +277,7 @@ TEST_F(NoiseUnit, NoiseSpecialValues) {
 
 TEST_F(NoiseUnit, NoiseRandom) {
     for (int it = 0; it < 30000; ++it) {
-        const int lat[3] = {int(rng_() & 0xfff), int(rng_() & 0xfff), int(rng_() & 0xfff)};
+        const int lat[3] = {int(rng_() & kLatMask), int(rng_() & kLatMask), int(rng_() & kLatMask)};
         const int64_t frac[3] = {randomFrac(), randomFrac(), randomFrac()};
         checkNoise(lat, frac);
     }

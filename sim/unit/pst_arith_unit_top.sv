@@ -5,39 +5,42 @@
 // WW-bit field per norm 0 euclid, 1 max_half_min, 2 l1) and a stand-alone pst_isqrt of the
 // width the euclidean norm uses, so every variant is checked in every profile.
 //
+// It also holds pst_floor_sat in five fixed formats (fs_*), tested against shiftSatSigned.
+//
 // Parameters: the profile's, as scripts/profile.py derives them (see each module's header).
+`include "pst_pkg.sv"
 `default_nettype none
 
 module pst_arith_unit_top #(
-  parameter int CoordInt       = 12,
-  parameter int CoordFrac      = 20,
-  parameter int QuadricInt     = 8,
-  parameter int QuadricFrac    = 16,
-  parameter int NoiseOutFrac   = 16,
-  parameter int AmplitudeInt   = 2,
-  parameter int AmplitudeFrac  = 16,
-  parameter int GradMatrixInt  = 8,
-  parameter int GradMatrixFrac = 16,
-  parameter int JacobianInt    = 8,
-  parameter int JacobianFrac   = 24,
-  parameter int Log2Clut       = 8,
-  parameter int WidthFrac      = 8,
-  parameter int FilterNorm     = 0,
-  parameter int FInt           = 12,
-  parameter int FFrac          = 20,
-  parameter int GradInt        = 16,
-  parameter int GradFrac       = 16,
+  parameter int CoordInt       = pst_pkg::CoordIntDefault,
+  parameter int CoordFrac      = pst_pkg::CoordFracDefault,
+  parameter int QuadricInt     = pst_pkg::QuadricIntDefault,
+  parameter int QuadricFrac    = pst_pkg::QuadricFracDefault,
+  parameter int NoiseOutFrac   = pst_pkg::NoiseOutFracDefault,
+  parameter int AmplitudeInt   = pst_pkg::AmplitudeIntDefault,
+  parameter int AmplitudeFrac  = pst_pkg::AmplitudeFracDefault,
+  parameter int GradMatrixInt  = pst_pkg::GradMatrixIntDefault,
+  parameter int GradMatrixFrac = pst_pkg::GradMatrixFracDefault,
+  parameter int JacobianInt    = pst_pkg::JacobianIntDefault,
+  parameter int JacobianFrac   = pst_pkg::JacobianFracDefault,
+  parameter int Log2Clut       = pst_pkg::Log2ClutDefault,
+  parameter int WidthFrac      = pst_pkg::WidthFracDefault,
+  parameter int FilterNorm     = pst_pkg::FilterNormDefault,
+  parameter int FInt           = pst_pkg::FIntDefault,
+  parameter int FFrac          = pst_pkg::FFracDefault,
+  parameter int GradInt        = pst_pkg::GradIntDefault,
+  parameter int GradFrac       = pst_pkg::GradFracDefault,
   // Derived widths (not profile keys).
   localparam int CW  = CoordInt + CoordFrac,             // one texture coordinate
   localparam int QW  = QuadricInt + QuadricFrac,         // one quadric coefficient
-  localparam int NW  = 4 + NoiseOutFrac,                 // noise value
-  localparam int NGW = 6 + NoiseOutFrac,                 // one noise gradient component
+  localparam int NW  = pst_pkg::NoiseIntBits + NoiseOutFrac,                 // noise value
+  localparam int NGW = pst_pkg::NoiseGradIntBits + NoiseOutFrac,                 // one noise gradient component
   localparam int AW  = AmplitudeInt + AmplitudeFrac,     // a_i
   localparam int GMW = GradMatrixInt + GradMatrixFrac,   // one GM entry
   localparam int JW  = JacobianInt + JacobianFrac,       // one Jacobian entry
   localparam int FW  = FInt + FFrac,                     // f
   localparam int GW  = GradInt + GradFrac,               // one grad component
-  localparam int WW  = Log2Clut + 2 + WidthFrac,         // W
+  localparam int WW  = Log2Clut + pst_pkg::WidthExtraIntBits + WidthFrac,         // W
   localparam int SqW = 2 * WW + 1                        // pst_filter_width's sqrt input
 ) (
   // pst_quadric
@@ -57,10 +60,10 @@ module pst_arith_unit_top #(
   // ser_adv_i).
   input  logic              clk_i,
   input  logic              rst_ni,
-  input  logic [4:0]        quad_ser_step_i,
+  input  logic [pst_pkg::StepBits-1:0] quad_ser_step_i,
   input  logic              quad_ser_adv_i,
   output logic              quad_ser_done_o,
-  input  logic [4:0]        ser_step_i,
+  input  logic [pst_pkg::StepBits-1:0] ser_step_i,
   input  logic              ser_adv_i,
   output logic [FW-1:0]     quad_ser_q_o,
   output logic [3*GW-1:0]   quad_ser_gradq_o,
@@ -75,7 +78,11 @@ module pst_arith_unit_top #(
   output logic [3*WW-1:0]   fw_w_norm_o,
   // pst_isqrt
   input  logic [SqW-1:0]    sqrt_x_i,
-  output logic [WW:0]       sqrt_y_o
+  output logic [WW:0]       sqrt_y_o,
+  // pst_floor_sat in fixed formats (not the profile's): config c's x at [64c +: InWidth],
+  // y at [64c +: OutWidth] (arith_unit_test.cpp FloorSat lists the same configs)
+  input  logic [5*64-1:0]   fs_x_i,
+  output logic [5*64-1:0]   fs_y_o
 );
 
   pst_quadric #(
@@ -107,7 +114,7 @@ module pst_arith_unit_top #(
     .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac),
     .FilterNorm(FilterNorm)
   ) u_width (
-    .clk_i, .rst_ni, .step_i (5'd0), .adv_i (1'b0), .done_o (),
+    .clk_i, .rst_ni, .step_i ('0), .adv_i (1'b0), .done_o (),
     .grad_i (fw_grad_i), .j_i (fw_j_i), .w_o (fw_w_o)
   );
 
@@ -123,7 +130,7 @@ module pst_arith_unit_top #(
   pst_filter_width #(
     .GradInt(GradInt), .GradFrac(GradFrac), .JacobianInt(JacobianInt),
     .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac),
-    .FilterNorm(0), .Serial(1'b1)
+    .FilterNorm(pst_pkg::FilterNormEuclid), .Serial(1'b1)
   ) u_width_ser_euclid (
     .clk_i, .rst_ni, .step_i (ser_step_i), .adv_i (ser_adv_i), .done_o (fw_ser_euclid_done_o),
     .grad_i (fw_grad_i), .j_i (fw_j_i), .w_o (fw_ser_euclid_w_o)
@@ -135,12 +142,29 @@ module pst_arith_unit_top #(
       .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac),
       .FilterNorm(n)
     ) u_width_n (
-      .clk_i, .rst_ni, .step_i (5'd0), .adv_i (1'b0), .done_o (),
+      .clk_i, .rst_ni, .step_i ('0), .adv_i (1'b0), .done_o (),
       .grad_i (fw_grad_i), .j_i (fw_j_i), .w_o (fw_w_norm_o[n*WW +: WW])
     );
   end
 
   pst_isqrt #(.InWidth(SqW)) u_isqrt (.x_i (sqrt_x_i), .y_o (sqrt_y_o));
+
+  // {InWidth, InFrac, OutWidth, OutFrac}: right shift with saturation, left shift into a wider
+  // format, no shift, left shift with saturation, a wide right shift.
+  localparam int FsIn[5]     = '{40, 12, 20, 10, 60};
+  localparam int FsInFrac[5] = '{20,  4,  6,  2, 30};
+  localparam int FsOut[5]    = '{16, 20, 10,  6, 48};
+  localparam int FsOutFrac[5] = '{8, 10,  6,  6, 20};
+  for (genvar c = 0; c < 5; c++) begin : g_floor_sat
+    pst_floor_sat #(
+      .InWidth (FsIn[c]), .InFrac (FsInFrac[c]), .OutWidth (FsOut[c]), .OutFrac (FsOutFrac[c])
+    ) u_fs (
+      .x_i (fs_x_i[64*c +: FsIn[c]]), .y_o (fs_y_o[64*c +: FsOut[c]])
+    );
+    assign fs_y_o[64*c + FsOut[c] +: 64 - FsOut[c]] = '0;
+    logic unused_x;
+    assign unused_x = ^fs_x_i[64*c + FsIn[c] +: 64 - FsIn[c]];
+  end
 
 endmodule
 

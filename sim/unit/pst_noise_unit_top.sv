@@ -1,23 +1,24 @@
 // Unit-test top for stages 1 and 2 (sim/unit/noise_unit_test.cpp): an octave transform and a
 // noise unit side by side with independent ports, so each is driven with its own vectors
 // (special lattice indices and fractions straight into the noise unit). Combinational.
+`include "pst_pkg.sv"
 `default_nettype none
 
 module pst_noise_unit_top #(
-  parameter int CoordInt = 12,
-  parameter int CoordFrac = 20,
-  parameter int MatrixInt = 8,
-  parameter int MatrixFrac = 16,
-  parameter int OffsetInt = 13,
-  parameter int OffsetFrac = 16,
-  parameter int NoiseLatticeFrac = 16,
-  parameter int NoiseInterp = 0,
-  parameter int NoiseCorner = 0,
-  parameter int NoiseHash = 0,
-  parameter int NoiseValueFrac = 15,
-  parameter int NoiseOutFrac = 16,
-  parameter int NoiseSteps = 1,
-  parameter int NoiseGuardBits = 4,
+  parameter int CoordInt = pst_pkg::CoordIntDefault,
+  parameter int CoordFrac = pst_pkg::CoordFracDefault,
+  parameter int MatrixInt = pst_pkg::MatrixIntDefault,
+  parameter int MatrixFrac = pst_pkg::MatrixFracDefault,
+  parameter int OffsetInt = pst_pkg::OffsetIntDefault,
+  parameter int OffsetFrac = pst_pkg::OffsetFracDefault,
+  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault,
+  parameter int NoiseInterp = pst_pkg::NoiseInterpDefault,
+  parameter int NoiseCorner = pst_pkg::NoiseCornerDefault,
+  parameter int NoiseHash = pst_pkg::NoiseHashDefault,
+  parameter int NoiseValueFrac = pst_pkg::NoiseValueFracDefault,
+  parameter int NoiseOutFrac = pst_pkg::NoiseOutFracDefault,
+  parameter int NoiseSteps = pst_pkg::NoiseStepsDefault,
+  parameter int NoiseGuardBits = pst_pkg::NoiseGuardBitsDefault,
   localparam int CW = CoordInt + CoordFrac,    // s element width
   localparam int MW = MatrixInt + MatrixFrac,  // M element width
   localparam int OW = OffsetInt + OffsetFrac,  // o element width
@@ -25,20 +26,20 @@ module pst_noise_unit_top #(
   localparam int OF = NoiseOutFrac             // fraction bits of n and grad
 ) (
   // octave transform
-  input  wire logic [3*CW-1:0]    ot_s_i,
-  input  wire logic [9*MW-1:0]    ot_m_i,
-  input  wire logic [3*OW-1:0]    ot_o_i,
-  output logic [35:0]             ot_lat_o,
+  input  logic [3*CW-1:0]    ot_s_i,
+  input  logic [9*MW-1:0]    ot_m_i,
+  input  logic [3*OW-1:0]    ot_o_i,
+  output logic [pst_pkg::LatticeWidth-1:0] ot_lat_o,
   output logic [3*LF-1:0]         ot_frac_o,
   // noise unit
-  input  wire logic               clk_i,      // pst_noise with NoiseSteps > 1
-  input  wire logic               rst_ni,
-  input  wire logic [2:0]         nz_step_i,
-  input  wire logic               nz_adv_i,
-  input  wire logic [35:0]        nz_lat_i,
-  input  wire logic [3*LF-1:0]    nz_frac_i,
-  output logic signed [4+OF-1:0]  nz_n_o,
-  output logic [3*(6+OF)-1:0]     nz_grad_o
+  input  logic               clk_i,      // pst_noise with NoiseSteps > 1
+  input  logic               rst_ni,
+  input  logic [2:0]         nz_step_i,
+  input  logic               nz_adv_i,
+  input  logic [pst_pkg::LatticeWidth-1:0] nz_lat_i,
+  input  logic [3*LF-1:0]    nz_frac_i,
+  output logic signed [pst_pkg::NoiseIntBits+OF-1:0]  nz_n_o,
+  output logic [3*(pst_pkg::NoiseGradIntBits+OF)-1:0] nz_grad_o
 );
 
   pst_octave_transform #(

@@ -1,8 +1,10 @@
 #include "driver.h"
 
+#include <iterator>
 #include <sstream>
 
 #include "clut_filter_fx.h"
+#include "contract.h"
 #include "fixed.h"
 #include "input_error.h"
 
@@ -16,19 +18,21 @@ int64_t q(double v, const FixedFormat& f) { return fx::quantize(v, f.intBits, f.
 }  // namespace
 
 int hardwareFilterKind(FilterKind k) {
+    using K = contract::FilterKind;
     switch (k) {
-        case FilterKind::None: return 0;
-        case FilterKind::MipNearest: return 1;
-        case FilterKind::MipLinear: return 2;
+        case FilterKind::None: return int(K::None);
+        case FilterKind::MipNearest: return int(K::Mip);
+        case FilterKind::MipLinear: return int(K::MipBlended);
         case FilterKind::Sat:
-        case FilterKind::Box: return 3;
+        case FilterKind::Box: return int(K::Sat);
     }
-    return 3;
+    return int(K::Sat);
 }
 
 std::pair<uint16_t, uint32_t> controlWrite(const Texture& tex, int filterKind) {
     const uint32_t clamp = tex.clut.wrap() == WrapMode::Clamp ? 1u : 0u;
-    return {0x0000, clamp | (uint32_t(filterKind) << 1)};
+    return {contract::kRegControl,
+            (clamp << contract::kRegControlClampLsb) | (uint32_t(filterKind) << contract::kRegControlKindLsb)};
 }
 
 std::string hardwareUnsupported(const Profile& p, const Texture& tex) {
@@ -50,7 +54,9 @@ TextureProgram programTexture(const Profile& p, const Texture& tex) {
     // Quadric A..J (eq. 3).
     const Quadric& qd = tex.quadric;
     const double coef[10] = {qd.A, qd.B, qd.C, qd.D, qd.E, qd.F, qd.G, qd.H, qd.I, qd.J};
-    for (int k = 0; k < 10; ++k) prog.writes.push_back({uint16_t(0x0010 + k), word(q(coef[k], p.quadric))});
+    static_assert(std::size(coef) == contract::kRegQuadricCount);
+    for (int k = 0; k < contract::kRegQuadricCount; ++k)
+        prog.writes.push_back({uint16_t(contract::kRegQuadric + k), word(q(coef[k], p.quadric))});
 
     // Octaves: M (row-major), o, a, GM = a M^T (row-major).
     prog.activeOctaves = std::min<int>(int(tex.octaves.size()), p.octaves);
@@ -58,18 +64,20 @@ TextureProgram programTexture(const Profile& p, const Texture& tex) {
     if (prog.droppedOctaves > 0)
         notes << prog.droppedOctaves << " of " << tex.octaves.size() << " octaves dropped (profile holds "
               << p.octaves << "); ";
-    prog.writes.push_back({0x0001, uint32_t(prog.activeOctaves)});
+    prog.writes.push_back({contract::kRegActive, uint32_t(prog.activeOctaves)});
     for (int i = 0; i < prog.activeOctaves; ++i) {
         const Octave& o = tex.octaves[i];
-        const uint16_t base = uint16_t(0x0100 + 32 * i);
+        const int base = contract::kRegOctave + contract::kRegOctaveStride * i;
         for (int r = 0; r < 3; ++r)
             for (int c = 0; c < 3; ++c) {
-                prog.writes.push_back({uint16_t(base + 3 * r + c), word(q(o.M[c][r], p.matrix))});
+                prog.writes.push_back({uint16_t(base + contract::kRegOctaveM + 3 * r + c), word(q(o.M[c][r], p.matrix))});
                 // (a M^T)[r][c] = a M[c][r]
-                prog.writes.push_back({uint16_t(base + 13 + 3 * r + c), word(q(o.amplitude * o.M[r][c], p.gradMatrix))});
+                prog.writes.push_back({uint16_t(base + contract::kRegOctaveGm + 3 * r + c),
+                                       word(q(o.amplitude * o.M[r][c], p.gradMatrix))});
             }
-        for (int k = 0; k < 3; ++k) prog.writes.push_back({uint16_t(base + 9 + k), word(q(o.offset[k], p.offset))});
-        prog.writes.push_back({uint16_t(base + 12), word(q(o.amplitude, p.amplitude))});
+        for (int k = 0; k < 3; ++k)
+            prog.writes.push_back({uint16_t(base + contract::kRegOctaveO + k), word(q(o.offset[k], p.offset))});
+        prog.writes.push_back({uint16_t(base + contract::kRegOctaveA), word(q(o.amplitude, p.amplitude))});
     }
 
     // Colour tables, built here (driver side) and written through the register port.

@@ -1,0 +1,113 @@
+// pst_regs: the pipeline's control, quadric and octave registers (docs/HARDWARE.md register
+// map, addresses from pst_pkg: RegControl, RegActive, RegQuadric + k, RegOctave +
+// RegOctaveStride i + k). Written through the register port only while the pipeline is idle
+// (pst_top asserts it); the colour tables at the other addresses live in pst_clut_filter.
+// Signed values are the low bits of the 32-bit word.
+//
+// Parameters:
+//   Octaves                          octave register blocks (i < Octaves).
+//   QuadricInt/Frac, MatrixInt/Frac, OffsetInt/Frac, AmplitudeInt/Frac, GradMatrixInt/Frac
+//                                    register formats (the bits kept of each word).
+//
+// Outputs (flat vectors; octave i's block at [i*W +: W], element k of a block at [k*E +: E]):
+//   clamp_o, kind_o    control: wrap mode (1 clamp) and filter kind
+//   active_o           active octave count 0..Octaves
+//   quad_o             A..J
+//   oct_m_o, oct_o_o, oct_a_o, oct_gm_o   M (row-major), o, a, GM = a M^T (row-major)
+`include "pst_pkg.sv"
+`default_nettype none
+
+module pst_regs #(
+  parameter int Octaves        = pst_pkg::OctavesDefault,
+  parameter int QuadricInt     = pst_pkg::QuadricIntDefault,
+  parameter int QuadricFrac    = pst_pkg::QuadricFracDefault,
+  parameter int MatrixInt      = pst_pkg::MatrixIntDefault,
+  parameter int MatrixFrac     = pst_pkg::MatrixFracDefault,
+  parameter int OffsetInt      = pst_pkg::OffsetIntDefault,
+  parameter int OffsetFrac     = pst_pkg::OffsetFracDefault,
+  parameter int AmplitudeInt   = pst_pkg::AmplitudeIntDefault,
+  parameter int AmplitudeFrac  = pst_pkg::AmplitudeFracDefault,
+  parameter int GradMatrixInt  = pst_pkg::GradMatrixIntDefault,
+  parameter int GradMatrixFrac = pst_pkg::GradMatrixFracDefault,
+  localparam int QW  = QuadricInt + QuadricFrac,
+  localparam int MW  = MatrixInt + MatrixFrac,
+  localparam int OW  = OffsetInt + OffsetFrac,
+  localparam int AW  = AmplitudeInt + AmplitudeFrac,
+  localparam int GMW = GradMatrixInt + GradMatrixFrac,
+  localparam int OctBits = $clog2(Octaves + 1),        // active octave count 0..Octaves
+  localparam int AB  = pst_pkg::RegAddrBits,
+  localparam int DB  = pst_pkg::RegDataBits,
+  localparam int KB  = pst_pkg::RegControlKindWidth,
+  localparam int NQ  = pst_pkg::RegQuadricCount,        // A..J
+  localparam int NM  = pst_pkg::RegOctaveMCount,        // M entries
+  localparam int NO  = pst_pkg::RegOctaveOCount,        // o entries
+  localparam int NGM = pst_pkg::RegOctaveGmCount        // GM entries
+) (
+  input  logic                       clk_i,
+  input  logic                       rst_ni,
+  input  logic                       we_i,
+  input  logic [AB-1:0]              addr_i,
+  input  logic [DB-1:0]              wdata_i,
+  output logic                       clamp_o,
+  output logic [KB-1:0]              kind_o,
+  output logic [OctBits-1:0]         active_o,
+  output logic [NQ*QW-1:0]           quad_o,
+  output logic [Octaves*NM*MW-1:0]   oct_m_o,
+  output logic [Octaves*NO*OW-1:0]   oct_o_o,
+  output logic [Octaves*AW-1:0]      oct_a_o,
+  output logic [Octaves*NGM*GMW-1:0] oct_gm_o
+);
+
+  localparam int CB = pst_pkg::RegControlBits;
+  logic [CB-1:0] ctrl_q;
+  logic unused_wdata;   // word bits above a register's format
+  assign unused_wdata = ^wdata_i;
+
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      ctrl_q   <= '0;
+      active_o <= '0;
+      quad_o   <= '0;
+    end else if (we_i) begin
+      if (addr_i == pst_pkg::RegControl) ctrl_q <= wdata_i[CB-1:0];
+      if (addr_i == pst_pkg::RegActive) active_o <= wdata_i[OctBits-1:0];
+      for (int k = 0; k < NQ; k++) begin
+        if (addr_i == pst_pkg::RegQuadric + AB'(k)) quad_o[k*QW +: QW] <= wdata_i[QW-1:0];
+      end
+    end
+  end
+  assign clamp_o = ctrl_q[pst_pkg::RegControlClampLsb];
+  assign kind_o  = ctrl_q[pst_pkg::RegControlKindLsb +: KB];
+
+  // Octave blocks (no reset: the driver writes every octave it enables).
+  always_ff @(posedge clk_i) begin
+    if (we_i) begin
+      for (int i = 0; i < Octaves; i++) begin
+        for (int k = 0; k < NM; k++) begin
+          if (addr_i == pst_pkg::RegOctave + AB'(pst_pkg::RegOctaveStride * i + pst_pkg::RegOctaveM + k))
+            oct_m_o[(i*NM+k)*MW +: MW] <= wdata_i[MW-1:0];
+        end
+        for (int k = 0; k < NGM; k++) begin
+          if (addr_i == pst_pkg::RegOctave + AB'(pst_pkg::RegOctaveStride * i + pst_pkg::RegOctaveGm + k))
+            oct_gm_o[(i*NGM+k)*GMW +: GMW] <= wdata_i[GMW-1:0];
+        end
+        for (int k = 0; k < NO; k++) begin
+          if (addr_i == pst_pkg::RegOctave + AB'(pst_pkg::RegOctaveStride * i + pst_pkg::RegOctaveO + k))
+            oct_o_o[(i*NO+k)*OW +: OW] <= wdata_i[OW-1:0];
+        end
+        if (addr_i == pst_pkg::RegOctave + AB'(pst_pkg::RegOctaveStride * i + pst_pkg::RegOctaveA))
+          oct_a_o[i*AW +: AW] <= wdata_i[AW-1:0];
+      end
+    end
+  end
+
+  // Assertions
+`ifndef SYNTHESIS
+  initial begin
+    assert (Octaves <= pst_pkg::OctavesMax) else $fatal(1, "pst_regs: too many octaves for the register map");
+  end
+`endif
+
+endmodule
+
+`default_nettype wire

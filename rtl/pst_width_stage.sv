@@ -1,0 +1,55 @@
+// pst_width_stage: the filter-width stage of pst_top (docs/HARDWARE.md stage 5) around
+// pst_filter_width: W = |grad_x f| N from grad f and the Jacobian of the fragment in [B].
+// Parallel: one cycle. Serial: the unit's steps (pst_pkg::WidthProducts products, then the
+// euclidean norm's squares and root), counted here; the fragment leaves [B] at the last step
+// (valid_o), when the next stage takes it (ready_o = done & ready_i).
+//
+// Parameters: the profile's formats and choices (pst_top's header).
+`include "pst_pkg.sv"
+`default_nettype none
+
+module pst_width_stage #(
+  parameter int Datapath     = pst_pkg::DatapathDefault,
+  parameter int FilterNorm   = pst_pkg::FilterNormDefault,
+  parameter int GradInt      = pst_pkg::GradIntDefault,
+  parameter int GradFrac     = pst_pkg::GradFracDefault,
+  parameter int JacobianInt  = pst_pkg::JacobianIntDefault,
+  parameter int JacobianFrac = pst_pkg::JacobianFracDefault,
+  parameter int Log2Clut     = pst_pkg::Log2ClutDefault,
+  parameter int WidthFrac    = pst_pkg::WidthFracDefault,
+  localparam int GW = GradInt + GradFrac,
+  localparam int JW = JacobianInt + JacobianFrac,
+  localparam int WW = Log2Clut + pst_pkg::WidthExtraIntBits + WidthFrac
+) (
+  input  logic            clk_i,
+  input  logic            rst_ni,
+  input  logic            valid_i,
+  output logic            ready_o,
+  input  logic [3*GW-1:0] grad_i,
+  input  logic [6*JW-1:0] j_i,
+  output logic            valid_o,
+  input  logic            ready_i,
+  output logic [WW-1:0]   w_o
+);
+
+  logic                         done;   // W is valid this cycle
+  logic [pst_pkg::StepBits-1:0] step_q;
+  pst_step_counter #(.Width(pst_pkg::StepBits)) u_step (
+    .clk_i, .rst_ni, .valid_i, .done_i (done), .ready_i, .step_o (step_q)
+  );
+
+  pst_filter_width #(
+    .GradInt(GradInt), .GradFrac(GradFrac), .JacobianInt(JacobianInt),
+    .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac),
+    .FilterNorm(FilterNorm), .Serial(Datapath == pst_pkg::DatapathSerial)
+  ) u_width (
+    .clk_i, .rst_ni, .step_i (step_q), .adv_i (valid_i & ~done), .done_o (done),
+    .grad_i, .j_i, .w_o
+  );
+
+  assign valid_o = valid_i & done;
+  assign ready_o = done & ready_i;
+
+endmodule
+
+`default_nettype wire
