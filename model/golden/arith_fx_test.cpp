@@ -106,7 +106,7 @@ i128 quadricEq3(const Profile& p, const int64_t s[3], const int64_t c[10]) {
     const i128 A = c[0], B = c[1], C = c[2], D = c[3], E = c[4], F = c[5], G = c[6], H = c[7], I = c[8],
                J = c[9];
     return A * x * x + 2 * B * x * y + 2 * C * x * z + E * y * y + 2 * F * y * z + H * z * z +
-           ((2 * D * x + 2 * G * y + 2 * I * z) << cf) + (J << (2 * cf));
+           (2 * D * x + 2 * G * y + 2 * I * z) * (i128(1) << cf) + J * (i128(1) << (2 * cf));  // no << of a negative (UB)
 }
 
 TEST(ArithFx, QuadricMatchesEq3Exactly) {
