@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <mutex>
+#include <sstream>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -62,6 +65,81 @@ double evalF(const Texture& tex, const glm::dvec3& s, glm::dvec3* gradS) {
     return f;
 }
 
+double octaveFade(const Octave& o, const glm::dvec3& dsdx, const glm::dvec3& dsdy) {
+    const double nu = std::max(glm::length(o.M * dsdx), glm::length(o.M * dsdy));
+    return std::clamp(2.0 - nu / kFadeStart, 0.0, 1.0);
+}
+
+bool parseBandlimit(const std::string& name, Bandlimit* out) {
+    if (name == "off") *out = Bandlimit::Off;
+    else if (name == "fade") *out = Bandlimit::Fade;
+    else if (name == "widen") *out = Bandlimit::Widen;
+    else return false;
+    return true;
+}
+
+const char* toString(Bandlimit v) {
+    switch (v) {
+    case Bandlimit::Off: return "off";
+    case Bandlimit::Fade: return "fade";
+    case Bandlimit::Widen: return "widen";
+    }
+    return "?";
+}
+
+NoiseMoments noiseMoments(const NoiseOptions& opt) {
+    static std::mutex mu;
+    static std::map<std::string, NoiseMoments> cache;
+    std::ostringstream key;
+    key << toString(opt.basis) << ' ' << toString(opt.interp) << ' ' << toString(opt.corner) << ' '
+        << toString(opt.hash) << ' ' << toString(opt.metric) << ' ' << opt.coef[0] << ' ' << opt.coef[1] << ' '
+        << opt.coef[2] << ' ' << opt.coef[3] << ' ' << opt.cell;
+    std::lock_guard<std::mutex> lock(mu);
+    auto it = cache.find(key.str());
+    if (it != cache.end()) return it->second;
+    // 65536 points of the R3 low-discrepancy sequence over a 64-cell cube.
+    const double g = 1.2207440846057596, a1 = 1 / g, a2 = 1 / (g * g), a3 = 1 / (g * g * g);
+    double sum = 0, sum2 = 0;
+    const int n = 65536;
+    for (int i = 1; i <= n; ++i) {
+        const glm::dvec3 p(std::fmod(0.5 + a1 * i, 1.0), std::fmod(0.5 + a2 * i, 1.0), std::fmod(0.5 + a3 * i, 1.0));
+        const double v = noise(64.0 * p, opt);
+        sum += v;
+        sum2 += v * v;
+    }
+    NoiseMoments m;
+    m.mean = sum / n;
+    m.sd = std::sqrt(std::max(0.0, sum2 / n - m.mean * m.mean));
+    cache[key.str()] = m;
+    return m;
+}
+
+double evalFBandlimited(const Texture& tex, const glm::dvec3& s, const glm::dvec3& dsdx,
+                        const glm::dvec3& dsdy, glm::dvec3* gradS, double* fadedSd) {
+    const NoiseMoments m = noiseMoments(tex.noise);
+    double f = tex.quadric.value(s), var = 0;
+    glm::dvec3 g = gradS ? tex.quadric.gradient(s) : glm::dvec3(0.0);
+    for (const Octave& o : tex.octaves) {
+        const double alpha = octaveFade(o, dsdx, dsdy);
+        f += o.amplitude * (1.0 - alpha) * m.mean;
+        var += std::pow(o.amplitude * (1.0 - alpha) * m.sd, 2);
+        if (alpha == 0.0) continue;
+        const double a = o.amplitude * alpha;
+        glm::dvec3 gn;
+        f += a * noise(o.M * s + o.offset, tex.noise, gradS ? &gn : nullptr);
+        if (gradS) g += a * (glm::transpose(o.M) * gn);
+    }
+    if (gradS) *gradS = g;
+    if (fadedSd) *fadedSd = std::sqrt(var);
+    return f;
+}
+
+double bandlimitedWidth(const Texture& tex, const glm::dvec3& gradS, const glm::dvec3& dsdx,
+                        const glm::dvec3& dsdy, double fadedSd) {
+    const double w = filterWidth(gradS, dsdx, dsdy, tex.norm);
+    return tex.bandlimit == Bandlimit::Widen ? std::sqrt(w * w + 12.0 * fadedSd * fadedSd) : w;
+}
+
 double filterWidth(const glm::dvec3& gradS, const glm::dvec3& dsdx, const glm::dvec3& dsdy,
                    GradNorm norm) {
     // grad_x f = (grad_s f)^T ds/dx (section 3.2), then its norm.
@@ -82,8 +160,11 @@ TextureSample shade(const Texture& tex, const glm::dvec3& s, const glm::dvec3& d
 TextureSample shade(const Texture& tex, const glm::dvec3& s, const glm::dvec3& dsdx,
                     const glm::dvec3& dsdy, FilterKind filter) {
     TextureSample r;
-    r.f = evalF(tex, s, &r.gradS);
-    r.filterWidth = filterWidth(r.gradS, dsdx, dsdy, tex.norm);
+    double sd = 0;
+    r.f = tex.bandlimit != Bandlimit::Off ? evalFBandlimited(tex, s, dsdx, dsdy, &r.gradS, &sd)
+                                          : evalF(tex, s, &r.gradS);
+    r.filterWidth = tex.bandlimit != Bandlimit::Off ? bandlimitedWidth(tex, r.gradS, dsdx, dsdy, sd)
+                                                    : filterWidth(r.gradS, dsdx, dsdy, tex.norm);
     r.rgba = tex.clut.filter(r.f, r.filterWidth, filter);  // eq. 9
     return r;
 }

@@ -43,6 +43,19 @@ enum class GradNorm {
 bool parseGradNorm(const std::string& name, GradNorm* out);  // "euclid", "max_half_min", "l1"
 const char* toString(GradNorm v);
 
+// Bandlimited octaves: off (the paper), fade (octaveFade), widen (fade, and the filter width
+// grows to sqrt(w^2 + 12 sigma^2), sigma the faded terms' standard deviation: a box of width
+// sqrt(12) sigma has the variance of what was removed).
+enum class Bandlimit { Off, Fade, Widen };
+bool parseBandlimit(const std::string& name, Bandlimit* out);  // "off", "fade", "widen"
+const char* toString(Bandlimit v);
+
+// Mean and standard deviation of a noise basis over space (sampled once per variant).
+struct NoiseMoments {
+    double mean = 0, sd = 0;
+};
+NoiseMoments noiseMoments(const NoiseOptions& opt);
+
 struct Texture {
     std::string name;
     Quadric quadric;
@@ -51,6 +64,11 @@ struct Texture {
     ColorMap clut;
     FilterKind filter = FilterKind::Sat;
     GradNorm norm = GradNorm::Euclid;
+    // Bandlimited octaves (beyond the paper; reference model only): in shade(), each octave's
+    // term and its share of grad_s f fade toward the basis's mean (0 for rayshade) as the
+    // octave's lattice passes the pixel's Nyquist limit (octaveFade); Widen also widens the
+    // colour-table filter by the faded terms' spread. Point samples (evalF) are unchanged.
+    Bandlimit bandlimit = Bandlimit::Off;
     // "FILE:LINE: FIELD" of the noise basis in its scene file (set by the parser when the basis
     // is given), so a consumer that cannot do the basis (the hardware profiles) names it.
     std::string basisSource;
@@ -67,11 +85,31 @@ struct TextureSample {
 // f and grad_s f only.
 double evalF(const Texture& tex, const glm::dvec3& s, glm::dvec3* gradS = nullptr);
 
+// The weight of octave o in a pixel whose footprint has the Jacobian columns dsdx, dsdy: the
+// octave's lattice (T_i s = M s + o) moves nu = max(|M dsdx|, |M dsdy|) cells per pixel; below
+// kFadeStart cells per pixel the term is kept whole, above 2 kFadeStart it is removed, linear in
+// between. A lattice cell holds about one period of the noise, and Nyquist asks for 2 pixels
+// per period: the term goes between half a cell and one cell per pixel.
+constexpr double kFadeStart = 0.5;
+double octaveFade(const Octave& o, const glm::dvec3& dsdx, const glm::dvec3& dsdy);
+
+// f and grad_s f with every octave's term a_i n faded by alpha = octaveFade toward the basis's
+// mean, a_i (alpha n + (1 - alpha) mean), its gradient share alpha a_i M^T grad n (the
+// bandlimited texture); fadedSd: the standard deviation of what was removed,
+// sqrt(sum ((1 - alpha) a_i sd)^2).
+double evalFBandlimited(const Texture& tex, const glm::dvec3& s, const glm::dvec3& dsdx,
+                        const glm::dvec3& dsdy, glm::dvec3* gradS = nullptr, double* fadedSd = nullptr);
+// The filter width of the bandlimited texture: filterWidth of its gradient, widened by fadedSd
+// for Bandlimit::Widen.
+double bandlimitedWidth(const Texture& tex, const glm::dvec3& gradS, const glm::dvec3& dsdx,
+                        const glm::dvec3& dsdy, double fadedSd);
+
 // The filter width from grad_s f and the Jacobian columns dsdx, dsdy.
 double filterWidth(const glm::dvec3& gradS, const glm::dvec3& dsdx, const glm::dvec3& dsdy,
                    GradNorm norm);
 
-// The whole pipeline for one fragment with the texture's own filter kind.
+// The whole pipeline for one fragment with the texture's own filter kind (bandlimited octaves
+// when tex.bandlimit).
 TextureSample shade(const Texture& tex, const glm::dvec3& s, const glm::dvec3& dsdx,
                     const glm::dvec3& dsdy);
 // Same with the filter kind given (e.g. FilterKind::None for the unfiltered image).

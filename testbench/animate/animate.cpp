@@ -89,7 +89,9 @@ double temporalRms(const Image& prev, const Image& cur, const Image& truthPrev, 
 }
 
 int runAnimate(const AnimateArgs& a) {
-    const Scene still = loadScene(a.scene, a.size, a.size);
+    Scene still = loadScene(a.scene, a.size, a.size);
+    if (!a.bandlimit.empty())
+        for (auto& t : still.textures) parseBandlimit(a.bandlimit, &t.bandlimit);
     const std::string stem = fs::path(a.scene).stem().string();
     if (still.animation.empty())
         throw InputError(a.scene + ": animation: the scene has no [animation] time track (scenes/README.md)");
@@ -124,7 +126,9 @@ int runAnimate(const AnimateArgs& a) {
     const double steps = double(frames) * (1 + profiles.size());
     for (int k = 0; k < frames; ++k) {
         const double t = frames > 1 ? double(k) / double(frames - 1) : 0.0;
-        const Scene scene = loadSceneAt(a.scene, t, a.size, a.size);
+        Scene scene = loadSceneAt(a.scene, t, a.size, a.size);
+        if (!a.bandlimit.empty())
+            for (auto& tx : scene.textures) parseBandlimit(a.bandlimit, &tx.bandlimit);
         RenderOptions ro;
         ro.truthSamples = a.truth;
         ro.threads = a.threads;
@@ -169,6 +173,7 @@ int runAnimate(const AnimateArgs& a) {
     nlohmann::json j;
     j["scene"] = a.scene;
     j["title"] = still.title;
+    j["bandlimit"] = a.bandlimit;
     j["frames"] = frames;
     j["fps"] = fps;
     j["width"] = still.camera.width;

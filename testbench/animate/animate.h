@@ -20,6 +20,7 @@ struct AnimateArgs {
     int threads = 0;
     double fps = 0;              // 0: the scene's [animation] fps
     bool video = true;
+    std::string bandlimit;       // "": as the scene says; else every texture's (off | fade | widen)
     std::vector<std::string> profiles;
     std::string model = "rtl";   // rtl | golden
     SimOptions sim;

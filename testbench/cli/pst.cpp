@@ -42,6 +42,7 @@ struct RenderArgs {
     int size = 0, width = 0, height = 0, truth = 0, threads = 0;
     uint64_t seed = 1;
     bool quiet = false;
+    std::string bandlimit;    // every texture's bandlimit (off | fade | widen; reference model only)
 };
 
 // Progress on stderr: one rewritten line on a terminal, a line per stage otherwise.
@@ -140,6 +141,8 @@ std::string unsupportedTexture(const Scene& scene, const Profile& p) {
 int runHardwareRender(const RenderArgs& a, const HwArgs& hw) {
     const int w = a.size ? a.size : a.width, h = a.size ? a.size : a.height;
     Scene scene = loadScene(a.scene, w, h);
+    if (!a.bandlimit.empty())
+        for (auto& t : scene.textures) parseBandlimit(a.bandlimit, &t.bandlimit);
     const std::string stem = fs::path(a.scene).stem().string();
     int rc = 0;
     std::vector<std::string> pageArgs;
@@ -278,6 +281,8 @@ int runRandom(const HwArgs& hw, RandomRegressOptions o, bool quiet, const std::s
 int runRender(const RenderArgs& a) {
     const int w = a.size ? a.size : a.width, h = a.size ? a.size : a.height;
     Scene scene = loadScene(a.scene, w, h);
+    if (!a.bandlimit.empty())
+        for (auto& t : scene.textures) parseBandlimit(a.bandlimit, &t.bandlimit);
     const std::string stem = fs::path(a.scene).stem().string();
     const fs::path dir = a.outDir.empty() ? fs::path("out") / stem : fs::path(a.outDir);
 
@@ -417,6 +422,8 @@ int main(int argc, char** argv) {
     render->add_option("--seed", ra.seed, "Jitter seed of the ground truth");
     render->add_option("-j,--threads", ra.threads, "Threads (default: all cores)")->check(CLI::Range(0, 256));
     render->add_flag("-q,--quiet", ra.quiet, "No progress on stderr");
+    render->add_option("--bandlimit", ra.bandlimit, "Every texture's bandlimited octaves: off, fade or widen (reference model only)")
+        ->check(CLI::IsMember({"off", "fade", "widen"}));
 
     HwArgs hw;
     auto addSimOptions = [&hw](CLI::App* sc) {
@@ -495,6 +502,8 @@ int main(int argc, char** argv) {
     animate->add_option("-j,--threads", an.threads, "Threads (default: all cores)")->check(CLI::Range(0, 256));
     bool noVideo = false, animQuiet = false;
     animate->add_flag("--no-video", noVideo, "PNG frames and flicker.json only");
+    animate->add_option("--bandlimit", an.bandlimit, "Every texture's bandlimited octaves: off, fade or widen (reference model only)")
+        ->check(CLI::IsMember({"off", "fade", "widen"}));
     animate->add_flag("-q,--quiet", animQuiet, "No progress on stderr");
 
     try {

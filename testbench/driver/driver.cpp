@@ -36,6 +36,9 @@ std::pair<uint16_t, uint32_t> controlWrite(const Texture& tex, int filterKind) {
 }
 
 std::string hardwareUnsupported(const Profile& p, const Texture& tex) {
+    if (tex.bandlimit != Bandlimit::Off)
+        return "texture '" + tex.name + "': bandlimit: bandlimited octaves are in the reference model only (profile '" +
+               p.name + "' has no unit for them yet); render it without --profile";
     if (tex.noise.basis == NoiseBasis::Rayshade) return "";
     const std::string where =
         tex.basisSource.empty() ? "texture '" + tex.name + "': noise.basis" : tex.basisSource;

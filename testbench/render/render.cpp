@@ -103,8 +103,11 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
                 const Texture& tex = scene.textures[scene.objects[fr.object].texture];
                 glm::dvec3 gradS;
                 const double f = evalF(tex, fr.s, &gradS);
-                const double w = filterWidth(gradS, fr.dsdx, fr.dsdy, tex.norm);
-                over(res.filtered.pixel(x, y), tex.clut.filter(f, w, tex.filter));
+                double fb = f, sd = 0;  // bandlimited octaves: only the filtered image
+                if (tex.bandlimit != Bandlimit::Off) fb = evalFBandlimited(tex, fr.s, fr.dsdx, fr.dsdy, &gradS, &sd);
+                const double w = tex.bandlimit != Bandlimit::Off ? bandlimitedWidth(tex, gradS, fr.dsdx, fr.dsdy, sd)
+                                                                 : filterWidth(gradS, fr.dsdx, fr.dsdy, tex.norm);
+                over(res.filtered.pixel(x, y), tex.clut.filter(fb, w, tex.filter));
                 over(res.unfiltered.pixel(x, y), tex.clut.sample(f));
                 if (l == 0) res.filterWidth.pixel(x, y)[0] = float(w * tex.clut.size());
                 ++n;

@@ -192,7 +192,7 @@ ColorMap parseColorMap(const Ctx& c, const toml::table& t, const std::string& pa
 
 // --- Texture block (eq. 1): quadric, octaves, noise variant, filter, colour map -----------
 Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string& path) {
-    checkKeys(c, t, path, {"quadric", "octaves", "noise", "filter", "norm", "colormap"});
+    checkKeys(c, t, path, {"quadric", "octaves", "noise", "filter", "norm", "colormap", "bandlimit"});
     Texture tex;
     if (const toml::node* qn = find(t, "quadric")) {
         const std::string qp = join(path, "quadric");
@@ -270,6 +270,7 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
             c.fail(find(*nt, "coef") ? find(*nt, "coef") : nn, join(np, "coef"),
                    "every coefficient and cell are 0: the basis would be constant");
     }
+    tex.bandlimit = getEnum(c, t, path, "bandlimit", tex.bandlimit, parseBandlimit, "off, fade or widen");
     tex.filter = getEnum(c, t, path, "filter", tex.filter, parseFilterKind, "none, mip, mip_linear, sat or box");
     tex.norm = getEnum(c, t, path, "norm", tex.norm, parseGradNorm, "euclid, max_half_min or l1");
     tex.clut = parseColorMap(c, requireTable(c, t, path, "colormap"), join(path, "colormap"));

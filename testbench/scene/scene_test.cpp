@@ -161,6 +161,16 @@ TEST(Scene, NoiseBasis) {
     expectError(withNoise("{ basis = \"worley\", seed = 1 }"), {"bad.toml:9:", "textures.t.noise.seed", "unknown key"});
 }
 
+TEST(Scene, Bandlimit) {
+    std::string text = kMinimal;
+    EXPECT_EQ(parseScene(text, "min.toml").textures[0].bandlimit, Bandlimit::Off);
+    text.insert(text.find("colormap ="), "bandlimit = \"widen\"\n");
+    EXPECT_EQ(parseScene(text, "min.toml").textures[0].bandlimit, Bandlimit::Widen);
+    std::string bad = kMinimal;
+    bad.insert(bad.find("colormap ="), "bandlimit = \"on\"\n");
+    expectError(bad, {"bad.toml:9: textures.t.bandlimit: unknown value 'on' (expected off, fade or widen)"});
+}
+
 TEST(Scene, TextureBlockFile) {
     const std::string text = R"(
 quadric = { A = 50.0, E = 50.0 }
