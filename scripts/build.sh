@@ -8,6 +8,10 @@ GEN=()
 if command -v ninja >/dev/null 2>&1; then GEN=(-G Ninja); fi
 if [ ! -f build/CMakeCache.txt ]; then
   cmake -S . -B build "${GEN[@]}" -DCMAKE_BUILD_TYPE=Release
+else
+  # Re-configure every time (a few seconds): after a pull that adds sources, ninja's own
+  # build.ninja regeneration could link a tool (pst_roms) against a stale library first.
+  cmake -S . -B build >/dev/null
 fi
 if [ $# -gt 0 ]; then
   cmake --build build -j"$(nproc)" --target "$@"
