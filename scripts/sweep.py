@@ -59,7 +59,8 @@ from pstlib.paths import ROOT
 from pstlib.plots import plot_all
 from pstlib.results import PSNR_CAP, psnr_vs_base, row_of, rtl_subset, summarize
 from pstlib.rtlcheck import rtl_check
-from pstlib.runner import STOP, read_json, reusable, run_point, run_points, say, stop_children, synth_cache_valid
+from pstlib.runner import (STOP, read_json, reusable, run_point, run_points, say, stop_children, synth_cache_valid,
+                           synth_key)
 from pstlib.sweep import DEFAULT_SCENES, KNOBS, QUICK, ident, make_points, parse_values
 from pstlib.sweep_report import write_reports
 
@@ -168,7 +169,8 @@ def main(argv=None) -> int:
     def cached(pt):
         r = read_json(out / "results" / f"{pt.name}.json")
         synth_to_do = lambda: not a.no_synth or synth_cache_valid(a.synth_dir / f"{pt.synth_name}.json", pt.profile)
-        return r if reusable(r, pt, settings, a.scene_files, a.retry_failed, synth_to_do) else None
+        key = None if pt.knob == "filter" else synth_key(pt.profile)
+        return r if reusable(r, pt, settings, a.scene_files, a.retry_failed, synth_to_do, key) else None
 
     def report(pt, r, how):
         done[0] += 1

@@ -151,9 +151,11 @@ def synth_cache_valid(synth_json: pathlib.Path, profile: pathlib.Path, inputs=No
     return not any(d.stat().st_mtime > t for d in [profile, *inputs])
 
 
-def synth_record(sha: str, sj: pathlib.Path) -> dict:
+def synth_record(sha: str, sj: pathlib.Path, key=None) -> dict:
+    """What a point's result keeps of its synthesis; KEY (synth_key of the profile when it was
+    recorded) lets a resumed sweep see that the RTL or the synthesis flow changed since."""
     s = json.loads(sj.read_text())
-    return {"sha": sha, "file": str(sj), "logic_ge": s["logic_ge"],
+    return {"sha": sha, "key": key, "file": str(sj), "logic_ge": s["logic_ge"],
             "rom_bits": s.get("rom_bits"), "ram_bits": s.get("ram_bits"),
             "flip_flops": s.get("flip_flops"), "yosys_seconds": s.get("yosys_seconds"),
             "blocks": {b: v.get("logic_ge") for b, v in s.get("blocks", {}).items()}}
@@ -170,11 +172,19 @@ def scene_record(summary: dict) -> dict:
     return {k: summary.get(k) for k in SUMMARY_KEYS}
 
 
-def reusable(r, pt, settings: dict, scenes, retry_failed: bool, synth_to_do) -> bool:
+def synth_current(r: dict, pt, key=None) -> bool:
+    """R's synthesis record stands for point PT: same profile and, when KEY (the synth_key now) is
+    given, the same RTL and synthesis flow as when it was recorded."""
+    syn = r.get("synth")
+    return bool(syn) and syn.get("sha") == pt.profile_sha and (key is None or syn.get("key") == key)
+
+
+def reusable(r, pt, settings: dict, scenes, retry_failed: bool, synth_to_do, key=None) -> bool:
     """A stored result R (None or the parsed results/<name>.json) can stand for point PT as it is:
     same profile text and render settings, every scene rendered, not failed (unless failures are
     kept), and no synthesis to add (synth_to_do(): a synthesis would run or a cached one be picked
-    up)."""
+    up). With KEY (synth_key of the profile now), a synthesis recorded under another RTL or flow is
+    one to add again."""
     if not isinstance(r, dict):
         return False
     if r.get("profile_sha") != pt.profile_sha or r.get("settings") != settings:
@@ -183,8 +193,7 @@ def reusable(r, pt, settings: dict, scenes, retry_failed: bool, synth_to_do) -> 
         return False
     if r.get("status") != "ok":
         return not retry_failed
-    has_synth = r.get("synth") and r["synth"].get("sha") == pt.profile_sha
-    return pt.knob == "filter" or bool(has_synth) or not synth_to_do()
+    return pt.knob == "filter" or synth_current(r, pt, key) or not synth_to_do()
 
 
 def read_json(path: pathlib.Path):
@@ -227,7 +236,8 @@ def run_point(pt, a, out: pathlib.Path) -> dict:
     res["render_seconds"] = round(time.time() - t0, 1) if did else res.get("render_seconds")
     # 2. Synthesis (cached in out/synth/<name>.json).
     res["synth_note"] = None
-    have = res.get("synth") and res["synth"].get("sha") == pt.profile_sha
+    key = None if pt.knob == "filter" else synth_key(pt.profile)
+    have = synth_current(res, pt, key)
     sj = a.synth_dir / f"{pt.synth_name}.json"
     if not a.no_synth and pt.knob != "filter" and not have:
         if synth_cache_valid(sj, pt.profile):
@@ -238,11 +248,11 @@ def run_point(pt, a, out: pathlib.Path) -> dict:
                 res["status"] = "failed"
                 res["error"] = err
                 return res
-        res["synth"] = synth_record(pt.profile_sha, sj)
+        res["synth"] = synth_record(pt.profile_sha, sj, key)
     elif have:
         res["synth_note"] = "synth cached"
     elif a.no_synth and pt.knob != "filter" and synth_cache_valid(sj, pt.profile):
-        res["synth"] = synth_record(pt.profile_sha, sj)     # free: already synthesized
+        res["synth"] = synth_record(pt.profile_sha, sj, key)     # free: already synthesized
         res["synth_note"] = "synth cached"
     return res
 

@@ -49,6 +49,16 @@ def test_missing_synthesis_reruns_only_when_there_is_one_to_run_or_pick_up():
     assert runner.reusable(r, point(knob="filter"), SETTINGS, ["marble"], False, never)
 
 
+def test_synthesis_recorded_under_another_rtl_or_flow_is_stale():
+    r = result(synth={"sha": "abc", "key": {"profile": "p", "rtl": "old"}, "logic_ge": 1000})
+    now = {"profile": "p", "rtl": "new"}
+    assert not runner.reusable(r, point(), SETTINGS, ["marble"], False, lambda: True, now)
+    assert runner.reusable(r, point(), SETTINGS, ["marble"], False, never, {"profile": "p", "rtl": "old"})
+    # a record from before keys were stored counts as stale once a key is asked for
+    assert not runner.reusable(result(), point(), SETTINGS, ["marble"], False, lambda: True, now)
+    assert runner.reusable(r, point(knob="filter"), SETTINGS, ["marble"], False, never, now)
+
+
 def test_synth_cache(tmp_path):
     prof = tmp_path / "p.toml"
     prof.write_text("# one\n[noise]\nout_frac = 8\n")
@@ -80,8 +90,8 @@ def test_synth_record(tmp_path):
     sj = tmp_path / "x.json"
     sj.write_text(json.dumps({"logic_ge": 98200, "rom_bits": 4096, "flip_flops": 10,
                               "blocks": {"noise": {"logic_ge": 40000}}}))
-    r = runner.synth_record("abc", sj)
-    assert r == {"sha": "abc", "file": str(sj), "logic_ge": 98200, "rom_bits": 4096, "ram_bits": None,
+    r = runner.synth_record("abc", sj, {"profile": "p", "rtl": "r"})
+    assert r == {"sha": "abc", "key": {"profile": "p", "rtl": "r"}, "file": str(sj), "logic_ge": 98200, "rom_bits": 4096, "ram_bits": None,
                  "flip_flops": 10, "yosys_seconds": None, "blocks": {"noise": 40000}}
 
 
