@@ -5,7 +5,7 @@
 #      against the golden model, with the images
 #   2b. the seascape fly-in (pst animate, 24 frames at 64x64): webm videos, out/flicker.md
 #   3. silicon figures of both profiles (OSU018 area, OpenSTA timing, memories), Figures 10
-#      and 11, a quick precision sweep (Flicker: temporalRms unit test, scripts/pstlib/flicker.py (table, plot; pytest) and scripts/flicker.py; ctests cli_animate_tiny and flicker_pytest; run.sh: the seascape fly-in at 64x64 (24 frames) -> out/flicker.md; docs)
+#      and 11, a quick precision sweep
 #   4. out/report.md and out/report.html (the same data; the HTML page has an image viewer per
 #      scene and sortable tables, opens from file://), the pages a designer opens first
 #   5. the figures against scripts/synth/baseline.json (fails on a move > 2 %)
