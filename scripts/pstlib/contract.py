@@ -315,6 +315,21 @@ def _regs(c: Contract) -> list[tuple[str, dict]]:
     return [(n, r) for n, r in c.registers.items() if isinstance(r, dict)]
 
 
+def _register_constants(c: Contract):
+    """Per register, what both the SV package and the C++ header declare: (comment, CamelName,
+    address, groups), a group being the (name, value) constants that C++ puts on one line."""
+    for name, r in _regs(c):
+        n = camel(name)
+        groups = [[(f"Reg{n}{k.capitalize()}", r[k])] for k in ("count", "stride", "bits") if k in r]
+        for f in r.get("fields", []):
+            fn = camel(f["name"])
+            if "lsb" in f:
+                groups.append([(f"Reg{n}{fn}Lsb", f["lsb"]), (f"Reg{n}{fn}Width", f["width"])])
+            else:
+                groups.append([(f"Reg{n}{fn}", f["offset"]), (f"Reg{n}{fn}Count", f["count"])])
+        yield f"{_address_text(name, r)}: {r['doc']}", n, r["addr"], groups
+
+
 def _address_text(name: str, r: dict) -> str:
     a = f"0x{r['addr']:04x}"
     if name == "quadric":
@@ -362,24 +377,10 @@ def sv_package(c: Contract) -> str:
           f"  localparam int RegAddrBits = {c.registers['addr_bits']};",
           f"  localparam int RegDataBits = {c.registers['data_bits']};"]
     ab = c.registers["addr_bits"]
-    for name, r in _regs(c):
-        n = camel(name)
-        L.append(f"  // {_address_text(name, r)}: {r['doc']}")
-        L.append(f"  localparam logic [{ab - 1}:0] Reg{n} = {ab}'h{r['addr']:04x};")
-        if "count" in r:
-            L.append(f"  localparam int Reg{n}Count = {r['count']};")
-        if "stride" in r:
-            L.append(f"  localparam int Reg{n}Stride = {r['stride']};")
-        if "bits" in r:
-            L.append(f"  localparam int Reg{n}Bits = {r['bits']};")
-        for f in r.get("fields", []):
-            fn = camel(f["name"])
-            if "lsb" in f:
-                L.append(f"  localparam int Reg{n}{fn}Lsb = {f['lsb']};")
-                L.append(f"  localparam int Reg{n}{fn}Width = {f['width']};")
-            else:
-                L.append(f"  localparam int Reg{n}{fn} = {f['offset']};")
-                L.append(f"  localparam int Reg{n}{fn}Count = {f['count']};")
+    for comment, n, addr, groups in _register_constants(c):
+        L.append(f"  // {comment}")
+        L.append(f"  localparam logic [{ab - 1}:0] Reg{n} = {ab}'h{addr:04x};")
+        L += [f"  localparam int {k} = {v};" for group in groups for k, v in group]
     for name, values in c.enums.items():
         L.append(f"  // {name}")
         for i, v in enumerate(values):
@@ -483,22 +484,10 @@ def cpp_header(c: Contract) -> str:
     L.append("// Register map (docs/HARDWARE.md).")
     L.append(f"inline constexpr int kRegAddrBits = {c.registers['addr_bits']};")
     L.append(f"inline constexpr int kRegDataBits = {c.registers['data_bits']};")
-    for name, r in _regs(c):
-        n = camel(name)
-        L.append(f"// {_address_text(name, r)}: {r['doc']}")
-        L.append(f"inline constexpr uint16_t kReg{n} = 0x{r['addr']:04x};")
-        if "count" in r:
-            L.append(f"inline constexpr int kReg{n}Count = {r['count']};")
-        if "stride" in r:
-            L.append(f"inline constexpr int kReg{n}Stride = {r['stride']};")
-        if "bits" in r:
-            L.append(f"inline constexpr int kReg{n}Bits = {r['bits']};")
-        for f in r.get("fields", []):
-            fn = camel(f["name"])
-            if "lsb" in f:
-                L.append(f"inline constexpr int kReg{n}{fn}Lsb = {f['lsb']}, kReg{n}{fn}Width = {f['width']};")
-            else:
-                L.append(f"inline constexpr int kReg{n}{fn} = {f['offset']}, kReg{n}{fn}Count = {f['count']};")
+    for comment, n, addr, groups in _register_constants(c):
+        L.append(f"// {comment}")
+        L.append(f"inline constexpr uint16_t kReg{n} = 0x{addr:04x};")
+        L += ["inline constexpr int " + ", ".join(f"k{k} = {v}" for k, v in group) + ";" for group in groups]
     for name, values in c.enums.items():
         L.append(f"enum class {camel(name)} : int {{ {', '.join(camel(v) for v in values)} }};")
     L += ["", "// Fixed facts of the datapath."]
