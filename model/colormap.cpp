@@ -23,6 +23,7 @@ bool parseFilterKind(const std::string& name, FilterKind* out) {
     else if (name == "mip_linear") *out = FilterKind::MipLinear;
     else if (name == "sat") *out = FilterKind::Sat;
     else if (name == "box") *out = FilterKind::Box;
+    else if (name == "trapezoid") *out = FilterKind::Trapezoid;
     else return false;
     return true;
 }
@@ -36,6 +37,7 @@ const char* toString(FilterKind v) {
     case FilterKind::MipLinear: return "mip_linear";
     case FilterKind::Sat: return "sat";
     case FilterKind::Box: return "box";
+    case FilterKind::Trapezoid: return "trapezoid";
     }
     return "?";
 }
@@ -121,6 +123,7 @@ glm::dvec4 ColorMap::filter(double f, double w, FilterKind kind) const {
     case FilterKind::MipLinear: return filterMip(f, w, true);
     case FilterKind::Sat: return filterSat(f, w);
     case FilterKind::Box: return filterBox(f, w);
+    case FilterKind::Trapezoid: return filterBox(f, w);  // one width: the box
     }
     return sample(f);
 }
@@ -264,6 +267,74 @@ glm::dvec4 ColorMap::filterBox(double f, double w) const {
     const glm::dvec4 sum = (double(ia + 1) - a) * at(ia) + sumEntries(ia + 1, ib - 1) +
                            (b - double(ib)) * at(ib);
     return sum / (b - a);
+}
+
+// ---- exact trapezoid (the pixel footprint of a linear f) -------------------------------------
+
+glm::dvec4 ColorMap::rampIntegral(double s, double e, double b) const {
+    // Entry i covers [i, i + 1): its part [p, q] of [s, e] adds c_i (q - p) (b - (p + q) / 2).
+    glm::dvec4 sum(0.0);
+    auto walk = [&](double p0, double q0) {
+        if (!(q0 > p0)) return;
+        for (long long i = floorLL(p0); double(i) < q0; ++i) {
+            const double p = std::max(p0, double(i)), q = std::min(q0, double(i + 1));
+            if (q > p) sum += at(i) * ((q - p) * (b - 0.5 * (p + q)));
+        }
+    };
+    if (wrap_ == WrapMode::Mod) {
+        walk(s, e);  // e - s < N: at most N + 1 entries
+        return sum;
+    }
+    const double N = double(size());
+    auto constant = [&](double p, double q, const glm::dvec4& c) {
+        if (q > p) sum += c * ((q - p) * (b - 0.5 * (p + q)));
+    };
+    constant(s, std::min(e, 0.0), clut_[0]);       // below the table
+    walk(std::max(s, 0.0), std::min(e, N));         // inside
+    constant(std::max(s, N), e, clut_[size() - 1]);  // above
+    return sum;
+}
+
+glm::dvec4 ColorMap::filterTrapezoid(double f, double wx, double wy) const {
+    // With a = max(Wx, Wy), b = min(Wx, Wy), c the extended map and S1' = c, the footprint mean is
+    //   (1/b) int_{u-b/2}^{u+b/2} box_a(v) dv,  box_a(v) = (S1(v + a/2) - S1(v - a/2)) / a,
+    // and int_al^{al+b} S1(v + h) dv = b S1(al + h) + J(al + h, al + h + b) with
+    // J(s, e) = int_s^e (S1(x) - S1(s)) dx = int_s^e c(t) (e - t) dt. Hence, with al = u - b/2,
+    //   result = box_a(al) + (J(al + a/2, al + a/2 + b) - J(al - a/2, al - a/2 + b)) / (a b):
+    // filterBox's closed form plus two local integrals over b-long spans (no cancellation of
+    // large twice-summed values; b = 0 is the box exactly).
+    if (clut_.empty()) return kBlack;
+    const double n = double(size());
+    const double Wa = tableWidth(wx, size()), Wb = tableWidth(wy, size());
+    const double a = std::max(Wa, Wb), b = std::min(Wa, Wb);
+    if (a <= 0.0) return sample(f);
+    double u = tableCoord(f, size());
+    if (wrap_ == WrapMode::Mod) u -= n * std::floor(u / n);  // exact f mod 1
+    const double al = u - 0.5 * b;
+    const glm::dvec4 box = filterBox(al / n, a / n);
+    if (b <= 0.0) return box;
+
+    // J over a span of length b: in mod mode whole periods in closed form, the rest walked.
+    auto J = [&](double s) -> glm::dvec4 {
+        if (wrap_ == WrapMode::Mod) s -= n * std::floor(s / n);  // J is periodic in s
+        const double e = s + b;
+        if (wrap_ == WrapMode::Clamp) return rampIntegral(s, e, e);
+        const double q = std::floor(b / n), r = b - q * n;
+        glm::dvec4 j = rampIntegral(s, s + r, e);  // the remainder [s, s + r)
+        if (q > 0) {
+            // Period k (k = 0..q-1) starts at s' = s + r + k N; there e - t = (q - k) N - x for
+            // t = s' + x, so it adds (q - k) N T - M1 with T the period's sum and
+            // M1 = int_0^N x c(s' + x) dx (the same for every period).
+            const double s0 = s + r;
+            const glm::dvec4 T = csat_.back();
+            // rampIntegral(s0, s0 + N, s0 + N) = int c(t) (s0 + N - t) dt = N T - M1.
+            const glm::dvec4 M1 = n * T - rampIntegral(s0, s0 + n, s0 + n);
+            j += (0.5 * q * (q + 1) * n) * T - q * M1;
+        }
+        return j;
+    };
+    const glm::dvec4 jHi = J(al + 0.5 * a), jLo = J(al - 0.5 * a);
+    return box + (jHi - jLo) / (a * b);
 }
 
 }  // namespace pst

@@ -12,6 +12,12 @@
 // - Mip: level L = floor(lg W) (clamped to [0, lg N]), entry floor(u / 2^L) of that level
 //   extended by mod/clamp at its own size N >> L; W <= 1 gives the point sample. Blended:
 //   lerp to level L+1 with t = lg W - L.
+// - Trapezoid (beyond the paper; filterTrapezoid): the exact mean of the extended map over the
+//   distribution of f inside a square pixel when f is linear there, f + X + Y with X, Y uniform
+//   of widths Wx = |g_x| N and Wy = |g_y| N: the box of width Wx convolved with the box of width
+//   Wy, a trapezoid (a triangle when Wx = Wy). Its variance (Wx^2 + Wy^2) / 12 is the box's of
+//   width sqrt(Wx^2 + Wy^2) (the paper's euclidean w); the shape differs. Given one width only
+//   (filter(f, w, Trapezoid)) it is the box.
 // Robustness: u = f N is clamped to [-2^52, 2^52] (NaN -> 0) and W to [0, 2^53] before any
 // floor, so no input is UB; w <= 0 or NaN gives the point sample. An empty
 // (default-constructed) map returns transparent black (0, 0, 0, 0).
@@ -35,10 +41,12 @@ enum class FilterKind {
     MipLinear,   // same, blended linearly with the next coarser level
     Sat,         // summed-area colour table with the paper's integer indices (eq. 13-15)
     Box,         // exact integral of the piecewise-constant map over [f - w/2, f + w/2]
+    Trapezoid,   // exact integral over the pixel footprint's distribution of f (filterTrapezoid)
 };
 
 bool parseWrapMode(const std::string& name, WrapMode* out);      // "mod", "clamp"
-bool parseFilterKind(const std::string& name, FilterKind* out);  // "none", "mip", "mip_linear", "sat", "box"
+// "none", "mip", "mip_linear", "sat", "box", "trapezoid"
+bool parseFilterKind(const std::string& name, FilterKind* out);
 const char* toString(WrapMode v);
 const char* toString(FilterKind v);
 
@@ -65,6 +73,9 @@ public:
     glm::dvec4 filterMip(double f, double w, bool blend) const;  // section 3.3.1
     glm::dvec4 filterSat(double f, double w) const;              // section 3.3.2, every case
     glm::dvec4 filterBox(double f, double w) const;              // exact integral
+    // Exact mean over the trapezoid of the box widths wx, wy (colour-index units, any order);
+    // wx = wy = 0 gives the point sample, one of them 0 the box of the other.
+    glm::dvec4 filterTrapezoid(double f, double wx, double wy) const;
     // The paper's alternative to the case analysis: one 3N-long summed table over entry
     // indices -N..2N-1 of the extended map (see sat3N()); same result as filterSat.
     glm::dvec4 filterSat3N(double f, double w) const;
@@ -80,6 +91,10 @@ public:
     const std::vector<glm::dvec4>& sat3N() const { return csat3_; }
 
 private:
+    // J(s, e, b) = integral over t in [s, e] of c(t) (b - t) dt for the extended map, for
+    // e - s < N (mod) or any span (clamp); walks the entries inside the table.
+    glm::dvec4 rampIntegral(double s, double e, double b) const;
+
     std::vector<glm::dvec4> clut_;
     std::vector<std::vector<glm::dvec4>> mip_;
     std::vector<glm::dvec4> csat_;

@@ -1,10 +1,12 @@
 // Tests of the colour map filters against hand-computed values and brute-force averages.
 #include "colormap.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <tuple>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -239,6 +241,89 @@ TEST(ColorMap, FiltersMatchBruteForce) {
         }
 }
 
+// Trapezoid: the mean of bruteBox(width Wa) over centres in [u - Wb/2, u + Wb/2]. bruteBox is
+// linear in the centre between the breakpoints k +- Wa/2 (k integer), so the trapezoid rule over
+// the breakpoints is exact.
+glm::dvec4 bruteTrapezoid(const std::vector<glm::dvec4>& e, WrapMode wrap, double f, double wa, double wb) {
+    const double n = double(e.size()), u = f * n, Wa = wa * n, Wb = wb * n;
+    if (Wb <= 0) return bruteBox(e, wrap, f, wa);
+    const double lo = u - Wb / 2, hi = u + Wb / 2;
+    std::vector<double> xs{lo, hi};
+    for (double h : {Wa / 2, -Wa / 2})
+        for (double k = std::ceil(lo - h); k + h < hi; ++k) xs.push_back(k + h);
+    std::sort(xs.begin(), xs.end());
+    glm::dvec4 sum(0.0);
+    for (size_t i = 0; i + 1 < xs.size(); ++i) {
+        const double a = xs[i], b = xs[i + 1];
+        if (b > a) sum += 0.5 * (b - a) * (bruteBox(e, wrap, a / n, wa) + bruteBox(e, wrap, b / n, wa));
+    }
+    return sum / Wb;
+}
+
+TEST(ColorMap, TrapezoidMatchesBruteForce) {
+    std::mt19937_64 rng(77);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    for (int n : {1, 2, 8, 64})
+        for (WrapMode wrap : {WrapMode::Mod, WrapMode::Clamp}) {
+            const auto e = randomEntries(n, rng);
+            const ColorMap m(e, wrap);
+            int wide = 0;
+            for (int k = 0; k < 300; ++k) {
+                double f = k % 5 == 0 ? -3.3 + unit(rng) : -0.5 + 2.0 * unit(rng);
+                // Widths in entries log-uniform over [1e-3, 2.5 N], one of them 0 now and then.
+                auto width = [&] { return std::exp(std::log(1e-3) + unit(rng) * std::log(2.5e3 * n)) / n; };
+                const double wx = k % 7 == 0 ? 0.0 : width(), wy = width();
+                wide += std::max(wx, wy) * n >= n;
+                const glm::dvec4 want = bruteTrapezoid(e, wrap, f, std::max(wx, wy), std::min(wx, wy));
+                expectNear(m.filterTrapezoid(f, wx, wy), want, 1e-9, "trapezoid", f, wx);
+                expectNear(m.filterTrapezoid(f, wy, wx), want, 1e-9, "trapezoid swapped", f, wy);
+            }
+            EXPECT_GT(wide, 30) << "N " << n;
+        }
+    // One width 0: the box; both 0: the point sample.
+    const ColorMap m(randomEntries(16, rng), WrapMode::Mod);
+    EXPECT_EQ(m.filterTrapezoid(0.3, 0.2, 0.0), m.filterBox(0.3, 0.2));
+    EXPECT_EQ(m.filterTrapezoid(0.3, 0.0, 0.0), m.sample(0.3));
+    EXPECT_EQ(m.filter(0.3, 0.2, FilterKind::Trapezoid), m.filterBox(0.3, 0.2));
+}
+
+// Mod, many periods wide (the closed form for whole periods): the brute force over a 64-entry
+// table with widths up to 9 periods.
+TEST(ColorMap, TrapezoidManyPeriods) {
+    std::mt19937_64 rng(78);
+    std::uniform_real_distribution<double> unit(0.0, 1.0);
+    const auto e = randomEntries(8, rng);
+    const ColorMap m(e, WrapMode::Mod);
+    for (int k = 0; k < 200; ++k) {
+        const double f = -2 + 4 * unit(rng), wa = 9 * unit(rng), wb = wa * unit(rng);
+        expectNear(m.filterTrapezoid(f, wa, wb), bruteTrapezoid(e, WrapMode::Mod, f, wa, wb), 1e-9, "periods", f, wa);
+    }
+}
+
+// The reason for the filter: f linear over a square pixel, f = f0 + gx (x - 1/2) + gy (y - 1/2),
+// point-sampled on a fine grid, averages to the trapezoid; the box of the euclidean width does not.
+TEST(ColorMap, TrapezoidIsTheLinearPixelMean) {
+    std::mt19937_64 rng(79);
+    const auto e = randomEntries(8, rng);
+    const ColorMap m(e, WrapMode::Mod);
+    const int G = 1000;
+    double worstTrap = 0, worstBox = 0;
+    for (auto [f0, gx, gy] : {std::tuple{0.41, 0.3, 0.3}, std::tuple{0.1, 0.5, 0.2}, std::tuple{0.77, 0.12, 0.9}}) {
+        glm::dvec4 mean(0.0);
+        for (int i = 0; i < G; ++i)
+            for (int j = 0; j < G; ++j)
+                mean += m.sample(f0 + gx * ((i + 0.5) / G - 0.5) + gy * ((j + 0.5) / G - 0.5));
+        mean /= double(G) * G;
+        const glm::dvec4 trap = m.filterTrapezoid(f0, gx, gy), box = m.filterBox(f0, std::hypot(gx, gy));
+        for (int c = 0; c < 4; ++c) {
+            worstTrap = std::max(worstTrap, std::abs(trap[c] - mean[c]));
+            worstBox = std::max(worstBox, std::abs(box[c] - mean[c]));
+        }
+    }
+    EXPECT_LT(worstTrap, 2e-3);  // the grid's own error: O(1 / G) per entry crossing
+    EXPECT_GT(worstBox, 2e-2);
+}
+
 TEST(ColorMap, SatMeanOfWholeTable) {
     // Mod, W >= N: csat[N-1]/N exactly as the paper says; Box agrees when W is whole periods.
     std::mt19937_64 rng(4);
@@ -265,7 +350,7 @@ TEST(ColorMap, DegenerateInputs) {
         const auto e = randomEntries(8, rng);
         const ColorMap m(e, wrap);
         const FilterKind kinds[] = {FilterKind::None, FilterKind::MipNearest, FilterKind::MipLinear,
-                                    FilterKind::Sat, FilterKind::Box};
+                                    FilterKind::Sat, FilterKind::Box, FilterKind::Trapezoid};
         for (FilterKind k : kinds) {
             // w <= 0 (or NaN) is the point sample for every kind.
             for (double w : {0.0, -1.0, nan})
@@ -293,7 +378,7 @@ TEST(ColorMap, EnumNamesRoundTrip) {
         EXPECT_EQ(r, v);
     }
     for (FilterKind v : {FilterKind::None, FilterKind::MipNearest, FilterKind::MipLinear,
-                         FilterKind::Sat, FilterKind::Box}) {
+                         FilterKind::Sat, FilterKind::Box, FilterKind::Trapezoid}) {
         FilterKind r;
         ASSERT_TRUE(parseFilterKind(toString(v), &r));
         EXPECT_EQ(r, v);

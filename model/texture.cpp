@@ -152,6 +152,23 @@ double filterWidth(const glm::dvec3& gradS, const glm::dvec3& dsdx, const glm::d
     return 0.0;
 }
 
+glm::dvec2 footprintWidths(const glm::dvec3& gradS, const glm::dvec3& dsdx, const glm::dvec3& dsdy) {
+    return glm::dvec2(std::abs(glm::dot(gradS, dsdx)), std::abs(glm::dot(gradS, dsdy)));
+}
+
+glm::dvec4 filterColour(const ColorMap& clut, double f, double w, const glm::dvec2& wxy, FilterKind kind) {
+    if (kind != FilterKind::Trapezoid) return clut.filter(f, w, kind);
+    if (!(wxy.x > 0.0 || wxy.y > 0.0)) return clut.filter(f, w, FilterKind::Box);
+    return clut.filterTrapezoid(f, wxy.x, wxy.y);
+}
+
+glm::dvec2 bandlimitedFootprint(const Texture& tex, const glm::dvec2& wxy, double fadedSd) {
+    if (tex.bandlimit != Bandlimit::Widen || !(fadedSd > 0.0)) return wxy;
+    const double e2 = glm::dot(wxy, wxy), add = 12.0 * fadedSd * fadedSd;
+    if (!(e2 > 0.0)) return glm::dvec2(std::sqrt(add), 0.0);
+    return wxy * std::sqrt(1.0 + add / e2);
+}
+
 TextureSample shade(const Texture& tex, const glm::dvec3& s, const glm::dvec3& dsdx,
                     const glm::dvec3& dsdy) {
     return shade(tex, s, dsdx, dsdy, tex.filter);
@@ -165,7 +182,8 @@ TextureSample shade(const Texture& tex, const glm::dvec3& s, const glm::dvec3& d
                                           : evalF(tex, s, &r.gradS);
     r.filterWidth = tex.bandlimit != Bandlimit::Off ? bandlimitedWidth(tex, r.gradS, dsdx, dsdy, sd)
                                                     : filterWidth(r.gradS, dsdx, dsdy, tex.norm);
-    r.rgba = tex.clut.filter(r.f, r.filterWidth, filter);  // eq. 9
+    const glm::dvec2 wxy = bandlimitedFootprint(tex, footprintWidths(r.gradS, dsdx, dsdy), sd);
+    r.rgba = filterColour(tex.clut, r.f, r.filterWidth, wxy, filter);  // eq. 9
     return r;
 }
 

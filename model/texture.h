@@ -108,6 +108,18 @@ double bandlimitedWidth(const Texture& tex, const glm::dvec3& gradS, const glm::
 double filterWidth(const glm::dvec3& gradS, const glm::dvec3& dsdx, const glm::dvec3& dsdy,
                    GradNorm norm);
 
+// The pixel footprint's two widths (|grad_s f . dsdx|, |grad_s f . dsdy|), colour-index units:
+// what FilterKind::Trapezoid filters over.
+glm::dvec2 footprintWidths(const glm::dvec3& gradS, const glm::dvec3& dsdx, const glm::dvec3& dsdy);
+
+// The footprint widened by the faded terms' spread for Bandlimit::Widen (both widths scaled so
+// that wx^2 + wy^2 grows by 12 fadedSd^2, as bandlimitedWidth's euclidean w); unchanged otherwise.
+glm::dvec2 bandlimitedFootprint(const Texture& tex, const glm::dvec2& wxy, double fadedSd);
+
+// The filtered colour of f by `kind`: the trapezoid over the footprint widths wxy (the box of
+// width w if both are 0), every other kind over the width w.
+glm::dvec4 filterColour(const ColorMap& clut, double f, double w, const glm::dvec2& wxy, FilterKind kind);
+
 // The whole pipeline for one fragment with the texture's own filter kind (bandlimited octaves
 // when tex.bandlimit).
 TextureSample shade(const Texture& tex, const glm::dvec3& s, const glm::dvec3& dsdx,

@@ -1,6 +1,6 @@
 """Flicker of animated sequences: reads the flicker.json that `pst animate --truth N` writes,
-tabulates the temporal RMS error per stream (filtered, unfiltered, each hardware profile) and
-plots it over time.
+tabulates the temporal RMS error per stream (filtered, unfiltered, each hardware profile, each
+`--variants` reference stream) and plots it over time.
 
 The metric (computed by pst, testbench/animate): per frame k >= 1 the RMS over pixels and RGB of
 (X_k - X_{k-1}) - (T_k - T_{k-1}), T the ground truth; a sequence's flicker is the RMS of that
@@ -57,7 +57,13 @@ def load(path):
 
 
 def hardware_streams(doc):
-    return [n for n in doc["streams"] if n not in FIXED]
+    """The hardware profiles' streams (every stream but the fixed two and the variants)."""
+    return [n for n, s in doc["streams"].items() if n not in FIXED and not s.get("variant")]
+
+
+def variant_streams(doc):
+    """The reference streams of `pst animate --variants` (a filter option each)."""
+    return [n for n, s in doc["streams"].items() if s.get("variant")]
 
 
 def row(doc):
@@ -78,11 +84,12 @@ def row(doc):
 
 def markdown_table(docs):
     """The flicker table of several sequences (one row each), as Markdown."""
-    hw = []
+    hw, var = [], []
     for d in docs:
         hw += [n for n in hardware_streams(d) if n not in hw]
+        var += [n for n in variant_streams(d) if n not in var]
     head = ["sequence", "frames", "size", "filtered", "unfiltered", "unfiltered / filtered"] + \
-           [f"{n} (mismatches)" for n in hw]
+           [f"{n} (mismatches)" for n in hw] + var
     lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
     for d in docs:
         r = row(d)
@@ -90,6 +97,8 @@ def markdown_table(docs):
                  f'{r["flicker"]["unfiltered"]:.4f}', f'{r["ratio"]:.2f}x']
         for n in hw:
             cells.append(f'{r["flicker"][n]:.4f} ({r["mismatches"][n]})' if n in r["flicker"] else "-")
+        for n in var:
+            cells.append(f'{r["flicker"][n]:.4f}' if n in r["flicker"] else "-")
         lines.append("| " + " | ".join(cells) + " |")
     return "\n".join(lines) + "\n"
 

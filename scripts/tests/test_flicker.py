@@ -29,6 +29,17 @@ def test_row_and_table_give_the_ratio_and_mismatches():
     assert "full (mismatches)" in t.splitlines()[0]
 
 
+def test_variant_streams_are_not_hardware():
+    d = doc(filtered={"temporal_rms": [0.01]}, unfiltered={"temporal_rms": [0.04]},
+            full={"temporal_rms": [0.02], "hardware": True, "mismatches": 3},
+            trapezoid={"temporal_rms": [0.005], "hardware": False, "variant": True})
+    assert flicker.hardware_streams(d) == ["full"]
+    assert flicker.variant_streams(d) == ["trapezoid"]
+    t = flicker.markdown_table([d])
+    assert t.splitlines()[0].endswith("| full (mismatches) | trapezoid |")
+    assert "| 0.0200 (3) | 0.0050 |" in t
+
+
 def test_validate_names_the_problem(tmp_path):
     with pytest.raises(flicker.FlickerError, match="x.json: streams: expected filtered and unfiltered"):
         flicker.validate(doc(filtered={"temporal_rms": []}), "x.json")

@@ -61,6 +61,7 @@ struct Stream {
     std::vector<double> temporal;  // per frame k >= 1
     size_t mismatches = 0;         // hardware streams: scoreboard mismatches over all frames
     bool hardware = false;
+    bool variant = false;          // a --variants reference stream
 };
 
 double rmsOf(const std::vector<double>& v) {
@@ -89,9 +90,15 @@ double temporalRms(const Image& prev, const Image& cur, const Image& truthPrev, 
 }
 
 int runAnimate(const AnimateArgs& a) {
+    // --bandlimit and --filter: every texture of every frame.
+    auto overrideTextures = [&a](Scene& sc) {
+        for (auto& t : sc.textures) {
+            if (!a.bandlimit.empty()) parseBandlimit(a.bandlimit, &t.bandlimit);
+            if (!a.filter.empty()) parseFilterKind(a.filter, &t.filter);
+        }
+    };
     Scene still = loadScene(a.scene, a.size, a.size);
-    if (!a.bandlimit.empty())
-        for (auto& t : still.textures) parseBandlimit(a.bandlimit, &t.bandlimit);
+    overrideTextures(still);
     const std::string stem = fs::path(a.scene).stem().string();
     if (still.animation.empty())
         throw InputError(a.scene + ": animation: the scene has no [animation] time track (scenes/README.md)");
@@ -114,6 +121,12 @@ int runAnimate(const AnimateArgs& a) {
         streams.push_back({p.name});
         streams.back().hardware = true;
     }
+    for (const auto& v : a.variants) {
+        for (const auto& st : streams)
+            if (st.name == v.name) throw InputError("--variants: '" + v.name + "' is also a stream's name");
+        streams.push_back({v.name});
+        streams.back().variant = true;
+    }
     std::vector<std::string> dirs;
     for (const auto& s : streams) dirs.push_back(s.name);
     if (a.truth > 0) dirs.push_back("truth");
@@ -127,11 +140,11 @@ int runAnimate(const AnimateArgs& a) {
     for (int k = 0; k < frames; ++k) {
         const double t = frames > 1 ? double(k) / double(frames - 1) : 0.0;
         Scene scene = loadSceneAt(a.scene, t, a.size, a.size);
-        if (!a.bandlimit.empty())
-            for (auto& tx : scene.textures) parseBandlimit(a.bandlimit, &tx.bandlimit);
+        overrideTextures(scene);
         RenderOptions ro;
         ro.truthSamples = a.truth;
         ro.threads = a.threads;
+        ro.variants = a.variants;
         RenderResult r = render(scene, ro);
         std::vector<Image> current{r.filtered, r.unfiltered};
         if (a.progress) a.progress("frame " + std::to_string(k + 1) + "/" + std::to_string(frames) + " reference",
@@ -153,6 +166,7 @@ int runAnimate(const AnimateArgs& a) {
             if (a.progress) a.progress("frame " + std::to_string(k + 1) + "/" + std::to_string(frames) + " " + p.name,
                                        (k * (1 + profiles.size()) + 2 + pi) / steps);
         }
+        for (auto& img : r.variants) current.push_back(std::move(img));
         for (size_t si = 0; si < streams.size(); ++si) {
             Stream& st = streams[si];
             writeImage(current[si], (dir / st.name / frameName(k)).string());
@@ -174,6 +188,7 @@ int runAnimate(const AnimateArgs& a) {
     j["scene"] = a.scene;
     j["title"] = still.title;
     j["bandlimit"] = a.bandlimit;
+    j["filter"] = a.filter;
     j["frames"] = frames;
     j["fps"] = fps;
     j["width"] = still.camera.width;
@@ -189,6 +204,7 @@ int runAnimate(const AnimateArgs& a) {
     for (const auto& st : streams) {
         nlohmann::json e;
         e["hardware"] = st.hardware;
+        if (st.variant) e["variant"] = true;
         if (st.hardware) e["mismatches"] = st.mismatches;
         if (a.truth > 0) {
             e["rms_vs_truth"] = st.rms;
@@ -210,7 +226,7 @@ int runAnimate(const AnimateArgs& a) {
         for (size_t si = 2; si < streams.size(); ++si) line << ", " << streams[si].name << " " << rmsOf(streams[si].temporal);
     }
     for (size_t si = 2; si < streams.size(); ++si)
-        line << ", " << streams[si].name << " " << streams[si].mismatches << " mismatches";
+        if (streams[si].hardware) line << ", " << streams[si].name << " " << streams[si].mismatches << " mismatches";
 
     if (a.video) {
         for (const auto& d : dirs) {

@@ -21,6 +21,8 @@ struct AnimateArgs {
     double fps = 0;              // 0: the scene's [animation] fps
     bool video = true;
     std::string bandlimit;       // "": as the scene says; else every texture's (off | fade | widen)
+    std::string filter;          // "": as the scene says; else every texture's filter kind
+    std::vector<FilterVariant> variants;  // extra reference streams (named by the variant)
     std::vector<std::string> profiles;
     std::string model = "rtl";   // rtl | golden
     SimOptions sim;

@@ -43,7 +43,30 @@ struct RenderArgs {
     uint64_t seed = 1;
     bool quiet = false;
     std::string bandlimit;    // every texture's bandlimit (off | fade | widen; reference model only)
+    std::string filter;       // every texture's filter kind (parseFilterKind's names)
+    std::vector<std::string> variants;  // extra filtered images (parseVariant's spellings)
 };
+
+std::vector<FilterVariant> parseVariants(const std::vector<std::string>& specs) {
+    std::vector<FilterVariant> out;
+    for (const auto& s : specs) {
+        FilterVariant v;
+        std::string why;
+        if (!parseVariant(s, &v, &why)) throw InputError("--variants: " + why);
+        for (const auto& o : out)
+            if (o.name == v.name) throw InputError("--variants: '" + s + "' given twice");
+        out.push_back(v);
+    }
+    return out;
+}
+
+// --bandlimit and --filter: every texture of the scene gets them.
+void overrideTextures(Scene& scene, const std::string& bandlimit, const std::string& filter) {
+    for (auto& t : scene.textures) {
+        if (!bandlimit.empty()) parseBandlimit(bandlimit, &t.bandlimit);
+        if (!filter.empty()) parseFilterKind(filter, &t.filter);
+    }
+}
 
 // Progress on stderr: one rewritten line on a terminal, a line per stage otherwise.
 std::function<void(const std::string&, double)> progressPrinter(const std::string& name, bool quiet) {
@@ -141,8 +164,7 @@ std::string unsupportedTexture(const Scene& scene, const Profile& p) {
 int runHardwareRender(const RenderArgs& a, const HwArgs& hw) {
     const int w = a.size ? a.size : a.width, h = a.size ? a.size : a.height;
     Scene scene = loadScene(a.scene, w, h);
-    if (!a.bandlimit.empty())
-        for (auto& t : scene.textures) parseBandlimit(a.bandlimit, &t.bandlimit);
+    overrideTextures(scene, a.bandlimit, a.filter);
     const std::string stem = fs::path(a.scene).stem().string();
     int rc = 0;
     std::vector<std::string> pageArgs;
@@ -281,8 +303,7 @@ int runRandom(const HwArgs& hw, RandomRegressOptions o, bool quiet, const std::s
 int runRender(const RenderArgs& a) {
     const int w = a.size ? a.size : a.width, h = a.size ? a.size : a.height;
     Scene scene = loadScene(a.scene, w, h);
-    if (!a.bandlimit.empty())
-        for (auto& t : scene.textures) parseBandlimit(a.bandlimit, &t.bandlimit);
+    overrideTextures(scene, a.bandlimit, a.filter);
     const std::string stem = fs::path(a.scene).stem().string();
     const fs::path dir = a.outDir.empty() ? fs::path("out") / stem : fs::path(a.outDir);
 
@@ -291,6 +312,7 @@ int runRender(const RenderArgs& a) {
     opt.seed = a.seed;
     opt.threads = a.threads;
     opt.progress = progressPrinter(stem, a.quiet);
+    opt.variants = parseVariants(a.variants);
     const auto t0 = std::chrono::steady_clock::now();
     RenderResult r = render(scene, opt);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -305,6 +327,8 @@ int runRender(const RenderArgs& a) {
     nlohmann::json j;
     j["scene"] = a.scene;
     j["title"] = scene.title;
+    j["filter"] = a.filter;
+    j["bandlimit"] = a.bandlimit;
     j["width"] = scene.camera.width;
     j["height"] = scene.camera.height;
     j["fragments"] = r.stats.fragments;
@@ -322,6 +346,18 @@ int runRender(const RenderArgs& a) {
                          {"unfiltered", {{"rms", du.rmsError}, {"psnr", du.psnr}, {"max", du.maxError}}}};
         line << ", RMS vs truth: filtered " << df.rmsError << ", unfiltered " << du.rmsError;
     }
+    // Variants: every texture's filter and bandlimit replaced (variant_<name>.png).
+    for (size_t v = 0; v < opt.variants.size(); ++v) {
+        const FilterVariant& fv = opt.variants[v];
+        writeImage(r.variants[v], (dir / ("variant_" + fv.name + ".png")).string());
+        nlohmann::json e = {{"filter", toString(fv.filter)}, {"bandlimit", toString(fv.bandlimit)}};
+        if (a.truth > 0) {
+            const ImageDiff d = compareRgb(r.variants[v], r.truth);
+            e["vs_truth"] = {{"rms", d.rmsError}, {"psnr", d.psnr}, {"max", d.maxError}};
+            line << ", " << fv.name << " " << d.rmsError;
+        }
+        j["variants"][fv.name] = e;
+    }
     writeTextFile((dir / "report.json").string(), j.dump(2) + "\n");
     std::cout << line.str() << " -> " << dir.string() << "\n";
     return 0;
@@ -332,7 +368,7 @@ int runEval(const std::string& texPath, const std::string& fragPath, const std::
     Texture tex = loadTexture(texPath);
     FilterKind kind = tex.filter;
     if (!filterName.empty() && !parseFilterKind(filterName, &kind))
-        throw InputError("--filter: unknown filter '" + filterName + "' (expected none, mip, mip_linear, sat or box)");
+        throw InputError("--filter: unknown filter '" + filterName + "' (expected none, mip, mip_linear, sat, box or trapezoid)");
     const auto frags = loadFragments(fragPath);
     std::ostringstream os;
     if (model != "reference") {
@@ -424,6 +460,12 @@ int main(int argc, char** argv) {
     render->add_flag("-q,--quiet", ra.quiet, "No progress on stderr");
     render->add_option("--bandlimit", ra.bandlimit, "Every texture's bandlimited octaves: off, fade or widen (reference model only)")
         ->check(CLI::IsMember({"off", "fade", "widen"}));
+    const std::vector<std::string> filterNames{"none", "mip", "mip_linear", "sat", "box", "trapezoid"};
+    render->add_option("--filter", ra.filter, "Every texture's filter kind: none, mip, mip_linear, sat, box or trapezoid")
+        ->check(CLI::IsMember(filterNames));
+    render->add_option("--variants", ra.variants, "Also the filtered image with every texture's filter (and bandlimit) "
+                       "replaced, per KIND[+BANDLIMIT] (e.g. trapezoid sat+fade), compared with the truth (reference only)")
+        ->delimiter(',');
 
     HwArgs hw;
     auto addSimOptions = [&hw](CLI::App* sc) {
@@ -445,7 +487,7 @@ int main(int argc, char** argv) {
     eval->add_option("-t,--texture", texPath, "Texture block (TOML, the keys of [textures.NAME])")->required()->check(CLI::ExistingFile);
     eval->add_option("-f,--fragments", fragPath, "Fragment file: s t r ds/dx dt/dx dr/dx ds/dy dt/dy dr/dy per line")->required()->check(CLI::ExistingFile);
     eval->add_option("-o,--out", evalOut, "Output file (default stdout)");
-    eval->add_option("--filter", filterName, "Override the texture's filter: none, mip, mip_linear, sat, box");
+    eval->add_option("--filter", filterName, "Override the texture's filter: none, mip, mip_linear, sat, box, trapezoid");
     eval->add_option("--model", evalModel, "reference (double), golden (fixed point) or rtl (verilated)")
         ->check(CLI::IsMember({"reference", "golden", "rtl"}));
     eval->add_option("--profile", hw.profiles, "Hardware profile for --model golden|rtl");
@@ -504,6 +546,12 @@ int main(int argc, char** argv) {
     animate->add_flag("--no-video", noVideo, "PNG frames and flicker.json only");
     animate->add_option("--bandlimit", an.bandlimit, "Every texture's bandlimited octaves: off, fade or widen (reference model only)")
         ->check(CLI::IsMember({"off", "fade", "widen"}));
+    animate->add_option("--filter", an.filter, "Every texture's filter kind: none, mip, mip_linear, sat, box or trapezoid")
+        ->check(CLI::IsMember(filterNames));
+    std::vector<std::string> animVariants;
+    animate->add_option("--variants", animVariants, "Also a reference stream per KIND[+BANDLIMIT] (every texture's filter "
+                        "and bandlimit replaced), with its flicker")
+        ->delimiter(',');
     animate->add_flag("-q,--quiet", animQuiet, "No progress on stderr");
 
     try {
@@ -544,6 +592,7 @@ int main(int argc, char** argv) {
         }
         if (*animate) {
             an.video = !noVideo;
+            an.variants = parseVariants(animVariants);
             an.loadProfile = profileByName;
             // One line per frame and model (rewritten in place on a terminal).
             if (!animQuiet)

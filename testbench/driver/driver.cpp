@@ -24,7 +24,8 @@ int hardwareFilterKind(FilterKind k) {
         case FilterKind::MipNearest: return int(K::Mip);
         case FilterKind::MipLinear: return int(K::MipBlended);
         case FilterKind::Sat:
-        case FilterKind::Box: return int(K::Sat);
+        case FilterKind::Box:
+        case FilterKind::Trapezoid: return int(K::Sat);
     }
     return int(K::Sat);
 }
@@ -52,6 +53,7 @@ TextureProgram programTexture(const Profile& p, const Texture& tex) {
     std::ostringstream notes;
     prog.filterKind = hardwareFilterKind(tex.filter);
     if (tex.filter == FilterKind::Box) notes << "box filter done by the SAT; ";
+    if (tex.filter == FilterKind::Trapezoid) notes << "trapezoid filter done by the SAT (no hardware unit); ";
     prog.writes.push_back(controlWrite(tex, prog.filterKind));
 
     // Quadric A..J (eq. 3).

@@ -45,7 +45,42 @@ inline uint64_t mix64(uint64_t z) {
 }
 inline double unit(uint64_t h) { return double(h >> 11) * (1.0 / 9007199254740992.0); }
 
+// The filtered colour of one fragment with the texture's filter kind and bandlimit replaced;
+// f and gradS are the plain texture's (evalF). *w: the filter width used (entries / N).
+glm::dvec4 shadeFiltered(const Texture& tex, const Fragment& fr, double f, glm::dvec3 gradS, FilterKind kind,
+                         Bandlimit bandlimit, double* w) {
+    double fb = f, sd = 0;  // bandlimited octaves: only the filtered image
+    Texture const* t = &tex;
+    Texture copy;
+    if (bandlimit != tex.bandlimit) {
+        copy = tex;
+        copy.bandlimit = bandlimit;
+        t = &copy;
+    }
+    if (bandlimit != Bandlimit::Off) fb = evalFBandlimited(*t, fr.s, fr.dsdx, fr.dsdy, &gradS, &sd);
+    *w = bandlimit != Bandlimit::Off ? bandlimitedWidth(*t, gradS, fr.dsdx, fr.dsdy, sd)
+                                     : filterWidth(gradS, fr.dsdx, fr.dsdy, tex.norm);
+    return filterColour(tex.clut, fb, *w, bandlimitedFootprint(*t, footprintWidths(gradS, fr.dsdx, fr.dsdy), sd), kind);
+}
+
 }  // namespace
+
+bool parseVariant(const std::string& spec, FilterVariant* out, std::string* why) {
+    FilterVariant v;
+    v.name = spec;
+    const size_t plus = spec.find('+');
+    const std::string kind = spec.substr(0, plus);
+    if (!parseFilterKind(kind, &v.filter)) {
+        *why = "'" + kind + "' is not a filter kind (none, mip, mip_linear, sat, box, trapezoid)";
+        return false;
+    }
+    if (plus != std::string::npos && !parseBandlimit(spec.substr(plus + 1), &v.bandlimit)) {
+        *why = "'" + spec.substr(plus + 1) + "' is not a bandlimit (off, fade, widen)";
+        return false;
+    }
+    *out = v;
+    return true;
+}
 
 void parallelRows(int n, int threads, const std::function<void(int)>& body) {
     int t = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
@@ -77,6 +112,10 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
     res.filterWidth = Image(W, H, 1);
     fillBackground(res.filtered, scene.background);
     fillBackground(res.unfiltered, scene.background);
+    for (size_t v = 0; v < opt.variants.size(); ++v) {
+        res.variants.emplace_back(W, H, 4);
+        fillBackground(res.variants.back(), scene.background);
+    }
     auto report = [&](const std::string& stage, double frac) {
         if (opt.progress) opt.progress(stage, frac);
     };
@@ -103,11 +142,11 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
                 const Texture& tex = scene.textures[scene.objects[fr.object].texture];
                 glm::dvec3 gradS;
                 const double f = evalF(tex, fr.s, &gradS);
-                double fb = f, sd = 0;  // bandlimited octaves: only the filtered image
-                if (tex.bandlimit != Bandlimit::Off) fb = evalFBandlimited(tex, fr.s, fr.dsdx, fr.dsdy, &gradS, &sd);
-                const double w = tex.bandlimit != Bandlimit::Off ? bandlimitedWidth(tex, gradS, fr.dsdx, fr.dsdy, sd)
-                                                                 : filterWidth(gradS, fr.dsdx, fr.dsdy, tex.norm);
-                over(res.filtered.pixel(x, y), tex.clut.filter(fb, w, tex.filter));
+                double w = 0, wv = 0;
+                over(res.filtered.pixel(x, y), shadeFiltered(tex, fr, f, gradS, tex.filter, tex.bandlimit, &w));
+                for (size_t v = 0; v < opt.variants.size(); ++v)
+                    over(res.variants[v].pixel(x, y),
+                         shadeFiltered(tex, fr, f, gradS, opt.variants[v].filter, opt.variants[v].bandlimit, &wv));
                 over(res.unfiltered.pixel(x, y), tex.clut.sample(f));
                 if (l == 0) res.filterWidth.pixel(x, y)[0] = float(w * tex.clut.size());
                 ++n;

@@ -26,10 +26,22 @@ struct Image {
     const float* pixel(int x, int y) const { return &data[(size_t(y) * width + x) * channels]; }
 };
 
+// A filter option applied to every texture of a scene (the ground-truth comparison of filters):
+// the filter kind and the bandlimited octaves. Spelled "KIND" or "KIND+BANDLIMIT" (parseVariant),
+// e.g. "sat", "trapezoid", "sat+fade", "trapezoid+widen".
+struct FilterVariant {
+    std::string name;
+    FilterKind filter = FilterKind::Sat;
+    Bandlimit bandlimit = Bandlimit::Off;
+};
+// false (and *why set) for a malformed spelling.
+bool parseVariant(const std::string& spec, FilterVariant* out, std::string* why);
+
 struct RenderOptions {
     int truthSamples = 0;   // n: n x n jittered unfiltered samples per pixel; 0 = no ground truth
     uint64_t seed = 1;      // jitter seed of the ground truth
     int threads = 0;        // 0 = all cores
+    std::vector<FilterVariant> variants;  // extra filtered images, one per variant
     // Progress callback (stage name, fraction done); empty = silent.
     std::function<void(const std::string&, double)> progress;
 };
@@ -46,6 +58,7 @@ struct RenderResult {
     Image unfiltered;   // RGBA, point-sampled colour map at the pixel centre
     Image filterWidth;  // 1 channel: w * N (colour-table entries) of the front layer-0 fragment
     Image truth;        // RGBA, empty unless truthSamples > 0
+    std::vector<Image> variants;  // RGBA, one per RenderOptions::variants
     RenderStats stats;
 };
 

@@ -271,7 +271,7 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
                    "every coefficient and cell are 0: the basis would be constant");
     }
     tex.bandlimit = getEnum(c, t, path, "bandlimit", tex.bandlimit, parseBandlimit, "off, fade or widen");
-    tex.filter = getEnum(c, t, path, "filter", tex.filter, parseFilterKind, "none, mip, mip_linear, sat or box");
+    tex.filter = getEnum(c, t, path, "filter", tex.filter, parseFilterKind, "none, mip, mip_linear, sat, box or trapezoid");
     tex.norm = getEnum(c, t, path, "norm", tex.norm, parseGradNorm, "euclid, max_half_min or l1");
     tex.clut = parseColorMap(c, requireTable(c, t, path, "colormap"), join(path, "colormap"));
     return tex;
