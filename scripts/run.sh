@@ -4,6 +4,10 @@
 #   2. the RTL regression: every scene through every profile at 512x512, checked bit for bit
 #      against the golden model, with the images
 #   2b. the seascape fly-in (pst animate, 24 frames at 64x64): webm videos, out/flicker.md
+#   2c. the filter options (the paper's SAT, the exact box, the trapezoid footprint, bandlimited
+#       octaves) against the ground truth: every scene at 64x64 with a 16x16 truth, the four
+#       animated sequences (16 frames at 48x48, 8x8 truth) -> out/fidelity/fidelity.md (a report
+#       section)
 #   3. silicon figures of both profiles (OSU018 area, OpenSTA timing, memories), Figures 10
 #      and 11, a quick precision sweep
 #   4. out/report.md and out/report.html (the same data; the HTML page has an image viewer per
@@ -28,6 +32,22 @@ rc=0
 echo "== animation: seascape fly-in, 24 frames at 64x64 through the reference and full's RTL, flicker vs a 4x4 truth"
 ./build/pst animate scenes/seascape.toml --frames 24 --size 64 --truth 4 --profile full -o out/anim/seascape -q || rc=1
 /usr/bin/python3 scripts/flicker.py out/anim/seascape --md out/flicker.md || rc=1
+echo "== filter options against the ground truth (scenes 64x64, 16x16 truth; sequences 16 frames 48x48, 8x8 truth)"
+VARIANTS=sat,box,trapezoid,sat+fade,sat+widen,trapezoid+widen
+stills=()
+for scene in scenes/*.toml; do
+  name=$(basename "$scene" .toml)
+  ./build/pst render "$scene" --size 64 --truth 16 --variants "$VARIANTS" -o "out/fidelity/$name" -q -j2 || rc=1
+  stills+=("out/fidelity/$name")
+done
+seqs=()
+for name in seascape fire marble planet; do
+  ./build/pst animate "scenes/$name.toml" --frames 16 --size 48 --truth 8 --variants "$VARIANTS" --no-video \
+    -o "out/fidelity/anim/$name" -q -j2 || rc=1
+  seqs+=("out/fidelity/anim/$name")
+done
+/usr/bin/python3 scripts/fidelity.py --stills "${stills[@]}" --sequences "${seqs[@]}" \
+  --md out/fidelity/fidelity.md --json out/fidelity/fidelity.json > /dev/null || rc=1
 echo "== silicon figures (Yosys + OpenSTA), quick precision sweep, figures"
 # full's synthesis and timing (one core) run beside the quick sweep, whose base point is
 # the reduced profile's synthesis (out/synth/reduced.{json,md}).

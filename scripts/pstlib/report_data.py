@@ -246,10 +246,12 @@ def collect(out_dir) -> Report:
     for sweep in sorted((root / "search").glob("*/*.md")):
         rep.sweeps.append(read_included(f"Search: {sweep.parent.name}", f"search-{sweep.parent.name}", sweep,
                                         root, ""))
-    # Later outputs (animations, coverage) as they appear: their Markdown summaries.
-    for kind in ("animations", "coverage"):
+    # Later outputs (the filter options against the ground truth, animations, coverage) as they
+    # appear: their Markdown summaries.
+    for kind in ("fidelity", "animations", "coverage"):
         for md in sorted((root / kind).glob("*.md")):
-            rep.extras.append(read_included(f"{kind.capitalize()}: {md.stem}", f"{kind}-{md.stem}", md, root, ""))
+            title = "Filter options against the ground truth" if kind == "fidelity" else f"{kind.capitalize()}: {md.stem}"
+            rep.extras.append(read_included(title, f"{kind}-{md.stem}", md, root, ""))
     rep.references = reference_table(root)
     return rep
 

@@ -88,6 +88,16 @@ def test_included_links_rebased_headings_demoted(tmp_path):
     assert fig11.text.startswith("## Fig")
 
 
+def test_fidelity_table_is_a_section(tmp_path):
+    out = make_out(tmp_path)
+    (out / "fidelity").mkdir()
+    (out / "fidelity" / "fidelity.md").write_text("| scene | unfiltered | sat | trapezoid |\n|---|---|---|---|\n")
+    rep = report_data.collect(out)
+    ex = next(e for e in rep.extras if e.anchor == "fidelity-fidelity")
+    assert ex.title == "Filter options against the ground truth"
+    assert "| scene | unfiltered | sat | trapezoid |" in report_md.render(rep, lambda r: [])
+
+
 def test_html_page_self_contained(tmp_path):
     out = make_out(tmp_path)
     rep = report_data.collect(out)
