@@ -1,0 +1,111 @@
+"""The search's outputs: every point (points.csv), the Pareto fronts per clocks-per-pixel class
+(front.csv, front.md, front.png), with the validation scores and the RTL check of each front
+point."""
+import csv
+import io
+import pathlib
+
+from . import atomic
+from .search import pareto
+
+VALIDATION_GAP_DB = 3.0     # a front point whose validation PSNR is this far under its training PSNR is flagged
+
+
+def fronts(rows: list, classes) -> dict:
+    """Class -> the Pareto front (least logic GE against the highest worst training PSNR) of the
+    points with clocks per pixel <= the class."""
+    return {c: pareto([r for r in rows if r.get("cpp") is not None and r["cpp"] <= c]) for c in classes}
+
+
+def gap_flag(r: dict):
+    if r.get("train_worst") is None or r.get("valid_worst") is None:
+        return None
+    return r["valid_worst"] < r["train_worst"] - VALIDATION_GAP_DB
+
+
+COLUMNS = ["class", "name", "cpp", "logic_ge", "train_worst", "train_mean", "valid_worst", "valid_mean",
+           "valid_gap_flag", "rtl", "fmax_mhz", "move"]
+
+
+def _fmt(v):
+    if isinstance(v, float):
+        return f"{v:.2f}"
+    return "" if v is None else str(v)
+
+
+def front_rows(fr: dict, rtl: dict) -> list:
+    out = []
+    for c, rows in fr.items():
+        for r in rows:
+            out.append({"class": c, "name": r["name"], "cpp": r["cpp"], "logic_ge": r["logic_ge"],
+                        "train_worst": r.get("train_worst"), "train_mean": r.get("train_mean"),
+                        "valid_worst": r.get("valid_worst"), "valid_mean": r.get("valid_mean"),
+                        "valid_gap_flag": gap_flag(r), "rtl": (rtl.get(r["name"]) or {}).get("summary"),
+                        "fmax_mhz": r.get("fmax_mhz"), "move": r.get("move")})
+    return out
+
+
+def write_csv(path: pathlib.Path, rows: list, columns: list) -> None:
+    buf = io.StringIO()
+    w = csv.DictWriter(buf, fieldnames=columns, extrasaction="ignore", lineterminator="\n")
+    w.writeheader()
+    for r in rows:
+        w.writerow({k: _fmt(r.get(k)) for k in columns})
+    atomic.write_text(path, buf.getvalue())
+
+
+def markdown(title: str, frows: list, targets: dict, best: dict, stats: dict) -> str:
+    L = [f"# {title}\n", "Least logic area (OSU018 GE, per-module synthesis cache) subject to the worst training-scene "
+         "PSNR against the double reference and clocks per pixel; every front point scored on the validation set "
+         f"(flag: validation worst more than {VALIDATION_GAP_DB:g} dB under training worst) and checked on the RTL "
+         "(`pst regress`, 0 mismatches).\n"]
+    L.append("| class (clk/px <=) | target PSNR dB | best point | logic GE | worst train dB | worst valid dB |")
+    L.append("|---:|---:|---|---:|---:|---:|")
+    for c, b in best.items():
+        if b:
+            L.append(f"| {c} | {targets[c]:g} | `{b['name']}` | {b['logic_ge']:,} | {_fmt(b.get('train_worst'))} | "
+                     f"{_fmt(b.get('valid_worst'))} |")
+        else:
+            L.append(f"| {c} | {targets[c]:g} | (start misses the target) | | | |")
+    L.append("")
+    L.append("| class | point | clk/px | logic GE | train worst / mean dB | valid worst / mean dB | gap flag | RTL | how reached |")
+    L.append("|---:|---|---:|---:|---|---|---|---|---|")
+    for r in frows:
+        flag = {True: "**FLAG**", False: "ok", None: "-"}[r["valid_gap_flag"]]
+        L.append(f"| {r['class']} | `{r['name']}` | {r['cpp']} | {r['logic_ge']:,} | {_fmt(r['train_worst'])} / "
+                 f"{_fmt(r['train_mean'])} | {_fmt(r['valid_worst'])} / {_fmt(r['valid_mean'])} | {flag} | "
+                 f"{r['rtl'] or '-'} | {r['move'] or ''} |")
+    L.append("")
+    L.append(f"Search: {stats['points']} points evaluated ({stats['synthesized']} synthesized, "
+             f"{stats['modules_synthesized']} module syntheses, the rest from the cache) in {stats['wall_s']:.0f} s wall: "
+             f"{stats['points_per_hour']:.1f} points per hour. Scenes: {stats['train']} training, {stats['valid']} "
+             f"validation at {stats['size']} x {stats['size']}.\n")
+    return "\n".join(L) + "\n"
+
+
+def plot(path: pathlib.Path, rows: list, fr: dict, title: str) -> None:
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, ax = plt.subplots(figsize=(7.5, 4.8))
+    pts = [r for r in rows if r.get("logic_ge") is not None and r.get("train_worst") is not None]
+    ax.scatter([r["logic_ge"] / 1000 for r in pts], [r["train_worst"] for r in pts], s=10, c="0.7",
+               label="evaluated points")
+    for c, f in fr.items():
+        if not f:
+            continue
+        ax.step([r["logic_ge"] / 1000 for r in f], [r["train_worst"] for r in f], where="post", marker="o",
+                label=f"front, <= {c} clk/px")
+        vx = [r["logic_ge"] / 1000 for r in f if r.get("valid_worst") is not None]
+        vy = [r["valid_worst"] for r in f if r.get("valid_worst") is not None]
+        if vx:
+            ax.scatter(vx, vy, marker="x", label=f"validation, <= {c} clk/px")
+    ax.set_xscale("log")
+    ax.set_xlabel("logic area, thousand GE (OSU018)")
+    ax.set_ylabel("worst-scene PSNR vs reference, dB")
+    ax.set_title(title)
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    atomic.write_with(path, lambda tmp: fig.savefig(tmp, dpi=110))
+    plt.close(fig)

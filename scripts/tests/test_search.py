@@ -1,0 +1,179 @@
+"""scripts/pstlib/search*.py: the space, the walk, the fronts, the stored results, the SLURM job."""
+import copy
+import json
+import pathlib
+
+import pytest
+
+from pstlib import contract, search_eval, search_report, search_slurm, search_synth
+from pstlib import search as S
+from pstlib.paths import ROOT
+
+FULL = ROOT / "rtl" / "configs" / "full.toml"
+REDUCED = ROOT / "rtl" / "configs" / "reduced.toml"
+
+
+def test_structures_stay_within_the_class_and_go_from_cheap_to_dear():
+    for octs, c in ((8, 1), (8, 4), (8, 22), (4, 22)):
+        ss = S.structures(octs, c)
+        assert ss
+        for s in ss:
+            doc = copy.deepcopy(contract.read_profile(FULL))
+            doc["pipeline"].update(s)
+            assert not contract.validate(doc)
+            assert S.cycles_per_pixel(doc) <= c
+        corners = [s["noise_units"] * 8 // s["noise_steps"] for s in ss]
+        assert corners == sorted(corners)
+    assert S.structures(8, 1) == [{"octaves": 8, "noise_units": 8, "noise_steps": 1, "datapath": "parallel"}]
+    assert {"octaves": 4, "noise_units": 1, "noise_steps": 4, "datapath": "serial"} in S.structures(4, 22)
+    assert all(s["datapath"] == "parallel" for s in S.structures(8, 4))     # serial needs >= 7 clocks
+
+
+def test_neighbours_move_one_knob_one_value_cheaper():
+    doc = contract.read_profile(FULL)
+    moves = S.neighbours(doc, S.KNOB_NAMES, S.structures(8, 4))
+    assert {k for k, *_ in moves} >= {"coord_frac", "out_frac", "interp", "hash", "norm", "structure"}
+    for k, a, b, d in moves:
+        assert not contract.validate(d)
+        diff = [(s, key) for s in doc for key in doc[s] if doc[s][key] != d[s][key]]
+        assert diff, k
+        if k == "structure":
+            assert {key for _, key in diff} <= {"octaves", "noise_units", "noise_steps", "datapath"}
+        else:
+            knob = next(x for x in S.KNOBS if x["name"] == k)
+            assert knob["get"](doc) == a and knob["get"](d) == b
+            vals = knob["values"]
+            assert b in vals and (a not in vals or vals.index(b) == vals.index(a) - 1)
+    only = S.neighbours(doc, ["coord_frac"], [])
+    assert [(k, a, b) for k, a, b, _ in only] == [("coord_frac", 20, 18)]
+
+
+def test_a_point_is_named_by_its_values_and_keeps_the_text():
+    text = FULL.read_text()
+    doc = contract.read_profile(FULL)
+    d = copy.deepcopy(doc)
+    d["noise"]["out_frac"] = 14
+    p = S.make_point(text, doc, d, "out_frac 16->14")
+    q = S.make_point(text, doc, copy.deepcopy(d), "another way there")
+    assert p.name == q.name and p.name != S.make_point(text, doc, doc, "start").name
+    assert "out_frac = 14" in p.text and "Search point: out_frac 16->14" in p.text
+    assert p.cpp == 1
+
+
+class FakeSpace:
+    """Area = sum of weights x value index; PSNR = 60 - sum of losses of the cut values."""
+
+    def __init__(self, weights, losses, base_doc, knobs):
+        self.w, self.l, self.base, self.knobs, self.calls = weights, losses, base_doc, knobs, 0
+
+    def idx(self, doc):
+        return {k["name"]: k["values"].index(k["get"](doc)) for k in S.KNOBS if k["name"] in self.knobs}
+
+    def __call__(self, points):
+        self.calls += len(points)
+        out = {}
+        base_i = self.idx(self.base)
+        for p in points:
+            i = self.idx(p.doc)
+            area = 1000 + sum(self.w[k] * v for k, v in i.items())
+            loss = sum(self.l[k] * (base_i[k] - v) for k, v in i.items())
+            out[p.name] = {"status": "ok", "train_worst": 60 - loss, "logic_ge": area, "cpp": p.cpp}
+        return out
+
+
+def _walk(weights, losses, target, budget=200, backtracks=0):
+    text = FULL.read_text()
+    doc = contract.read_profile(FULL)
+    knobs = list(weights)
+    ev = FakeSpace(weights, losses, doc, knobs)
+    start = S.make_point(text, doc, doc, "start")
+    w = S.walk(start, ev, S.Targets(target, 1), knobs, [], text, doc, budget, backtracks, say=lambda *_: None)
+    return w, ev
+
+
+def test_walk_spends_the_margin_where_it_buys_most_area():
+    # coord_frac: 7 values, cheap in quality; out_frac: 6 values, dear; target allows 5 dB.
+    w, ev = _walk({"coord_frac": 100, "out_frac": 500}, {"coord_frac": 0.5, "out_frac": 2.0}, 55.0)
+    p, r = w["archive"][w["best"]]
+    assert r["train_worst"] >= 55.0
+    # The optimum by enumeration: out_frac cuts a (2 dB, 500 GE), coord_frac cuts b (0.5 dB, 100 GE).
+    best = min(1000 + 500 * (5 - a) + 100 * (6 - b) for a in range(6) for b in range(7) if 2 * a + 0.5 * b <= 5)
+    assert r["logic_ge"] == best
+    assert ev.calls < 6 * 7      # fewer evaluations than the grid
+
+
+def test_walk_reports_a_start_that_misses_the_target():
+    w, _ = _walk({"coord_frac": 100}, {"coord_frac": 0.5}, 70.0)
+    assert w["best"] is None
+
+
+def test_backtracking_finds_a_cheaper_branch():
+    # 3 dB of margin; interp's cut saves 110 GE for 1 dB (the better ratio, taken first), hash's
+    # 300 GE for 3 dB: after interp nothing fits; the branch through hash alone saves more.
+    weights, losses = {"interp": 110, "hash": 300}, {"interp": 1.0, "hash": 3.0}
+    w0, _ = _walk(weights, losses, 57.0, backtracks=0)
+    w1, _ = _walk(weights, losses, 57.0, backtracks=1)
+    assert w0["archive"][w0["best"]][1]["logic_ge"] == 1000 + 300
+    assert w1["archive"][w1["best"]][1]["logic_ge"] == 1000 + 110 and w1["backtracks"] == 1
+
+
+def test_pareto_front():
+    rows = [{"name": n, "logic_ge": a, "train_worst": q} for n, a, q in
+            [("a", 10, 30), ("b", 20, 40), ("c", 25, 35), ("d", 30, 50), ("e", 10, 20), ("f", 40, 50)]]
+    assert [r["name"] for r in S.pareto(rows)] == ["a", "b", "d"]
+    fr = search_report.fronts([dict(r, cpp=1 if r["name"] in "ab" else 4) for r in rows], [1, 4])
+    assert [r["name"] for r in fr[1]] == ["a", "b"] and [r["name"] for r in fr[4]] == ["a", "b", "d"]
+
+
+def test_validation_gap_flag():
+    assert search_report.gap_flag({"train_worst": 50.0, "valid_worst": 46.9}) is True
+    assert search_report.gap_flag({"train_worst": 50.0, "valid_worst": 47.0}) is False
+    assert search_report.gap_flag({"train_worst": 50.0}) is None
+
+
+def test_stored_results_are_reused_only_when_complete(tmp_path):
+    job = {"size": 32, "synth_floor": 30, "scenes": {"train": ["x/a.toml", "x/b.toml"], "valid": ["y/c.toml"]}}
+    r = {"status": "ok", "profile_sha": "s1", "size": 32, "train": {"a": 40.0, "b": 41.0}, "train_worst": 40.0,
+         "logic_ge": 1234}
+    assert search_eval.reusable(r, "s1", job, ("train",))
+    assert not search_eval.reusable(r, "s2", job, ("train",))
+    assert not search_eval.reusable(dict(r, size=64), "s1", job, ("train",))
+    assert not search_eval.reusable(r, "s1", job, ("train", "valid"))
+    assert not search_eval.reusable(dict(r, logic_ge=None), "s1", job, ("train",))         # area missing
+    assert search_eval.reusable(dict(r, logic_ge=None, train_worst=20.0), "s1", job, ("train",))   # under the floor
+    assert search_eval.reusable({"status": "failed", "profile_sha": "s1", "size": 32}, "s1", job, ("train",))
+    assert not search_eval.reusable({"status": "failed", "profile_sha": "s1", "size": 32}, "s1",
+                                    dict(job, retry_failed=True), ("train",))
+
+
+def test_per_class_arguments():
+    import search as cli     # scripts/search.py
+    assert cli._per_class("40", [1, 22], float, "--psnr") == {1: 40.0, 22: 40.0}
+    assert cli._per_class("1=50,22=30", [1, 22], float, "--psnr") == {1: 50.0, 22: 30.0}
+    with pytest.raises(ValueError):
+        cli._per_class("1=50", [1, 22], float, "--psnr")
+
+
+def test_slurm_job_script_names_the_cluster_options(tmp_path):
+    s = search_slurm.job_script(tmp_path, "b1", 5, ("train", "valid"), partition="gpu", account="hw",
+                                time_limit="00:30:00", extra=["--mem=4G"])
+    lines = s.splitlines()
+    assert lines[0] == "#!/bin/sh" and "#SBATCH --array=0-4" in lines
+    assert {"#SBATCH --partition=gpu", "#SBATCH --account=hw", "#SBATCH --time=00:30:00", "#SBATCH --mem=4G"} <= set(lines)
+    assert lines[-1].endswith(f"worker {tmp_path} b1.names train,valid")
+    assert "--partition" not in search_slurm.job_script(tmp_path, "b1", 1, ("train",))
+
+
+def test_module_hierarchy_counts_instances():
+    stat = {"modules": {"\\top": {"num_cells_by_type": {"$paramod\\a": 2, "NAND2X1": 5}},
+                        "$paramod\\a": {"num_cells_by_type": {"$paramod\\b": 3}},
+                        "$paramod\\b": {"num_cells_by_type": {"INVX1": 1}}}}
+    subs = search_synth.hierarchy_of(stat)
+    assert search_synth.instance_counts(subs, "\\top") == {"\\top": 1, "$paramod\\a": 2, "$paramod\\b": 6}
+
+
+def test_module_key_changes_with_parameters_source_and_flow():
+    k = search_synth.module_key("$paramod$abc\\pst_noise_lerp", "flow1")
+    assert k == search_synth.module_key("$paramod$abc\\pst_noise_lerp", "flow1")
+    assert k != search_synth.module_key("$paramod$abd\\pst_noise_lerp", "flow1")
+    assert k != search_synth.module_key("$paramod$abc\\pst_noise_lerp", "flow2")
