@@ -177,3 +177,61 @@ def test_module_key_changes_with_parameters_source_and_flow():
     assert k == search_synth.module_key("$paramod$abc\\pst_noise_lerp", "flow1")
     assert k != search_synth.module_key("$paramod$abd\\pst_noise_lerp", "flow1")
     assert k != search_synth.module_key("$paramod$abc\\pst_noise_lerp", "flow2")
+
+
+def test_fmax_is_asked_only_of_feasible_candidates_and_enforced():
+    text = FULL.read_text()
+    doc = contract.read_profile(FULL)
+    weights, losses = {"interp": 110, "hash": 300}, {"interp": 0.0, "hash": 0.0}
+    ev = FakeSpace(weights, losses, doc, list(weights))
+    asked = []
+
+    def fmax_of(p, r):          # the perm256 hash "misses" the clock; the rest make it
+        asked.append(p.name)
+        return dict(r, fmax_mhz=50.0 if p.doc["noise"]["hash"] == "perm256" else 120.0)
+
+    start = S.make_point(text, doc, doc, "start")
+    w = S.walk(start, ev, S.Targets(55.0, 1, 100.0), list(weights), [], text, doc, 50, 0,
+               say=lambda *_: None, fmax_of=fmax_of)
+    best = w["archive"][w["best"]]
+    assert best[0].doc["noise"]["hash"] == "rayshade" and best[0].doc["noise"]["interp"] == "linear"
+    assert best[1]["fmax_mhz"] == 120.0
+    assert len(asked) == len(set(asked)) and start.name in asked
+
+
+def test_a_point_is_evaluated_once_and_resumed(tmp_path):
+    calls = tmp_path / "calls.txt"
+    pst = tmp_path / "pst"
+    pst.write_text("#!/bin/sh\n"
+                   f'echo "$2" >> {calls}\n'
+                   'while [ $# -gt 0 ]; do if [ "$1" = "-o" ]; then out=$2; fi; shift; done\n'
+                   'mkdir -p "$out"; echo \'{"vs_reference": {"psnr": 41.5, "rms": 0.01}}\' > "$out/summary.json"\n')
+    pst.chmod(0o755)
+    scenes = []
+    for s in ("a", "b"):
+        f = tmp_path / f"{s}.toml"
+        f.write_text("")
+        scenes.append(str(f))
+    out = tmp_path / "out"
+    text = REDUCED.read_text()
+    doc = contract.read_profile(REDUCED)
+    p = S.make_point(text, doc, doc, "start")
+    (out / "points").mkdir(parents=True)
+    (out / "points" / f"{p.name}.toml").write_text(p.text)
+    job = {"size": 16, "synth_floor": 30.0, "pst": str(pst), "scenes": {"train": scenes[:1], "valid": scenes[1:]},
+           "points": {p.name: p.sha}}
+    (out / "job.json").write_text(json.dumps(job))
+
+    class Area:
+        n = 0
+
+        def area(self, profile):
+            Area.n += 1
+            return {"logic_ge": 777, "modules_synthesized": 1, "modules_total": 2, "seconds": 0.0}
+
+    r = search_eval.evaluate(out, p.name, ("train",), module_cache=Area())
+    assert r["status"] == "ok" and r["train_worst"] == 41.5 and r["logic_ge"] == 777 and r["cpp"] == 22
+    assert search_eval.reusable(json.loads((out / "results" / f"{p.name}.json").read_text()), p.sha, job, ("train",))
+    r = search_eval.evaluate(out, p.name, ("train", "valid"), module_cache=Area())
+    assert r["valid_worst"] == 41.5 and r["area_new"] is False
+    assert calls.read_text().split() == scenes and Area.n == 1     # a, then b only
