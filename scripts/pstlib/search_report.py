@@ -100,7 +100,9 @@ def plot(path: pathlib.Path, rows: list, fr: dict, title: str) -> None:
         vy = [r["valid_worst"] for r in f if r.get("valid_worst") is not None]
         if vx:
             ax.scatter(vx, vy, marker="x", label=f"validation, <= {c} clk/px")
-    ax.set_xscale("log")
+    xs = [r["logic_ge"] for r in pts]
+    if xs and max(xs) > 4 * min(xs):
+        ax.set_xscale("log")
     ax.set_xlabel("logic area, thousand GE (OSU018)")
     ax.set_ylabel("worst-scene PSNR vs reference, dB")
     ax.set_title(title)
