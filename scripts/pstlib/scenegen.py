@@ -10,7 +10,7 @@ products are exact there). This generator draws, from a fixed seed, scenes with:
 - full quadrics with cross terms (B, C, F non-zero), or the paper's kinds (linear, radial,
   none);
 - colour maps of 2-8 random keys, step or smooth (linear), taken mod or clamped;
-- every filter kind (none, mip, mip_linear, sat, box), on every mesh (sphere, cube, plane,
+- every filter kind (none, mip, mip_linear, sat, box, trapezoid), on every mesh (sphere, cube, plane,
   torus, teapot) seen from a random camera.
 
 The categorical features are stratified (each set walks a shuffled list of each feature), so a
@@ -25,7 +25,7 @@ import json
 import math
 import random
 
-FILTERS = ["none", "mip", "mip_linear", "sat", "box"]
+FILTERS = ["none", "mip", "mip_linear", "sat", "box", "trapezoid"]
 WRAPS = ["mod", "clamp"]
 INTERPS = ["linear", "step"]
 MATRIX_KINDS = ["rotated", "general", "axis"]
