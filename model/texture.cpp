@@ -74,6 +74,7 @@ bool parseBandlimit(const std::string& name, Bandlimit* out) {
     if (name == "off") *out = Bandlimit::Off;
     else if (name == "fade") *out = Bandlimit::Fade;
     else if (name == "widen") *out = Bandlimit::Widen;
+    else if (name == "match") *out = Bandlimit::Match;
     else return false;
     return true;
 }
@@ -83,6 +84,7 @@ const char* toString(Bandlimit v) {
     case Bandlimit::Off: return "off";
     case Bandlimit::Fade: return "fade";
     case Bandlimit::Widen: return "widen";
+    case Bandlimit::Match: return "match";
     }
     return "?";
 }
@@ -114,15 +116,80 @@ NoiseMoments noiseMoments(const NoiseOptions& opt) {
     return m;
 }
 
+namespace {
+std::string basisKey(const NoiseOptions& opt) {
+    std::ostringstream key;
+    key << toString(opt.basis) << ' ' << toString(opt.interp) << ' ' << toString(opt.corner) << ' '
+        << toString(opt.hash) << ' ' << toString(opt.metric) << ' ' << opt.coef[0] << ' ' << opt.coef[1] << ' '
+        << opt.coef[2] << ' ' << opt.coef[3] << ' ' << opt.cell;
+    return key.str();
+}
+constexpr int kGainSteps = 4;                     // per octave of nu
+constexpr int kGainLo = -4 * kGainSteps, kGainHi = 8 * kGainSteps;  // nu = 2^(k / 4), 1/16 .. 256
+}  // namespace
+
+double noiseBoxGain(const NoiseOptions& opt, double nu) {
+    static std::mutex mu;
+    static std::map<std::string, std::vector<double>> cache;
+    if (!(nu > 0.0)) return 1.0;
+    std::vector<double> table;
+    {
+        std::lock_guard<std::mutex> lock(mu);
+        auto it = cache.find(basisKey(opt));
+        if (it != cache.end()) table = it->second;
+    }
+    if (table.empty()) {
+        // Segments from the R3 low-discrepancy sequence (start in a 64-cell cube, direction on the
+        // sphere); the mean of each by the midpoint rule at 8 points per cell (>= 16).
+        const NoiseMoments m = noiseMoments(opt);
+        const double g = 1.2207440846057596, a1 = 1 / g, a2 = 1 / (g * g), a3 = 1 / (g * g * g);
+        const int segments = 1024;
+        for (int k = kGainLo; k <= kGainHi; ++k) {
+            const double len = std::exp2(double(k) / kGainSteps);
+            const int q = std::min(512, std::max(16, int(std::ceil(8 * len))));
+            double sum2 = 0;
+            for (int i = 1; i <= segments; ++i) {
+                const double u1 = std::fmod(0.5 + a1 * i, 1.0), u2 = std::fmod(0.5 + a2 * i, 1.0),
+                             u3 = std::fmod(0.5 + a3 * i, 1.0);
+                const double z = 2 * u3 - 1, phi = 2 * 3.141592653589793 * std::fmod(u1 + u2, 1.0);
+                const double rxy = std::sqrt(std::max(0.0, 1 - z * z));
+                const glm::dvec3 d(rxy * std::cos(phi), rxy * std::sin(phi), z), p0 = 64.0 * glm::dvec3(u1, u2, u3);
+                double mean = 0;
+                for (int j = 0; j < q; ++j) mean += noise(p0 + ((j + 0.5) / q) * len * d, opt);
+                mean = mean / q - m.mean;
+                sum2 += mean * mean;
+            }
+            table.push_back(m.sd > 0 ? std::min(1.0, sum2 / segments / (m.sd * m.sd)) : 1.0);
+        }
+        std::lock_guard<std::mutex> lock(mu);
+        cache[basisKey(opt)] = table;
+    }
+    const double x = std::log2(nu) * kGainSteps - kGainLo;
+    if (x <= 0) return 1.0;  // below 1/16 cell: as good as a point (table[0] is close to 1)
+    const int n = int(table.size()) - 1;
+    if (x >= n) return table[n] * std::exp2(double(kGainHi) / kGainSteps) / nu;  // c / nu beyond
+    const int i = int(std::floor(x));
+    const double t = x - i;
+    return table[i] * (1 - t) + table[i + 1] * t;
+}
+
+double octaveMatch(const Octave& o, const NoiseOptions& opt, const glm::dvec3& dsdx, const glm::dvec3& dsdy) {
+    return std::sqrt(noiseBoxGain(opt, glm::length(o.M * dsdx)) * noiseBoxGain(opt, glm::length(o.M * dsdy)));
+}
+
 double evalFBandlimited(const Texture& tex, const glm::dvec3& s, const glm::dvec3& dsdx,
                         const glm::dvec3& dsdy, glm::dvec3* gradS, double* fadedSd) {
     const NoiseMoments m = noiseMoments(tex.noise);
     double f = tex.quadric.value(s), var = 0;
     glm::dvec3 g = gradS ? tex.quadric.gradient(s) : glm::dvec3(0.0);
     for (const Octave& o : tex.octaves) {
-        const double alpha = octaveFade(o, dsdx, dsdy);
+        const double alpha =
+            tex.bandlimit == Bandlimit::Match ? octaveMatch(o, tex.noise, dsdx, dsdy) : octaveFade(o, dsdx, dsdy);
         f += o.amplitude * (1.0 - alpha) * m.mean;
-        var += std::pow(o.amplitude * (1.0 - alpha) * m.sd, 2);
+        // What the pixel's spread holds: fade/widen the removed part (1 - alpha)(n - mean); match the
+        // in-pixel share of the variance, sigma^2 (1 - alpha^2) (pixel mean's alpha^2 sigma^2 kept).
+        var += tex.bandlimit == Bandlimit::Match ? std::pow(o.amplitude * m.sd, 2) * (1.0 - alpha * alpha)
+                                                 : std::pow(o.amplitude * (1.0 - alpha) * m.sd, 2);
         if (alpha == 0.0) continue;
         const double a = o.amplitude * alpha;
         glm::dvec3 gn;
@@ -137,7 +204,8 @@ double evalFBandlimited(const Texture& tex, const glm::dvec3& s, const glm::dvec
 double bandlimitedWidth(const Texture& tex, const glm::dvec3& gradS, const glm::dvec3& dsdx,
                         const glm::dvec3& dsdy, double fadedSd) {
     const double w = filterWidth(gradS, dsdx, dsdy, tex.norm);
-    return tex.bandlimit == Bandlimit::Widen ? std::sqrt(w * w + 12.0 * fadedSd * fadedSd) : w;
+    const bool widen = tex.bandlimit == Bandlimit::Widen || tex.bandlimit == Bandlimit::Match;
+    return widen ? std::sqrt(w * w + 12.0 * fadedSd * fadedSd) : w;
 }
 
 double filterWidth(const glm::dvec3& gradS, const glm::dvec3& dsdx, const glm::dvec3& dsdy,
@@ -163,7 +231,8 @@ glm::dvec4 filterColour(const ColorMap& clut, double f, double w, const glm::dve
 }
 
 glm::dvec2 bandlimitedFootprint(const Texture& tex, const glm::dvec2& wxy, double fadedSd) {
-    if (tex.bandlimit != Bandlimit::Widen || !(fadedSd > 0.0)) return wxy;
+    const bool widen = tex.bandlimit == Bandlimit::Widen || tex.bandlimit == Bandlimit::Match;
+    if (!widen || !(fadedSd > 0.0)) return wxy;
     const double e2 = glm::dot(wxy, wxy), add = 12.0 * fadedSd * fadedSd;
     if (!(e2 > 0.0)) return glm::dvec2(std::sqrt(add), 0.0);
     return wxy * std::sqrt(1.0 + add / e2);

@@ -45,9 +45,10 @@ const char* toString(GradNorm v);
 
 // Bandlimited octaves: off (the paper), fade (octaveFade), widen (fade, and the filter width
 // grows to sqrt(w^2 + 12 sigma^2), sigma the faded terms' standard deviation: a box of width
-// sqrt(12) sigma has the variance of what was removed).
-enum class Bandlimit { Off, Fade, Widen };
-bool parseBandlimit(const std::string& name, Bandlimit* out);  // "off", "fade", "widen"
+// sqrt(12) sigma has the variance of what was removed), match (octaveMatch instead of the linear
+// fade: each term keeps the standard deviation the pixel's box average of it has; widened as widen).
+enum class Bandlimit { Off, Fade, Widen, Match };
+bool parseBandlimit(const std::string& name, Bandlimit* out);  // "off", "fade", "widen", "match"
 const char* toString(Bandlimit v);
 
 // Mean and standard deviation of a noise basis over space (sampled once per variant).
@@ -93,7 +94,20 @@ double evalF(const Texture& tex, const glm::dvec3& s, glm::dvec3* gradS = nullpt
 constexpr double kFadeStart = 0.5;
 double octaveFade(const Octave& o, const glm::dvec3& dsdx, const glm::dvec3& dsdy);
 
-// f and grad_s f with every octave's term a_i n faded by alpha = octaveFade toward the basis's
+// The variance of the basis averaged over a segment nu lattice cells long (random direction and
+// place), over the basis's variance: 1 at nu = 0, about c / nu for large nu. Sampled once per basis
+// at quarter octaves of nu in [1/16, 256] (Monte Carlo: 1024 segments each,
+// 8 points per cell, 16 to 512) and interpolated in
+// lg nu; 1 below, the last value times 256 / nu above.
+double noiseBoxGain(const NoiseOptions& opt, double nu);
+
+// The variance-matched weight of octave o: sqrt(g(|M dsdx|) g(|M dsdy|)), g = noiseBoxGain, the
+// share of the term's standard deviation that survives the pixel's box average (the footprint's
+// two edges averaged independently: exact for a separable correlation).
+double octaveMatch(const Octave& o, const NoiseOptions& opt, const glm::dvec3& dsdx, const glm::dvec3& dsdy);
+
+// f and grad_s f with every octave's term a_i n faded by alpha = octaveFade (octaveMatch for
+// Bandlimit::Match) toward the basis's
 // mean, a_i (alpha n + (1 - alpha) mean), its gradient share alpha a_i M^T grad n (the
 // bandlimited texture); fadedSd: the standard deviation of what was removed,
 // sqrt(sum ((1 - alpha) a_i sd)^2).

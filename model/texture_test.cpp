@@ -298,6 +298,40 @@ TEST(Texture, BandlimitedIsTheFullTextureForSmallFootprintsAndTheQuadricForLarge
                      std::sqrt(fade.filterWidth * fade.filterWidth + 12.0 * sd * sd));
 }
 
+// The variance gain of a box average of the noise: 1 for a point, falling like c / nu for long
+// segments; checked against an independent Monte Carlo estimate (mt19937 segments).
+TEST(Texture, NoiseBoxGain) {
+    const NoiseOptions opt;
+    EXPECT_EQ(noiseBoxGain(opt, 0.0), 1.0);
+    EXPECT_GT(noiseBoxGain(opt, 0.1), 0.9);
+    for (double nu : {0.25, 0.5, 1.0, 2.0, 4.0, 8.0, 16.0, 32.0})
+        EXPECT_LT(noiseBoxGain(opt, 2 * nu), noiseBoxGain(opt, nu)) << nu;
+    EXPECT_NEAR(noiseBoxGain(opt, 512.0) * 512.0, noiseBoxGain(opt, 256.0) * 256.0, 1e-12);  // c / nu beyond
+    const double g128 = noiseBoxGain(opt, 128.0) * 128.0, g32 = noiseBoxGain(opt, 32.0) * 32.0;
+    EXPECT_NEAR(g128 / g32, 1.0, 0.35);  // already ~ c / nu
+    // Independent estimate at nu = 1 and 4.
+    const NoiseMoments m = noiseMoments(opt);
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::normal_distribution<double> g(0.0, 1.0);
+    for (double nu : {1.0, 4.0}) {
+        double s2 = 0;
+        const int n = 3000, q = 64;
+        for (int i = 0; i < n; ++i) {
+            const glm::dvec3 p0(100 * u(rng), 100 * u(rng), 100 * u(rng));
+            const glm::dvec3 d = glm::normalize(glm::dvec3(g(rng), g(rng), g(rng)));
+            double mean = 0;
+            for (int j = 0; j < q; ++j) mean += noise(p0 + (j + 0.5) / q * nu * d, opt);
+            s2 += std::pow(mean / q - m.mean, 2);
+        }
+        EXPECT_NEAR(noiseBoxGain(opt, nu), s2 / n / (m.sd * m.sd), 0.15 * noiseBoxGain(opt, nu)) << nu;
+    }
+    Octave o;
+    o.M = glm::dmat3(2.0);
+    const glm::dvec3 dx(0.5, 0, 0), dy(0, 0, 2.0);
+    EXPECT_NEAR(octaveMatch(o, opt, dx, dy), std::sqrt(noiseBoxGain(opt, 1.0) * noiseBoxGain(opt, 4.0)), 1e-12);
+}
+
 TEST(Texture, GradNormNamesRoundTrip) {
     for (GradNorm v : {GradNorm::Euclid, GradNorm::MaxHalfMin, GradNorm::L1}) {
         GradNorm r;

@@ -33,7 +33,7 @@ echo "== animation: seascape fly-in, 24 frames at 64x64 through the reference an
 ./build/pst animate scenes/seascape.toml --frames 24 --size 64 --truth 4 --profile full -o out/anim/seascape -q || rc=1
 /usr/bin/python3 scripts/flicker.py out/anim/seascape --md out/flicker.md || rc=1
 echo "== filter options against the ground truth (scenes 64x64, 16x16 truth; sequences 16 frames 48x48, 8x8 truth)"
-VARIANTS=sat,box,trapezoid,sat+fade,sat+widen,trapezoid+widen
+VARIANTS=sat,box,trapezoid,sat+fade,sat+widen,sat+match,trapezoid+match
 stills=()
 for scene in scenes/*.toml; do
   name=$(basename "$scene" .toml)
