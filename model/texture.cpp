@@ -75,6 +75,7 @@ bool parseBandlimit(const std::string& name, Bandlimit* out) {
     else if (name == "fade") *out = Bandlimit::Fade;
     else if (name == "widen") *out = Bandlimit::Widen;
     else if (name == "match") *out = Bandlimit::Match;
+    else if (name == "footprint") *out = Bandlimit::Footprint;
     else return false;
     return true;
 }
@@ -85,6 +86,7 @@ const char* toString(Bandlimit v) {
     case Bandlimit::Fade: return "fade";
     case Bandlimit::Widen: return "widen";
     case Bandlimit::Match: return "match";
+    case Bandlimit::Footprint: return "footprint";
     }
     return "?";
 }
@@ -177,12 +179,43 @@ double octaveMatch(const Octave& o, const NoiseOptions& opt, const glm::dvec3& d
     return std::sqrt(noiseBoxGain(opt, glm::length(o.M * dsdx)) * noiseBoxGain(opt, glm::length(o.M * dsdy)));
 }
 
+double octaveFootprint(const Octave& o, const NoiseOptions& opt, const glm::dvec3& s, const glm::dvec3& dsdx,
+                       const glm::dvec3& dsdy, glm::dvec3* grad, double* keptVar) {
+    const NoiseMoments m = noiseMoments(opt);
+    const double nx = glm::length(o.M * dsdx), ny = glm::length(o.M * dsdy);
+    const double nMaj = std::max(nx, ny), nMin = std::min(nx, ny);
+    const glm::dvec3& dMaj = nx >= ny ? dsdx : dsdy;
+    const int K = int(std::clamp(std::ceil(2.0 * nMaj), 1.0, double(kFootprintSamples)));
+    double v = 0;
+    glm::dvec3 gv(0.0);
+    for (int k = 0; k < K; ++k) {
+        glm::dvec3 gn;
+        v += noise(o.M * (s + ((k + 0.5) / K - 0.5) * dMaj) + o.offset, opt, grad ? &gn : nullptr);
+        if (grad) gv += gn;
+    }
+    v /= K;
+    const double gMaj = noiseBoxGain(opt, nMaj), gMin = noiseBoxGain(opt, nMin);
+    const double gK = K >= 2.0 * nMaj ? gMaj : std::max(gMaj, 1.0 / K);
+    const double w = std::sqrt(gMin) * std::sqrt(gK > 0 ? gMaj / gK : 1.0);
+    if (grad) *grad = w * (glm::transpose(o.M) * (gv / double(K)));
+    if (keptVar) *keptVar = gMaj * gMin;
+    return m.mean + w * (v - m.mean);
+}
+
 double evalFBandlimited(const Texture& tex, const glm::dvec3& s, const glm::dvec3& dsdx,
                         const glm::dvec3& dsdy, glm::dvec3* gradS, double* fadedSd) {
     const NoiseMoments m = noiseMoments(tex.noise);
     double f = tex.quadric.value(s), var = 0;
     glm::dvec3 g = gradS ? tex.quadric.gradient(s) : glm::dvec3(0.0);
     for (const Octave& o : tex.octaves) {
+        if (tex.bandlimit == Bandlimit::Footprint) {
+            glm::dvec3 gt;
+            double kept = 1;
+            f += o.amplitude * octaveFootprint(o, tex.noise, s, dsdx, dsdy, gradS ? &gt : nullptr, &kept);
+            if (gradS) g += o.amplitude * gt;
+            var += std::pow(o.amplitude * m.sd, 2) * (1.0 - kept);
+            continue;
+        }
         const double alpha =
             tex.bandlimit == Bandlimit::Match ? octaveMatch(o, tex.noise, dsdx, dsdy) : octaveFade(o, dsdx, dsdy);
         f += o.amplitude * (1.0 - alpha) * m.mean;
@@ -204,7 +237,8 @@ double evalFBandlimited(const Texture& tex, const glm::dvec3& s, const glm::dvec
 double bandlimitedWidth(const Texture& tex, const glm::dvec3& gradS, const glm::dvec3& dsdx,
                         const glm::dvec3& dsdy, double fadedSd) {
     const double w = filterWidth(gradS, dsdx, dsdy, tex.norm);
-    const bool widen = tex.bandlimit == Bandlimit::Widen || tex.bandlimit == Bandlimit::Match;
+    const bool widen = tex.bandlimit == Bandlimit::Widen || tex.bandlimit == Bandlimit::Match ||
+                       tex.bandlimit == Bandlimit::Footprint;
     return widen ? std::sqrt(w * w + 12.0 * fadedSd * fadedSd) : w;
 }
 
@@ -231,7 +265,8 @@ glm::dvec4 filterColour(const ColorMap& clut, double f, double w, const glm::dve
 }
 
 glm::dvec2 bandlimitedFootprint(const Texture& tex, const glm::dvec2& wxy, double fadedSd) {
-    const bool widen = tex.bandlimit == Bandlimit::Widen || tex.bandlimit == Bandlimit::Match;
+    const bool widen = tex.bandlimit == Bandlimit::Widen || tex.bandlimit == Bandlimit::Match ||
+                       tex.bandlimit == Bandlimit::Footprint;
     if (!widen || !(fadedSd > 0.0)) return wxy;
     const double e2 = glm::dot(wxy, wxy), add = 12.0 * fadedSd * fadedSd;
     if (!(e2 > 0.0)) return glm::dvec2(std::sqrt(add), 0.0);

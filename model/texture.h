@@ -46,9 +46,13 @@ const char* toString(GradNorm v);
 // Bandlimited octaves: off (the paper), fade (octaveFade), widen (fade, and the filter width
 // grows to sqrt(w^2 + 12 sigma^2), sigma the faded terms' standard deviation: a box of width
 // sqrt(12) sigma has the variance of what was removed), match (octaveMatch instead of the linear
-// fade: each term keeps the standard deviation the pixel's box average of it has; widened as widen).
-enum class Bandlimit { Off, Fade, Widen, Match };
-bool parseBandlimit(const std::string& name, Bandlimit* out);  // "off", "fade", "widen", "match"
+// fade: each term keeps the standard deviation the pixel's box average of it has; widened as widen),
+// footprint (match across the footprint's minor edge; along its major edge the term is the mean of
+// up to kFootprintSamples point samples spread over the edge, so it follows the pixel's own average
+// from frame to frame; octaveFootprint).
+enum class Bandlimit { Off, Fade, Widen, Match, Footprint };
+// "off", "fade", "widen", "match", "footprint"
+bool parseBandlimit(const std::string& name, Bandlimit* out);
 const char* toString(Bandlimit v);
 
 // Mean and standard deviation of a noise basis over space (sampled once per variant).
@@ -105,6 +109,17 @@ double noiseBoxGain(const NoiseOptions& opt, double nu);
 // share of the term's standard deviation that survives the pixel's box average (the footprint's
 // two edges averaged independently: exact for a separable correlation).
 double octaveMatch(const Octave& o, const NoiseOptions& opt, const glm::dvec3& dsdx, const glm::dvec3& dsdy);
+
+// Bandlimit::Footprint's term of octave o at s: with nu = |M dsdx|, |M dsdy| the footprint's edges
+// in lattice cells, K = clamp(ceil(2 nu_major), 1, kFootprintSamples) samples n_k at s + ((k + 1/2) / K
+// - 1/2) times the major edge's Jacobian column, v = their mean; the term is
+// mean + w (v - mean) with w = sqrt(g(nu_minor)) sqrt(g(nu_major) / gK), gK = g(nu_major) when the
+// samples are at most half a cell apart, else max(g(nu_major), 1 / K) (nearly independent samples),
+// g = noiseBoxGain; *grad: w times the mean of the samples' M^T grad n; *keptVar: the share of the
+// term's variance kept, g(nu_major) g(nu_minor).
+constexpr int kFootprintSamples = 16;
+double octaveFootprint(const Octave& o, const NoiseOptions& opt, const glm::dvec3& s, const glm::dvec3& dsdx,
+                       const glm::dvec3& dsdy, glm::dvec3* grad, double* keptVar);
 
 // f and grad_s f with every octave's term a_i n faded by alpha = octaveFade (octaveMatch for
 // Bandlimit::Match) toward the basis's

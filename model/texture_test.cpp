@@ -332,6 +332,44 @@ TEST(Texture, NoiseBoxGain) {
     EXPECT_NEAR(octaveMatch(o, opt, dx, dy), std::sqrt(noiseBoxGain(opt, 1.0) * noiseBoxGain(opt, 4.0)), 1e-12);
 }
 
+// Match and footprint: the full texture for a vanishing footprint; for a long thin footprint the
+// footprint term is the mean of its samples along the long edge (checked by hand for one octave).
+TEST(Texture, MatchAndFootprintBandlimits) {
+    Texture tex = testTexture({});
+    const glm::dvec3 s(0.3, -1.2, 2.7);
+    glm::dvec3 g, gb;
+    const double f = evalF(tex, s, &g);
+    const glm::dvec3 tiny(1e-9, 0, 0), tinyY(0, 1e-9, 0);
+    for (Bandlimit b : {Bandlimit::Match, Bandlimit::Footprint}) {
+        tex.bandlimit = b;
+        double sd = -1;
+        EXPECT_NEAR(evalFBandlimited(tex, s, tiny, tinyY, &gb, &sd), f, 1e-6) << toString(b);
+        EXPECT_NEAR(glm::length(gb - g), 0.0, 1e-6 * glm::length(g)) << toString(b);
+        EXPECT_LT(sd, 1e-3) << toString(b);
+    }
+    Octave o;
+    o.amplitude = 1;
+    o.M = glm::dmat3(1.0);
+    const NoiseOptions opt;
+    const NoiseMoments m = noiseMoments(opt);
+    const glm::dvec3 dx(3.0, 0, 0), dy(0, 0.01, 0);   // 3 cells along x: K = 6 samples
+    double v = 0;
+    for (int k = 0; k < 6; ++k) v += noise(s + glm::dvec3(((k + 0.5) / 6 - 0.5) * 3.0, 0, 0), opt);
+    v /= 6;
+    const double w = std::sqrt(noiseBoxGain(opt, 0.01));     // samples 0.5 cell apart: gK = g(3)
+    double kept = 0;
+    EXPECT_NEAR(octaveFootprint(o, opt, s, dx, dy, nullptr, &kept), m.mean + w * (v - m.mean), 1e-12);
+    EXPECT_NEAR(kept, noiseBoxGain(opt, 3.0) * noiseBoxGain(opt, 0.01), 1e-12);
+    // Capped samples (64 cells, 16 samples 4 cells apart): the weight falls by sqrt(g(64) / (1/16)).
+    const glm::dvec3 far(64.0, 0, 0);
+    v = 0;
+    for (int k = 0; k < 16; ++k) v += noise(s + glm::dvec3(((k + 0.5) / 16 - 0.5) * 64.0, 0, 0), opt);
+    v /= 16;
+    const double wf = std::sqrt(noiseBoxGain(opt, 0.01)) * std::sqrt(noiseBoxGain(opt, 64.0) * 16.0);
+    EXPECT_LT(wf, 1.0);
+    EXPECT_NEAR(octaveFootprint(o, opt, s, far, dy, nullptr, nullptr), m.mean + wf * (v - m.mean), 1e-12);
+}
+
 TEST(Texture, GradNormNamesRoundTrip) {
     for (GradNorm v : {GradNorm::Euclid, GradNorm::MaxHalfMin, GradNorm::L1}) {
         GradNorm r;

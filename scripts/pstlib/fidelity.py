@@ -139,7 +139,7 @@ def markdown(stills, seqs):
         lines += [f"Stills: RMS error against the ground truth ({', '.join(str(t) for t in truth)} samples per pixel), "
                   "PSNR, and the paper's filter's RMS over the option's (> 1x: better than the paper). "
                   "sat = the paper's summed-area table; box = the exact box of the euclidean width; trapezoid = "
-                  "the pixel footprint's shape; +fade / +widen / +match = bandlimited octaves (scenes/README.md).", "",
+                  "the pixel footprint's shape; +fade / +widen / +match / +footprint = bandlimited octaves (scenes/README.md).", "",
                   "| scene | size | " + " | ".join(cols) + " |", "|" + "---|" * (len(cols) + 2)]
         for s in stills:
             paper = s["rms"][PAPER]

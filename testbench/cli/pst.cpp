@@ -458,8 +458,8 @@ int main(int argc, char** argv) {
     render->add_option("--seed", ra.seed, "Jitter seed of the ground truth");
     render->add_option("-j,--threads", ra.threads, "Threads (default: all cores)")->check(CLI::Range(0, 256));
     render->add_flag("-q,--quiet", ra.quiet, "No progress on stderr");
-    render->add_option("--bandlimit", ra.bandlimit, "Every texture's bandlimited octaves: off, fade, widen or match (reference model only)")
-        ->check(CLI::IsMember({"off", "fade", "widen", "match"}));
+    render->add_option("--bandlimit", ra.bandlimit, "Every texture's bandlimited octaves: off, fade, widen, match or footprint (reference model only)")
+        ->check(CLI::IsMember({"off", "fade", "widen", "match", "footprint"}));
     const std::vector<std::string> filterNames{"none", "mip", "mip_linear", "sat", "box", "trapezoid"};
     render->add_option("--filter", ra.filter, "Every texture's filter kind: none, mip, mip_linear, sat, box or trapezoid")
         ->check(CLI::IsMember(filterNames));
@@ -544,8 +544,8 @@ int main(int argc, char** argv) {
     animate->add_option("-j,--threads", an.threads, "Threads (default: all cores)")->check(CLI::Range(0, 256));
     bool noVideo = false, animQuiet = false;
     animate->add_flag("--no-video", noVideo, "PNG frames and flicker.json only");
-    animate->add_option("--bandlimit", an.bandlimit, "Every texture's bandlimited octaves: off, fade, widen or match (reference model only)")
-        ->check(CLI::IsMember({"off", "fade", "widen", "match"}));
+    animate->add_option("--bandlimit", an.bandlimit, "Every texture's bandlimited octaves: off, fade, widen, match or footprint (reference model only)")
+        ->check(CLI::IsMember({"off", "fade", "widen", "match", "footprint"}));
     animate->add_option("--filter", an.filter, "Every texture's filter kind: none, mip, mip_linear, sat, box or trapezoid")
         ->check(CLI::IsMember(filterNames));
     std::vector<std::string> animVariants;
