@@ -128,7 +128,8 @@ def make_point(base_text: str, base_doc: dict, doc: dict, move: str, prefix="s")
 
 
 def neighbours(doc: dict, knobs: list, structs: list) -> list:
-    """(knob, from, to, new doc) of every valid one-step-cheaper move of DOC."""
+    """(knob, from, to, new doc) of every valid one-step-cheaper move of DOC, the structure move
+    first (the largest saving; a walk short of budget evaluates it before the format cuts)."""
     out = []
     for k in KNOBS:
         if k["name"] not in knobs:
@@ -157,7 +158,7 @@ def neighbours(doc: dict, knobs: list, structs: list) -> list:
                 d = copy.deepcopy(doc)
                 d["pipeline"].update(structs[i - 1])
                 if not contract.validate(d):
-                    out.append(("structure", _sdesc(cur), _sdesc(structs[i - 1]), d))
+                    out.insert(0, ("structure", _sdesc(cur), _sdesc(structs[i - 1]), d))
     return out
 
 
