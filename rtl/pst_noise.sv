@@ -1,6 +1,7 @@
 // Stage 2 of the texture pipeline (docs/HARDWARE.md): the noise unit. Rayshade's Noise3
 // (value-plus-gradient lattice noise) and its analytic gradient in fixed point, with the
-// cheaper variants as parameters. Combinational. Golden: pst::noiseFx
+// cheaper variants as parameters. Combinational when NoiseRegs = 0, else a pipeline (below).
+// Golden: pst::noiseFx
 // (model/golden/noise_fx.cpp, same steps and floors; the unit tests compare every bit).
 //
 // Notation: LF = NoiseLatticeFrac, VF = NoiseValueFrac, OF = NoiseOutFrac,
@@ -36,14 +37,26 @@
 // Multipliers: 3 weights x 2 (scurve), 8 corners x 3 (value_gradient), 7 lerps x 4 (+1 own-axis
 // ds product for scurve); no weight products w_x w_y w_z as in Rayshade's sum of 8 terms.
 //
-// Serial evaluation (NoiseSteps = 2, 4, 8; combinational when 1): the caller holds lat_i and
-// frac_i and steps step_i through 0..NoiseSteps-1 (adv_i on every step but the last); step j
+// Serial evaluation (NoiseSteps = 2, 4, 8): the caller offers step_i = 0..NoiseSteps-1 with
+// valid_i on consecutive advances (lat_i and frac_i of the evaluation each time); step j
 // evaluates corners j CPS .. j CPS + CPS-1 (CPS = 8 / NoiseSteps) and their lerps on the first
 // KC = lg CPS axes; the remaining axes are lerped across steps through one lerp and one held
 // node per axis (the node of a step with bit l = 0 is held, the next step's node is lerped
 // with it). The lerps are the tree's lerps on the same operands, so n_o and grad_o (valid at
 // the last step) are the same bit for bit. NoiseSteps = 4: 2 corners + 3 lerps instead of
 // 8 + 7, 6 hash lookups and 8 value reads per cycle instead of 14 and 32.
+//
+// Pipeline (NoiseRegs = the profile's pipeline.noise_regs, 0..6): the unit is a chain of six
+// sub-blocks, and a register (pst_delay, enabled by en_i) sits at the first NoiseRegs of the
+// six boundaries after them, in this order:
+//   b0 hash levels 1-2 (and the weights' u^2) | b1 hash level 3 and the value table |
+//   b2 corners | b3, b4, b5 the three lerp levels (the KC in-step levels, then the LS serial
+//   levels; b5 is the output).
+// A token (valid_i, step_i) travels beside the data: a serial level's held node is stored
+// when the token at that level has its bit l = 0 (so the steps' order is kept whatever the
+// registers), and valid_o / last_o give the token at the output. The result of step
+// NoiseSteps - 1 comes NoiseRegs advances (en_i) after its input; the unit never stalls on its
+// own: the caller's en_i is its pipeline's advance.
 //
 // Parameters (names as scripts/profile.py derives them):
 //   NoiseInterp      0 scurve, 1 linear: weight function (and the own-axis ds multiplier)
@@ -55,9 +68,13 @@
 //   NoiseSteps       cycles per evaluation (1, 2, 4, 8): corners and lerps built (above)
 //   NoiseGuardBits   node fraction bits below NoiseOutFrac (1..8): every corner, lerp and
 //                    held node's width
+//   NoiseRegs        pipeline registers (0..6, above)
 // ROM images: `PST_ROM_DIR/{hash4096,perm256,value16}.memh, written by sim/tools/pst_roms.
 //
 // Ports:
+//   en_i   the pipeline advances (registers and held nodes store)
+//   valid_i, step_i   the token: a step of an evaluation enters; valid_o, last_o: the token at
+//                     the output (last_o: its step is NoiseSteps - 1, n_o and grad_o are valid)
 //   lat_i  [LatticeWidth-1:0]  3 x 12-bit lattice index (after +576, mod 4096), axis k at [12k +: 12]
 //   frac_i [3*LF-1:0]          3 x unsigned fraction u
 //   n_o    [NW-1:0]            noise value, signed Q4.OF (pst_pkg::NoiseIntBits)
@@ -78,18 +95,22 @@ module pst_noise #(
   parameter int NoiseOutFrac = pst_pkg::NoiseOutFracDefault,
   parameter int NoiseSteps = pst_pkg::NoiseStepsDefault,
   parameter int NoiseGuardBits = pst_pkg::NoiseGuardBitsDefault,
+  parameter int NoiseRegs = pst_pkg::NoiseRegsDefault,
   localparam int LF = NoiseLatticeFrac,  // fraction bits of u
   localparam int OF = NoiseOutFrac,      // fraction bits of the outputs
   localparam int NW = pst_pkg::NoiseIntBits + NoiseOutFrac,      // n_o
   localparam int NGW = pst_pkg::NoiseGradIntBits + NoiseOutFrac, // one grad_o component
   localparam int LB = pst_pkg::LatticeBits                       // one lattice index
 ) (
-  input  logic               clk_i,    // NoiseSteps > 1: held lerp nodes
+  input  logic               clk_i,    // pipeline registers, held lerp nodes
   input  logic               rst_ni,
-  input  logic [2:0]         step_i,   // 0..NoiseSteps-1: the corners of this cycle
-  input  logic               adv_i,    // store this step's held nodes
+  input  logic               en_i,     // advance
+  input  logic               valid_i,  // a step enters
+  input  logic [2:0]         step_i,   // 0..NoiseSteps-1: the corners of this step
   input  logic [pst_pkg::LatticeWidth-1:0] lat_i,
   input  logic [3*LF-1:0]    frac_i,
+  output logic               valid_o,  // the token at the output
+  output logic               last_o,   // ... is the evaluation's last step: n_o, grad_o valid
   output logic signed [NW-1:0]  n_o,
   output logic [3*NGW-1:0]      grad_o
 );
@@ -110,27 +131,62 @@ module pst_noise #(
   localparam int CPS = 8 / NoiseSteps;
   localparam int KC  = $clog2(CPS);
   localparam int LS  = $clog2(NoiseSteps);
+  // Boundaries b0..b5 (header): register at b iff b < NoiseRegs.
+  localparam int NB  = 3 + KC + LS;   // = 6
+  localparam int TW  = 4;             // token: {valid, step}
+  localparam int WTW = 3 * LF + 3 * (LF + 2);   // weights s, ds of the three axes
 
-  // ---- 1. weights -------------------------------------------------------------------------
-  logic [3*LF-1:0]     s_w;   // s per axis
-  logic [3*(LF+2)-1:0] ds_w;  // ds per axis
-  for (genvar k = 0; k < 3; k++) begin : g_weight
-    pst_noise_weight #(
-      .NoiseInterp      (NoiseInterp),
-      .NoiseLatticeFrac (NoiseLatticeFrac)
-    ) u_weight (
-      .u_i  (frac_i[k*LF +: LF]),
-      .s_o  (s_w[k*LF +: LF]),
-      .ds_o (ds_w[k*(LF+2) +: LF+2])
+  // ---- tokens and weights along the chain ---------------------------------------------------
+  // tok[b]: the token of the sub-block after boundary b-1 (tok[0] = the input); likewise
+  // wts[b] (b >= 1): the weights there, frc[b] the fractions (b <= 2).
+  logic [(NB+1)*TW-1:0] tok;
+  assign tok[0 +: TW] = {valid_i, step_i};
+  for (genvar b = 0; b < NB; b++) begin : g_tok
+    pst_delay #(.Width(TW), .Depth(b < NoiseRegs ? 1 : 0), .Reset(1'b1)) u_tok (
+      .clk_i, .rst_ni, .en_i, .d_i (tok[b*TW +: TW]), .q_o (tok[(b+1)*TW +: TW])
     );
   end
 
+  // ---- 1. weights -------------------------------------------------------------------------
+  // Computed beside the hash: u^2 before b0, s and ds after it (pst_noise_weight's register).
+  logic [(NB+1)*WTW-1:0] wts;   // {ds, s} per boundary; [0] unused
+  logic [3*LF-1:0]     s_w1;
+  logic [3*(LF+2)-1:0] ds_w1;
+  for (genvar k = 0; k < 3; k++) begin : g_weight
+    pst_noise_weight #(
+      .NoiseInterp      (NoiseInterp),
+      .NoiseLatticeFrac (NoiseLatticeFrac),
+      .Reg              (NoiseRegs > 0)
+    ) u_weight (
+      .clk_i, .rst_ni, .en_i,
+      .u_i  (frac_i[k*LF +: LF]),
+      .s_o  (s_w1[k*LF +: LF]),
+      .ds_o (ds_w1[k*(LF+2) +: LF+2])
+    );
+  end
+  assign wts[0 +: WTW] = '0;
+  assign wts[WTW +: WTW] = {ds_w1, s_w1};
+  for (genvar b = 1; b < NB; b++) begin : g_wts
+    pst_delay #(.Width(WTW), .Depth(b < NoiseRegs ? 1 : 0)) u_wts (
+      .clk_i, .rst_ni, .en_i, .d_i (wts[b*WTW +: WTW]), .q_o (wts[(b+1)*WTW +: WTW])
+    );
+  end
+  logic [3*LF-1:0] frc1, frc2;   // the fractions after b0, b1 (the corners use them)
+  pst_delay #(.Width(3*LF), .Depth(NoiseRegs > 0 ? 1 : 0)) u_frc1 (
+    .clk_i, .rst_ni, .en_i, .d_i (frac_i), .q_o (frc1)
+  );
+  pst_delay #(.Width(3*LF), .Depth(NoiseRegs > 1 ? 1 : 0)) u_frc2 (
+    .clk_i, .rst_ni, .en_i, .d_i (frc1), .q_o (frc2)
+  );
+
+  // The corner index c of corner i of the step whose token is tk: c = step CPS + i (all eight
+  // at once when NoiseSteps = 1).
+  function automatic logic [2:0] corner_of(input logic [2:0] step, input logic [2:0] i);
+    corner_of = step * 3'(CPS) + i;
+  endfunction
+
   // ---- 2. hash ----------------------------------------------------------------------------
-  // The corners of this step: corner i of CPS is c = step_i CPS + i (all eight at once when
-  // NoiseSteps = 1).
   logic [6*HW-1:0]  idx;   // corner indices: axis k, b at [(2k+b)*HW +: HW]
-  logic [CPS*8-1:0] m;     // value-table index per corner of the step
-  logic [CPS*3-1:0] cidx;  // corner index c per corner of the step
 
   for (genvar k = 0; k < 3; k++) begin : g_idx
     logic [LB-1:0] l_next;  // L + 1 mod 4096
@@ -151,12 +207,11 @@ module pst_noise #(
     initial $readmemh({`PST_ROM_DIR, "/perm256.memh"}, rom);
   end
 
-  for (genvar i = 0; i < CPS; i++) begin : g_cidx
-    assign cidx[i*3 +: 3] = 3'(step_i) * 3'(CPS) + 3'(i);
-  end
-
+  // Levels 1-2 (before b0): per corner of the step, h2 and the z index its level 3 takes.
+  //   parallel: the lookups shared along the chain (2 + 4 + 8 = 14); serial: three chained
+  //   lookups per corner.
+  logic [CPS*HW-1:0] h2_d, z_d, h2_q, z_q;   // corner i at [i*HW +: HW]
   if (NoiseSteps == 1) begin : g_hash_par
-    // All eight corners, the lookups shared along the chain: 2 + 4 + 8 = 14.
     logic [2*HW-1:0] h1;   // T[X_bx] at [bx*HW +: HW]
     logic [4*HW-1:0] h2;   // T[h1 ^ Y_by] at [(bx + 2 by)*HW +: HW]
     for (genvar bx = 0; bx < 2; bx++) begin : g_h1
@@ -165,113 +220,135 @@ module pst_noise #(
     for (genvar i = 0; i < 4; i++) begin : g_h2
       assign h2[i*HW +: HW] = rom[h1[(i%2)*HW +: HW] ^ idx[(2 + i/2)*HW +: HW]];
     end
-    for (genvar c = 0; c < 8; c++) begin : g_h3
-      logic [HW-1:0] h3;   // T[h2 ^ Z_bz]
-      assign h3 = rom[h2[(c%4)*HW +: HW] ^ idx[(4 + c/4)*HW +: HW]];
-      assign m[c*8 +: 8] = h3[7:0];
-      if (HW > 8) begin : g_unused_h3
-        logic unused_h3;
-        assign unused_h3 = ^h3[HW-1:8];
-      end
+    for (genvar c = 0; c < 8; c++) begin : g_c
+      assign h2_d[c*HW +: HW] = h2[(c%4)*HW +: HW];
+      assign z_d[c*HW +: HW]  = idx[(4 + c/4)*HW +: HW];
     end
-    logic unused_step;
-    assign unused_step = ^{step_i, clk_i, rst_ni, adv_i};
   end else begin : g_hash_ser
-    // The step's corners, three chained lookups each.
     for (genvar i = 0; i < CPS; i++) begin : g_chain
-      logic [HW-1:0] x, y, z, h1, h2, h3;
-      assign x  = cidx[i*3 + 0] ? idx[1*HW +: HW] : idx[0*HW +: HW];
-      assign y  = cidx[i*3 + 1] ? idx[3*HW +: HW] : idx[2*HW +: HW];
-      assign z  = cidx[i*3 + 2] ? idx[5*HW +: HW] : idx[4*HW +: HW];
+      logic [2:0]    c;
+      logic [HW-1:0] x, y, h1;
+      assign c  = corner_of(tok[0 +: 3], 3'(i));
+      assign x  = c[0] ? idx[1*HW +: HW] : idx[0*HW +: HW];
+      assign y  = c[1] ? idx[3*HW +: HW] : idx[2*HW +: HW];
+      assign z_d[i*HW +: HW] = c[2] ? idx[5*HW +: HW] : idx[4*HW +: HW];
       assign h1 = rom[x];
-      assign h2 = rom[h1 ^ y];
-      assign h3 = rom[h2 ^ z];
-      assign m[i*8 +: 8] = h3[7:0];
-      if (HW > 8) begin : g_unused_h3
-        logic unused_h3;
-        assign unused_h3 = ^h3[HW-1:8];
-      end
+      assign h2_d[i*HW +: HW] = rom[h1 ^ y];
     end
   end
+  pst_delay #(.Width(2*CPS*HW), .Depth(NoiseRegs > 0 ? 1 : 0)) u_b0 (
+    .clk_i, .rst_ni, .en_i, .d_i ({z_d, h2_d}), .q_o ({z_q, h2_q})
+  );
 
-  // ---- 3. value ROM -----------------------------------------------------------------------
+  // ---- 3. level 3 and the value table (before b1) -----------------------------------------
+  // h3 = T[h2 ^ Z]; value ROM: R[m + k], m = h3 & 0xff.
   logic [15:0] value_rom [0:266];
   initial $readmemh({`PST_ROM_DIR, "/value16.memh"}, value_rom);
 
-  // ---- 4. corners -------------------------------------------------------------------------
-  // tree: level 0 = the step's corners, level t = the lerps on axis t-1 (CPS >> t nodes);
-  // node k of level t at [(t*CPS + k)*NodeW +: NodeW].
-  logic [(KC+1)*CPS*NodeW-1:0] tree;
-  for (genvar i = 0; i < CPS; i++) begin : g_corner
-    logic [4*RW-1:0] r;  // R[m + k] at [k*RW +: RW]
+  logic [CPS*4*RW-1:0] r_d, r_q;   // corner i: R[m + k] at [(4i + k)*RW +: RW]
+  for (genvar i = 0; i < CPS; i++) begin : g_value
+    logic [HW-1:0] h3;
+    logic [7:0]    m;
+    assign h3 = rom[h2_q[i*HW +: HW] ^ z_q[i*HW +: HW]];
+    assign m  = h3[7:0];
+    if (HW > 8) begin : g_unused_h3
+      logic unused_h3;
+      assign unused_h3 = ^h3[HW-1:8];
+    end
     for (genvar k = 0; k < 4; k++) begin : g_r
       if (k == 0 || NoiseCorner == pst_pkg::NoiseCornerValueGradient) begin : g_read
         logic [15:0] r16;
-        assign r16 = value_rom[{1'b0, m[i*8 +: 8]} + 9'(k)];
-        assign r[k*RW +: RW] = r16[15 -: RW];  // floor: value16 >>> (15 - VF)
+        assign r16 = value_rom[{1'b0, m} + 9'(k)];
+        assign r_d[(4*i+k)*RW +: RW] = r16[15 -: RW];  // floor: value16 >>> (15 - VF)
         if (RW < 16) begin : g_unused_low
           logic unused_r16;
           assign unused_r16 = ^r16[15-RW:0];
         end
       end else begin : g_zero
-        assign r[k*RW +: RW] = '0;  // value corners read R[m] only
+        assign r_d[(4*i+k)*RW +: RW] = '0;  // value corners read R[m] only
       end
     end
+  end
+  pst_delay #(.Width(CPS*4*RW), .Depth(NoiseRegs > 1 ? 1 : 0)) u_b1 (
+    .clk_i, .rst_ni, .en_i, .d_i (r_d), .q_o (r_q)
+  );
+
+  // ---- 4. corners (before b2) -------------------------------------------------------------
+  // tree_d / tree_q: level 0 = the step's corners, level t = the lerps on axis t-1 (CPS >> t
+  // nodes); node k of level t at [(t*CPS + k)*NodeW +: NodeW]. Level t is registered at
+  // boundary b2 + t.
+  logic [(KC+1)*CPS*NodeW-1:0] tree_d, tree_q;
+  for (genvar i = 0; i < CPS; i++) begin : g_corner
     pst_noise_corner #(
       .NoiseCorner      (NoiseCorner),
       .NoiseValueFrac   (NoiseValueFrac),
       .NoiseLatticeFrac (NoiseLatticeFrac),
       .NodeFrac         (NodeFrac)
     ) u_corner (
-      .corner_i (cidx[i*3 +: 3]),
-      .r_i      (r),
-      .u_i      (frac_i),
-      .node_o   (tree[i*NodeW +: NodeW])
+      .corner_i (corner_of(tok[2*TW +: 3], 3'(i))),
+      .r_i      (r_q[4*i*RW +: 4*RW]),
+      .u_i      (frc2),
+      .node_o   (tree_d[i*NodeW +: NodeW])
     );
   end
 
   // ---- 5. lerp tree -----------------------------------------------------------------------
-  // Within the step: level t (axis t-1) lerps nodes 2k, 2k+1 of level t-1.
-  for (genvar t = 1; t <= KC; t++) begin : g_level
-    for (genvar k = 0; k < (CPS >> t); k++) begin : g_lerp
-      pst_noise_lerp #(
-        .NoiseInterp      (NoiseInterp),
-        .NoiseLatticeFrac (NoiseLatticeFrac),
-        .NodeFrac         (NodeFrac),
-        .Axis             (t - 1)
-      ) u_lerp (
-        .a_i    (tree[((t-1)*CPS + 2*k)*NodeW +: NodeW]),
-        .b_i    (tree[((t-1)*CPS + 2*k + 1)*NodeW +: NodeW]),
-        .s_i    (s_w[(t-1)*LF +: LF]),
-        .ds_i   (ds_w[(t-1)*(LF+2) +: LF+2]),
-        .node_o (tree[(t*CPS + k)*NodeW +: NodeW])
-      );
-    end
-    // The rest of the level's slots are unused.
+  for (genvar t = 0; t <= KC; t++) begin : g_level
+    // Boundary b2 + t after level t.
+    pst_delay #(.Width((CPS >> t)*NodeW), .Depth(2 + t < NoiseRegs ? 1 : 0)) u_reg (
+      .clk_i, .rst_ni, .en_i,
+      .d_i (tree_d[(t*CPS)*NodeW +: (CPS >> t)*NodeW]),
+      .q_o (tree_q[(t*CPS)*NodeW +: (CPS >> t)*NodeW])
+    );
     if ((CPS >> t) < CPS) begin : g_unused_slots
-      assign tree[(t*CPS + (CPS >> t))*NodeW +: (CPS - (CPS >> t))*NodeW] = '0;
+      // The rest of the level's slots are unused.
+      assign tree_d[(t*CPS + (CPS >> t))*NodeW +: (CPS - (CPS >> t))*NodeW] = '0;
+      assign tree_q[(t*CPS + (CPS >> t))*NodeW +: (CPS - (CPS >> t))*NodeW] = '0;
       logic unused_slots;
-      assign unused_slots = ^tree[(t*CPS + (CPS >> t))*NodeW +: (CPS - (CPS >> t))*NodeW];
+      assign unused_slots = ^{tree_d[(t*CPS + (CPS >> t))*NodeW +: (CPS - (CPS >> t))*NodeW],
+                              tree_q[(t*CPS + (CPS >> t))*NodeW +: (CPS - (CPS >> t))*NodeW]};
+    end
+    if (t > 0) begin : g_lerps
+      // Level t (axis t-1) lerps nodes 2k, 2k+1 of level t-1, with the weights after b(1+t).
+      for (genvar k = 0; k < (CPS >> t); k++) begin : g_lerp
+        pst_noise_lerp #(
+          .NoiseInterp      (NoiseInterp),
+          .NoiseLatticeFrac (NoiseLatticeFrac),
+          .NodeFrac         (NodeFrac),
+          .Axis             (t - 1)
+        ) u_lerp (
+          .a_i    (tree_q[((t-1)*CPS + 2*k)*NodeW +: NodeW]),
+          .b_i    (tree_q[((t-1)*CPS + 2*k + 1)*NodeW +: NodeW]),
+          .s_i    (wts[(2+t)*WTW + (t-1)*LF +: LF]),
+          .ds_i   (wts[(2+t)*WTW + 3*LF + (t-1)*(LF+2) +: LF+2]),
+          .node_o (tree_d[(t*CPS + k)*NodeW +: NodeW])
+        );
+      end
     end
   end
 
-  // Across the steps (NoiseSteps > 1): serial level l (axis KC + l). At step j the node of the
-  // step climbs level l if bit l of j is 1 (it is then the upper node b, the lower one a having
-  // been held at step j - 2^l); a node reaching level l with bit l = 0 is held there (adv_i).
-  // The last step (all bits 1) climbs every level to the root.
+  // Across the steps (NoiseSteps > 1): serial level l (axis KC + l), after boundary b(2+KC+l).
+  // At step j the node of the step climbs level l if bit l of j is 1 (it is then the upper
+  // node b, the lower one a having been held at step j - 2^l); a node reaching level l with
+  // bit l = 0 is held there. The last step (all bits 1) climbs every level to the root.
   logic [(LS+1)*NodeW-1:0] chain;   // node entering serial level l at [l*NodeW +: NodeW]
-  assign chain[0 +: NodeW] = tree[(KC*CPS)*NodeW +: NodeW];
+  assign chain[0 +: NodeW] = tree_q[(KC*CPS)*NodeW +: NodeW];
   for (genvar l = 0; l < LS; l++) begin : g_serial
-    logic [NodeW-1:0] hold_q;
+    localparam int B = 3 + KC + l;   // the token and weights of this level: after b(2+KC+l)
+    logic [TW-1:0]    tk;
+    logic [NodeW-1:0] hold_q, node_d;
     logic             lower_ones;   // bits 0..l-1 of the step are all 1
+    assign tk = tok[B*TW +: TW];
+    logic unused_tk;   // the step bits above l
+    assign unused_tk = ^tk;
     if (l == 0) begin : g_l0
       assign lower_ones = 1'b1;
     end else begin : g_ln
-      assign lower_ones = &step_i[l-1:0];
+      assign lower_ones = &tk[l-1:0];
     end
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) hold_q <= '0;
-      else if (adv_i && lower_ones && !step_i[l]) hold_q <= chain[l*NodeW +: NodeW];
+      else if (en_i && tk[3] && lower_ones && !tk[l]) hold_q <= chain[l*NodeW +: NodeW];
     end
     pst_noise_lerp #(
       .NoiseInterp      (NoiseInterp),
@@ -281,9 +358,12 @@ module pst_noise #(
     ) u_lerp (
       .a_i    (hold_q),
       .b_i    (chain[l*NodeW +: NodeW]),
-      .s_i    (s_w[(KC+l)*LF +: LF]),
-      .ds_i   (ds_w[(KC+l)*(LF+2) +: LF+2]),
-      .node_o (chain[(l+1)*NodeW +: NodeW])
+      .s_i    (wts[B*WTW + (KC+l)*LF +: LF]),
+      .ds_i   (wts[B*WTW + 3*LF + (KC+l)*(LF+2) +: LF+2]),
+      .node_o (node_d)
+    );
+    pst_delay #(.Width(NodeW), .Depth(B < NoiseRegs ? 1 : 0)) u_reg (
+      .clk_i, .rst_ni, .en_i, .d_i (node_d), .q_o (chain[(l+1)*NodeW +: NodeW])
     );
   end
 
@@ -291,14 +371,18 @@ module pst_noise #(
   // floor to OF (drop GuardBits), sign-extend by one bit (the contract's saturation: the
   // ranges above never reach it).
   logic [NodeW-1:0] root;
-  assign root = chain[LS*NodeW +: NodeW];
+  logic [TW-1:0]    tk_out;
+  assign root   = chain[LS*NodeW +: NodeW];
+  assign tk_out = tok[NB*TW +: TW];
+  assign valid_o = tk_out[3];
+  assign last_o  = tk_out[3] && (32'(tk_out[2:0]) == NoiseSteps - 1);
   assign n_o = {root[VW-1], root[GuardBits +: VW-GuardBits]};
   for (genvar k = 0; k < 3; k++) begin : g_grad_out
     assign grad_o[k*NGW +: NGW] = {root[VW+(k+1)*GW-1], root[VW+k*GW+GuardBits +: GW-GuardBits]};
   end
   logic unused_guard;
   assign unused_guard = ^{root[0 +: GuardBits], root[VW +: GuardBits], root[VW+GW +: GuardBits],
-                          root[VW+2*GW +: GuardBits]};
+                          root[VW+2*GW +: GuardBits], wts[0 +: WTW], wts[NB*WTW +: WTW]};
 
   // Assertions
 `ifndef SYNTHESIS
@@ -314,12 +398,14 @@ module pst_noise #(
     if (NoiseLatticeFrac < pst_pkg::NoiseLatticeFracMin) $error("pst_noise: NoiseLatticeFrac out of range");
     if (NoiseSteps != 1 && NoiseSteps != 2 && NoiseSteps != 4 && NoiseSteps != 8)
       $error("pst_noise: NoiseSteps must be 1, 2, 4 or 8");
+    if (NoiseRegs < 0 || NoiseRegs > NB) $error("pst_noise: NoiseRegs must be 0..%0d", NB);
   end
-  // The node value never exceeds |3.5| (so n_o never saturates).
+  // The node value never exceeds |3.5| (so n_o never saturates) at a valid last step.
   always_comb begin
-    assert ($signed(root[0 +: VW]) <= $signed({3'b011, 1'b1, {(VW-4){1'b0}}}) &&
-            $signed(root[0 +: VW]) >= -$signed({3'b011, 1'b1, {(VW-4){1'b0}}}))
-      else $error("pst_noise: |n| > 3.5");
+    if (last_o)
+      assert ($signed(root[0 +: VW]) <= $signed({3'b011, 1'b1, {(VW-4){1'b0}}}) &&
+              $signed(root[0 +: VW]) >= -$signed({3'b011, 1'b1, {(VW-4){1'b0}}}))
+        else $error("pst_noise: |n| > 3.5");
   end
 `endif
 

@@ -12,7 +12,11 @@
 //     Errors: s in (s_true - 4 LSB, s_true], ds in [ds_true, ds_true + 6 LSB).
 //   NoiseInterp = 1 (linear): s = u, ds = 1 (= 2^LF; the lerp then uses b - a directly).
 //
+// Reg = 1 (pst_noise's first pipeline register): u and u2 are registered (en_i) between the
+// two products, so s and ds come one advance after u_i; Reg = 0: combinational.
+//
 // Ports:
+//   clk_i, rst_ni, en_i   the pipeline register (Reg = 1)
 //   u_i  [LF-1:0]   unsigned fraction
 //   s_o  [LF-1:0]   weight, unsigned, LF fraction bits (< 1)
 //   ds_o [LF+1:0]   derivative, unsigned, LF fraction bits; two integer bits: <= 1.5 for
@@ -23,8 +27,12 @@
 module pst_noise_weight #(
   parameter int NoiseInterp = pst_pkg::NoiseInterpDefault,
   parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault,
+  parameter bit Reg = 1'b0,
   localparam int LF = NoiseLatticeFrac  // fraction bits of u, s, ds
 ) (
+  input  logic          clk_i,
+  input  logic          rst_ni,
+  input  logic          en_i,
   input  logic [LF-1:0] u_i,
   output logic [LF-1:0]      s_o,
   output logic [LF+1:0]      ds_o
@@ -32,24 +40,30 @@ module pst_noise_weight #(
 
   if (NoiseInterp == pst_pkg::NoiseInterpScurve) begin : g_scurve
     logic [2*LF-1:0] uu;          // U * U, exact
-    logic [LF-1:0]   u2;          // floor(u^2), LF fraction bits
+    logic [LF-1:0]   u2_d, u2;    // floor(u^2), LF fraction bits
+    logic [LF-1:0]   u_q;         // u beside it
     logic [LF+1:0]   three_m_2u;  // 3 - 2u in (1, 3], LF fraction bits
     logic [2*LF+1:0] su;          // u2 * (3 - 2u), exact, 2 LF fraction bits
     logic [LF+2:0]   ds6;         // 6 (U - u2): 3 bits above LF for the x6
 
     assign uu = {{LF{1'b0}}, u_i} * {{LF{1'b0}}, u_i};
-    assign u2 = uu[LF +: LF];
-    assign three_m_2u = {2'b11, {LF{1'b0}}} - {1'b0, u_i, 1'b0};
+    assign u2_d = uu[LF +: LF];
+    pst_delay #(.Width(2*LF), .Depth(Reg ? 1 : 0)) u_reg (
+      .clk_i, .rst_ni, .en_i, .d_i ({u_i, u2_d}), .q_o ({u_q, u2})
+    );
+    assign three_m_2u = {2'b11, {LF{1'b0}}} - {1'b0, u_q, 1'b0};
     assign su = {{(LF+2){1'b0}}, u2} * {{LF{1'b0}}, three_m_2u};
     assign s_o = su[LF +: LF];
-    assign ds6 = {2'b00, u_i - u2, 1'b0} + {1'b0, u_i - u2, 2'b00};
+    assign ds6 = {2'b00, u_q - u2, 1'b0} + {1'b0, u_q - u2, 2'b00};
     assign ds_o = ds6[LF+1:0];
 
     logic unused_bits;
     assign unused_bits = ^{uu[LF-1:0], su[LF-1:0], su[2*LF+1:2*LF], ds6[LF+2]};
 
   end else begin : g_linear
-    assign s_o = u_i;
+    pst_delay #(.Width(LF), .Depth(Reg ? 1 : 0)) u_reg (
+      .clk_i, .rst_ni, .en_i, .d_i (u_i), .q_o (s_o)
+    );
     assign ds_o = {2'b01, {LF{1'b0}}};
   end
 
@@ -59,7 +73,7 @@ module pst_noise_weight #(
     always_comb begin
       assert (g_scurve.su[2*LF+1:2*LF] == 2'b00) else $error("pst_noise_weight: s >= 1");
       assert (g_scurve.ds6[LF+2] == 1'b0) else $error("pst_noise_weight: ds overflow");
-      assert (u_i >= g_scurve.u2) else $error("pst_noise_weight: u < u^2");
+      assert (g_scurve.u_q >= g_scurve.u2) else $error("pst_noise_weight: u < u^2");
     end
   end
 `endif

@@ -1,8 +1,21 @@
 // pst_octave_stage: the octave stage of pst_top (docs/HARDWARE.md stages 1-4): the quadric
 // and NoiseUnits octave lanes (octave transform, noise, octave term) over Passes =
 // Octaves / NoiseUnits passes, their terms accumulated and saturated to f and grad f.
-// A fragment (valid_i, s_i) stays Cycles cycles, counted by cyc_q; valid_o/ready_o hand it on
-// at its last cycle (valid_o = valid_i at the last cycle; ready_o = that cycle's ready_i).
+// A fragment (valid_i, s_i, side_i) stays Cycles cycles in [A], counted by cyc_q.
+//
+// Pipeline registers (profile keys pipeline.noise_regs = NoiseRegs inside each noise unit,
+// pipeline.octave_regs = OctaveRegs around it: 1 after the octave term, 2 also after the
+// octave transform, parallel datapath only):
+//   parallel: a pipeline of Lat = NoiseRegs + OctaveRegs registers. Each cycle of a fragment in
+//             [A] issues a beat (its pass, step, first / last flags) into the pipeline, which
+//             carries side_i (the tag and Jacobian) beside it; [A] is released at the last
+//             beat's issue, so a pixel per clock stays a pixel per clock, Lat cycles later. The
+//             accumulators sit at the end; the last beat offers f, grad to [B] (valid_o) and
+//             the whole pipeline stalls while [B] refuses it (en).
+//   serial:   the fragment stays in [A] (the serial schedule below) and the noise unit's
+//             registers and the term register lengthen its schedule: Cycles grows by
+//             NoiseRegs + (OctaveRegs >= 1).
+// busy_o: a beat is inside the pipeline's registers (pst_top's idle_o).
 //
 // Parameters: the profile's (pst_top's header); Datapath selects the schedule below.
 // Registers (pst_regs, flat): quad_i A..J; oct_*_i octave i's M, o, a, GM at block i.
@@ -37,6 +50,9 @@ module pst_octave_stage #(
   parameter int FFrac            = pst_pkg::FFracDefault,
   parameter int GradInt          = pst_pkg::GradIntDefault,
   parameter int GradFrac         = pst_pkg::GradFracDefault,
+  parameter int NoiseRegs        = pst_pkg::NoiseRegsDefault,
+  parameter int OctaveRegs       = pst_pkg::OctaveRegsDefault,
+  parameter int SideW            = pst_pkg::TagBits,   // side_i: the tag at its low TagBits
   parameter bit DebugProbes      = 1'b1,
   localparam int CW  = CoordInt + CoordFrac,
   localparam int MW  = MatrixInt + MatrixFrac,
@@ -59,10 +75,13 @@ module pst_octave_stage #(
   input  logic                      valid_i,
   output logic                      ready_o,
   input  logic [3*CW-1:0]           s_i,
+  input  logic [SideW-1:0]          side_i,   // carried to side_o with the fragment
   output logic                      valid_o,
   input  logic                      ready_i,
   output logic [FW-1:0]             f_o,
   output logic [3*GW-1:0]           grad_o,
+  output logic [SideW-1:0]          side_o,
+  output logic                      busy_o,
   // Registers
   input  logic [OctBits-1:0]        active_i,
   input  logic [10*QW-1:0]          quad_i,
@@ -72,8 +91,10 @@ module pst_octave_stage #(
   input  logic [Octaves*9*GMW-1:0]  oct_gm_i,
   // Debug probes (pst_top's; zero when DebugProbes = 0)
   output logic                      probe_valid_o,
+  output logic [pst_pkg::TagBits-1:0] probe_tag_o,
   output logic [PPB-1:0]            probe_pass_o,
   output logic                      probe_q_valid_o,
+  output logic [pst_pkg::TagBits-1:0] probe_q_tag_o,
   output logic [FW-1:0]             probe_q_o,
   output logic [NoiseUnits*LTW-1:0] probe_lat_o,
   output logic [NoiseUnits*3*LF-1:0]  probe_frac_o,
@@ -85,12 +106,20 @@ module pst_octave_stage #(
   localparam int SR        = pst_pkg::SerialRows;    // serial: transform / term rows
   localparam int SB        = pst_pkg::StepBits;      // the serial quadric's step
   localparam int LB        = pst_pkg::LatticeBits;   // one lattice index
+  localparam int TB        = pst_pkg::TagBits;
   localparam int Passes    = Octaves / NoiseUnits;   // octave passes per fragment
   localparam int PassBits  = (Passes > 1) ? $clog2(Passes) : 1;
-  // Cycles per fragment: NoiseSteps cycles per pass (one noise evaluation per lane per pass),
-  // plus, for the serial datapath, the first pass's transform rows and the last pass's term
-  // rows (pst_pkg::SerialOctaveExtraCycles).
-  localparam int Cycles    = Passes * NoiseSteps + (Serial ? pst_pkg::SerialOctaveExtraCycles : 0);
+  // Pipeline registers: after the transform (parallel only), inside the noise unit, after the
+  // term.
+  localparam int XR        = (!Serial && OctaveRegs >= 2) ? 1 : 0;
+  localparam int NR        = NoiseRegs;
+  localparam int MR        = (OctaveRegs >= 1) ? 1 : 0;
+  localparam int Lat       = Serial ? 0 : XR + NR + MR;   // parallel: a beat's issue to the end
+  // Cycles per fragment in [A]: NoiseSteps cycles per pass (one noise evaluation per lane per
+  // pass), plus, for the serial datapath, the first pass's transform rows and the last pass's
+  // term rows (pst_pkg::SerialOctaveExtraCycles) and the registers the last pass's noise and
+  // term pass through.
+  localparam int Cycles    = Passes * NoiseSteps + (Serial ? pst_pkg::SerialOctaveExtraCycles + NR + MR : 0);
   // The serial quadric needs up to StepMax cycles (pst_quadric_serial's NSteps): a fragment
   // with fewer octave cycles waits for it, so the counter reaches StepMax there.
   localparam int CycMax    = (Serial && Cycles < pst_pkg::StepMax + 1) ? pst_pkg::StepMax + 1 : Cycles;
@@ -99,25 +128,28 @@ module pst_octave_stage #(
   localparam int AccGuard  = $clog2(Octaves + 1) + 1;
   localparam int FAccW     = FW + AccGuard;
   localparam int GAccW     = GW + AccGuard;
+  // A beat (parallel): {valid, pass, step, first, last}.
+  localparam int BW        = 1 + PassBits + 3 + 2;
 
   // The fragment in [A] stays Cycles cycles; cyc_q counts them. Schedule of a lane:
-  //   parallel: pass p, noise step j at cycle p NoiseSteps + j; the octave transform and
-  //             the octave term are combinational around the noise unit.
+  //   parallel: pass p, noise step j at cycle p NoiseSteps + j (a beat each); the octave
+  //             transform at the beat's issue, the octave term after the noise unit.
   //   serial:   one row of M_i s + o_i and of a_i M_i^T g per cycle (3 + 3 multipliers
-  //             instead of 9 + 9), software-pipelined around the noise unit (SR = 3 rows):
+  //             instead of 9 + 9), software-pipelined around the noise unit (SR = 3 rows,
+  //             NR = its registers):
   //               transform of pass p, row r   cycle p NoiseSteps + r         (r < SR)
   //               noise of pass p, step j      cycle SR + p NoiseSteps + j
-  //               term of pass p, row r        cycle SR + (p + 1) NoiseSteps + r
-  //             so Cycles = Passes NoiseSteps + 2 SR (NoiseSteps >= 4 keeps the three apart:
-  //             rows 0, 1 wait in a buffer while the previous pass's noise runs, row 2
-  //             completes the noise unit's input at its last step).
+  //               term of pass p, row r        cycle SR + NR + (p + 1) NoiseSteps + r
+  //             and the term register (MR) adds one cycle before the accumulators, so
+  //             Cycles = Passes NoiseSteps + 2 SR + NR + MR (NoiseSteps >= 4 keeps the three
+  //             apart: rows 0, 1 wait in a buffer while the previous pass's noise runs, row 2
+  //             completes the noise unit's input at its last step; a pass's result waits in
+  //             n_q for its term rows).
   logic [CycBits-1:0]  cyc_q, cyc_d;
-  logic                advance;     // the fragment moves to its next cycle at this edge
   logic                last_cycle;  // the fragment's last cycle in the octave stage
-  logic                noise_on;    // a noise evaluation runs this cycle
+  logic                noise_on;    // a noise evaluation starts a step this cycle
   logic [PassBits-1:0] npass;       // its pass
   logic [2:0]          nstep;       // its step
-  logic                nlast;       // its last step: n and g are valid
   logic                xf_on;       // serial: a transform row is computed this cycle
   logic [PassBits-1:0] xpass;
   logic [1:0]          xrow;
@@ -127,12 +159,12 @@ module pst_octave_stage #(
 
   logic quad_done;   // the quadric's result is valid (always, when parallel)
   assign last_cycle = (32'(cyc_q) + 1 >= Cycles) && quad_done;
-  assign advance    = valid_i & ~last_cycle;
 
   always_comb begin
-    int c, cn;
+    int c, cn, ct;
     c  = 32'(cyc_q);
     cn = c - SR;
+    ct = c - SR - NR;
     if (!Serial) begin
       noise_on = 1'b1;
       npass    = PassBits'(c / NoiseSteps);
@@ -150,74 +182,147 @@ module pst_octave_stage #(
       xf_on    = (c < Passes * NoiseSteps) && (c % NoiseSteps < SR);
       xpass    = PassBits'(c / NoiseSteps);
       xrow     = 2'(c % NoiseSteps);
-      tm_on    = (c >= SR + NoiseSteps) && (c < SR + (Passes + 1) * NoiseSteps) &&
-                 (cn % NoiseSteps < SR);
-      tpass    = tm_on ? PassBits'(cn / NoiseSteps - 1) : '0;
-      trow     = tm_on ? 2'(cn % NoiseSteps) : '0;
+      tm_on    = (ct >= NoiseSteps) && (ct < (Passes + 1) * NoiseSteps) && (ct % NoiseSteps < SR);
+      tpass    = tm_on ? PassBits'(ct / NoiseSteps - 1) : '0;
+      trow     = tm_on ? 2'(ct % NoiseSteps) : '0;
     end
   end
-  assign nlast = noise_on && (32'(nstep) == NoiseSteps - 1);
   if (!Serial) begin : g_unused_sched
     logic unused_sched;   // the serial schedule's signals (constant here)
-    assign unused_sched = ^{xf_on, xpass, xrow, tm_on, tpass, trow};
+    assign unused_sched = ^{xf_on, xpass, xrow, tm_on, tpass, trow, noise_on, last_cycle};
   end
 
-  logic signed [FAccW-1:0] facc_q, facc_d;
-  logic [3*GAccW-1:0]      gacc_q, gacc_d;
+  // en: the pipeline advances (parallel: everything but a refused last beat at the end;
+  // serial: the fragment moves to its next cycle, or leaves).
+  logic en;
+  logic advance;     // serial: the fragment moves to its next cycle at this edge
 
-  logic [FW-1:0]   q;
-  logic [3*GW-1:0] gradq;
-
-  // parallel: the whole quadric every cycle; serial: one multiplier stepped by the cycle count
-  // (pst_quadric_serial), its result complete by the last cycle, where it is added.
-  if (!Serial) begin : g_quadric_par
-    pst_quadric #(
-      .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
-      .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
-    ) u_quadric (
-      .s_i (s_i), .coef_i (quad_i), .q_o (q), .gradq_o (gradq)
-    );
-    assign quad_done = 1'b1;
-  end else begin : g_quadric_ser
-    logic [SB-1:0] qstep;
-    logic          qdone;
-    assign qstep = (32'(cyc_q) < pst_pkg::StepMax) ? SB'(cyc_q) : SB'(pst_pkg::StepMax);
-    pst_quadric_serial #(
-      .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
-      .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
-    ) u_quadric (
-      .clk_i, .rst_ni,
-      .step_i (qstep), .adv_i (advance), .done_o (qdone),
-      .s_i (s_i), .coef_i (quad_i), .q_o (q), .gradq_o (gradq)
-    );
-    assign quad_done = qdone;
-  end
-
-  // Per lane, this cycle's contribution to the sums (zero when it has none).
+  // Per lane at the end of the pipeline: this beat's contribution to the sums (zero when it
+  // has none). acc_en, acc_first: the beat is added (first: from zero); q_e, gradq_e: the
+  // quadric there (used with the last beat).
   logic [FW-1:0]   fterm [NoiseUnits];
   logic [3*GW-1:0] gterm [NoiseUnits];
+  logic            acc_en, acc_first;
+  logic [FW-1:0]   q_e;
+  logic [3*GW-1:0] gradq_e;
 
-  for (genvar u = 0; u < NoiseUnits; u++) begin : g_lane
-    logic [LTW-1:0]   lat;    // the noise unit's input
-    logic [3*LF-1:0]  frac;
-    logic [NW-1:0]    n;      // its output (valid at nlast)
-    logic [3*NGW-1:0] g;
+  // Noise unit ports per lane.
+  logic            nz_en, nz_valid;
+  logic [2:0]      nz_step;
+  logic [LTW-1:0]   nz_lat  [NoiseUnits];
+  logic [3*LF-1:0]  nz_frac [NoiseUnits];
+  logic [NW-1:0]    nz_n    [NoiseUnits];
+  logic [3*NGW-1:0] nz_g    [NoiseUnits];
+  logic [NoiseUnits-1:0] nz_last;   // the output token is an evaluation's last step
 
-    if (!Serial) begin : g_par
-      // Octave index of this lane in this pass.
-      logic [OctBits:0] oct_idx;
+  // Probe sources: the beat / fragment whose noise results are at the noise units' outputs.
+  logic            pr_valid;
+  logic [PPB-1:0]  pr_pass;
+  logic [TB-1:0]   pr_tag;
+  logic [NoiseUnits*LTW-1:0]  pr_lat;
+  logic [NoiseUnits*3*LF-1:0] pr_frac;
+
+  if (!Serial) begin : g_flow
+    // ---- parallel: beats through the pipeline --------------------------------------------
+    logic [BW-1:0]    beat_f, beat_x, beat_n, beat_e;     // at issue, after [X], after the noise, at the end
+    logic [SideW-1:0] side_x, side_n, side_e;
+    logic             first_f, last_f;
+    logic [FW-1:0]    q_f;
+    logic [3*GW-1:0]  gradq_f;
+
+    assign first_f = (cyc_q == '0);
+    assign last_f  = (32'(cyc_q) + 1 >= Cycles);
+    assign beat_f  = {valid_i, npass, nstep, first_f, last_f};
+    assign advance = 1'b0;
+    logic unused_adv;
+    assign unused_adv = advance;
+
+    // The pipeline stalls only while the end holds a last beat that [B] refuses.
+    assign en      = ~(valid_o & ~ready_i);
+    assign ready_o = last_f & en;
+
+    always_comb begin
+      cyc_d = cyc_q;
+      if (en && valid_i) cyc_d = last_f ? '0 : cyc_q + 1'b1;
+    end
+
+    // Quadric (every product every beat), pipelined through the first min(2, Lat) registers
+    // (pst_quadric's Regs) and delayed through the rest.
+    localparam int QR = (Lat < 2) ? Lat : 2;
+    pst_quadric #(
+      .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
+      .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac),
+      .Regs(QR)
+    ) u_quadric (
+      .clk_i, .rst_ni, .en_i (en), .s_i (s_i), .coef_i (quad_i), .q_o (q_f), .gradq_o (gradq_f)
+    );
+    pst_delay #(.Width(FW + 3*GW), .Depth(Lat - QR)) u_q_delay (
+      .clk_i, .rst_ni, .en_i (en), .d_i ({gradq_f, q_f}), .q_o ({gradq_e, q_e})
+    );
+    assign quad_done = 1'b1;
+
+    // Beats and side payload: [X] after the transform, NR beside the noise units, [M] after
+    // the term.
+    pst_delay #(.Width(BW), .Depth(XR), .Reset(1'b1)) u_beat_x (
+      .clk_i, .rst_ni, .en_i (en), .d_i (beat_f), .q_o (beat_x));
+    pst_delay #(.Width(BW), .Depth(NR), .Reset(1'b1)) u_beat_n (
+      .clk_i, .rst_ni, .en_i (en), .d_i (beat_x), .q_o (beat_n));
+    pst_delay #(.Width(BW), .Depth(MR), .Reset(1'b1)) u_beat_e (
+      .clk_i, .rst_ni, .en_i (en), .d_i (beat_n), .q_o (beat_e));
+    pst_delay #(.Width(SideW), .Depth(XR)) u_side_x (
+      .clk_i, .rst_ni, .en_i (en), .d_i (side_i), .q_o (side_x));
+    pst_delay #(.Width(SideW), .Depth(NR)) u_side_n (
+      .clk_i, .rst_ni, .en_i (en), .d_i (side_x), .q_o (side_n));
+    pst_delay #(.Width(SideW), .Depth(MR)) u_side_e (
+      .clk_i, .rst_ni, .en_i (en), .d_i (side_n), .q_o (side_e));
+
+    // Field views of the beats.
+    logic                valid_n, valid_e, first_e, last_e, nlast_n;
+    logic [PassBits-1:0] pass_n;
+    logic [2:0]          step_x, step_n;
+    assign valid_n  = beat_n[BW-1];
+    assign pass_n   = beat_n[5 +: PassBits];
+    assign step_x   = beat_x[2 +: 3];
+    assign step_n   = beat_n[2 +: 3];
+    assign nlast_n  = valid_n && (32'(step_n) == NoiseSteps - 1);
+    assign valid_e  = beat_e[BW-1];
+    assign first_e  = beat_e[1];
+    assign last_e   = beat_e[0];
+    logic unused_beat;
+    assign unused_beat = ^{beat_x[BW-1], beat_x[1:0], beat_n[1:0], beat_e[BW-2:2], nz_last};
+
+    assign nz_en    = en;
+    assign nz_valid = beat_x[BW-1];
+    assign nz_step  = step_x;
+
+    // Beats in the pipeline's registers (issued, not yet past the end).
+    if (Lat > 0) begin : g_count
+      localparam int IW = $clog2(Lat + 2);
+      logic [IW-1:0] inflight_q;
+      always_ff @(posedge clk_i or negedge rst_ni) begin
+        if (!rst_ni) inflight_q <= '0;
+        else if (en) inflight_q <= inflight_q + IW'(valid_i) - IW'(valid_e);
+      end
+      assign busy_o = (inflight_q != '0);
+    end else begin : g_nocount
+      assign busy_o = 1'b0;
+    end
+
+    for (genvar u = 0; u < NoiseUnits; u++) begin : g_lane
+      // Octave of this lane in the beat's pass at the front (transform) and after the noise
+      // unit (term); lane_on: an active octave.
+      logic [OctBits:0] oct_n;
       logic             lane_on;
       logic [FW-1:0]    fterm_raw;
       logic [3*GW-1:0]  gterm_raw;
-
       if (Passes > 1) begin : g_shared
-        assign oct_idx = (OctBits + 1)'(npass) * (OctBits + 1)'(NoiseUnits) + (OctBits + 1)'(u);
+        assign oct_n = (OctBits + 1)'(pass_n) * (OctBits + 1)'(NoiseUnits) + (OctBits + 1)'(u);
       end else begin : g_parallel
-        assign oct_idx = (OctBits + 1)'(u);
+        assign oct_n = (OctBits + 1)'(u);
       end
-      assign lane_on = oct_idx < {1'b0, active_i};
+      assign lane_on = oct_n < {1'b0, active_i};
 
-      // The register arrays are indexed by the octave of this pass (a constant when Passes = 1).
+      // The register arrays are indexed by the octave of the beat (a constant when Passes = 1).
       logic [9*MW-1:0]  m_sel;
       logic [3*OW-1:0]  o_sel;
       logic [AW-1:0]    a_sel;
@@ -231,17 +336,24 @@ module pst_octave_stage #(
           if (32'(npass) == p) begin
             m_sel  = oct_m_i[(p * NoiseUnits + u)*9*MW +: 9*MW];
             o_sel  = oct_o_i[(p * NoiseUnits + u)*3*OW +: 3*OW];
+          end
+          if (32'(pass_n) == p) begin
             a_sel  = oct_a_i[(p * NoiseUnits + u)*AW +: AW];
             gm_sel = oct_gm_i[(p * NoiseUnits + u)*9*GMW +: 9*GMW];
           end
         end
       end
 
+      logic [LTW-1:0]  lat_f;
+      logic [3*LF-1:0] frac_f;
       pst_octave_transform #(
         .CoordInt(CoordInt), .CoordFrac(CoordFrac), .MatrixInt(MatrixInt), .MatrixFrac(MatrixFrac),
         .OffsetInt(OffsetInt), .OffsetFrac(OffsetFrac), .NoiseLatticeFrac(NoiseLatticeFrac)
       ) u_transform (
-        .s_i (s_i), .m_i (m_sel), .o_i (o_sel), .lat_o (lat), .frac_o (frac)
+        .s_i (s_i), .m_i (m_sel), .o_i (o_sel), .lat_o (lat_f), .frac_o (frac_f)
+      );
+      pst_delay #(.Width(LTW + 3*LF), .Depth(XR)) u_x (
+        .clk_i, .rst_ni, .en_i (en), .d_i ({lat_f, frac_f}), .q_o ({nz_lat[u], nz_frac[u]})
       );
 
       pst_octave_term #(
@@ -249,12 +361,78 @@ module pst_octave_stage #(
         .GradMatrixInt(GradMatrixInt), .GradMatrixFrac(GradMatrixFrac), .FInt(FInt),
         .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
       ) u_term (
-        .n_i (n), .g_i (g), .a_i (a_sel), .gm_i (gm_sel), .fterm_o (fterm_raw), .gterm_o (gterm_raw)
+        .n_i (nz_n[u]), .g_i (nz_g[u]), .a_i (a_sel), .gm_i (gm_sel), .fterm_o (fterm_raw),
+        .gterm_o (gterm_raw)
+      );
+      pst_delay #(.Width(FW + 3*GW), .Depth(MR)) u_m (
+        .clk_i, .rst_ni, .en_i (en),
+        .d_i ((lane_on && nlast_n) ? {gterm_raw, fterm_raw} : '0), .q_o ({gterm[u], fterm[u]})
       );
 
-      assign fterm[u] = (lane_on && nlast) ? fterm_raw : '0;
-      assign gterm[u] = (lane_on && nlast) ? gterm_raw : '0;
-    end else begin : g_ser
+      // Probes: the lattice input beside the noise unit.
+      if (DebugProbes) begin : g_probe
+        pst_delay #(.Width(LTW + 3*LF), .Depth(NR)) u_pr (
+          .clk_i, .rst_ni, .en_i (en), .d_i ({nz_lat[u], nz_frac[u]}),
+          .q_o ({pr_lat[u*LTW +: LTW], pr_frac[u*3*LF +: 3*LF]})
+        );
+      end else begin : g_no_probe
+        assign pr_lat[u*LTW +: LTW]     = '0;
+        assign pr_frac[u*3*LF +: 3*LF]  = '0;
+      end
+    end
+
+    assign acc_en    = en & valid_e;
+    assign acc_first = first_e;
+    assign valid_o   = valid_e & last_e;
+    assign side_o    = side_e;
+
+    assign pr_valid  = nlast_n;
+    assign pr_pass   = PPB'(pass_n);
+    assign pr_tag    = side_n[TB-1:0];
+    assign probe_q_tag_o = DebugProbes ? side_e[TB-1:0] : '0;
+    logic unused_side;
+    assign unused_side = ^{side_n, step_n};
+
+  end else begin : g_hold
+    // ---- serial: the fragment stays in [A] -------------------------------------------------
+    assign advance = valid_i & ~last_cycle;
+    assign en      = valid_i & (~last_cycle | ready_i);   // advance, or the fragment leaves
+    assign ready_o = last_cycle & ready_i;
+    assign valid_o = valid_i & last_cycle;
+    assign side_o  = side_i;
+    assign busy_o  = 1'b0;
+
+    always_comb begin
+      cyc_d = cyc_q;
+      if (advance) cyc_d = cyc_q + 1'b1;
+      else if (valid_i && ready_i) cyc_d = '0;
+    end
+
+    // Quadric: one multiplier stepped by the cycle count (pst_quadric_serial), its result
+    // complete by the last cycle, where it is added.
+    logic [SB-1:0] qstep;
+    logic          qdone;
+    assign qstep = (32'(cyc_q) < pst_pkg::StepMax) ? SB'(cyc_q) : SB'(pst_pkg::StepMax);
+    pst_quadric_serial #(
+      .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
+      .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
+    ) u_quadric (
+      .clk_i, .rst_ni,
+      .step_i (qstep), .adv_i (advance), .done_o (qdone),
+      .s_i (s_i), .coef_i (quad_i), .q_o (q_e), .gradq_o (gradq_e)
+    );
+    assign quad_done = qdone;
+
+    assign nz_en    = en;
+    assign nz_valid = noise_on;
+    assign nz_step  = nstep;
+
+    // The pass of the noise units' output token (the probes name it).
+    logic [PassBits-1:0] pass_n;
+    pst_delay #(.Width(PassBits), .Depth(NR)) u_pass_n (
+      .clk_i, .rst_ni, .en_i (en), .d_i (npass), .q_o (pass_n));
+
+    for (genvar u = 0; u < NoiseUnits; u++) begin : g_lane
       // Octave of this lane's term rows (lane_on: an active octave).
       logic [OctBits:0] t_oct;
       assign t_oct = (OctBits + 1)'(tpass) * (OctBits + 1)'(NoiseUnits) + (OctBits + 1)'(u);
@@ -315,8 +493,8 @@ module pst_octave_stage #(
           end
         end
       end
-      assign lat  = cur_lat_q;
-      assign frac = cur_frac_q;
+      assign nz_lat[u]  = cur_lat_q;
+      assign nz_frac[u] = cur_frac_q;
 
       // The noise result waits for the term rows of the next NoiseSteps cycles.
       logic [NW-1:0]    n_q;
@@ -325,15 +503,16 @@ module pst_octave_stage #(
         if (!rst_ni) begin
           n_q <= '0;
           g_q <= '0;
-        end else if (advance && nlast) begin
-          n_q <= n;
-          g_q <= g;
+        end else if (en && nz_last[u]) begin
+          n_q <= nz_n[u];
+          g_q <= nz_g[u];
         end
       end
 
       // Term, one row: a n (used at row 0) and row trow of a M^T g.
-      logic [FW-1:0] fterm_raw;
+      logic [FW-1:0] fterm_raw, fterm_d;
       logic [GW-1:0] gterm_raw;
+      logic [3*GW-1:0] gterm_d;
       logic          lane_on;
       pst_octave_term #(
         .NoiseOutFrac(NoiseOutFrac), .AmplitudeInt(AmplitudeInt), .AmplitudeFrac(AmplitudeFrac),
@@ -342,27 +521,59 @@ module pst_octave_stage #(
       ) u_term (
         .n_i (n_q), .g_i (g_q), .a_i (a_t), .gm_i (gm_row), .fterm_o (fterm_raw), .gterm_o (gterm_raw)
       );
-      assign lane_on  = tm_on && (t_oct < {1'b0, active_i});
-      assign fterm[u] = (lane_on && trow == 2'd0) ? fterm_raw : '0;
+      assign lane_on = tm_on && (t_oct < {1'b0, active_i});
+      assign fterm_d = (lane_on && trow == 2'd0) ? fterm_raw : '0;
       for (genvar k = 0; k < 3; k++) begin : g_gterm
-        assign gterm[u][k*GW +: GW] = (lane_on && 32'(trow) == k) ? gterm_raw : '0;
+        assign gterm_d[k*GW +: GW] = (lane_on && 32'(trow) == k) ? gterm_raw : '0;
+      end
+      // The term register: one more cycle to the accumulators (loaded on every move of the
+      // fragment, so it holds zero when the next fragment starts).
+      pst_delay #(.Width(FW + 3*GW), .Depth(MR)) u_m (
+        .clk_i, .rst_ni, .en_i (en), .d_i ({gterm_d, fterm_d}), .q_o ({gterm[u], fterm[u]})
+      );
+
+      if (DebugProbes) begin : g_probe
+        // The lattice input of the pass at the output: delayed beside the noise unit.
+        pst_delay #(.Width(LTW + 3*LF), .Depth(NR)) u_pr (
+          .clk_i, .rst_ni, .en_i (en), .d_i ({cur_lat_q, cur_frac_q}),
+          .q_o ({pr_lat[u*LTW +: LTW], pr_frac[u*3*LF +: 3*LF]})
+        );
+      end else begin : g_no_probe
+        assign pr_lat[u*LTW +: LTW]    = '0;
+        assign pr_frac[u*3*LF +: 3*LF] = '0;
       end
     end
 
+    assign acc_en    = advance;
+    assign acc_first = (cyc_q == '0);
+
+    assign pr_valid  = valid_i & nz_last[0];
+    assign pr_pass   = PPB'(pass_n);
+    assign pr_tag    = side_i[TB-1:0];
+    assign probe_q_tag_o = DebugProbes ? side_i[TB-1:0] : '0;
+  end
+
+  // ---- noise units ---------------------------------------------------------------------------
+  for (genvar u = 0; u < NoiseUnits; u++) begin : g_noise
+    logic nz_valid_o;
     pst_noise #(
       .NoiseInterp(NoiseInterp), .NoiseCorner(NoiseCorner), .NoiseHash(NoiseHash),
       .NoiseValueFrac(NoiseValueFrac), .NoiseLatticeFrac(NoiseLatticeFrac),
-      .NoiseOutFrac(NoiseOutFrac), .NoiseSteps(NoiseSteps), .NoiseGuardBits(NoiseGuardBits)
+      .NoiseOutFrac(NoiseOutFrac), .NoiseSteps(NoiseSteps), .NoiseGuardBits(NoiseGuardBits),
+      .NoiseRegs(NoiseRegs)
     ) u_noise (
-      .clk_i, .rst_ni, .step_i (nstep), .adv_i (advance & noise_on & ~nlast),
-      .lat_i (lat), .frac_i (frac), .n_o (n), .grad_o (g)
+      .clk_i, .rst_ni, .en_i (nz_en), .valid_i (nz_valid), .step_i (nz_step),
+      .lat_i (nz_lat[u]), .frac_i (nz_frac[u]), .valid_o (nz_valid_o), .last_o (nz_last[u]),
+      .n_o (nz_n[u]), .grad_o (nz_g[u])
     );
+    logic unused_nz;
+    assign unused_nz = nz_valid_o;
 
     if (DebugProbes) begin : g_probe
-      assign probe_lat_o[u*LTW +: LTW]        = lat;
-      assign probe_frac_o[u*3*LF +: 3*LF]     = frac;
-      assign probe_n_o[u*NW +: NW]            = n;
-      assign probe_g_o[u*3*NGW +: 3*NGW]      = g;
+      assign probe_lat_o[u*LTW +: LTW]        = pr_lat[u*LTW +: LTW];
+      assign probe_frac_o[u*3*LF +: 3*LF]     = pr_frac[u*3*LF +: 3*LF];
+      assign probe_n_o[u*NW +: NW]            = nz_n[u];
+      assign probe_g_o[u*3*NGW +: 3*NGW]      = nz_g[u];
     end else begin : g_no_probe
       assign probe_lat_o[u*LTW +: LTW]        = '0;
       assign probe_frac_o[u*3*LF +: 3*LF]     = '0;
@@ -371,30 +582,33 @@ module pst_octave_stage #(
     end
   end
 
-  // Probes: the noise results of a pass, at its last step; q at the fragment's last cycle
-  // (the serial quadric may finish after the last noise step).
-  assign probe_valid_o = DebugProbes & valid_i & nlast;
-  assign probe_pass_o  = DebugProbes ? PPB'(npass) : '0;
-  assign probe_q_valid_o = DebugProbes & valid_i & last_cycle;
-  assign probe_q_o     = DebugProbes ? q : '0;
+  // Probes: the noise results of a pass at the noise units' output (its last step), with the
+  // tag and lattice input of that pass; q with the fragment's last beat at the end.
+  assign probe_valid_o   = DebugProbes & pr_valid;
+  assign probe_tag_o     = DebugProbes ? pr_tag : '0;
+  assign probe_pass_o    = DebugProbes ? pr_pass : '0;
+  assign probe_q_valid_o = DebugProbes & valid_o;
+  assign probe_q_o       = DebugProbes ? q_e : '0;
 
-  // Accumulation: every cycle adds the lanes' contributions (cycle 0 starts from zero); the
-  // last cycle adds q (where the serial quadric has its result) and saturates. The sums are
-  // exact, so the order of the terms does not change a bit.
-  logic signed [FAccW-1:0] fsum, fout;
-  logic [3*GAccW-1:0]      gsum, gout;
+  // Accumulation at the end: every beat adds the lanes' contributions (the first from zero);
+  // the last adds q and saturates. The sums are exact, so the order of the terms does not
+  // change a bit.
+  logic signed [FAccW-1:0] facc_q, facc_d, fsum, fout;
+  logic [3*GAccW-1:0]      gacc_q, gacc_d, gsum, gout;
 
   always_comb begin
     logic signed [GAccW-1:0] gc;
-    fsum = (cyc_q == '0) ? '0 : facc_q;
+    fsum = acc_first ? '0 : facc_q;
     for (int u = 0; u < NoiseUnits; u++) fsum = fsum + FAccW'($signed(fterm[u]));
-    fout = fsum + FAccW'($signed(q));
+    fout = fsum + FAccW'($signed(q_e));
     for (int k = 0; k < 3; k++) begin
-      gc = (cyc_q == '0) ? '0 : $signed(gacc_q[k*GAccW +: GAccW]);
+      gc = acc_first ? '0 : $signed(gacc_q[k*GAccW +: GAccW]);
       for (int u = 0; u < NoiseUnits; u++) gc = gc + GAccW'($signed(gterm[u][k*GW +: GW]));
       gsum[k*GAccW +: GAccW] = gc;
-      gout[k*GAccW +: GAccW] = gc + GAccW'($signed(gradq[k*GW +: GW]));
+      gout[k*GAccW +: GAccW] = gc + GAccW'($signed(gradq_e[k*GW +: GW]));
     end
+    facc_d = acc_en ? fsum : facc_q;
+    gacc_d = acc_en ? gsum : gacc_q;
   end
 
   // Saturate to the F and Grad formats (the sums are already at their fraction bits).
@@ -405,23 +619,6 @@ module pst_octave_stage #(
     pst_floor_sat #(.InWidth (GAccW), .InFrac (GradFrac), .OutWidth (GW), .OutFrac (GradFrac)) u_sat (
       .x_i (gout[k*GAccW +: GAccW]), .y_o (grad_o[k*GW +: GW])
     );
-  end
-
-  // The fragment leaves at its last cycle, when the next stage takes it.
-  assign valid_o = valid_i & last_cycle;
-  assign ready_o = last_cycle & ready_i;
-
-  always_comb begin
-    cyc_d  = cyc_q;
-    facc_d = facc_q;
-    gacc_d = gacc_q;
-    if (advance) begin
-      cyc_d  = cyc_q + 1'b1;
-      facc_d = fsum;
-      gacc_d = gsum;
-    end else if (valid_i && ready_i) begin
-      cyc_d = '0;
-    end
   end
 
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -436,9 +633,12 @@ module pst_octave_stage #(
     end
   end
 
-
   // Assertions
 `ifndef SYNTHESIS
+  initial begin
+    if (OctaveRegs < 0 || OctaveRegs > 2) $error("pst_octave_stage: OctaveRegs must be 0..2");
+    if (SideW < TB) $error("pst_octave_stage: SideW must hold the tag");
+  end
   // The cycle counter stays within the fragment's cycles.
   assert property (@(posedge clk_i) disable iff (!rst_ni) 32'(cyc_q) < CycMax);
 `endif

@@ -8,6 +8,8 @@ initial begin
   assert (Log2Clut >= 1 && Log2Clut <= 11) else $fatal(1, "pipeline.log2_clut: must be in [1, 11]");
   assert (ColourBits >= 1 && ColourBits <= 8) else $fatal(1, "pipeline.colour_bits: must be in [1, 8]");
   assert (Datapath >= 0 && Datapath < 2) else $fatal(1, "pipeline.datapath: unknown value");
+  assert (NoiseRegs >= 0 && NoiseRegs <= 6) else $fatal(1, "pipeline.noise_regs: must be in [0, 6]");
+  assert (OctaveRegs >= 0 && OctaveRegs <= 2) else $fatal(1, "pipeline.octave_regs: must be in [0, 2]");
   assert (NoiseInterp >= 0 && NoiseInterp < 2) else $fatal(1, "noise.interp: unknown value");
   assert (NoiseCorner >= 0 && NoiseCorner < 2) else $fatal(1, "noise.corner: unknown value");
   assert (NoiseHash >= 0 && NoiseHash < 2) else $fatal(1, "noise.hash: unknown value");

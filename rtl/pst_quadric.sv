@@ -1,5 +1,7 @@
 // Quadric (stage 3 of docs/HARDWARE.md): q(s) of eq. 3 and its gradient 2 (Q [s 1])_xyz
-// (eq. 11 with the linear terms D, G, I kept). Combinational. Golden model: quadricFx in
+// (eq. 11 with the linear terms D, G, I kept). Combinational when Regs = 0; Regs = 1, 2 put
+// pipeline registers (pst_delay, enabled by en_i) after v and the linear term, then after
+// the three products s_k v_k, so q_o and gradq_o come Regs advances after s_i. Golden model: quadricFx in
 // model/golden/arith_fx.cpp (same steps, bit for bit).
 //
 //   Q = [A B C D; B E F G; C F H I; D G I J]   (eq. 4, coef_i = A..J)
@@ -17,6 +19,7 @@
 //   QuadricInt, QuadricFrac   coefficient format of coef_i.
 //   FInt, FFrac               q_o format (the colour index f): where q is floored and clamped.
 //   GradInt, GradFrac         gradq_o component format.
+//   Regs                      pipeline registers (0..2, above; pst_octave_stage sets them).
 `include "pst_pkg.sv"
 `default_nettype none
 
@@ -29,12 +32,16 @@ module pst_quadric #(
   parameter int FFrac       = pst_pkg::FFracDefault,
   parameter int GradInt     = pst_pkg::GradIntDefault,
   parameter int GradFrac    = pst_pkg::GradFracDefault,
+  parameter int Regs        = 0,
   // Derived widths (not profile keys).
   localparam int CW = CoordInt + CoordFrac,       // one texture coordinate
   localparam int QW = QuadricInt + QuadricFrac,   // one coefficient
   localparam int FW = FInt + FFrac,               // q_o
   localparam int GW = GradInt + GradFrac          // one gradq_o component
 ) (
+  input  logic             clk_i,    // pipeline registers (Regs > 0)
+  input  logic             rst_ni,
+  input  logic             en_i,
   input  logic [3*CW-1:0]  s_i,      // s, t, r; element k at [k*CW +: CW]
   input  logic [10*QW-1:0] coef_i,   // A..J; element k at [k*QW +: QW]
   output logic [FW-1:0]    q_o,
@@ -55,18 +62,33 @@ module pst_quadric #(
 
   // Step 1: v = (Q [s 1])_xyz at QuadricFrac + CoordFrac; rows of Q: (A B C D), (B E F G),
   // (C F H I).
-  logic signed [VW-1:0] v0, v1, v2;
-  assign v0 = VW'(ca) * VW'(s0) + VW'(cb) * VW'(s1) + VW'(cc) * VW'(s2) + (VW'(cd) <<< CoordFrac);
-  assign v1 = VW'(cb) * VW'(s0) + VW'(ce) * VW'(s1) + VW'(cf) * VW'(s2) + (VW'(cg) <<< CoordFrac);
-  assign v2 = VW'(cc) * VW'(s0) + VW'(cf) * VW'(s1) + VW'(ch) * VW'(s2) + (VW'(ci) <<< CoordFrac);
+  logic signed [VW-1:0] v0_d, v1_d, v2_d, v0, v1, v2, v0_q, v1_q, v2_q;
+  assign v0_d = VW'(ca) * VW'(s0) + VW'(cb) * VW'(s1) + VW'(cc) * VW'(s2) + (VW'(cd) <<< CoordFrac);
+  assign v1_d = VW'(cb) * VW'(s0) + VW'(ce) * VW'(s1) + VW'(cf) * VW'(s2) + (VW'(cg) <<< CoordFrac);
+  assign v2_d = VW'(cc) * VW'(s0) + VW'(cf) * VW'(s1) + VW'(ch) * VW'(s2) + (VW'(ci) <<< CoordFrac);
 
-  // Step 2: q = s . v + ((D s + G t + I r) << CoordFrac) + (J << 2 CoordFrac).
-  logic signed [QXW-1:0] sv, lin, qx;
-  assign sv  = QXW'(s0) * QXW'(v0) + QXW'(s1) * QXW'(v1) + QXW'(s2) * QXW'(v2);
-  assign lin = QXW'(cd) * QXW'(s0) + QXW'(cg) * QXW'(s1) + QXW'(ci) * QXW'(s2);
-  assign qx  = sv + (lin <<< CoordFrac) + (QXW'(cj) <<< (2 * CoordFrac));
+  logic signed [QXW-1:0] lin_d, lin, lin_q, qx;
+  assign lin_d = QXW'(cd) * QXW'(s0) + QXW'(cg) * QXW'(s1) + QXW'(ci) * QXW'(s2);
 
-  // Step 3: floor to FFrac, saturate to FW bits.
+  // Register 1: v, the linear term, s and J.
+  logic signed [CW-1:0] s0_r, s1_r, s2_r;
+  logic signed [QW-1:0] cj_r, cj_q;
+  pst_delay #(.Width(3*VW + QXW + 3*CW + QW), .Depth(Regs > 0 ? 1 : 0)) u_reg1 (
+    .clk_i, .rst_ni, .en_i, .d_i ({v2_d, v1_d, v0_d, lin_d, s2, s1, s0, cj}),
+    .q_o ({v2, v1, v0, lin, s2_r, s1_r, s0_r, cj_r})
+  );
+
+  // Register 2: the three products s_k v_k (and what the sum and the gradient still need).
+  logic signed [QXW-1:0] p0_d, p1_d, p2_d, p0, p1, p2;
+  assign p0_d = QXW'(s0_r) * QXW'(v0);
+  assign p1_d = QXW'(s1_r) * QXW'(v1);
+  assign p2_d = QXW'(s2_r) * QXW'(v2);
+  pst_delay #(.Width(3*QXW + QXW + QW + 3*VW), .Depth(Regs > 1 ? 1 : 0)) u_reg2 (
+    .clk_i, .rst_ni, .en_i, .d_i ({p2_d, p1_d, p0_d, lin, cj_r, v2, v1, v0}),
+    .q_o ({p2, p1, p0, lin_q, cj_q, v2_q, v1_q, v0_q})
+  );
+  assign qx = p0 + p1 + p2 + (lin_q <<< CoordFrac) + (QXW'(cj_q) <<< (2 * CoordFrac));
+
   pst_floor_sat #(
     .InWidth (QXW), .InFrac (QuadricFrac + 2 * CoordFrac), .OutWidth (FW), .OutFrac (FFrac)
   ) u_q_sat (
@@ -75,7 +97,7 @@ module pst_quadric #(
 
   // grad q = 2 v (v << 1, exact), floor to GradFrac, saturate to GW bits.
   logic [3*VW-1:0] v;   // v_r at [r*VW +: VW]
-  assign v = {v2, v1, v0};
+  assign v = {v2_q, v1_q, v0_q};
   for (genvar r = 0; r < 3; r++) begin : g_grad
     pst_floor_sat #(
       .InWidth (VW + 1), .InFrac (QuadricFrac + CoordFrac), .OutWidth (GW), .OutFrac (GradFrac)
@@ -89,6 +111,7 @@ module pst_quadric #(
   initial begin
     assert (CoordInt >= 1 && QuadricInt >= 1 && FInt >= 1 && GradInt >= 1)
       else $error("pst_quadric: every format needs its sign bit (Int >= 1)");
+    assert (Regs >= 0 && Regs <= 2) else $error("pst_quadric: Regs must be 0..2");
   end
 `endif
 

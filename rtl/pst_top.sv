@@ -46,6 +46,7 @@ module pst_top #(
   parameter int QuadricInt = pst_pkg::QuadricIntDefault, parameter int QuadricFrac = pst_pkg::QuadricFracDefault,
   parameter int FInt = pst_pkg::FIntDefault, parameter int FFrac = pst_pkg::FFracDefault,
   parameter int GradInt = pst_pkg::GradIntDefault, parameter int GradFrac = pst_pkg::GradFracDefault,
+  parameter int NoiseRegs = pst_pkg::NoiseRegsDefault, parameter int OctaveRegs = pst_pkg::OctaveRegsDefault,
   parameter bit DebugProbes = 1'b1,
   // Derived widths (not profile keys).
   localparam int CW  = CoordInt + CoordFrac,                                // one coordinate
@@ -79,13 +80,15 @@ module pst_top #(
   output logic [FW-1:0]                  out_f_o,
   output logic [3*GW-1:0]                out_grad_o,
   output logic [WW-1:0]                  out_w_o,
-  // Debug probes of the octave stage (the fragment in [A], this pass): the harness samples
-  // them every cycle so the scoreboard can name the first stage that differs. Tied to zero
-  // when DebugProbes = 0 (synthesis).
+  // Debug probes of the octave stage (a pass's noise results with its tag and lattice input,
+  // when they leave the noise units; q with its tag when the fragment leaves the stage): the
+  // harness samples them every cycle so the scoreboard can name the first stage that differs.
+  // Tied to zero when DebugProbes = 0 (synthesis).
   output logic                           probe_valid_o,
   output logic [TB-1:0]                  probe_tag_o,
   output logic [pst_pkg::ProbePassBits-1:0] probe_pass_o,
   output logic                           probe_q_valid_o,   // probe_q_o is final (the last cycle)
+  output logic [TB-1:0]                  probe_q_tag_o,
   output logic [FW-1:0]                  probe_q_o,
   output logic [NoiseUnits*pst_pkg::LatticeWidth-1:0] probe_lat_o,
   output logic [NoiseUnits*3*LF-1:0]     probe_frac_o,
@@ -106,6 +109,7 @@ module pst_top #(
   out_t   d_d, d_q;
   logic a_valid, a_ready, b_in_valid, b_in_ready, b_valid, b_ready;
   logic c_in_valid, c_in_ready, c_valid, c_ready, d_in_valid, d_in_ready;
+  logic octave_busy;   // fragments inside the octave stage's pipeline registers
 
   // Registers: control, quadric, octaves.
   localparam int RegOctW = $clog2(Octaves + 1);
@@ -139,15 +143,14 @@ module pst_top #(
     .MatrixInt(MatrixInt), .MatrixFrac(MatrixFrac), .OffsetInt(OffsetInt), .OffsetFrac(OffsetFrac),
     .AmplitudeInt(AmplitudeInt), .AmplitudeFrac(AmplitudeFrac), .GradMatrixInt(GradMatrixInt),
     .GradMatrixFrac(GradMatrixFrac), .QuadricInt(QuadricInt), .QuadricFrac(QuadricFrac), .FInt(FInt),
-    .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac), .DebugProbes(DebugProbes)
+    .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac), .NoiseRegs(NoiseRegs),
+    .OctaveRegs(OctaveRegs), .SideW(6*JW + TB), .DebugProbes(DebugProbes)
   ) u_octave (.clk_i, .rst_ni, .valid_i (a_valid), .ready_o (a_ready), .s_i (a_q.s),
-    .valid_o (b_in_valid), .ready_i (b_in_ready), .f_o (b_d.f), .grad_o (b_d.grad),
+    .side_i ({a_q.j, a_q.tag}), .valid_o (b_in_valid), .ready_i (b_in_ready), .f_o (b_d.f),
+    .grad_o (b_d.grad), .side_o ({b_d.j, b_d.tag}), .busy_o (octave_busy),
     .active_i (active), .quad_i (quad), .oct_m_i (oct_m), .oct_o_i (oct_o), .oct_a_i (oct_a),
-    .oct_gm_i (oct_gm), .probe_valid_o, .probe_pass_o, .probe_q_valid_o, .probe_q_o, .probe_lat_o,
-    .probe_frac_o, .probe_n_o, .probe_g_o);
-  assign probe_tag_o = DebugProbes ? a_q.tag : '0;
-  assign b_d.j   = a_q.j;
-  assign b_d.tag = a_q.tag;
+    .oct_gm_i (oct_gm), .probe_valid_o, .probe_tag_o, .probe_pass_o, .probe_q_valid_o,
+    .probe_q_tag_o, .probe_q_o, .probe_lat_o, .probe_frac_o, .probe_n_o, .probe_g_o);
   pst_pipe_reg #(.Width($bits(b_d))) u_reg_b (.clk_i, .rst_ni, .valid_i (b_in_valid),
     .ready_o (b_in_ready), .data_i (b_d), .valid_o (b_valid), .ready_i (b_ready), .data_o (b_q));
 
@@ -181,7 +184,7 @@ module pst_top #(
   assign out_grad_o = d_q.grad;
   assign out_w_o    = d_q.w;
 
-  assign idle_o = ~(a_valid | b_valid | c_valid | out_valid_o);
+  assign idle_o = ~(a_valid | octave_busy | b_valid | c_valid | out_valid_o);
 
   // Assertions
 `ifndef SYNTHESIS

@@ -48,7 +48,7 @@ import tomllib
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "scripts"))
-from pstlib import liberty, memarea, sta  # noqa: E402
+from pstlib import contract, liberty, memarea, sta  # noqa: E402
 
 SYNTH_DIR = ROOT / "scripts" / "synth"
 OLD_LIB = SYNTH_DIR / "cells.lib"
@@ -344,11 +344,9 @@ def rename_standins(netlist: str, mem_index: dict) -> str:
 
 
 def clocks_per_pixel(prof: dict) -> int:
-    """The octave stage's cycles per fragment (rtl/pst_top.sv Cycles; model/golden/profile.h
-    cyclesPerPixel): passes x noise steps, + 6 with the serial datapath."""
-    p = prof["pipeline"]
-    passes = -(-p["octaves"] // p["noise_units"])
-    return passes * p.get("noise_steps", 1) + (6 if p.get("datapath", "parallel") == "serial" else 0)
+    """The pipeline's clocks per pixel (the slowest stage: pstlib.contract.stage_cycles, the
+    docs' cycle table; model/golden/profile.h cyclesPerPixel for the octave stage)."""
+    return contract.stage_cycles(prof)["pixel"]
 
 
 def regress_cpp(regress: pathlib.Path, name: str):

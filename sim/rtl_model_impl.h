@@ -95,7 +95,7 @@ public:
             if (pixelTaken) out.push_back(sample());
             if (probes && top_->probe_valid_o) sampleProbes(*probes, activeOctaves);
             if (probes && top_->probe_q_valid_o)
-                (*probes)[top_->probe_tag_o].q = port::getSigned(top_->probe_q_o, 0, p_.f.width());
+                (*probes)[top_->probe_q_tag_o].q = port::getSigned(top_->probe_q_o, 0, p_.f.width());
             tick();
             if (fragTaken) {
                 offering = false;

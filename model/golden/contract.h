@@ -15,6 +15,8 @@ enum Param : int {
     Log2Clut,
     ColourBits,
     Datapath,
+    NoiseRegs,
+    OctaveRegs,
     NoiseInterp,
     NoiseCorner,
     NoiseHash,
@@ -72,6 +74,8 @@ inline constexpr int kNoiseUnitsMin = 1, kNoiseUnitsMax = 16;
 inline constexpr int kNoiseStepsMin = 1, kNoiseStepsMax = 8;
 inline constexpr int kLog2ClutMin = 1, kLog2ClutMax = 11;
 inline constexpr int kColourBitsMin = 1, kColourBitsMax = 8;
+inline constexpr int kNoiseRegsMin = 0, kNoiseRegsMax = 6;
+inline constexpr int kOctaveRegsMin = 0, kOctaveRegsMax = 2;
 inline constexpr int kNoiseValueFracMin = 1, kNoiseValueFracMax = 15;
 inline constexpr int kNoiseLatticeFracMin = 1, kNoiseLatticeFracMax = 20;
 inline constexpr int kNoiseOutFracMin = 1, kNoiseOutFracMax = 24;
@@ -85,6 +89,8 @@ inline constexpr KeySpec kSchema[] = {
     {"pipeline", "log2_clut", KeyKind::Range, Log2Clut, 1, 11, {}, 0, nullptr, 0},
     {"pipeline", "colour_bits", KeyKind::Range, ColourBits, 1, 8, {}, 0, nullptr, 0},
     {"pipeline", "datapath", KeyKind::Enum, Datapath, 0, 1, {}, 2, kDatapathNames, 0},
+    {"pipeline", "noise_regs", KeyKind::Range, NoiseRegs, 0, 6, {}, 0, nullptr, 0},
+    {"pipeline", "octave_regs", KeyKind::Range, OctaveRegs, 0, 2, {}, 0, nullptr, 0},
     {"noise", "interp", KeyKind::Enum, NoiseInterp, 0, 1, {}, 2, kNoiseInterpNames, 0},
     {"noise", "corner", KeyKind::Enum, NoiseCorner, 0, 1, {}, 2, kNoiseCornerNames, 0},
     {"noise", "hash", KeyKind::Enum, NoiseHash, 0, 1, {}, 2, kNoiseHashNames, 0},

@@ -117,6 +117,8 @@ Profile parseProfile(const std::string& text, const std::string& path) {
     p.log2Clut = v[c::Log2Clut];
     p.colourBits = v[c::ColourBits];
     p.datapath = Datapath(v[c::Datapath]);
+    p.noiseRegs = v[c::NoiseRegs];
+    p.octaveRegs = v[c::OctaveRegs];
     p.noise.interp = NoiseInterp(v[c::NoiseInterp]);
     p.noise.corner = NoiseCorner(v[c::NoiseCorner]);
     p.noise.hash = NoiseHash(v[c::NoiseHash]);

@@ -37,6 +37,8 @@ struct Profile {
     int log2Clut = 8;       // N = 2^log2Clut colour-table entries
     int colourBits = 8;     // bits per RGBA channel
     Datapath datapath = Datapath::Parallel;
+    int noiseRegs = 0;      // pipeline registers in each noise unit (0..6)
+    int octaveRegs = 0;     // pipeline registers around it: 1 after the term, 2 also after the transform
     // [noise]
     NoiseOptions noise;
     int noiseValueFrac = 15;    // R table fraction bits
@@ -57,8 +59,18 @@ struct Profile {
     // every stage's cycles; a profile whose serial quadric, quadricSerialSteps, takes longer
     // runs at the quadric's rate). Used for simulation timeouts; `pst regress` reports the
     // measured rate.
+    // The pipeline registers add latency only, except on the serial datapath, where the
+    // fragment waits in the octave stage for its last pass's noise and term registers.
     int cyclesPerPixel() const {
-        return octavePasses() * noiseSteps + (datapath == Datapath::Serial ? contract::kSerialOctaveExtraCycles : 0);
+        return octavePasses() * noiseSteps +
+               (datapath == Datapath::Serial
+                    ? contract::kSerialOctaveExtraCycles + noiseRegs + (octaveRegs >= 1 ? 1 : 0)
+                    : 0);
+    }
+    // Cycles from a fragment's last cycle in [A] to its f leaving the octave stage (parallel:
+    // the pipeline registers it passes; serial: 0, it leaves from [A]).
+    int octaveLatency() const {
+        return datapath == Datapath::Serial ? 0 : noiseRegs + octaveRegs;
     }
     // W = w N in entries: unsigned, log2Clut + 2 integer bits, widthFrac fraction bits.
     int widthIntBits() const { return log2Clut + 2; }

@@ -523,7 +523,10 @@ def stage_cycles(doc: dict, c: Contract | None = None) -> dict[str, int]:
     euclid = v["FilterNorm"] == c.key("filter", "norm").enum.index("euclid")
     qw, cw = v["QuadricInt"] + v["QuadricFrac"], v["CoordInt"] + v["CoordFrac"]
     ww = v["Log2Clut"] + k["WidthExtraIntBits"] + v["WidthFrac"]
-    octave = v["Octaves"] // v["NoiseUnits"] * v["NoiseSteps"] + (k["SerialOctaveExtraCycles"] if serial else 0)
+    # Pipeline registers add latency only, except on the serial datapath (the fragment waits in
+    # [A] for its last pass's noise registers and the term register).
+    regs = v["NoiseRegs"] + (1 if v["OctaveRegs"] >= 1 else 0)
+    octave = v["Octaves"] // v["NoiseUnits"] * v["NoiseSteps"] + (k["SerialOctaveExtraCycles"] + regs if serial else 0)
     quadric = k["SerialRows"] * (k["SerialRows"] + (qw + cw + 2 + qw - 2) // (qw - 1)) if serial else 1
     width = (k["WidthProducts"] + (k["WidthEuclidSquares"] + (ww + 2) // 2 if euclid else 0)) if serial else 1
     colour = k["ColourSteps"] if serial else 1

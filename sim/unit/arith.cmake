@@ -10,7 +10,8 @@ set(PST_ARITH_UNIT_SOURCES
     ${PROJECT_SOURCE_DIR}/rtl/pst_octave_term.sv
     ${PROJECT_SOURCE_DIR}/rtl/pst_filter_width.sv
     ${PROJECT_SOURCE_DIR}/rtl/pst_isqrt.sv
-    ${PROJECT_SOURCE_DIR}/rtl/pst_floor_sat.sv)
+    ${PROJECT_SOURCE_DIR}/rtl/pst_floor_sat.sv
+    ${PROJECT_SOURCE_DIR}/rtl/pst_delay.sv)
 foreach(p ${PST_PROFILES})
   add_executable(arith_unit_${p} ${PROJECT_SOURCE_DIR}/sim/unit/arith_unit_test.cpp)
   target_link_libraries(arith_unit_${p} PRIVATE pst_golden GTest::gtest_main)

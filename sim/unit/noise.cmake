@@ -9,7 +9,8 @@ set(PST_NOISE_UNIT_SOURCES
     ${PROJECT_SOURCE_DIR}/rtl/pst_noise.sv
     ${PROJECT_SOURCE_DIR}/rtl/pst_noise_weight.sv
     ${PROJECT_SOURCE_DIR}/rtl/pst_noise_corner.sv
-    ${PROJECT_SOURCE_DIR}/rtl/pst_noise_lerp.sv)
+    ${PROJECT_SOURCE_DIR}/rtl/pst_noise_lerp.sv
+    ${PROJECT_SOURCE_DIR}/rtl/pst_delay.sv)
 
 foreach(p ${PST_PROFILES})
   add_executable(noise_unit_${p} ${PROJECT_SOURCE_DIR}/sim/unit/noise_unit_test.cpp)

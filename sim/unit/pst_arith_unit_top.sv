@@ -89,6 +89,7 @@ module pst_arith_unit_top #(
     .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
     .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
   ) u_quadric (
+    .clk_i, .rst_ni, .en_i (1'b0),   // Regs = 0: combinational
     .s_i (quad_s_i), .coef_i (quad_coef_i), .q_o (quad_q_o), .gradq_o (quad_gradq_o)
   );
 

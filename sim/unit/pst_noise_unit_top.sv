@@ -66,16 +66,20 @@ module pst_noise_unit_top #(
     .NoiseLatticeFrac (NoiseLatticeFrac),
     .NoiseOutFrac     (NoiseOutFrac),
     .NoiseSteps       (NoiseSteps),
-    .NoiseGuardBits   (NoiseGuardBits)
+    .NoiseGuardBits   (NoiseGuardBits),
+    .NoiseRegs        (0)   // combinational: the pipelined unit is checked through pst_top
   ) u_noise (
     .clk_i,
     .rst_ni,
-    .step_i (nz_step_i),
-    .adv_i  (nz_adv_i),
-    .lat_i  (nz_lat_i),
-    .frac_i (nz_frac_i),
-    .n_o    (nz_n_o),
-    .grad_o (nz_grad_o)
+    .en_i    (nz_adv_i),
+    .valid_i (1'b1),
+    .step_i  (nz_step_i),
+    .lat_i   (nz_lat_i),
+    .frac_i  (nz_frac_i),
+    .valid_o (),
+    .last_o  (),
+    .n_o     (nz_n_o),
+    .grad_o  (nz_grad_o)
   );
 
 endmodule
