@@ -200,8 +200,10 @@ module pst_octave_stage #(
   // Per lane at the end of the pipeline: this beat's contribution to the sums (zero when it
   // has none). acc_en, acc_first: the beat is added (first: from zero); q_e, gradq_e: the
   // quadric there (used with the last beat).
-  logic [FW-1:0]   fterm [NoiseUnits];
-  logic [3*GW-1:0] gterm [NoiseUnits];
+  // (Flat vectors, lane u at [u*W +: W]: Yosys 0.23 drops unpacked-array elements driven by
+  // instance ports.)
+  logic [NoiseUnits*FW-1:0]   fterm;
+  logic [NoiseUnits*3*GW-1:0] gterm;
   logic            acc_en, acc_first;
   logic [FW-1:0]   q_e;
   logic [3*GW-1:0] gradq_e;
@@ -209,10 +211,10 @@ module pst_octave_stage #(
   // Noise unit ports per lane.
   logic            nz_en, nz_valid;
   logic [2:0]      nz_step;
-  logic [LTW-1:0]   nz_lat  [NoiseUnits];
-  logic [3*LF-1:0]  nz_frac [NoiseUnits];
-  logic [NW-1:0]    nz_n    [NoiseUnits];
-  logic [3*NGW-1:0] nz_g    [NoiseUnits];
+  logic [NoiseUnits*LTW-1:0]   nz_lat;
+  logic [NoiseUnits*3*LF-1:0]  nz_frac;
+  logic [NoiseUnits*NW-1:0]    nz_n;
+  logic [NoiseUnits*3*NGW-1:0] nz_g;
   logic [NoiseUnits-1:0] nz_last;   // the output token is an evaluation's last step
 
   // Probe sources: the beat / fragment whose noise results are at the noise units' outputs.
@@ -353,7 +355,8 @@ module pst_octave_stage #(
         .s_i (s_i), .m_i (m_sel), .o_i (o_sel), .lat_o (lat_f), .frac_o (frac_f)
       );
       pst_delay #(.Width(LTW + 3*LF), .Depth(XR)) u_x (
-        .clk_i, .rst_ni, .en_i (en), .d_i ({lat_f, frac_f}), .q_o ({nz_lat[u], nz_frac[u]})
+        .clk_i, .rst_ni, .en_i (en), .d_i ({lat_f, frac_f}),
+        .q_o ({nz_lat[u*LTW +: LTW], nz_frac[u*3*LF +: 3*LF]})
       );
 
       pst_octave_term #(
@@ -361,18 +364,19 @@ module pst_octave_stage #(
         .GradMatrixInt(GradMatrixInt), .GradMatrixFrac(GradMatrixFrac), .FInt(FInt),
         .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
       ) u_term (
-        .n_i (nz_n[u]), .g_i (nz_g[u]), .a_i (a_sel), .gm_i (gm_sel), .fterm_o (fterm_raw),
-        .gterm_o (gterm_raw)
+        .n_i (nz_n[u*NW +: NW]), .g_i (nz_g[u*3*NGW +: 3*NGW]), .a_i (a_sel), .gm_i (gm_sel),
+        .fterm_o (fterm_raw), .gterm_o (gterm_raw)
       );
       pst_delay #(.Width(FW + 3*GW), .Depth(MR)) u_m (
         .clk_i, .rst_ni, .en_i (en),
-        .d_i ((lane_on && nlast_n) ? {gterm_raw, fterm_raw} : '0), .q_o ({gterm[u], fterm[u]})
+        .d_i ((lane_on && nlast_n) ? {gterm_raw, fterm_raw} : '0),
+        .q_o ({gterm[u*3*GW +: 3*GW], fterm[u*FW +: FW]})
       );
 
       // Probes: the lattice input beside the noise unit.
       if (DebugProbes) begin : g_probe
         pst_delay #(.Width(LTW + 3*LF), .Depth(NR)) u_pr (
-          .clk_i, .rst_ni, .en_i (en), .d_i ({nz_lat[u], nz_frac[u]}),
+          .clk_i, .rst_ni, .en_i (en), .d_i ({nz_lat[u*LTW +: LTW], nz_frac[u*3*LF +: 3*LF]}),
           .q_o ({pr_lat[u*LTW +: LTW], pr_frac[u*3*LF +: 3*LF]})
         );
       end else begin : g_no_probe
@@ -493,8 +497,8 @@ module pst_octave_stage #(
           end
         end
       end
-      assign nz_lat[u]  = cur_lat_q;
-      assign nz_frac[u] = cur_frac_q;
+      assign nz_lat[u*LTW +: LTW]    = cur_lat_q;
+      assign nz_frac[u*3*LF +: 3*LF] = cur_frac_q;
 
       // The noise result waits for the term rows of the next NoiseSteps cycles.
       logic [NW-1:0]    n_q;
@@ -504,8 +508,8 @@ module pst_octave_stage #(
           n_q <= '0;
           g_q <= '0;
         end else if (en && nz_last[u]) begin
-          n_q <= nz_n[u];
-          g_q <= nz_g[u];
+          n_q <= nz_n[u*NW +: NW];
+          g_q <= nz_g[u*3*NGW +: 3*NGW];
         end
       end
 
@@ -529,7 +533,8 @@ module pst_octave_stage #(
       // The term register: one more cycle to the accumulators (loaded on every move of the
       // fragment, so it holds zero when the next fragment starts).
       pst_delay #(.Width(FW + 3*GW), .Depth(MR)) u_m (
-        .clk_i, .rst_ni, .en_i (en), .d_i ({gterm_d, fterm_d}), .q_o ({gterm[u], fterm[u]})
+        .clk_i, .rst_ni, .en_i (en), .d_i ({gterm_d, fterm_d}),
+        .q_o ({gterm[u*3*GW +: 3*GW], fterm[u*FW +: FW]})
       );
 
       if (DebugProbes) begin : g_probe
@@ -563,8 +568,8 @@ module pst_octave_stage #(
       .NoiseRegs(NoiseRegs)
     ) u_noise (
       .clk_i, .rst_ni, .en_i (nz_en), .valid_i (nz_valid), .step_i (nz_step),
-      .lat_i (nz_lat[u]), .frac_i (nz_frac[u]), .valid_o (nz_valid_o), .last_o (nz_last[u]),
-      .n_o (nz_n[u]), .grad_o (nz_g[u])
+      .lat_i (nz_lat[u*LTW +: LTW]), .frac_i (nz_frac[u*3*LF +: 3*LF]), .valid_o (nz_valid_o),
+      .last_o (nz_last[u]), .n_o (nz_n[u*NW +: NW]), .grad_o (nz_g[u*3*NGW +: 3*NGW])
     );
     logic unused_nz;
     assign unused_nz = nz_valid_o;
@@ -572,8 +577,8 @@ module pst_octave_stage #(
     if (DebugProbes) begin : g_probe
       assign probe_lat_o[u*LTW +: LTW]        = pr_lat[u*LTW +: LTW];
       assign probe_frac_o[u*3*LF +: 3*LF]     = pr_frac[u*3*LF +: 3*LF];
-      assign probe_n_o[u*NW +: NW]            = nz_n[u];
-      assign probe_g_o[u*3*NGW +: 3*NGW]      = nz_g[u];
+      assign probe_n_o[u*NW +: NW]            = nz_n[u*NW +: NW];
+      assign probe_g_o[u*3*NGW +: 3*NGW]      = nz_g[u*3*NGW +: 3*NGW];
     end else begin : g_no_probe
       assign probe_lat_o[u*LTW +: LTW]        = '0;
       assign probe_frac_o[u*3*LF +: 3*LF]     = '0;
@@ -599,11 +604,11 @@ module pst_octave_stage #(
   always_comb begin
     logic signed [GAccW-1:0] gc;
     fsum = acc_first ? '0 : facc_q;
-    for (int u = 0; u < NoiseUnits; u++) fsum = fsum + FAccW'($signed(fterm[u]));
+    for (int u = 0; u < NoiseUnits; u++) fsum = fsum + FAccW'($signed(fterm[u*FW +: FW]));
     fout = fsum + FAccW'($signed(q_e));
     for (int k = 0; k < 3; k++) begin
       gc = acc_first ? '0 : $signed(gacc_q[k*GAccW +: GAccW]);
-      for (int u = 0; u < NoiseUnits; u++) gc = gc + GAccW'($signed(gterm[u][k*GW +: GW]));
+      for (int u = 0; u < NoiseUnits; u++) gc = gc + GAccW'($signed(gterm[(3*u + k)*GW +: GW]));
       gsum[k*GAccW +: GAccW] = gc;
       gout[k*GAccW +: GAccW] = gc + GAccW'($signed(gradq_e[k*GW +: GW]));
     end
