@@ -2,7 +2,7 @@
 target, clocks per pixel <= a target and Fmax >= a target, over many profile knobs at once.
 
 Algorithm: a greedy walk with backtracking, one walk per clocks-per-pixel class, from a start
-profile that meets the targets (full for 1, full with fewer noise units for 4, reduced for 22).
+profile that meets the targets (full for 1, full with fewer noise units for 4, reduced for 28).
 Each step evaluates every one-step-cheaper neighbour (each knob moved one value towards its
 cheaper end: fewer fraction bits, a cheaper noise variant or |grad| norm, fewer corners per
 cycle), in parallel, and moves to the feasible neighbour that saves the most area per dB of
@@ -35,7 +35,7 @@ import tomllib
 from . import contract, tomledit
 from .sweep import _apply_key, _format_frac, _set_format_frac
 
-CLASSES = (1, 4, 22)
+CLASSES = (1, 4, 28)
 
 
 def _fmt_knob(name, formats, values):
@@ -76,9 +76,12 @@ def cycles_per_pixel(doc: dict) -> int:
     return contract.stage_cycles(doc)["pixel"]
 
 
-def structures(octaves: int, max_cpp: int) -> list:
+def structures(octaves: int, max_cpp: int, base: dict | None = None) -> list:
     """(octaves, noise_units, noise_steps, datapath) of the given octave count whose clocks per
-    pixel are <= MAX_CPP, from the cheapest (fewest noise corners per cycle, serial) to the dearest."""
+    pixel are <= MAX_CPP, from the cheapest (fewest noise corners per cycle, serial) to the dearest.
+    With `base` (a whole profile) the clocks per pixel are those of base with the structure
+    (contract.stage_cycles: base's pipeline registers lengthen a serial schedule); without it,
+    the structure's alone (no pipeline registers)."""
     out = []
     for units in range(1, octaves + 1):
         if octaves % units:
@@ -88,7 +91,12 @@ def structures(octaves: int, max_cpp: int) -> list:
                 doc = {"pipeline": {"octaves": octaves, "noise_units": units, "noise_steps": steps, "datapath": dp}}
                 if dp == "serial" and steps < 4:
                     continue
-                cpp = octaves // units * steps + (6 if dp == "serial" else 0)
+                if base is not None:
+                    d = copy.deepcopy(base)
+                    d["pipeline"].update(doc["pipeline"])
+                    cpp = cycles_per_pixel(d)
+                else:
+                    cpp = octaves // units * steps + (6 if dp == "serial" else 0)
                 if cpp <= max_cpp:
                     out.append(doc["pipeline"])
     return sorted(out, key=lambda p: (p["noise_units"] * 8 // p["noise_steps"], p["datapath"] == "parallel",

@@ -14,8 +14,8 @@ REDUCED = ROOT / "rtl" / "configs" / "reduced.toml"
 
 
 def test_structures_stay_within_the_class_and_go_from_cheap_to_dear():
-    for octs, c in ((8, 1), (8, 4), (8, 22), (4, 22)):
-        ss = S.structures(octs, c)
+    for octs, c in ((8, 1), (8, 4), (8, 28), (4, 28)):
+        ss = S.structures(octs, c, contract.read_profile(FULL))
         assert ss
         for s in ss:
             doc = copy.deepcopy(contract.read_profile(FULL))
@@ -25,7 +25,8 @@ def test_structures_stay_within_the_class_and_go_from_cheap_to_dear():
         corners = [s["noise_units"] * 8 // s["noise_steps"] for s in ss]
         assert corners == sorted(corners)
     assert S.structures(8, 1) == [{"octaves": 8, "noise_units": 8, "noise_steps": 1, "datapath": "parallel"}]
-    assert {"octaves": 4, "noise_units": 1, "noise_steps": 4, "datapath": "serial"} in S.structures(4, 22)
+    assert {"octaves": 4, "noise_units": 1, "noise_steps": 4, "datapath": "serial"} in \
+        S.structures(4, 28, contract.read_profile(REDUCED))
     assert all(s["datapath"] == "parallel" for s in S.structures(8, 4))     # serial needs >= 7 clocks
 
 
@@ -230,7 +231,7 @@ def test_a_point_is_evaluated_once_and_resumed(tmp_path):
             return {"logic_ge": 777, "modules_synthesized": 1, "modules_total": 2, "seconds": 0.0}
 
     r = search_eval.evaluate(out, p.name, ("train",), module_cache=Area())
-    assert r["status"] == "ok" and r["train_worst"] == 41.5 and r["logic_ge"] == 777 and r["cpp"] == 22
+    assert r["status"] == "ok" and r["train_worst"] == 41.5 and r["logic_ge"] == 777 and r["cpp"] == 28
     assert search_eval.reusable(json.loads((out / "results" / f"{p.name}.json").read_text()), p.sha, job, ("train",))
     r = search_eval.evaluate(out, p.name, ("train", "valid"), module_cache=Area())
     assert r["valid_worst"] == 41.5 and r["area_new"] is False
