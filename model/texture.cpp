@@ -142,14 +142,16 @@ double noiseBoxGain(const NoiseOptions& opt, double nu) {
     }
     if (table.empty()) {
         // Segments from the R3 low-discrepancy sequence (start in a 64-cell cube, direction on the
-        // sphere); the mean of each by the midpoint rule at 8 points per cell (>= 16).
+        // sphere); the mean of each by the midpoint rule at 8 points per cell (>= 16). The ratio is
+        // taken over the same segments (the variance of their means over that of their centres'
+        // values), so the sampling error of the two cancels to first order.
         const NoiseMoments m = noiseMoments(opt);
         const double g = 1.2207440846057596, a1 = 1 / g, a2 = 1 / (g * g), a3 = 1 / (g * g * g);
         const int segments = 1024;
         for (int k = kGainLo; k <= kGainHi; ++k) {
             const double len = std::exp2(double(k) / kGainSteps);
             const int q = std::min(512, std::max(16, int(std::ceil(8 * len))));
-            double sum2 = 0;
+            double sum2 = 0, point2 = 0;
             for (int i = 1; i <= segments; ++i) {
                 const double u1 = std::fmod(0.5 + a1 * i, 1.0), u2 = std::fmod(0.5 + a2 * i, 1.0),
                              u3 = std::fmod(0.5 + a3 * i, 1.0);
@@ -159,9 +161,11 @@ double noiseBoxGain(const NoiseOptions& opt, double nu) {
                 double mean = 0;
                 for (int j = 0; j < q; ++j) mean += noise(p0 + ((j + 0.5) / q) * len * d, opt);
                 mean = mean / q - m.mean;
+                const double centre = noise(p0 + 0.5 * len * d, opt) - m.mean;
                 sum2 += mean * mean;
+                point2 += centre * centre;
             }
-            table.push_back(m.sd > 0 ? std::min(1.0, sum2 / segments / (m.sd * m.sd)) : 1.0);
+            table.push_back(point2 > 0 ? std::min(1.0, sum2 / point2) : 1.0);
         }
         std::lock_guard<std::mutex> lock(mu);
         cache[basisKey(opt)] = table;
