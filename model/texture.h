@@ -100,9 +100,8 @@ double octaveFade(const Octave& o, const glm::dvec3& dsdx, const glm::dvec3& dsd
 
 // The variance of the basis averaged over a segment nu lattice cells long (random direction and
 // place), over the basis's variance: 1 at nu = 0, about c / nu for large nu. Sampled once per basis
-// at quarter octaves of nu in [1/16, 256] (Monte Carlo: 1024 segments each,
-// 8 points per cell, 16 to 512) and interpolated in
-// lg nu; 1 below, the last value times 256 / nu above.
+// at quarter octaves of nu in [1/16, 16] (Monte Carlo: 1024 segments each, 8 points per cell, at
+// least 16) and interpolated in lg nu; 1 below, the last value times 16 / nu above.
 double noiseBoxGain(const NoiseOptions& opt, double nu);
 
 // The variance-matched weight of octave o: sqrt(g(|M dsdx|) g(|M dsdy|)), g = noiseBoxGain, the
