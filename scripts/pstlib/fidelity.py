@@ -75,12 +75,17 @@ def sequence_figures(doc):
             "truth": doc.get("truth_samples", 0), "rms": rms, "psnr": ps, "flicker": fl}
 
 
+# The options in the order the tables show them (pst's JSON sorts its keys); others follow as seen.
+ORDER = ["box", "trapezoid", "sat+fade", "sat+widen", "sat+match", "sat+footprint", "trapezoid+widen",
+         "trapezoid+match", "trapezoid+footprint"]
+
+
 def columns(rows):
-    """Stream columns in order: unfiltered, the paper's filter, then the options as first seen."""
-    cols = [UNFILTERED, PAPER]
+    """Stream columns in order: unfiltered, the paper's filter, then the options (ORDER first)."""
+    seen = []
     for r in rows:
-        cols += [n for n in r["rms"] if n not in cols]
-    return cols
+        seen += [n for n in r["rms"] if n not in seen and n not in (UNFILTERED, PAPER)]
+    return [UNFILTERED, PAPER] + [n for n in ORDER if n in seen] + [n for n in seen if n not in ORDER]
 
 
 def _cell(rms, paper):
