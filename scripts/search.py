@@ -41,6 +41,7 @@ Exit status: 0; 1 if a front point fails its RTL check or a point failed; 2 on b
 130 when interrupted.
 """
 import argparse
+import hashlib
 import json
 import os
 import pathlib
@@ -172,7 +173,9 @@ class Job:
         train = sorted(str(p) for p in (sdir / "train").glob("train_*.toml"))
         if a.paper:
             train += [str(ROOT / "scenes" / f"{s}.toml") for s in PAPER_SCENES]
+        pst_sha = hashlib.sha256(pathlib.Path(a.pst).read_bytes()).hexdigest()[:16]
         self.settings = {"size": a.size, "synth_floor": a.synth_floor, "pst": str(pathlib.Path(a.pst).resolve()),
+                         "pst_sha": pst_sha,
                          "module_cache": str(pathlib.Path(a.module_cache).resolve()),
                          "rom_dir": str(pathlib.Path(a.rom_dir).resolve()), "retry_failed": a.retry_failed,
                          "scenes": {"train": train,
@@ -215,7 +218,8 @@ def make_evaluator(a, job, stats):
             return r
 
         def failed(p, e):
-            r = {"name": p.name, "profile_sha": p.sha, "size": a.size, "status": "failed",
+            r = {"name": p.name, "profile_sha": p.sha, "size": a.size, "pst_sha": job.settings["pst_sha"],
+                 "status": "failed",
                  "error": f"{type(e).__name__}: {e}", "cpp": p.cpp}
             atomic.write_text(a.out / "results" / f"{p.name}.json", json.dumps(r, indent=1) + "\n")
             return r

@@ -36,9 +36,12 @@ def scene_sets(job: dict, which=("train",)) -> dict:
 
 
 def reusable(r, sha: str, job: dict, which) -> bool:
-    """A stored result stands: same profile values and image size, every scene of the sets in
-    WHICH scored, and its area done when the job wants one."""
+    """A stored result stands: same profile values, image size and pst build (the sha of the
+    binary: its golden model and verilated RTL), every scene of the sets in WHICH scored, and its
+    area done when the job wants one."""
     if not isinstance(r, dict) or r.get("profile_sha") != sha or r.get("size") != job["size"]:
+        return False
+    if r.get("pst_sha") != job.get("pst_sha"):      # another pst build (RTL, golden model): score again
         return False
     if r.get("status") != "ok":
         return not job.get("retry_failed")
@@ -60,9 +63,11 @@ def evaluate(out: pathlib.Path, name: str, which=("train",), module_cache=None, 
     sha = job["points"].get(name) or ""
     path = out / "results" / f"{name}.json"
     old = read_json(path)
-    if old and (old.get("profile_sha") != sha or old.get("size") != job["size"]):
+    if old and (old.get("profile_sha") != sha or old.get("size") != job["size"]
+                or old.get("pst_sha") != job.get("pst_sha")):
         old = None
-    r = old or {"name": name, "profile": str(prof), "profile_sha": sha, "size": job["size"]}
+    r = old or {"name": name, "profile": str(prof), "profile_sha": sha, "size": job["size"],
+                "pst_sha": job.get("pst_sha")}
     r["status"] = "ok"
     r.pop("error", None)
     r["cpp"] = cycles_per_pixel(doc)

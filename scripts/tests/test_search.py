@@ -139,6 +139,7 @@ def test_stored_results_are_reused_only_when_complete(tmp_path):
     assert search_eval.reusable(r, "s1", job, ("train",))
     assert not search_eval.reusable(r, "s2", job, ("train",))
     assert not search_eval.reusable(dict(r, size=64), "s1", job, ("train",))
+    assert not search_eval.reusable(r, "s1", dict(job, pst_sha="another build"), ("train",))
     assert not search_eval.reusable(r, "s1", job, ("train", "valid"))
     assert not search_eval.reusable(dict(r, logic_ge=None), "s1", job, ("train",))         # area missing
     assert search_eval.reusable(dict(r, logic_ge=None, train_worst=20.0), "s1", job, ("train",))   # under the floor
