@@ -3,7 +3,8 @@
 #   1. every scene through the reference model (filtered, unfiltered, filter width, ground truth)
 #   2. the RTL regression: every scene through every profile at 512x512, checked bit for bit
 #      against the golden model, with the images
-#   2b. the seascape fly-in (pst animate, 24 frames at 64x64): webm videos, out/flicker.md
+#   2b. the seascape fly-in (pst animate, 24 frames at 64x64): webm videos, out/animations/flicker.md
+#       (a report section)
 #   2c. the filter options (the paper's SAT, the exact box, the trapezoid footprint, bandlimited
 #       octaves) against the ground truth: every scene at 64x64 with a 16x16 truth, the four
 #       animated sequences (16 frames at 48x48, 8x8 truth) -> out/fidelity/fidelity.md (a report
@@ -31,7 +32,8 @@ rc=0
 ./build/pst regress --size "$SIZE" --profile full --profile reduced -o out/regress.json --images out || rc=$?
 echo "== animation: seascape fly-in, 24 frames at 64x64 through the reference and full's RTL, flicker vs a 4x4 truth"
 ./build/pst animate scenes/seascape.toml --frames 24 --size 64 --truth 4 --profile full -o out/anim/seascape -q || rc=1
-/usr/bin/python3 scripts/flicker.py out/anim/seascape --md out/flicker.md || rc=1
+mkdir -p out/animations
+/usr/bin/python3 scripts/flicker.py out/anim/seascape --md out/animations/flicker.md || rc=1
 echo "== filter options against the ground truth (scenes 64x64, 16x16 truth; sequences 16 frames 48x48, 8x8 truth)"
 VARIANTS=sat,box,trapezoid,sat+fade,sat+widen,sat+match,trapezoid+match
 stills=()
