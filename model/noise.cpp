@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <stdexcept>
 #include <utility>
 
 namespace pst {
@@ -17,6 +18,7 @@ namespace pst {
 bool parseNoiseInterp(const std::string& name, NoiseInterp* out) {
     if (name == "scurve") *out = NoiseInterp::SCurve;
     else if (name == "linear") *out = NoiseInterp::Linear;
+    else if (name == "quintic") *out = NoiseInterp::Quintic;
     else return false;
     return true;
 }
@@ -24,6 +26,7 @@ bool parseNoiseInterp(const std::string& name, NoiseInterp* out) {
 bool parseNoiseCorner(const std::string& name, NoiseCorner* out) {
     if (name == "value_gradient") *out = NoiseCorner::ValueGradient;
     else if (name == "value") *out = NoiseCorner::ValueOnly;
+    else if (name == "grad12") *out = NoiseCorner::Grad12;
     else return false;
     return true;
 }
@@ -31,6 +34,7 @@ bool parseNoiseCorner(const std::string& name, NoiseCorner* out) {
 bool parseNoiseHash(const std::string& name, NoiseHash* out) {
     if (name == "rayshade") *out = NoiseHash::Rayshade4096;
     else if (name == "perm256") *out = NoiseHash::Perm256;
+    else if (name == "perlin256") *out = NoiseHash::Perlin256;
     else return false;
     return true;
 }
@@ -60,11 +64,30 @@ const char* toString(NoiseBasis v) {
 }
 const char* toString(WorleyMetric v) { return v == WorleyMetric::Euclid ? "euclid" : "manhattan"; }
 
-const char* toString(NoiseInterp v) { return v == NoiseInterp::SCurve ? "scurve" : "linear"; }
-const char* toString(NoiseCorner v) {
-    return v == NoiseCorner::ValueGradient ? "value_gradient" : "value";
+const char* toString(NoiseInterp v) {
+    switch (v) {
+    case NoiseInterp::SCurve: return "scurve";
+    case NoiseInterp::Linear: return "linear";
+    case NoiseInterp::Quintic: return "quintic";
+    }
+    return "?";
 }
-const char* toString(NoiseHash v) { return v == NoiseHash::Rayshade4096 ? "rayshade" : "perm256"; }
+const char* toString(NoiseCorner v) {
+    switch (v) {
+    case NoiseCorner::ValueGradient: return "value_gradient";
+    case NoiseCorner::ValueOnly: return "value";
+    case NoiseCorner::Grad12: return "grad12";
+    }
+    return "?";
+}
+const char* toString(NoiseHash v) {
+    switch (v) {
+    case NoiseHash::Rayshade4096: return "rayshade";
+    case NoiseHash::Perm256: return "perm256";
+    case NoiseHash::Perlin256: return "perlin256";
+    }
+    return "?";
+}
 
 // ---- tables -------------------------------------------------------------------------------
 
@@ -134,6 +157,13 @@ int noiseHash(int ix, int iy, int iz, NoiseHash hash) {
         const auto& P = t.perm;
         return P[P[P[ix & 0xff] ^ (iy & 0xff)] ^ (iz & 0xff)];
     }
+    if (hash == NoiseHash::Perlin256) {
+        // ImprovedNoise.java's p[p[p[X] + Y] + Z] with X = floor(x) & 255 = (ix - 1e6) & 255
+        // (1e6 mod 256 = 64); p doubled there is P[i & 255] here.
+        const auto& P = perlin2002Permutation();
+        const int X = (ix - 64) & 0xff, Y = (iy - 64) & 0xff, Z = (iz - 64) & 0xff;
+        return P[(P[(P[X] + Y) & 0xff] + Z) & 0xff];
+    }
     // Rayshade: m = Hash3d(ix, iy, iz) & 0xFF.
     const auto& T = t.hash;
     return T[T[T[ix & 0xfff] ^ (iy & 0xfff)] ^ (iz & 0xfff)] & 0xff;
@@ -144,6 +174,8 @@ int noiseHash(int ix, int iy, int iz, NoiseHash hash) {
 double noise(const glm::dvec3& p, const NoiseOptions& opt, glm::dvec3* grad) {
     if (opt.basis == NoiseBasis::Perlin2002) return perlin2002(p, grad);
     if (opt.basis == NoiseBasis::Worley) return worleyBasis(p, opt, grad);
+    if (opt.interp == NoiseInterp::Quintic || opt.corner == NoiseCorner::Grad12 || opt.hash == NoiseHash::Perlin256)
+        throw std::invalid_argument("noise: quintic / grad12 / perlin256 are basis perlin2002's (NoiseBasis::Perlin2002)");
     if (grad) *grad = glm::dvec3(0.0);
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return 0.0;
     const NoiseTables& tables = NoiseTables::get();

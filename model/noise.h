@@ -28,19 +28,25 @@ namespace pst {
 enum class NoiseInterp {
     SCurve,  // Rayshade: weights SCURVE(u) = u^2 (3 - 2u)
     Linear,  // reduced hardware: tri-linear weights u
+    Quintic, // Perlin 2002's fade 6u^5 - 15u^4 + 10u^3 (hardware profiles of basis perlin2002)
 };
 
 // What each lattice corner contributes.
 enum class NoiseCorner {
     ValueGradient,  // Rayshade: 0.5 R[m] + R[m+1] dx + R[m+2] dy + R[m+3] dz
     ValueOnly,      // 0.5 R[m]
+    Grad12,         // Perlin 2002's grad(m & 15, dx, dy, dz): +-d_u +-d_v, no value table
 };
 
 // How a lattice point (ix, iy, iz) becomes the value-table index m.
 enum class NoiseHash {
     Rayshade4096,  // T[T[T[ix&0xfff]^(iy&0xfff)]^(iz&0xfff)] & 0xff, T a 4096-entry permutation
     Perm256,       // P[P[P[ix&0xff]^(iy&0xff)]^(iz&0xff)], P a 256-entry permutation (8-bit ROM)
+    Perlin256,     // Perlin 2002: P[(P[(P[X] + Y) & 255] + Z) & 255], X = floor(x) & 255, his P
 };
+// The three values Quintic, Grad12, Perlin256 come together: they are how a hardware profile
+// (rtl/contract.toml) says "basis perlin2002", and the reference for them is perlin2002()
+// (NoiseBasis::Perlin2002). noise() with basis Rayshade refuses them (std::invalid_argument).
 // Why Perm256: each of the three chained lookups per corner is then a 256x8 ROM (2 kbit)
 // instead of a 4096x12 ROM (48 kbit); m is the 8-bit permutation output directly. The
 // noise then repeats every 256 lattice cells instead of 4096. P is built like Rayshade's
@@ -71,7 +77,8 @@ struct NoiseOptions {
 };
 
 // Parse/print the enum names used in scene files ("scurve", "linear", "value_gradient",
-// "value", "rayshade", "perm256"). Parsing returns false on an unknown name.
+// "value", "rayshade", "perm256"; the hardware's perlin2002 triple "quintic", "grad12",
+// "perlin256"). Parsing returns false on an unknown name.
 bool parseNoiseInterp(const std::string& name, NoiseInterp* out);
 bool parseNoiseCorner(const std::string& name, NoiseCorner* out);
 bool parseNoiseHash(const std::string& name, NoiseHash* out);
@@ -108,7 +115,8 @@ uint16_t crc16(const uint8_t* bytes, size_t count);
 
 // Value-table index m (0..255) of lattice point (ix, iy, iz), where ix is the lattice index
 // after Rayshade's offset, i.e. (int)(x + 1e6) = floor(x) + 1000000. Any int is accepted
-// (only the low 12 or 8 bits are used).
+// (only the low 12 or 8 bits are used). Perlin256 gives the hash ImprovedNoise.java feeds
+// grad() (its low 4 bits pick the direction).
 int noiseHash(int ix, int iy, int iz, NoiseHash hash);
 
 // n(p) and, if grad != nullptr, its analytic gradient dn/dp (not Rayshade's DNoise3, which is

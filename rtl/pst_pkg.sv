@@ -16,15 +16,18 @@ package pst_pkg;
   // pipeline.datapath: parallel: every product every cycle; serial: quadric rows, filter-width products and colour channels one per cycle
   localparam int DatapathParallel = 0;
   localparam int DatapathSerial = 1;
-  // noise.interp: interpolation weights
+  // noise.interp: interpolation weights (quintic: Perlin 2002's fade 6t^5 - 15t^4 + 10t^3)
   localparam int NoiseInterpScurve = 0;
   localparam int NoiseInterpLinear = 1;
-  // noise.corner: corner function
+  localparam int NoiseInterpQuintic = 2;
+  // noise.corner: corner function (grad12: Perlin 2002's grad(), 12 directions from 4 hash bits, no value ROM)
   localparam int NoiseCornerValueGradient = 0;
   localparam int NoiseCornerValue = 1;
-  // noise.hash: lattice hash: Rayshade's 4096 x 12 ROM or a 256 x 8 permutation
+  localparam int NoiseCornerGrad12 = 2;
+  // noise.hash: lattice hash: Rayshade's 4096 x 12 ROM, a 256 x 8 permutation (XOR chain), or Perlin 2002's 256 x 8 permutation (additive chain)
   localparam int NoiseHashRayshade = 0;
   localparam int NoiseHashPerm256 = 1;
+  localparam int NoiseHashPerlin256 = 2;
   // filter.norm: |grad_x f|: euclid (sqrt), max + min / 2, |gx| + |gy|
   localparam int FilterNormEuclid = 0;
   localparam int FilterNormMaxHalfMin = 1;

@@ -10,9 +10,9 @@ initial begin
   assert (Datapath >= 0 && Datapath < 2) else $fatal(1, "pipeline.datapath: unknown value");
   assert (NoiseRegs >= 0 && NoiseRegs <= 6) else $fatal(1, "pipeline.noise_regs: must be in [0, 6]");
   assert (OctaveRegs >= 0 && OctaveRegs <= 2) else $fatal(1, "pipeline.octave_regs: must be in [0, 2]");
-  assert (NoiseInterp >= 0 && NoiseInterp < 2) else $fatal(1, "noise.interp: unknown value");
-  assert (NoiseCorner >= 0 && NoiseCorner < 2) else $fatal(1, "noise.corner: unknown value");
-  assert (NoiseHash >= 0 && NoiseHash < 2) else $fatal(1, "noise.hash: unknown value");
+  assert (NoiseInterp >= 0 && NoiseInterp < 3) else $fatal(1, "noise.interp: unknown value");
+  assert (NoiseCorner >= 0 && NoiseCorner < 3) else $fatal(1, "noise.corner: unknown value");
+  assert (NoiseHash >= 0 && NoiseHash < 3) else $fatal(1, "noise.hash: unknown value");
   assert (NoiseValueFrac >= 1 && NoiseValueFrac <= 15) else $fatal(1, "noise.value_frac: must be in [1, 15]");
   assert (NoiseLatticeFrac >= 1 && NoiseLatticeFrac <= 20) else $fatal(1, "noise.lattice_frac: must be in [1, 20]");
   assert (NoiseOutFrac >= 1 && NoiseOutFrac <= 24) else $fatal(1, "noise.out_frac: must be in [1, 24]");
@@ -42,6 +42,12 @@ initial begin
     else $fatal(1, "pipeline.noise_units: must divide pipeline.octaves");
   assert (Datapath != pst_pkg::DatapathSerial || NoiseSteps >= 4)
     else $fatal(1, "pipeline.datapath: serial needs pipeline.noise_steps >= 4");
+  assert (( NoiseInterp == pst_pkg::NoiseInterpQuintic ) == ( NoiseCorner == pst_pkg::NoiseCornerGrad12 ))
+    else $fatal(1, "noise.interp: quintic comes with corner grad12 and hash perlin256 (basis perlin2002), and only with them");
+  assert (( NoiseCorner == pst_pkg::NoiseCornerGrad12 ) == ( NoiseHash == pst_pkg::NoiseHashPerlin256 ))
+    else $fatal(1, "noise.hash: perlin256 comes with interp quintic and corner grad12 (basis perlin2002), and only with them");
+  assert (NoiseInterp != pst_pkg::NoiseInterpQuintic || NoiseLatticeFrac >= 2)
+    else $fatal(1, "noise.lattice_frac: must be at least 2 with interp quintic (its derivative 30 u^2 (1 - u)^2 must stay below 4, pst_noise_weight)");
   assert (MatrixFrac + CoordFrac >= NoiseLatticeFrac)
     else $fatal(1, "noise.lattice_frac: must be at most formats.matrix.frac + formats.coord.frac (pst_octave_transform)");
   assert (MatrixFrac + CoordFrac >= OffsetFrac)

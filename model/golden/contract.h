@@ -50,9 +50,9 @@ enum Param : int {
 
 // Profile enums: names in index order.
 inline constexpr const char* kDatapathNames[] = {"parallel", "serial"};
-inline constexpr const char* kNoiseInterpNames[] = {"scurve", "linear"};
-inline constexpr const char* kNoiseCornerNames[] = {"value_gradient", "value"};
-inline constexpr const char* kNoiseHashNames[] = {"rayshade", "perm256"};
+inline constexpr const char* kNoiseInterpNames[] = {"scurve", "linear", "quintic"};
+inline constexpr const char* kNoiseCornerNames[] = {"value_gradient", "value", "grad12"};
+inline constexpr const char* kNoiseHashNames[] = {"rayshade", "perm256", "perlin256"};
 inline constexpr const char* kFilterNormNames[] = {"euclid", "max_half_min", "l1"};
 
 enum class KeyKind { Range, Values, Enum, Format };
@@ -91,9 +91,9 @@ inline constexpr KeySpec kSchema[] = {
     {"pipeline", "datapath", KeyKind::Enum, Datapath, 0, 1, {}, 2, kDatapathNames, 0},
     {"pipeline", "noise_regs", KeyKind::Range, NoiseRegs, 0, 6, {}, 0, nullptr, 0},
     {"pipeline", "octave_regs", KeyKind::Range, OctaveRegs, 0, 2, {}, 0, nullptr, 0},
-    {"noise", "interp", KeyKind::Enum, NoiseInterp, 0, 1, {}, 2, kNoiseInterpNames, 0},
-    {"noise", "corner", KeyKind::Enum, NoiseCorner, 0, 1, {}, 2, kNoiseCornerNames, 0},
-    {"noise", "hash", KeyKind::Enum, NoiseHash, 0, 1, {}, 2, kNoiseHashNames, 0},
+    {"noise", "interp", KeyKind::Enum, NoiseInterp, 0, 2, {}, 3, kNoiseInterpNames, 0},
+    {"noise", "corner", KeyKind::Enum, NoiseCorner, 0, 2, {}, 3, kNoiseCornerNames, 0},
+    {"noise", "hash", KeyKind::Enum, NoiseHash, 0, 2, {}, 3, kNoiseHashNames, 0},
     {"noise", "value_frac", KeyKind::Range, NoiseValueFrac, 1, 15, {}, 0, nullptr, 0},
     {"noise", "lattice_frac", KeyKind::Range, NoiseLatticeFrac, 1, 20, {}, 0, nullptr, 0},
     {"noise", "out_frac", KeyKind::Range, NoiseOutFrac, 1, 24, {}, 0, nullptr, 0},
@@ -123,6 +123,12 @@ inline constexpr Constraint kConstraints[] = {
      [](const int* v) { return v[Octaves] % v[NoiseUnits] == 0; }},
     {"pipeline.datapath", "serial needs pipeline.noise_steps >= 4",
      [](const int* v) { return v[Datapath] != 1 || v[NoiseSteps] >= 4; }},
+    {"noise.interp", "quintic comes with corner grad12 and hash perlin256 (basis perlin2002), and only with them",
+     [](const int* v) { return ( v[NoiseInterp] == 2 ) == ( v[NoiseCorner] == 2 ); }},
+    {"noise.hash", "perlin256 comes with interp quintic and corner grad12 (basis perlin2002), and only with them",
+     [](const int* v) { return ( v[NoiseCorner] == 2 ) == ( v[NoiseHash] == 2 ); }},
+    {"noise.lattice_frac", "must be at least 2 with interp quintic (its derivative 30 u^2 (1 - u)^2 must stay below 4, pst_noise_weight)",
+     [](const int* v) { return v[NoiseInterp] != 2 || v[NoiseLatticeFrac] >= 2; }},
     {"noise.lattice_frac", "must be at most formats.matrix.frac + formats.coord.frac (pst_octave_transform)",
      [](const int* v) { return v[MatrixFrac] + v[CoordFrac] >= v[NoiseLatticeFrac]; }},
     {"formats.offset", "frac must be at most formats.matrix.frac + formats.coord.frac (pst_octave_transform)",

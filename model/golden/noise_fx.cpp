@@ -13,14 +13,26 @@
 //   weights   scurve: u2 = floor(U U / 2^LF); s = floor(u2 (3 2^LF - 2U) / 2^LF);
 //                     ds = 6 (U - u2)            (= 6 u (1 - u), reusing u2: no multiplier)
 //             linear: s = U; ds = 2^LF (ds = 1: the own-axis product is b - a, exact)
+//             quintic (Perlin 2002's fade 6t^5 - 15t^4 + 10t^3 = t^3 (6t^2 - 15t + 10)):
+//                     u2 = floor(U U / 2^LF); t3 = floor(u2 U / 2^LF);
+//                     w = 6 u2 - 15 U + 10 2^LF (> 0: shifts and adds, no multiplier);
+//                     s = floor(t3 w / 2^LF); a = U - u2 (= u (1 - u), in [0, 2^(LF-2)]);
+//                     ds = floor(30 a a / 2^LF)  (fade' = 30 u^2 (1 - u)^2; x30 = x32 - x2)
 //   hash      Rayshade: m = T[T[T[X] ^ Y] ^ Z] & 0xff, X in {L_x, L_x + 1 mod 4096}, ...
 //             perm256:  m = P[P[P[X] ^ Y] ^ Z],  X in {L_x mod 256, L_x + 1 mod 256}, ...
+//             perlin256: m = P[(P[(P[X] + Y) mod 256] + Z) mod 256] with Perlin's P,
+//                     X in {(L_x - 64) mod 256, +1} (L = floor(x) + 576 mod 4096 and
+//                     576 mod 256 = 64, so X = floor(x) & 255 as in ImprovedNoise.java)
 //             (2 + 4 + 8 = 14 lookups, shared between corners as in the RTL)
 //   corner    R_k = value16[m + k] >>> (15 - VF) (k = 0..3), d_a = U_a - b_a 2^LF
 //             value_gradient: v = R_0 2^(LF-1) + R_1 d_x + R_2 d_y + R_3 d_z   exact, VF+LF bits
 //             value:          v = R_0 2^(LF-1)
 //             node = (floor(v to NF), floor(R_1 to NF), floor(R_2 to NF), floor(R_3 to NF))
 //             (gradient zero for value corners)
+//             grad12 (Perlin's grad(m, d)): h = m & 15, axis a = h < 8 ? x : y,
+//                     axis b = h < 4 ? y : (h == 12 || h == 14) ? x : z (never a);
+//                     v = (h & 1 ? -d_a : d_a) + (h & 2 ? -d_b : d_b)   exact, LF bits;
+//                     node = (floor(v to NF), +-2^NF on axes a and b, 0 on the third)
 //   lerp on axis k between nodes a (b_k = 0) and b (b_k = 1), s = s_k, ds = ds_k:
 //             L(x, y) = x + floor((y - x) s / 2^LF)
 //             v' = L(a.v, b.v); g'_j = L(a.g_j, b.g_j) for j != k;
@@ -39,6 +51,7 @@
 #include "contract.h"
 #include "fixed.h"
 #include "noise.h"
+#include "perlin2002.h"
 
 namespace pst {
 
@@ -104,7 +117,9 @@ void noiseFx(const Profile& prof, const int lat[3], const int64_t frac[3], int64
     const int OF = prof.noiseOutFrac;
     const int NF = noiseNodeFrac(prof);
     const bool scurve = prof.noise.interp == NoiseInterp::SCurve;
+    const bool quintic = prof.noise.interp == NoiseInterp::Quintic;
     const bool valueGradient = prof.noise.corner == NoiseCorner::ValueGradient;
+    const bool grad12 = prof.noise.corner == NoiseCorner::Grad12;
     const int valueW = 3 + NF;  // Q3.NF node values
     const int gradW = 5 + NF;   // Q5.NF node derivatives
 
@@ -118,6 +133,13 @@ void noiseFx(const Profile& prof, const int lat[3], const int64_t frac[3], int64
             const int64_t u2 = int64_t(floorShift(i128(U[k]) * U[k], LF));
             s[k] = int64_t(floorShift(i128(u2) * ((int64_t(3) << LF) - 2 * U[k]), LF));
             ds[k] = 6 * (U[k] - u2);
+        } else if (quintic) {
+            const int64_t u2 = int64_t(floorShift(i128(U[k]) * U[k], LF));
+            const int64_t t3 = int64_t(floorShift(i128(u2) * U[k], LF));
+            const int64_t w = 6 * u2 - 15 * U[k] + (int64_t(10) << LF);
+            s[k] = int64_t(floorShift(i128(t3) * w, LF));
+            const int64_t a = U[k] - u2;
+            ds[k] = int64_t(floorShift(30 * (i128(a) * a), LF));
         } else {
             s[k] = U[k];
             ds[k] = int64_t(1) << LF;
@@ -127,29 +149,49 @@ void noiseFx(const Profile& prof, const int lat[3], const int64_t frac[3], int64
     // Hash: 2 + 4 + 8 lookups, corner c = bx + 2 by + 4 bz.
     const NoiseTables& tables = NoiseTables::get();
     const bool perm = prof.noise.hash == NoiseHash::Perm256;
-    const int idxMask = perm ? 0xff : kLatticeMask;
-    auto T = [&](int i) { return perm ? int(tables.perm[size_t(i)]) : int(tables.hash[size_t(i)]); };
+    const bool perlin = prof.noise.hash == NoiseHash::Perlin256;
+    const int idxMask = perm || perlin ? 0xff : kLatticeMask;
+    const int idxBias = perlin ? -(contract::kLatticeOffset & 0xff) : 0;  // X = floor(x) & 255
+    const auto& perlinP = perlin2002Permutation();
+    auto T = [&](int i) {
+        return perlin ? int(perlinP[size_t(i)]) : perm ? int(tables.perm[size_t(i)]) : int(tables.hash[size_t(i)]);
+    };
+    // The chain's combining step: XOR (Rayshade, perm256) or an 8-bit add (perlin256).
+    auto chain = [&](int h, int x) { return perlin ? (h + x) & 0xff : h ^ x; };
     int X[3][2];
     for (int k = 0; k < 3; ++k) {
-        X[k][0] = L[k] & idxMask;
-        X[k][1] = (L[k] + 1) & idxMask;
+        X[k][0] = (L[k] + idxBias) & idxMask;
+        X[k][1] = (L[k] + idxBias + 1) & idxMask;
     }
     int h1[2], h2[4], m[8];
     for (int bx = 0; bx < 2; ++bx) h1[bx] = T(X[0][bx]);
     for (int by = 0; by < 2; ++by)
-        for (int bx = 0; bx < 2; ++bx) h2[bx + 2 * by] = T(h1[bx] ^ X[1][by]);
-    for (int c = 0; c < 8; ++c) m[c] = T(h2[c & 3] ^ X[2][c >> 2]) & 0xff;
+        for (int bx = 0; bx < 2; ++bx) h2[bx + 2 * by] = T(chain(h1[bx], X[1][by]));
+    for (int c = 0; c < 8; ++c) m[c] = T(chain(h2[c & 3], X[2][c >> 2])) & 0xff;
 
     // Corner nodes.
     Node corner[8];
     for (int c = 0; c < 8; ++c) {
         const int b[3] = {c & 1, (c >> 1) & 1, (c >> 2) & 1};
+        Node& nd = corner[c];
+        if (grad12) {
+            const int h = m[c] & 15;
+            const int a = h < 8 ? 0 : 1, bb = h < 4 ? 1 : (h == 12 || h == 14) ? 0 : 2;
+            int64_t d[3];
+            for (int k = 0; k < 3; ++k) d[k] = U[k] - (int64_t(b[k]) << LF);
+            const int64_t v = ((h & 1) ? -d[a] : d[a]) + ((h & 2) ? -d[bb] : d[bb]);
+            nd.v[0] = int64_t(floorShift(i128(v), LF - NF));
+            for (int k = 0; k < 3; ++k) nd.v[k + 1] = 0;
+            nd.v[a + 1] = (h & 1) ? -(int64_t(1) << NF) : (int64_t(1) << NF);
+            nd.v[bb + 1] = (h & 2) ? -(int64_t(1) << NF) : (int64_t(1) << NF);
+            checkFits(nd.v[0], valueW, "corner value");
+            continue;
+        }
         int64_t R[4];
         for (int k = 0; k < 4; ++k) R[k] = noiseValueRom(prof, m[c] + k);
         i128 v = floorShift(i128(R[0]), -(LF - 1));  // 0.5 R_0 at VF + LF fraction bits
         if (valueGradient)
             for (int k = 0; k < 3; ++k) v += i128(R[k + 1]) * (U[k] - (int64_t(b[k]) << LF));
-        Node& nd = corner[c];
         nd.v[0] = int64_t(floorShift(v, VF + LF - NF));
         for (int k = 0; k < 3; ++k) nd.v[k + 1] = valueGradient ? int64_t(floorShift(i128(R[k + 1]), VF - NF)) : 0;
         checkFits(nd.v[0], valueW, "corner value");
@@ -211,18 +253,27 @@ NoiseFxErrorBound noiseFxErrorBound(const Profile& prof) {
     const int LF = prof.noiseLatticeFrac, VF = prof.noiseValueFrac, OF = prof.noiseOutFrac;
     const int NF = noiseNodeFrac(prof);
     const bool scurve = prof.noise.interp == NoiseInterp::SCurve;
+    const bool quintic = prof.noise.interp == NoiseInterp::Quintic;
     const bool vg = prof.noise.corner == NoiseCorner::ValueGradient;
+    const bool g12 = prof.noise.corner == NoiseCorner::Grad12;
     const double q = std::ldexp(1.0, -LF), e = std::ldexp(1.0, -NF), o = std::ldexp(1.0, -OF);
-    const double dS = scurve ? 4 * q : 0.0;          // |s_fx - s|
-    const double dDs = scurve ? 6 * q : 0.0;         // |ds_fx - ds|
-    const double dsMaxTrue = scurve ? 1.5 : 1.0;
-    const double dsMaxFx = scurve ? 1.5 + 6 * q : 1.0;
-    const double D = vg ? 6.0 : 1.0;
-    const double DgOwn = vg ? 2.0 : 0.0;
+    // Weights. quintic: t3 in (t^3 - 2q, t^3], w in (w - 6q, w], so t^3 w - t3 w_fx <
+    // 6q t^3 + w (t + 1) q <= 10q (max at t = 0), plus the floor: s_fx in (s - 11q, s].
+    // ds: a_fx in [a, a + q), a <= 1/4, 30 (a_fx^2 - a^2) < 30 q (0.5 + q), then the floor:
+    // ds_fx in (ds - q, ds + 15q + 30q^2); max ds = 30/16 = 1.875.
+    const double dS = scurve ? 4 * q : quintic ? 11 * q : 0.0;                  // |s_fx - s|
+    const double dDs = scurve ? 6 * q : quintic ? 15 * q + 30 * q * q : 0.0;    // |ds_fx - ds|
+    const double dsMaxTrue = scurve ? 1.5 : quintic ? 1.875 : 1.0;
+    const double dsMaxFx = dsMaxTrue + dDs;
+    // Corner value differences: 6 (value_gradient), 1 (value), 4 (grad12: |+-d_a +-d_b| <= 2).
+    const double D = vg ? 6.0 : g12 ? 4.0 : 1.0;
+    // Corner gradient differences: R's (< 2) or grad12's components in {-1, 0, 1}.
+    const double DgOwn = vg || g12 ? 2.0 : 0.0;
     const double gMax = dsMaxTrue * D + DgOwn / 2;
     const double DgOther = 2 * gMax;
-    const double ER = VF >= 15 ? 0.0 : std::ldexp(1.0, -VF);
-    const double Ec = (vg ? 3.5 : 0.5) * ER + (VF + LF > NF ? e : 0.0);
+    const double ER = g12 || VF >= 15 ? 0.0 : std::ldexp(1.0, -VF);
+    // grad12 corners are exact at LF bits (only the floor to NF), their gradients exact.
+    const double Ec = g12 ? (LF > NF ? e : 0.0) : (vg ? 3.5 : 0.5) * ER + (VF + LF > NF ? e : 0.0);
     const double Ecg = vg ? ER + (VF > NF ? e : 0.0) : 0.0;
     auto Ev = [&](int levels) { return Ec + levels * (D * dS + e); };
 
@@ -238,8 +289,9 @@ NoiseFxErrorBound noiseFxErrorBound(const Profile& prof) {
     }
     b.gradMax = gMax;
     // Inside a cell: |d2n/dp_k^2| <= max|s''| D + 2 ds_max DgOwn (s'' = 6 - 12u for scurve,
-    // 0 linear); |d2n/dp_k dp_j| <= ds_max^2 2D + 2 ds_max DgOwn.
-    const double s2 = scurve ? 6.0 : 0.0;
+    // 60u - 180u^2 + 120u^3 for quintic, |.| <= 5.78 at u = (3 - sqrt 3) / 6; 0 linear);
+    // |d2n/dp_k dp_j| <= ds_max^2 2D + 2 ds_max DgOwn.
+    const double s2 = scurve ? 6.0 : quintic ? 5.78 : 0.0;
     const double hkk = s2 * D + 2 * dsMaxTrue * DgOwn;
     const double hkj = dsMaxTrue * dsMaxTrue * 2 * D + 2 * dsMaxTrue * DgOwn;
     b.hessianRow = hkk + 2 * hkj;

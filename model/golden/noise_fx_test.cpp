@@ -15,6 +15,7 @@
 
 #include "fixed.h"
 #include "noise.h"
+#include "perlin2002.h"
 #include "profile.h"
 
 namespace pst {
@@ -30,6 +31,16 @@ std::string sourceDir() {
 }
 
 Profile profile(const char* name) { return loadProfile(sourceDir() + "/rtl/configs/" + name + ".toml"); }
+
+// A profile's formats with the noise unit in Perlin's 2002 variant (basis perlin2002).
+Profile perlinProfile(const char* name) {
+    Profile p = profile(name);
+    p.noise.interp = NoiseInterp::Quintic;
+    p.noise.corner = NoiseCorner::Grad12;
+    p.noise.hash = NoiseHash::Perlin256;
+    p.noise.basis = hardwareBasis(p.noise);
+    return p;
+}
 
 // The noise unit's input for a point p: s = quantize(p) (Coord), M = identity, o = 0, through
 // octaveTransformFx. Also returns the exact point the unit sees (pq) and its lattice cell.
@@ -101,7 +112,7 @@ TEST(NoiseFx, OctaveTransformMatchesLongDouble) {
 
 TEST(NoiseFx, HashIsTheReferenceHash) {
     for (const char* name : {"full", "reduced"}) {
-        for (NoiseHash hash : {NoiseHash::Rayshade4096, NoiseHash::Perm256}) {
+        for (NoiseHash hash : {NoiseHash::Rayshade4096, NoiseHash::Perm256, NoiseHash::Perlin256}) {
             Profile prof = profile(name);
             prof.noise.hash = hash;
             std::mt19937_64 rng(5);
@@ -213,7 +224,7 @@ void checkAgainstReference(const Profile& prof, const std::string& label) {
         const double evp = std::fabs(nf - np);
         maxVp = std::max(maxVp, evp);
         ASSERT_LE(evp, bound.value + bound.gradMax * sumDp) << label;
-        if (prof.noise.interp == NoiseInterp::SCurve || sameCell) {
+        if (prof.noise.interp != NoiseInterp::Linear || sameCell) {
             for (int k = 0; k < 3; ++k) {
                 const double eg = std::fabs(gf[k] - gp[k]);
                 maxGp = std::max(maxGp, eg);
@@ -254,6 +265,71 @@ TEST(NoiseFx, VariantsTrackReference) {
                     checkAgainstReference(prof, std::string(name) + " formats " + toString(interp) + "/" +
                                                     toString(corner) + "/" + toString(hash));
                 }
+    }
+}
+
+// Perlin's 2002 variant (quintic, grad12, perlin256) against perlin2002() (its reference is
+// ImprovedNoise.java bit for bit) with each profile's formats.
+TEST(NoiseFx, Perlin2002TracksReference) {
+    for (const char* name : {"full", "reduced"}) {
+        const Profile prof = perlinProfile(name);
+        ASSERT_EQ(prof.noise.basis, NoiseBasis::Perlin2002);
+        checkAgainstReference(prof, std::string(name) + " formats perlin2002");
+    }
+}
+
+// The quintic weights against fade(u) = 6u^5 - 15u^4 + 10u^3 and fade'(u) = 30u^2 (1 - u)^2
+// for every u at LF = 2..16: s in (fade - 11q, fade], ds in (fade' - q, fade' + 15q + 30q^2)
+// (the intervals noiseFxErrorBound uses), s < 1, ds < 4 (pst_noise_weight's port widths).
+TEST(NoiseFx, QuinticWeightsExhaustive) {
+    Profile prof = perlinProfile("full");
+    for (int LF = 2; LF <= 16; ++LF) {
+        prof.noiseLatticeFrac = LF;
+        const double q = std::ldexp(1.0, -LF);
+        double worstS = 0, worstDs = 0;
+        for (int64_t U = 0; U < (int64_t(1) << LF); ++U) {
+            const int lat[3] = {100, 200, 300};
+            const int64_t frac[3] = {U, 0, 0};
+            int64_t n, g[3];
+            NoiseFxTrace tr;
+            noiseFx(prof, lat, frac, &n, g, &tr);
+            const double u = double(U) * q;
+            const double fade = u * u * u * (u * (u * 6 - 15) + 10), dfade = 30 * u * u * (1 - u) * (1 - u);
+            const double s = double(tr.s[0]) * q, ds = double(tr.ds[0]) * q;
+            ASSERT_LT(tr.s[0], int64_t(1) << LF) << "LF " << LF << " U " << U;
+            ASSERT_LT(tr.ds[0], int64_t(4) << LF) << "LF " << LF << " U " << U;
+            ASSERT_LE(s, fade) << "LF " << LF << " U " << U;
+            ASSERT_GT(s, fade - 11 * q) << "LF " << LF << " U " << U;
+            ASSERT_GT(ds, dfade - q) << "LF " << LF << " U " << U;
+            ASSERT_LT(ds, dfade + 15 * q + 30 * q * q) << "LF " << LF << " U " << U;
+            worstS = std::max(worstS, (fade - s) / q);
+            worstDs = std::max(worstDs, std::fabs(ds - dfade) / q);
+        }
+        if (LF == 8 || LF == 16) std::printf("[ noise_fx ] quintic LF %d: s error <= %.2f LSB, ds error <= %.2f LSB\n", LF, worstS, worstDs);
+    }
+}
+
+// grad12 corners at a lattice point (u = 0): n = grad(m, 0, 0, 0) = 0 and the gradient is
+// corner 0's direction, two components +-1 and one 0.
+TEST(NoiseFx, Grad12LatticePoint) {
+    const Profile prof = perlinProfile("full");
+    for (int i = 0; i < 4096; i += 7) {
+        const int lat[3] = {i, (i * 5 + 3) & 4095, (i * 11 + 9) & 4095};
+        const int64_t frac[3] = {0, 0, 0};
+        int64_t n, g[3];
+        NoiseFxTrace tr;
+        noiseFx(prof, lat, frac, &n, g, &tr);
+        EXPECT_EQ(n, 0);
+        int ones = 0, zeros = 0;
+        for (int k = 0; k < 3; ++k) {
+            ones += std::llabs(g[k]) == (int64_t(1) << prof.noiseOutFrac);
+            zeros += g[k] == 0;
+        }
+        EXPECT_EQ(ones, 2);
+        EXPECT_EQ(zeros, 1);
+        glm::dvec3 gr;
+        perlin2002(glm::dvec3(i - 576, ((i * 5 + 3) & 4095) - 576, ((i * 11 + 9) & 4095) - 576), &gr);
+        for (int k = 0; k < 3; ++k) EXPECT_EQ(fx::toDouble(g[k], prof.noiseOutFrac), gr[k]) << "lat " << i;
     }
 }
 

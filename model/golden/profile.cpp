@@ -9,6 +9,10 @@
 #include "input_error.h"
 
 namespace pst {
+
+NoiseBasis hardwareBasis(const NoiseOptions& n) {
+    return n.corner == NoiseCorner::Grad12 ? NoiseBasis::Perlin2002 : NoiseBasis::Rayshade;
+}
 namespace {
 
 struct Reader {
@@ -122,6 +126,7 @@ Profile parseProfile(const std::string& text, const std::string& path) {
     p.noise.interp = NoiseInterp(v[c::NoiseInterp]);
     p.noise.corner = NoiseCorner(v[c::NoiseCorner]);
     p.noise.hash = NoiseHash(v[c::NoiseHash]);
+    p.noise.basis = hardwareBasis(p.noise);
     p.noiseValueFrac = v[c::NoiseValueFrac];
     p.noiseLatticeFrac = v[c::NoiseLatticeFrac];
     p.noiseOutFrac = v[c::NoiseOutFrac];

@@ -39,7 +39,7 @@ struct Profile {
     Datapath datapath = Datapath::Parallel;
     int noiseRegs = 0;      // pipeline registers in each noise unit (0..6)
     int octaveRegs = 0;     // pipeline registers around it: 1 after the term, 2 also after the transform
-    // [noise]
+    // [noise] (noise.basis: hardwareBasis of interp / corner / hash)
     NoiseOptions noise;
     int noiseValueFrac = 15;    // R table fraction bits
     int noiseLatticeFrac = 16;  // fraction bits of T_i s into the noise unit
@@ -78,6 +78,9 @@ struct Profile {
 
 // Reads and checks a profile; throws InputError naming file, line and field.
 Profile loadProfile(const std::string& path);
+// The noise basis a hardware noise variant computes: Perlin2002 for Perlin's 2002 triple
+// (quintic, grad12, perlin256; the contract allows it only whole), Rayshade otherwise.
+NoiseBasis hardwareBasis(const NoiseOptions& n);
 Profile parseProfile(const std::string& text, const std::string& path);
 // "full" -> <source>/rtl/configs/full.toml; a path is used as it is.
 std::string profilePath(const std::string& nameOrPath, const std::string& sourceDir);
