@@ -16,12 +16,16 @@
 //    NoiseHash = 0 (rayshade): T = Rayshade's 4096 x 12 table, m = h3 & 0xff.
 //    NoiseHash = 1 (perm256): T = the 256 x 8 permutation, indices L & 0xff (the same as
 //    Rayshade's (floor(x) + 1e6) & 0xff, since L = floor(x) + 576 mod 4096), m = h3.
+//    NoiseHash = 2 (perlin256, Perlin 2002): T = ImprovedNoise.java's permutation, the chain
+//    adds instead of XOR (h2 = T[(h1 + Y) mod 256], ...), indices X = (L - 64) mod 256 =
+//    floor(x) & 255 (576 mod 256 = 64), m = h3.
 //    This is model/noise.cpp's noiseHash for the same lattice point.
 // 3. Value ROM: R[m + k], k = 0..3 (m + 3 <= 258 < 267), Q1.VF = value16 >>> (15 - VF), i.e.
 //    the top VF + 1 bits of the 16-bit entry (floor; exact at VF = 15).
 // 4. Corners (pst_noise_corner, eight): value_gradient v = 0.5 R[m] + R[m+1] d_x + R[m+2] d_y
 //    + R[m+3] d_z exact at VF + LF bits, d = u - b; value v = 0.5 R[m]. Node = (floor(v to NF),
-//    R[m+1..3] to NF) (gradient zero for value corners).
+//    R[m+1..3] to NF) (gradient zero for value corners); grad12 (Perlin 2002) reads no value
+//    ROM: v = +-d_a +-d_b and the gradient +-1 on axes a, b chosen by m's low four bits.
 // 5. Lerps (pst_noise_lerp, seven): L(x, y) = x + floor((y - x) s / 2^LF) on v and the three
 //    derivatives; the derivative on the lerp's own axis adds floor((b.v - a.v) ds / 2^LF).
 //    x: nodes 0..3 from corners (2j, 2j+1); y: nodes 4, 5 from (0, 1), (2, 3); z: node 6.
@@ -59,9 +63,12 @@
 // own: the caller's en_i is its pipeline's advance.
 //
 // Parameters (names as scripts/profile.py derives them):
-//   NoiseInterp      0 scurve, 1 linear: weight function (and the own-axis ds multiplier)
-//   NoiseCorner      0 value_gradient, 1 value: corner term (24 multipliers, or none)
-//   NoiseHash        0 rayshade 4096 x 12 ROM, 1 perm256 256 x 8 ROM
+//   NoiseInterp      0 scurve, 1 linear, 2 quintic: weight function (and the own-axis ds
+//                    multiplier)
+//   NoiseCorner      0 value_gradient, 1 value, 2 grad12: corner term (24 multipliers, none,
+//                    or adders and muxes without the value ROM)
+//   NoiseHash        0 rayshade 4096 x 12 ROM, 1 perm256 256 x 8 ROM, 2 perlin256 256 x 8 ROM
+//                    (additive chain)
 //   NoiseValueFrac   fraction bits of R (1..15)
 //   NoiseLatticeFrac fraction bits of u, s, ds (LF)
 //   NoiseOutFrac     fraction bits of n_o and grad_o
@@ -69,7 +76,8 @@
 //   NoiseGuardBits   node fraction bits below NoiseOutFrac (1..8): every corner, lerp and
 //                    held node's width
 //   NoiseRegs        pipeline registers (0..6, above)
-// ROM images: `PST_ROM_DIR/{hash4096,perm256,value16}.memh, written by sim/tools/pst_roms.
+// ROM images: `PST_ROM_DIR/{hash4096,perm256,perlin256,value16}.memh, written by
+// sim/tools/pst_roms.
 //
 // Ports:
 //   en_i   the pipeline advances (registers and held nodes store)
@@ -125,7 +133,7 @@ module pst_noise #(
   localparam int NodeW = VW + 3 * GW;
   // Value-table entries as read (Q1.VF: the top VF + 1 bits of the 16-bit image).
   localparam int RW = NoiseValueFrac + 1;
-  // Hash table entry / index width: 12 (Rayshade) or 8 (perm256).
+  // Hash table entry / index width: 12 (Rayshade) or 8 (perm256, perlin256).
   localparam int HW = (NoiseHash == pst_pkg::NoiseHashRayshade) ? LB : 8;
   // Corners per step, lerp levels inside a step (axes 0..KC-1), serial levels (axes KC..2).
   localparam int CPS = 8 / NoiseSteps;
@@ -188,14 +196,18 @@ module pst_noise #(
   // ---- 2. hash ----------------------------------------------------------------------------
   logic [6*HW-1:0]  idx;   // corner indices: axis k, b at [(2k+b)*HW +: HW]
 
+  // perlin256: X = (L - 64) mod 256, i.e. floor(x) & 255 (L = floor(x) + 576 mod 4096).
+  localparam int IdxBias = (NoiseHash == pst_pkg::NoiseHashPerlin256) ? pst_pkg::LatticeOffset % 256 : 0;
   for (genvar k = 0; k < 3; k++) begin : g_idx
-    logic [LB-1:0] l_next;  // L + 1 mod 4096
-    assign l_next = lat_i[LB*k +: LB] + LB'(1);
-    assign idx[(2*k)*HW +: HW]   = lat_i[LB*k +: HW];
+    logic [LB-1:0] l_this;  // L - IdxBias mod 4096
+    logic [LB-1:0] l_next;  // L - IdxBias + 1 mod 4096
+    assign l_this = lat_i[LB*k +: LB] - LB'(IdxBias);
+    assign l_next = l_this + LB'(1);
+    assign idx[(2*k)*HW +: HW]   = l_this[HW-1:0];
     assign idx[(2*k+1)*HW +: HW] = l_next[HW-1:0];
     if (HW < LB) begin : g_unused_high
       logic unused_l;
-      assign unused_l = ^{lat_i[LB*k+HW +: LB-HW], l_next[LB-1:HW]};
+      assign unused_l = ^{l_this[LB-1:HW], l_next[LB-1:HW]};
     end
   end
 
@@ -203,9 +215,16 @@ module pst_noise #(
   logic [HW-1:0] rom [1 << HW];
   if (NoiseHash == pst_pkg::NoiseHashRayshade) begin : g_rayshade
     initial $readmemh({`PST_ROM_DIR, "/hash4096.memh"}, rom);
-  end else begin : g_perm256
+  end else if (NoiseHash == pst_pkg::NoiseHashPerm256) begin : g_perm256
     initial $readmemh({`PST_ROM_DIR, "/perm256.memh"}, rom);
+  end else begin : g_perlin256
+    initial $readmemh({`PST_ROM_DIR, "/perlin256.memh"}, rom);
   end
+  // The chain's combining step: XOR (rayshade, perm256) or an HW-bit add (perlin256).
+  function automatic logic [HW-1:0] chain_op(logic [HW-1:0] h, logic [HW-1:0] x);
+    if (NoiseHash == pst_pkg::NoiseHashPerlin256) chain_op = h + x;
+    else chain_op = h ^ x;
+  endfunction
 
   // Levels 1-2 (before b0): per corner of the step, h2 and the z index its level 3 takes.
   //   parallel: the lookups shared along the chain (2 + 4 + 8 = 14); serial: three chained
@@ -218,7 +237,7 @@ module pst_noise #(
       assign h1[bx*HW +: HW] = rom[idx[bx*HW +: HW]];
     end
     for (genvar i = 0; i < 4; i++) begin : g_h2
-      assign h2[i*HW +: HW] = rom[h1[(i%2)*HW +: HW] ^ idx[(2 + i/2)*HW +: HW]];
+      assign h2[i*HW +: HW] = rom[chain_op(h1[(i%2)*HW +: HW], idx[(2 + i/2)*HW +: HW])];
     end
     for (genvar c = 0; c < 8; c++) begin : g_c
       assign h2_d[c*HW +: HW] = h2[(c%4)*HW +: HW];
@@ -233,7 +252,7 @@ module pst_noise #(
       assign y  = c[1] ? idx[3*HW +: HW] : idx[2*HW +: HW];
       assign z_d[i*HW +: HW] = c[2] ? idx[5*HW +: HW] : idx[4*HW +: HW];
       assign h1 = rom[x];
-      assign h2_d[i*HW +: HW] = rom[h1 ^ y];
+      assign h2_d[i*HW +: HW] = rom[chain_op(h1, y)];
     end
   end
   pst_delay #(.Width(2*CPS*HW), .Depth(NoiseRegs > 0 ? 1 : 0)) u_b0 (
@@ -242,21 +261,31 @@ module pst_noise #(
 
   // ---- 3. level 3 and the value table (before b1) -----------------------------------------
   // h3 = T[h2 ^ Z]; value ROM: R[m + k], m = h3 & 0xff.
+  // (unread, and dropped by synthesis, when the corners are grad12)
+  /* verilator lint_off UNUSEDSIGNAL */
   logic [15:0] value_rom [0:266];
+  /* verilator lint_on UNUSEDSIGNAL */
   initial $readmemh({`PST_ROM_DIR, "/value16.memh"}, value_rom);
 
   logic [CPS*4*RW-1:0] r_d, r_q;   // corner i: R[m + k] at [(4i + k)*RW +: RW]
+  logic [CPS*4-1:0]    hb_d, hb_q; // corner i: m[3:0] (grad12's direction) at [4i +: 4]
   for (genvar i = 0; i < CPS; i++) begin : g_value
     logic [HW-1:0] h3;
     logic [7:0]    m;
-    assign h3 = rom[h2_q[i*HW +: HW] ^ z_q[i*HW +: HW]];
+    assign h3 = rom[chain_op(h2_q[i*HW +: HW], z_q[i*HW +: HW])];
     assign m  = h3[7:0];
+    assign hb_d[4*i +: 4] = m[3:0];
+    if (NoiseCorner == pst_pkg::NoiseCornerGrad12) begin : g_unused_m
+      logic unused_m;  // grad12 corners use the hash's low four bits only
+      assign unused_m = ^m[7:4];
+    end
     if (HW > 8) begin : g_unused_h3
       logic unused_h3;
       assign unused_h3 = ^h3[HW-1:8];
     end
     for (genvar k = 0; k < 4; k++) begin : g_r
-      if (k == 0 || NoiseCorner == pst_pkg::NoiseCornerValueGradient) begin : g_read
+      if (NoiseCorner != pst_pkg::NoiseCornerGrad12 &&
+          (k == 0 || NoiseCorner == pst_pkg::NoiseCornerValueGradient)) begin : g_read
         logic [15:0] r16;
         assign r16 = value_rom[{1'b0, m} + 9'(k)];
         assign r_d[(4*i+k)*RW +: RW] = r16[15 -: RW];  // floor: value16 >>> (15 - VF)
@@ -265,13 +294,22 @@ module pst_noise #(
           assign unused_r16 = ^r16[15-RW:0];
         end
       end else begin : g_zero
-        assign r_d[(4*i+k)*RW +: RW] = '0;  // value corners read R[m] only
+        assign r_d[(4*i+k)*RW +: RW] = '0;  // value corners read R[m] only, grad12 corners nothing
       end
     end
   end
   pst_delay #(.Width(CPS*4*RW), .Depth(NoiseRegs > 1 ? 1 : 0)) u_b1 (
     .clk_i, .rst_ni, .en_i, .d_i (r_d), .q_o (r_q)
   );
+  if (NoiseCorner == pst_pkg::NoiseCornerGrad12) begin : g_hb1
+    pst_delay #(.Width(CPS*4), .Depth(NoiseRegs > 1 ? 1 : 0)) u_hb1 (
+      .clk_i, .rst_ni, .en_i, .d_i (hb_d), .q_o (hb_q)
+    );
+  end else begin : g_no_hb1
+    assign hb_q = '0;  // the value-table corners ignore hash_i
+    logic unused_hb;
+    assign unused_hb = ^hb_d;
+  end
 
   // ---- 4. corners (before b2) -------------------------------------------------------------
   // tree_d / tree_q: level 0 = the step's corners, level t = the lerps on axis t-1 (CPS >> t
@@ -287,6 +325,7 @@ module pst_noise #(
     ) u_corner (
       .corner_i (corner_of(tok[2*TW +: 3], 3'(i))),
       .r_i      (r_q[4*i*RW +: 4*RW]),
+      .hash_i   (hb_q[4*i +: 4]),
       .u_i      (frc2),
       .node_o   (tree_d[i*NodeW +: NodeW])
     );
@@ -387,12 +426,15 @@ module pst_noise #(
   // Assertions
 `ifndef SYNTHESIS
   initial begin
-    if (NoiseInterp != pst_pkg::NoiseInterpScurve && NoiseInterp != pst_pkg::NoiseInterpLinear)
-      $error("pst_noise: NoiseInterp must be scurve or linear");
-    if (NoiseCorner != pst_pkg::NoiseCornerValueGradient && NoiseCorner != pst_pkg::NoiseCornerValue)
-      $error("pst_noise: NoiseCorner must be value_gradient or value");
-    if (NoiseHash != pst_pkg::NoiseHashRayshade && NoiseHash != pst_pkg::NoiseHashPerm256)
-      $error("pst_noise: NoiseHash must be rayshade or perm256");
+    if (NoiseInterp != pst_pkg::NoiseInterpScurve && NoiseInterp != pst_pkg::NoiseInterpLinear &&
+        NoiseInterp != pst_pkg::NoiseInterpQuintic)
+      $error("pst_noise: NoiseInterp must be scurve, linear or quintic");
+    if (NoiseCorner != pst_pkg::NoiseCornerValueGradient && NoiseCorner != pst_pkg::NoiseCornerValue &&
+        NoiseCorner != pst_pkg::NoiseCornerGrad12)
+      $error("pst_noise: NoiseCorner must be value_gradient, value or grad12");
+    if (NoiseHash != pst_pkg::NoiseHashRayshade && NoiseHash != pst_pkg::NoiseHashPerm256 &&
+        NoiseHash != pst_pkg::NoiseHashPerlin256)
+      $error("pst_noise: NoiseHash must be rayshade, perm256 or perlin256");
     if (NoiseValueFrac < pst_pkg::NoiseValueFracMin || NoiseValueFrac > pst_pkg::NoiseValueFracMax)
       $error("pst_noise: NoiseValueFrac out of range");
     if (NoiseLatticeFrac < pst_pkg::NoiseLatticeFracMin) $error("pst_noise: NoiseLatticeFrac out of range");

@@ -13,11 +13,17 @@
 //         (ExW = 3 + VF + LF bits); three (VF+1) x (LF+1) multipliers.
 //     gradient (R[m+1], R[m+2], R[m+3]).
 //   NoiseCorner = 1 (value): v = R[m] 2^(LF-1) (0.5 R[m]); gradient 0 (R[m+1..3] unused).
+//   NoiseCorner = 2 (grad12, Perlin 2002's grad(hash, d)): no value table (r_i unused); the
+//     low four hash bits h = hash_i pick axis a = (h < 8 ? x : y) and axis b = (h < 4 ? y :
+//     h == 12 || h == 14 ? x : z) (never a); v = (h[0] ? -d_a : d_a) + (h[1] ? -d_b : d_b)
+//     exact at LF fraction bits (|v| <= 2, LF + 3 bits); gradient +-1 on axes a and b, 0 on
+//     the third. Adders and muxes only.
 // Out: node = (floor(v to NodeFrac), floor(R[m+1..3] to NodeFrac)): v Q3.NodeFrac, gradient
 // Q5.NodeFrac (the width every lerp-tree node uses for derivatives).
 //
 // Ports:
 //   r_i    [4*RW-1:0]  R[m+k] at [k*RW +: RW], RW = NoiseValueFrac + 1, signed
+//   hash_i [3:0]       low four bits of the corner's hash m (grad12 only)
 //   u_i    [3*LF-1:0]  u per axis, unsigned
 //   node_o [NodeW-1:0] v at [0 +: VW], d/dp_k at [VW + k*GW +: GW] (VW = 3 + NodeFrac,
 //                      GW = 5 + NodeFrac, NodeW = VW + 3 GW), signed
@@ -37,6 +43,7 @@ module pst_noise_corner #(
 ) (
   input  logic [2:0]      corner_i,
   input  logic [4*RW-1:0] r_i,
+  input  logic [3:0]      hash_i,
   input  logic [3*LF-1:0] u_i,
   output logic [NodeW-1:0]     node_o
 );
@@ -61,7 +68,43 @@ module pst_noise_corner #(
 
   logic signed [ExW-1:0] v_exact;
 
-  if (NoiseCorner == pst_pkg::NoiseCornerValueGradient) begin : g_value_gradient
+  if (NoiseCorner == pst_pkg::NoiseCornerGrad12) begin : g_grad12
+    // d_k = u_k - b_k as LF+3-bit signed values; v = +-d_a +-d_b, |v| <= 2.
+    localparam int DW = LF + 3;
+    localparam int GShift12 = LF - NodeFrac;  // floor of v from LF to NodeFrac bits
+    logic [3*DW-1:0]       d;
+    logic [1:0]            ax_a, ax_b;        // axis indices 0..2
+    logic signed [DW-1:0]  da, db, v12;
+    for (genvar k = 0; k < 3; k++) begin : g_d
+      assign d[k*DW +: DW] = {{(DW-LF-1){corner_i[k]}}, corner_i[k], u_i[k*LF +: LF]};
+    end
+    assign ax_a = hash_i[3] ? 2'd1 : 2'd0;
+    assign ax_b = (hash_i[3:2] == 2'b00) ? 2'd1 :
+                  (hash_i == 4'd12 || hash_i == 4'd14) ? 2'd0 : 2'd2;
+    assign da = hash_i[3] ? d[1*DW +: DW] : d[0*DW +: DW];
+    always_comb begin
+      unique case (ax_b)
+        2'd0:    db = d[0*DW +: DW];
+        2'd1:    db = d[1*DW +: DW];
+        default: db = d[2*DW +: DW];
+      endcase
+    end
+    assign v12 = (hash_i[0] ? -da : da) + (hash_i[1] ? -db : db);
+    if (GShift12 > 0) begin : g_v12_floor
+      assign node_o[0 +: VW] = VW'(v12 >>> GShift12);
+    end else begin : g_v12_shift
+      assign node_o[0 +: VW] = VW'(v12) <<< (-GShift12);
+    end
+    for (genvar k = 0; k < 3; k++) begin : g_dir
+      logic signed [GW-1:0] one;
+      assign one = GW'(1) <<< NodeFrac;
+      assign node_o[VW + k*GW +: GW] = (ax_a == 2'(k)) ? (hash_i[0] ? -one : one) :
+                                       (ax_b == 2'(k)) ? (hash_i[1] ? -one : one) : '0;
+    end
+    assign v_exact = '0;  // (the ROM corners' exact value; unused here)
+    logic unused_grad12;
+    assign unused_grad12 = ^{r_i, half_r0};
+  end else if (NoiseCorner == pst_pkg::NoiseCornerValueGradient) begin : g_value_gradient
     logic [3*PW-1:0] prod;  // R[m+1+k] * d_k at [k*PW +: PW], exact
     for (genvar k = 0; k < 3; k++) begin : g_axis
       logic                 corner_bit;
@@ -93,9 +136,14 @@ module pst_noise_corner #(
     logic unused_value_only;
     assign unused_value_only = ^{r_i[4*RW-1:RW], u_i, corner_i};
   end
+  if (NoiseCorner != pst_pkg::NoiseCornerGrad12) begin : g_unused_hash
+    logic unused_hash;
+    assign unused_hash = ^hash_i;
+  end
 
-  // Corner value to Q3.NodeFrac.
-  if (VShift > 0) begin : g_v_floor
+  // Corner value to Q3.NodeFrac (the value-table corners).
+  if (NoiseCorner == pst_pkg::NoiseCornerGrad12) begin : g_v_grad12
+  end else if (VShift > 0) begin : g_v_floor
     assign node_o[0 +: VW] = v_exact[VShift +: VW];
     logic unused_v_low;
     assign unused_v_low = ^v_exact[VShift-1:0];
@@ -109,6 +157,14 @@ module pst_noise_corner #(
 `ifndef SYNTHESIS
   initial begin
     if (LF < 1) $error("pst_noise_corner: NoiseLatticeFrac must be >= 1");
+  end
+  if (NoiseCorner == pst_pkg::NoiseCornerGrad12) begin : g_assert_grad12
+    // |v| <= 2 (two components of d, each in [-1, 1]); a and b are different axes.
+    always_comb begin
+      assert (g_grad12.v12 <= $signed({3'b010, {(LF){1'b0}}}) && g_grad12.v12 >= -$signed({3'b010, {(LF){1'b0}}}))
+        else $error("pst_noise_corner: grad12 |v| > 2");
+      assert (g_grad12.ax_a != g_grad12.ax_b) else $error("pst_noise_corner: grad12 axes a == b");
+    end
   end
   // |v| <= 3.5: the exact value never reaches the Q3 range limits.
   always_comb begin

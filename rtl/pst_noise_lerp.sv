@@ -8,7 +8,7 @@
 //   v'   = L(a.v, b.v)
 //   g'_j = L(a.g_j, b.g_j)                             for j != Axis
 //   g'_k = floor((b.v - a.v) * ds / 2^LF) + L(a.g_k, b.g_k)   k = Axis: product rule
-//   NoiseInterp = 0 (scurve): the own-axis term needs a (VW+1) x (LF+3) multiplier.
+//   NoiseInterp = 0 (scurve), 2 (quintic): the own-axis term needs a (VW+1) x (LF+3) multiplier.
 //   NoiseInterp = 1 (linear): ds = 1, the own-axis term is b.v - a.v exactly (no multiplier).
 // Ranges: L(x, y) lies between x and y (floor of a product of (y - x) and s in [0, 1)), so
 // |v'| <= 3.5 stays Q3; |g'| <= 1.5 * 6 + 1 < 16 stays Q5 (proof in rtl/pst_noise.sv).
@@ -47,7 +47,7 @@ module pst_noise_lerp #(
 
   // The own-axis product term floor((b.v - a.v) ds / 2^LF), sign-extended to OwnW.
   logic signed [OwnW-1:0] own_term;
-  if (NoiseInterp == pst_pkg::NoiseInterpScurve) begin : g_scurve
+  if (NoiseInterp != pst_pkg::NoiseInterpLinear) begin : g_scurve
     // (DW) x (LF+3) signed product: DW + LF + 3 bits, exact.
     localparam int QW = DW + LF + 3;
     logic signed [QW-1:0] dv_ext, ds_ext, q;

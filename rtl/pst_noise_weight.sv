@@ -11,6 +11,15 @@
 //                                                    max(U - u2) = 2^(LF-2) so ds <= 1.5.
 //     Errors: s in (s_true - 4 LSB, s_true], ds in [ds_true, ds_true + 6 LSB).
 //   NoiseInterp = 1 (linear): s = u, ds = 1 (= 2^LF; the lerp then uses b - a directly).
+//   NoiseInterp = 2 (quintic, Perlin 2002's fade 6u^5 - 15u^4 + 10u^3 = u^3 (6u^2 - 15u + 10)):
+//     u2 = floor(U * U / 2^LF)                      LF x LF multiplier
+//     t3 = floor(u2 * U / 2^LF)                     LF x LF multiplier (u^3)
+//     w  = 6 u2 - 15 U + 10 * 2^LF                  shifts and adds; w in (0, 10 * 2^LF]
+//     s  = floor(t3 * w / 2^LF)                     LF x (LF+4) multiplier; s < 2^LF
+//     a  = U - u2                                   = u (1 - u) in [0, 2^(LF-2)]
+//     ds = floor(30 * a * a / 2^LF)                 LF x LF multiplier (a a < 2^(2LF-4)),
+//                                                   x30 = x32 - x2; ds <= 1.875 (LF >= 2)
+//     Errors: s in (s_true - 11 LSB, s_true], ds in (ds_true - 1, ds_true + 15 + 30/2^LF) LSB.
 //
 // Reg = 1 (pst_noise's first pipeline register): u and u2 are registered (en_i) between the
 // two products, so s and ds come one advance after u_i; Reg = 0: combinational.
@@ -20,7 +29,8 @@
 //   u_i  [LF-1:0]   unsigned fraction
 //   s_o  [LF-1:0]   weight, unsigned, LF fraction bits (< 1)
 //   ds_o [LF+1:0]   derivative, unsigned, LF fraction bits; two integer bits: <= 1.5 for
-//                   LF >= 2, 3 at LF = 1, and 1 (= 2^LF) for linear
+//                   LF >= 2, 3 at LF = 1, and 1 (= 2^LF) for linear; quintic <= 1.875
+//                   (the contract requires LF >= 2 for it)
 `include "pst_pkg.sv"
 `default_nettype none
 
@@ -60,6 +70,35 @@ module pst_noise_weight #(
     logic unused_bits;
     assign unused_bits = ^{uu[LF-1:0], su[LF-1:0], su[2*LF+1:2*LF], ds6[LF+2]};
 
+  end else if (NoiseInterp == pst_pkg::NoiseInterpQuintic) begin : g_quintic
+    logic [2*LF-1:0] uu;          // U * U, exact
+    logic [LF-1:0]   u2;          // floor(u^2)
+    logic [2*LF-1:0] uuu;         // u2 * U, exact
+    logic [LF-1:0]   t3;          // floor(u^3)
+    logic [LF+4:0]   w;           // 6 u2 - 15 U + 10: in (0, 10], LF fraction bits
+    logic [2*LF+4:0] sw;          // t3 * w, exact (< 2^(2 LF))
+    logic [LF-1:0]   a;           // U - u2 = u (1 - u) <= 1/4
+    logic [2*LF-1:0] aa;          // a * a, exact
+    logic [2*LF+4:0] aa30;        // 30 a a = 32 a a - 2 a a
+
+    assign uu = {{LF{1'b0}}, u_i} * {{LF{1'b0}}, u_i};
+    assign u2 = uu[LF +: LF];
+    assign uuu = {{LF{1'b0}}, u2} * {{LF{1'b0}}, u_i};
+    assign t3 = uuu[LF +: LF];
+    // 10 2^LF + 6 u2 - 15 U, every term LF+5 bits wide (the sum is positive: no wrap)
+    assign w = {1'b0, 4'b1010, {LF{1'b0}}} + {4'b0, u2, 1'b0} + {3'b0, u2, 2'b0}
+             - {1'b0, u_i, 4'b0} + {5'b0, u_i};
+    assign sw = {{(LF+5){1'b0}}, t3} * {{LF{1'b0}}, w};
+    assign s_o = sw[LF +: LF];
+    assign a = u_i - u2;
+    assign aa = {{LF{1'b0}}, a} * {{LF{1'b0}}, a};
+    assign aa30 = {aa, 5'b0} - {4'b0, aa, 1'b0};
+    assign ds_o = aa30[LF +: LF+2];
+
+    logic unused_bits;
+    assign unused_bits = ^{uu[LF-1:0], uuu[LF-1:0], sw[LF-1:0], sw[2*LF+4:2*LF],
+                           aa30[LF-1:0], aa30[2*LF+4:2*LF+2]};
+
   end else begin : g_linear
     pst_delay #(.Width(LF), .Depth(Reg ? 1 : 0)) u_reg (
       .clk_i, .rst_ni, .en_i, .d_i (u_i), .q_o (s_o)
@@ -69,6 +108,13 @@ module pst_noise_weight #(
 
   // Assertions
 `ifndef SYNTHESIS
+  if (NoiseInterp == pst_pkg::NoiseInterpQuintic) begin : g_assert_quintic
+    always_comb begin
+      assert (g_quintic.sw[2*LF+4:2*LF] == '0) else $error("pst_noise_weight: quintic s >= 1");
+      assert (g_quintic.aa30[2*LF+4:2*LF+2] == '0) else $error("pst_noise_weight: quintic ds >= 4");
+      assert (u_i >= g_quintic.u2) else $error("pst_noise_weight: u < u^2");
+    end
+  end
   if (NoiseInterp == pst_pkg::NoiseInterpScurve) begin : g_assert_scurve
     always_comb begin
       assert (g_scurve.su[2*LF+1:2*LF] == 2'b00) else $error("pst_noise_weight: s >= 1");

@@ -2,6 +2,7 @@
 // model's tables (model/noise.cpp holds their one definition):
 //   OUTDIR/hash4096.memh  4096 lines, 3 hex digits: Rayshade's hash table T
 //   OUTDIR/perm256.memh    256 lines, 2 hex digits: the 256-entry permutation P
+//   OUTDIR/perlin256.memh  256 lines, 2 hex digits: Perlin's 2002 permutation (perlin2002.h)
 //   OUTDIR/value16.memh    267 lines, 4 hex digits: R[i] * 32768 as a 16-bit two's-complement
 //                          number (exact: R = (crc - 32768) / 32768). The RTL and the golden
 //                          model bring it to NoiseValueFrac bits with value16 >>> (15 - frac).
@@ -15,6 +16,7 @@
 #include <string>
 
 #include "noise.h"
+#include "perlin2002.h"
 
 namespace {
 
@@ -75,6 +77,8 @@ int main(int argc, char** argv) {
                         [&](int i) { return uint32_t(t.hash[i]) & 0xfffu; });
     ok = ok && writeMemh(dir, "perm256.memh", pst::NoiseTables::kPermSize, 2,
                          [&](int i) { return uint32_t(t.perm[i]) & 0xffu; });
+    ok = ok && writeMemh(dir, "perlin256.memh", 256, 2,
+                         [&](int i) { return uint32_t(pst::perlin2002Permutation()[size_t(i)]); });
     ok = ok && writeMemh(dir, "value16.memh", pst::NoiseTables::kValueSize, 4, [&](int i) {
         return uint32_t(uint16_t(int16_t(std::lround(t.value[i] * 32768.0))));
     });

@@ -31,11 +31,16 @@ endforeach()
 #          the reduced's four steps
 #   var_c  reduced formats, scurve, perm256, VF 3, LF 4, OF 10 (VF + LF < node frac), eight
 #          steps (one corner per cycle), one guard bit
+#   var_d  reduced formats, Perlin 2002 (quintic, grad12, perlin256), the reduced's four steps
+#   var_e  full formats, Perlin 2002, one step, one guard bit, LF 17 > node frac (the corner
+#          value's floor)
 # The test applies the same overrides to the loaded profile (PST_NOISE_OVERRIDES).
 set(PST_NOISE_VARIANTS
     "var_a|full|NoiseInterp=1,NoiseCorner=1,NoiseHash=1,NoiseOutFrac=11,NoiseSteps=2"
     "var_b|reduced|NoiseInterp=0,NoiseCorner=0,NoiseHash=0,NoiseValueFrac=15"
-    "var_c|reduced|NoiseInterp=0,NoiseCorner=0,NoiseHash=1,NoiseValueFrac=3,NoiseLatticeFrac=4,NoiseOutFrac=10,NoiseSteps=8,NoiseGuardBits=1")
+    "var_c|reduced|NoiseInterp=0,NoiseCorner=0,NoiseHash=1,NoiseValueFrac=3,NoiseLatticeFrac=4,NoiseOutFrac=10,NoiseSteps=8,NoiseGuardBits=1"
+    "var_d|reduced|NoiseInterp=2,NoiseCorner=2,NoiseHash=2"
+    "var_e|full|NoiseInterp=2,NoiseCorner=2,NoiseHash=2,NoiseGuardBits=1,NoiseLatticeFrac=17,NoiseOutFrac=14")
 foreach(v ${PST_NOISE_VARIANTS})
   string(REPLACE "|" ";" v "${v}")
   list(GET v 0 vname)

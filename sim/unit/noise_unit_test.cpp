@@ -45,9 +45,10 @@ Profile testProfile() {
         const auto eq = item.find('=');
         const std::string key = item.substr(0, eq);
         const int v = std::stoi(item.substr(eq + 1));
-        if (key == "NoiseInterp") p.noise.interp = v ? NoiseInterp::Linear : NoiseInterp::SCurve;
-        else if (key == "NoiseCorner") p.noise.corner = v ? NoiseCorner::ValueOnly : NoiseCorner::ValueGradient;
-        else if (key == "NoiseHash") p.noise.hash = v ? NoiseHash::Perm256 : NoiseHash::Rayshade4096;
+        // The contract's enum index is the model enum's (profile_test checks the order).
+        if (key == "NoiseInterp") p.noise.interp = NoiseInterp(v);
+        else if (key == "NoiseCorner") p.noise.corner = NoiseCorner(v);
+        else if (key == "NoiseHash") p.noise.hash = NoiseHash(v);
         else if (key == "NoiseValueFrac") p.noiseValueFrac = v;
         else if (key == "NoiseLatticeFrac") p.noiseLatticeFrac = v;
         else if (key == "NoiseOutFrac") p.noiseOutFrac = v;
@@ -55,6 +56,7 @@ Profile testProfile() {
         else if (key == "NoiseGuardBits") p.noiseGuardBits = v;
         else throw std::runtime_error("unknown override " + key);
     }
+    p.noise.basis = hardwareBasis(p.noise);
 #endif
     return p;
 }
