@@ -40,11 +40,16 @@ std::string hardwareUnsupported(const Profile& p, const Texture& tex) {
     if (tex.bandlimit != Bandlimit::Off)
         return "texture '" + tex.name + "': bandlimit: bandlimited octaves are in the reference model only (profile '" +
                p.name + "' has no unit for them yet); render it without --profile";
-    if (tex.noise.basis == NoiseBasis::Rayshade) return "";
+    // The profile's noise unit computes one basis (hardwareBasis of its interp / corner / hash).
+    if (tex.noise.basis == p.noise.basis) return "";
     const std::string where =
         tex.basisSource.empty() ? "texture '" + tex.name + "': noise.basis" : tex.basisSource;
-    return where + ": basis '" + toString(tex.noise.basis) + "' has no hardware unit yet (profile '" + p.name +
-           "' implements the paper's basis rayshade only); render it with the reference model (no --profile)";
+    const std::string how = tex.noise.basis == NoiseBasis::Worley
+                                ? "render it with the reference model (no --profile)"
+                                : std::string("render it with a profile of basis ") + toString(tex.noise.basis) +
+                                      " or with the reference model (no --profile)";
+    return where + ": basis '" + toString(tex.noise.basis) + "' has no hardware unit in profile '" + p.name +
+           "' (its noise unit computes '" + toString(p.noise.basis) + "'); " + how;
 }
 
 TextureProgram programTexture(const Profile& p, const Texture& tex) {

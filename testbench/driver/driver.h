@@ -31,8 +31,8 @@ struct TextureProgram {
 int hardwareFilterKind(FilterKind k);
 
 // Empty if profile p can run texture tex, else why not, as "FILE:LINE: FIELD: what" when the
-// scene file named the field: the hardware has only the paper's Rayshade basis so far
-// (perlin2002 and worley are reference-only).
+// scene file named the field: a profile's noise unit computes one basis (Profile::noise.basis:
+// rayshade, or perlin2002 for the quintic / grad12 / perlin256 unit); worley is reference-only.
 std::string hardwareUnsupported(const Profile& p, const Texture& tex);
 
 // Throws InputError (hardwareUnsupported's message) for a texture the profile cannot run,
