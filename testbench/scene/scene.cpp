@@ -257,6 +257,11 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
         no.interp = getEnum(c, *nt, np, "interp", no.interp, parseNoiseInterp, "scurve or linear");
         no.corner = getEnum(c, *nt, np, "corner", no.corner, parseNoiseCorner, "value_gradient or value");
         no.hash = getEnum(c, *nt, np, "hash", no.hash, parseNoiseHash, "rayshade or perm256");
+        // quintic / grad12 / perlin256 are the hardware's names for basis perlin2002 (its unit).
+        if (no.interp == NoiseInterp::Quintic || no.corner == NoiseCorner::Grad12 || no.hash == NoiseHash::Perlin256) {
+            const char* k = no.interp == NoiseInterp::Quintic ? "interp" : no.corner == NoiseCorner::Grad12 ? "corner" : "hash";
+            c.fail(find(*nt, k), join(np, k), "quintic, grad12 and perlin256 are basis perlin2002's noise unit: write basis = \"perlin2002\"");
+        }
         no.metric = getEnum(c, *nt, np, "metric", no.metric, parseWorleyMetric, "euclid or manhattan");
         if (const toml::node* cn = find(*nt, "coef")) {
             // [C1, C2, C3, C4] of sum C_k F_k; missing trailing entries are 0.

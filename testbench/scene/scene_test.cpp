@@ -148,6 +148,8 @@ TEST(Scene, NoiseBasis) {
     expectError(withNoise("{ basis = 3 }"), {"bad.toml:9:", "textures.t.noise.basis", "expected a string"});
     expectError(withNoise("{ basis = \"perlin2002\", interp = \"linear\" }"),
                 {"bad.toml:9:", "textures.t.noise.interp", "rayshade only"});
+    expectError(withNoise("{ interp = \"quintic\" }"), {"bad.toml:9:", "textures.t.noise.interp", "perlin2002"});
+    expectError(withNoise("{ hash = \"perlin256\" }"), {"bad.toml:9:", "textures.t.noise.hash", "perlin2002"});
     expectError(withNoise("{ coef = [1.0] }"), {"bad.toml:9:", "textures.t.noise.coef", "worley only"});
     expectError(withNoise("{ basis = \"worley\", metric = \"chebyshev\" }"),
                 {"bad.toml:9:", "textures.t.noise.metric", "euclid or manhattan"});
