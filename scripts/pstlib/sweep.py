@@ -48,6 +48,21 @@ def _knob(desc, values, section, key):
     return (desc, values, _apply_key(section, key), _get(section, key))
 
 
+# The noise unit's basis: its interp / corner / hash triple (rtl/contract.toml allows
+# perlin2002's only whole). rayshade sets the paper's triple.
+BASIS_NOISE = {"rayshade": {"interp": "scurve", "corner": "value_gradient", "hash": "rayshade"},
+               "perlin2002": {"interp": "quintic", "corner": "grad12", "hash": "perlin256"}}
+
+
+def basis_of(doc: dict) -> str:
+    """The basis a profile's noise unit computes (the golden model's hardwareBasis)."""
+    return "perlin2002" if doc["noise"]["corner"] == "grad12" else "rayshade"
+
+
+def _apply_basis(doc, v):
+    doc["noise"].update(BASIS_NOISE[v])
+
+
 def _format_frac(d, *names):
     """The common fraction of several formats, None when they differ."""
     fr = {d["formats"][n]["frac"] for n in names}
@@ -79,6 +94,9 @@ KNOBS = {
                       ENUMS[("pipeline", "datapath")], "pipeline", "datapath"),
     "noise_steps": _knob("pipeline.noise_steps (gates and cycles only: the images are the same bit for bit)",
                          list(RANGES[("pipeline", "noise_steps")]), "pipeline", "noise_steps"),
+    "basis": ("noise.interp / corner / hash of the noise unit's basis (rayshade: the paper's scurve, "
+              "value_gradient, rayshade; perlin2002: quintic, grad12, perlin256); the scene copies' "
+              "textures ask for it", list(BASIS_NOISE), _apply_basis, basis_of),
     "filter": ("every texture's filter (scene copies; not a profile key)", ["none", "mip", "mip_linear", "sat"],
                None, lambda d: None),
 }
@@ -147,10 +165,20 @@ def set_texture_keys(text: str, keys: dict) -> str:
 
 
 def variant_keys(doc: dict) -> dict:
-    """The texture keys that make the reference use a profile's noise variant and |grad| norm."""
+    """The texture keys that make the reference use a profile's noise variant and |grad| norm
+    (perlin2002's variant is its basis: the scenes name the basis, not the triple)."""
     n = doc["noise"]
+    if basis_of(doc) != "rayshade":
+        return {"noise": {"basis": basis_of(doc)}, "norm": doc["filter"]["norm"]}
     return {"noise": {"interp": n["interp"], "corner": n["corner"], "hash": n["hash"]},
             "norm": doc["filter"]["norm"]}
+
+
+def basis_keys(doc: dict) -> dict:
+    """The texture keys a profile needs of any scene: its basis, unless the default rayshade
+    (a profile runs only textures of its own basis)."""
+    b = basis_of(doc)
+    return {} if b == "rayshade" else {"noise": {"basis": b}}
 
 
 def point_scenes(scene_files: dict, pdir: pathlib.Path, name: str, keys: dict):
@@ -183,7 +211,7 @@ def make_points(a, out: pathlib.Path):
     points, skipped = [], []
     pdir = out / "points"
     base_text = a.base_path.read_text()
-    base_keys = variant_keys(a.base_doc) if a.match_variant else {}
+    base_keys = variant_keys(a.base_doc) if a.match_variant else basis_keys(a.base_doc)
     try:
         files, extra = point_scenes(a.scene_files, pdir, a.base_name, base_keys)
     except (ValueError, KeyError, tomllib.TOMLDecodeError) as e:
@@ -215,7 +243,9 @@ def make_points(a, out: pathlib.Path):
                 path = pdir / f"{name}.toml"
                 atomic.write_if_changed(path, text)
                 synth_name = name
-                keys = variant_keys(doc) if a.match_variant else {}
+                keys = variant_keys(doc) if a.match_variant else basis_keys(doc)
+                if k == "basis" and not keys:
+                    keys = {"noise": {"basis": v}}
             try:
                 files, extra = point_scenes(a.scene_files, pdir, name, keys)
             except (ValueError, KeyError, tomllib.TOMLDecodeError) as e:

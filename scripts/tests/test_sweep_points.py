@@ -110,3 +110,24 @@ def test_make_points_writes_one_change_per_point(tmp_path):
     # again: same files, same content hashes
     base2, points2, _, _ = sweep.make_points(a, tmp_path)
     assert [p.profile_sha for p in points2] == [p.profile_sha for p in points]
+
+
+def test_basis_knob_sets_the_triple_and_the_scene_copies(tmp_path):
+    assert sweep.basis_of(load(REDUCED)) == "rayshade"
+    doc, bad = sweep.point_profile(load(REDUCED), "basis", "perlin2002")
+    assert bad == [] and doc["noise"]["interp"] == "quintic" and doc["noise"]["corner"] == "grad12"
+    assert doc["noise"]["hash"] == "perlin256" and sweep.basis_of(doc) == "perlin2002"
+    # one axis of the triple alone is an invalid profile: skipped with the contract's reason
+    _, bad = sweep.point_profile(load(REDUCED), "interp", "quintic")
+    assert [b.split(":")[0] for b in bad] == ["noise.interp"]
+    for match in (False, True):
+        a = args_for(tmp_path, ["basis"], {"basis": ["rayshade", "perlin2002"]})
+        a.match_variant = match
+        base, points, skipped, bv = sweep.make_points(a, tmp_path / str(match))
+        assert bv["basis"] == "rayshade" and skipped == []
+        assert [p.name for p in points] == ["reduced_basis_perlin2002"]
+        assert tomllib.loads(points[0].profile.read_text())["noise"]["corner"] == "grad12"
+        tex = tomllib.loads(points[0].scene_files["marble"].read_text())["textures"]
+        assert tex and all(t["noise"] == {"basis": "perlin2002"} for t in tex.values())
+        if match:
+            assert all(t["norm"] == "euclid" for t in tex.values())
