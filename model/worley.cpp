@@ -64,6 +64,10 @@ WorleyCube worleyCube(int64_t i, int64_t j, int64_t k) {
 double worleyCellValue(uint32_t id) { return lcg(id) * (1.0 / 4294967296.0); }
 
 WorleyResult worley(const glm::dvec3& pIn, int order, WorleyMetric metric) {
+    return worley(pIn, order, metric, WorleySearch{});
+}
+
+WorleyResult worley(const glm::dvec3& pIn, int order, WorleyMetric metric, const WorleySearch& search) {
     WorleyResult r;
     order = std::clamp(order, 1, kWorleyMaxOrder);
     if (!std::isfinite(pIn.x) || !std::isfinite(pIn.y) || !std::isfinite(pIn.z)) return r;
@@ -89,7 +93,8 @@ WorleyResult worley(const glm::dvec3& pIn, int order, WorleyMetric metric) {
         for (int a = 0; a < 3; ++a) gap[a] = o[a] > 0 ? o[a] - fr[a] : (o[a] < 0 ? fr[a] - (o[a] + 1) : 0.0);
         if (metricOf(gap) >= best[order - 1]) return;
         const WorleyCube c = worleyCube(b[0] + ox, b[1] + oy, b[2] + oz);
-        for (int n = 0; n < c.count; ++n) {
+        const int count = std::min(c.count, std::max(search.maxPoints, 1));
+        for (int n = 0; n < count; ++n) {
             const glm::dvec3 d = fr - (glm::dvec3(ox, oy, oz) + c.offset[n]);
             const double m = metricOf(d);
             if (!(m < best[order - 1])) continue;
@@ -110,7 +115,8 @@ WorleyResult worley(const glm::dvec3& pIn, int order, WorleyMetric metric) {
     // order-th best. With at least one point per cube this ends by r = 4 (Euclid) or 6.
     double edge = 1.0;
     for (int a = 0; a < 3; ++a) edge = std::min({edge, fr[a], 1.0 - fr[a]});
-    for (int rr = 0; rr < 64; ++rr) {
+    const int maxR = search.radius < 0 ? 63 : search.radius;
+    for (int rr = 0; rr <= maxR; ++rr) {
         if (rr > 0) {
             const double lb = rr - 1 + edge;
             if ((euclid ? lb * lb : lb) >= best[order - 1]) break;
@@ -125,7 +131,9 @@ WorleyResult worley(const glm::dvec3& pIn, int order, WorleyMetric metric) {
         const glm::dvec3& d = delta[n];
         r.id[n] = id[n];
         r.delta[n] = d;
-        if (euclid) {
+        if (!std::isfinite(best[n])) {  // a cut search saw fewer than n + 1 points
+            r.F[n] = best[n];
+        } else if (euclid) {
             r.F[n] = std::sqrt(best[n]);
             r.grad[n] = r.F[n] > 0 ? d / r.F[n] : glm::dvec3(0.0);
         } else {

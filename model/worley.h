@@ -61,6 +61,19 @@ struct WorleyResult {
 // F_1..F_order (order 1..4) at p.
 WorleyResult worley(const glm::dvec3& p, int order, WorleyMetric metric);
 
+// A hardware unit's cheaper search (the "fixed neighbourhood, fixed maximum points per cube"
+// of a worley unit): only the cubes within Chebyshev distance `radius` of the home cube
+// (radius 1: the 27-cube neighbourhood), and at most `maxPoints` points per cube (the first
+// ones of the cube's LCG stream; the Poisson count is clamped to it). radius < 0 and
+// maxPoints >= 9 is the exact search above. F_n is then never smaller than the exact F_n;
+// where the search misses a point, F_n is too large (or infinite, and the gradient 0, when
+// fewer than n points were seen).
+struct WorleySearch {
+    int radius = -1;
+    int maxPoints = kWorleyMaxPoints;
+};
+WorleyResult worley(const glm::dvec3& p, int order, WorleyMetric metric, const WorleySearch& search);
+
 // A cell's value in [0, 1) from a point's ID (one more LCG step of the ID, over 2^32): what
 // `cell` scales in the texture (constant over each cell, e.g. one colour per flagstone).
 double worleyCellValue(uint32_t id);
