@@ -97,7 +97,8 @@ TextureProgram programTexture(const Profile& p, const Texture& tex) {
     }
     const ClutTables tables = buildClutTables(p, tex.clut.entries());
     for (const auto& w : clutRegisterWrites(p, tables)) prog.writes.push_back(w);
-    if (tex.noise.interp != p.noise.interp || tex.noise.corner != p.noise.corner || tex.noise.hash != p.noise.hash)
+    if (tex.noise.basis == NoiseBasis::Rayshade &&
+        (tex.noise.interp != p.noise.interp || tex.noise.corner != p.noise.corner || tex.noise.hash != p.noise.hash))
         notes << "noise variant of the profile (" << toString(p.noise.interp) << ", " << toString(p.noise.corner) << ", "
               << toString(p.noise.hash) << "); ";
     if (tex.norm != p.filterNorm) notes << "|grad| by " << toString(p.filterNorm) << "; ";
