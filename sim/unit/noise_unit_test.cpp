@@ -250,8 +250,9 @@ TEST_F(NoiseUnit, OctaveTransformRandom) {
 TEST_F(NoiseUnit, NoiseSpecialValues) {
     const int LF = prof_.noiseLatticeFrac;
     const int64_t maxU = (int64_t(1) << LF) - 1;
-    // Lattice: 0, the wrap 4095 -> 0, the perm256 wrap 255 -> 256, Rayshade's origin 576.
-    const std::vector<int> lats = {0, 4095, 255, 256, 576, 1};
+    // Lattice: 0, the wrap 4095 -> 0, the perm256 wrap 255 -> 256, Rayshade's origin 576 (and
+    // perlin256's X = 0), perlin256's wrap X = 255 -> 0 at L = 319 -> 320 (X = (L - 64) mod 256).
+    const std::vector<int> lats = {0, 4095, 255, 256, 576, 1, 319, 63};
     // Fractions: u = 0 (lattice plane), u = max, 1 LSB, one half, max - 1, the SCURVE
     // derivative's maximum neighbourhood.
     std::vector<int64_t> fracs = {0, maxU, 1, int64_t(1) << (LF - 1), maxU - 1};
