@@ -22,7 +22,8 @@
 //     Errors: s in (s_true - 11 LSB, s_true], ds in (ds_true - 1, ds_true + 15 + 30/2^LF) LSB.
 //
 // Reg = 1 (pst_noise's first pipeline register): u and u2 are registered (en_i) between the
-// two products, so s and ds come one advance after u_i; Reg = 0: combinational.
+// two products (quintic: after u2, before its three other products), so s and ds come one
+// advance after u_i; Reg = 0: combinational.
 //
 // Ports:
 //   clk_i, rst_ni, en_i   the pipeline register (Reg = 1)
@@ -72,7 +73,8 @@ module pst_noise_weight #(
 
   end else if (NoiseInterp == pst_pkg::NoiseInterpQuintic) begin : g_quintic
     logic [2*LF-1:0] uu;          // U * U, exact
-    logic [LF-1:0]   u2;          // floor(u^2)
+    logic [LF-1:0]   u2_d, u2;    // floor(u^2)
+    logic [LF-1:0]   u_q;         // u beside it (after the register when Reg = 1)
     logic [2*LF-1:0] uuu;         // u2 * U, exact
     logic [LF-1:0]   t3;          // floor(u^3)
     logic [LF+4:0]   w;           // 6 u2 - 15 U + 10: in (0, 10], LF fraction bits
@@ -82,15 +84,18 @@ module pst_noise_weight #(
     logic [2*LF+4:0] aa30;        // 30 a a = 32 a a - 2 a a
 
     assign uu = {{LF{1'b0}}, u_i} * {{LF{1'b0}}, u_i};
-    assign u2 = uu[LF +: LF];
-    assign uuu = {{LF{1'b0}}, u2} * {{LF{1'b0}}, u_i};
+    assign u2_d = uu[LF +: LF];
+    pst_delay #(.Width(2*LF), .Depth(Reg ? 1 : 0)) u_reg (
+      .clk_i, .rst_ni, .en_i, .d_i ({u_i, u2_d}), .q_o ({u_q, u2})
+    );
+    assign uuu = {{LF{1'b0}}, u2} * {{LF{1'b0}}, u_q};
     assign t3 = uuu[LF +: LF];
     // 10 2^LF + 6 u2 - 15 U, every term LF+5 bits wide (the sum is positive: no wrap)
     assign w = {1'b0, 4'b1010, {LF{1'b0}}} + {4'b0, u2, 1'b0} + {3'b0, u2, 2'b0}
-             - {1'b0, u_i, 4'b0} + {5'b0, u_i};
+             - {1'b0, u_q, 4'b0} + {5'b0, u_q};
     assign sw = {{(LF+5){1'b0}}, t3} * {{LF{1'b0}}, w};
     assign s_o = sw[LF +: LF];
-    assign a = u_i - u2;
+    assign a = u_q - u2;
     assign aa = {{LF{1'b0}}, a} * {{LF{1'b0}}, a};
     assign aa30 = {aa, 5'b0} - {4'b0, aa, 1'b0};
     assign ds_o = aa30[LF +: LF+2];
@@ -112,7 +117,7 @@ module pst_noise_weight #(
     always_comb begin
       assert (g_quintic.sw[2*LF+4:2*LF] == '0) else $error("pst_noise_weight: quintic s >= 1");
       assert (g_quintic.aa30[2*LF+4:2*LF+2] == '0) else $error("pst_noise_weight: quintic ds >= 4");
-      assert (u_i >= g_quintic.u2) else $error("pst_noise_weight: u < u^2");
+      assert (g_quintic.u_q >= g_quintic.u2) else $error("pst_noise_weight: u < u^2");
     end
   end
   if (NoiseInterp == pst_pkg::NoiseInterpScurve) begin : g_assert_scurve
