@@ -77,6 +77,8 @@ struct Texture {
     // "FILE:LINE: FIELD" of the noise basis in its scene file (set by the parser when the basis
     // is given), so a consumer that cannot do the basis (the hardware profiles) names it.
     std::string basisSource;
+    // "FILE:LINE: FIELD" of the colour map's size (set by the scene parser), for the same reason.
+    std::string clutSource;
 };
 
 // The per-fragment result of the texture pipeline.

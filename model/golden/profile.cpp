@@ -105,6 +105,25 @@ Profile parseProfile(const std::string& text, const std::string& path) {
             }
         }
     }
+    // Unknown sections and keys are errors (as in scene files), so a typo does not silently
+    // leave a value at what another profile had.
+    for (auto&& [sec, node] : root) {
+        const std::string sname(sec.str());
+        bool known = false;
+        for (const c::KeySpec& k : c::kSchema) known = known || sname == k.section;
+        if (!known) r.fail(&node, sname, "unknown section");
+        for (auto&& [key, kn] : *node.as_table()) {
+            const std::string kname(key.str());
+            const c::KeySpec* spec = nullptr;
+            for (const c::KeySpec& k : c::kSchema)
+                if (sname == k.section && kname == k.key) spec = &k;
+            if (!spec) r.fail(&kn, sname + "." + kname, "unknown key");
+            if (spec->kind == c::KeyKind::Format)
+                for (auto&& [fk, fn] : *kn.as_table())
+                    if (fk.str() != "int" && fk.str() != "frac")
+                        r.fail(&fn, sname + "." + kname + "." + std::string(fk.str()), "unknown key (expected int, frac)");
+        }
+    }
     for (const c::Constraint& k : c::kConstraints) {
         if (k.holds(v)) continue;
         const std::string field = k.field;
@@ -115,6 +134,7 @@ Profile parseProfile(const std::string& text, const std::string& path) {
 
     Profile p;
     p.path = path;
+    for (int i = 0; i < c::kNumParams; ++i) p.params[i] = v[i];
     p.octaves = v[c::Octaves];
     p.noiseUnits = v[c::NoiseUnits];
     p.noiseSteps = v[c::NoiseSteps];
@@ -155,6 +175,15 @@ Profile loadProfile(const std::string& path) {
     std::ostringstream ss;
     ss << in.rdbuf();
     return parseProfile(ss.str(), path);
+}
+
+std::string profileDifference(const Profile& a, const Profile& b) {
+    for (const contract::KeySpec& k : contract::kSchema) {
+        const bool differs = a.params[k.param] != b.params[k.param] ||
+                             (k.kind == contract::KeyKind::Format && a.params[k.param + 1] != b.params[k.param + 1]);
+        if (differs) return std::string(k.section) + "." + k.key;
+    }
+    return "";
 }
 
 std::string profilePath(const std::string& nameOrPath, const std::string& sourceDir) {

@@ -3,6 +3,7 @@
 // schema (keys, ranges, enums, cross-constraints) is rtl/contract.toml's, through contract.h.
 #pragma once
 
+#include <array>
 #include <string>
 
 #include "contract.h"
@@ -74,7 +75,15 @@ struct Profile {
     }
     // W = w N in entries: unsigned, log2Clut + 2 integer bits, widthFrac fraction bits.
     int widthIntBits() const { return log2Clut + 2; }
+
+    // Every key's value indexed by RTL parameter (contract::Param): what a verilated model
+    // was built from, compared by sameHardware().
+    std::array<int, contract::kNumParams> params{};
 };
+
+// "" when a and b describe the same hardware (every key equal), else the first key that
+// differs ("formats.coord").
+std::string profileDifference(const Profile& a, const Profile& b);
 
 // Reads and checks a profile; throws InputError naming file, line and field.
 Profile loadProfile(const std::string& path);

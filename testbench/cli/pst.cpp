@@ -9,6 +9,7 @@
 // Exit status: 0 success, 1 failure (including RTL mismatches), 2 bad input or usage.
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <cstdio>
 #include <filesystem>
@@ -119,10 +120,59 @@ int writeHtmlPage(const std::string& page, std::vector<std::string> args) {
 }
 
 // A verilated profile by its name (rtl/configs or PST_EXTRA_PROFILE_DIR), else a name in
-// rtl/configs or a profile file.
-Profile profileByName(const std::string& name) {
-    const std::string built = rtlProfilePath(name);
-    return loadProfile(built.empty() ? profilePath(name, sourceDir()) : built);
+// rtl/configs or a profile file. For the RTL (rtl = true) the profile must have a verilated
+// model in this build, and the same values as the file that model was built from: a copy of
+// full.toml with other widths, named full.toml, is refused, not run against the full RTL.
+Profile profileByName(const std::string& name, bool rtl = false) {
+    const bool isFile = name.find('/') != std::string::npos || name.find(".toml") != std::string::npos;
+    const std::string built = isFile ? "" : rtlProfilePath(name);
+    Profile p = loadProfile(built.empty() ? profilePath(name, sourceDir()) : built);
+    if (!rtl) return p;
+    const std::string verilated = rtlProfilePath(p.name);
+    if (verilated.empty()) {
+        std::string list;
+        for (const auto& n : rtlProfiles()) list += (list.empty() ? "" : ", ") + n;
+        throw InputError(p.path + ": profile '" + p.name + "' has no verilated model in this build (verilated: " + list +
+                         "; add it with -DPST_PROFILES or -DPST_EXTRA_PROFILE_DIR, or use --model golden)");
+    }
+    const Profile v = loadProfile(verilated);
+    if (std::string key = profileDifference(p, v); !key.empty())
+        throw InputError(p.path + ": " + key + ": differs from the profile the '" + p.name + "' RTL was verilated from (" +
+                         verilated + "); rename the profile or verilate it (-DPST_EXTRA_PROFILE_DIR)");
+    return p;
+}
+
+// The files one command writes: if a later write fails (a full disk), the ones written so far
+// are removed again, and the folder if this command created it, so no half output is left.
+class OutputFiles {
+public:
+    explicit OutputFiles(const fs::path& dir) : dir_(dir), created_(!fs::exists(dir)) { fs::create_directories(dir); }
+    std::string operator()(const std::string& name) {
+        const fs::path f = dir_ / name;
+        if (!fs::exists(f)) files_.push_back(f);   // never remove what was there before
+        return f.string();
+    }
+    void keep() { keep_ = true; }
+    ~OutputFiles() {
+        if (keep_) return;
+        std::error_code ec;
+        for (const auto& f : files_) fs::remove(f, ec);
+        if (created_) fs::remove(dir_, ec);   // only if empty
+    }
+
+private:
+    fs::path dir_;
+    bool created_;
+    bool keep_ = false;
+    std::vector<fs::path> files_;
+};
+
+// Fails (InputError) unless a trace file can be written: its folder exists.
+void checkTracePath(const std::string& trace) {
+    const fs::path dir = fs::path(trace).parent_path();
+    if (!dir.empty() && !fs::is_directory(dir))
+        throw InputError("--trace: folder '" + dir.string() + "' does not exist");
+    if (fs::is_directory(trace)) throw InputError("--trace: '" + trace + "' is a folder, not a file");
 }
 
 nlohmann::json hwJson(const std::string& scene, const Profile& p, const std::string& model,
@@ -168,9 +218,15 @@ int runHardwareRender(const RenderArgs& a, const HwArgs& hw) {
     const std::string stem = fs::path(a.scene).stem().string();
     int rc = 0;
     std::vector<std::string> pageArgs;
+    // Every profile is loaded and checked before anything is written (a bad second profile
+    // must not leave the first one's images behind).
+    std::vector<Profile> profiles;
     for (const std::string& name : hw.profiles) {
-        const Profile p = profileByName(name);
-        if (std::string why = unsupportedTexture(scene, p); !why.empty()) throw InputError(why);
+        profiles.push_back(profileByName(name, hw.model == "rtl"));
+        if (std::string why = unsupportedTexture(scene, profiles.back()); !why.empty()) throw InputError(why);
+    }
+    if (!hw.trace.empty()) checkTracePath(hw.trace);
+    for (const Profile& p : profiles) {
         const fs::path dir = a.outDir.empty() ? fs::path("out") / stem / p.name
                                               : (hw.profiles.size() > 1 ? fs::path(a.outDir) / p.name : fs::path(a.outDir));
         std::unique_ptr<RtlModel> rtl;
@@ -183,12 +239,13 @@ int runHardwareRender(const RenderArgs& a, const HwArgs& hw) {
         ho.progress = progressPrinter(stem + "/" + p.name, a.quiet);
         ho.truthSamples = a.truth;
         HwRenderResult r = renderHardware(scene, p, rtl.get(), ho);
-        fs::create_directories(dir);
-        writeImage(r.hardware, (dir / (hw.model + ".png")).string());
-        writeImage(r.reference, (dir / "reference.png").string());
-        writeImage(r.difference, (dir / "difference.png").string());
-        writeTextFile((dir / "summary.json").string(),
+        OutputFiles out(dir);
+        writeImage(r.hardware, out(hw.model + ".png"));
+        writeImage(r.reference, out("reference.png"));
+        writeImage(r.difference, out("difference.png"));
+        writeTextFile(out("summary.json"),
                       hwJson(a.scene, p, hw.model, r, scene.camera.width, scene.camera.height).dump(2) + "\n");
+        out.keep();
         pageArgs.insert(pageArgs.end(), {"--summary", (dir / "summary.json").string()});
         std::cout << stem << " [" << p.name << ", " << hw.model << "]: " << r.fragments << " fragments";
         if (rtl) std::cout << ", " << r.mismatches << " mismatches, " << r.cyclesPerPixel << " cycles/pixel";
@@ -209,13 +266,18 @@ int runRegress(const std::vector<std::string>& scenes, int size, const HwArgs& h
     nlohmann::json all = nlohmann::json::array();
     std::vector<JunitCase> cases;
     int failures = 0, skipped = 0;
+    // Every scene and profile is loaded and checked before the first run writes anything.
+    std::vector<Scene> loaded;
+    for (const std::string& path : scenes) loaded.push_back(loadScene(path, size, size));
+    std::vector<Profile> profiles;
+    for (const std::string& name : hw.profiles) profiles.push_back(profileByName(name, true));
     std::printf("%-14s %-8s %9s %10s %8s %9s %10s %12s\n", "scene", "profile", "pixels", "mismatch", "PSNR",
                 "<=1LSB%", "cyc/pixel", "rtl px/s");
-    for (const std::string& path : scenes) {
-        Scene scene = loadScene(path, size, size);
+    for (size_t si = 0; si < scenes.size(); ++si) {
+        const std::string& path = scenes[si];
+        const Scene& scene = loaded[si];
         const std::string stem = fs::path(path).stem().string();
-        for (const std::string& name : hw.profiles) {
-            const Profile p = profileByName(name);
+        for (const Profile& p : profiles) {
             // A scene the profile cannot run (a reference-only noise basis) is skipped, visibly,
             // and kept out of the JSON: it neither passes nor fails.
             if (std::string why = unsupportedTexture(scene, p); !why.empty()) {
@@ -262,8 +324,10 @@ int runRandom(const HwArgs& hw, RandomRegressOptions o, bool quiet, const std::s
     std::vector<JunitCase> cases;
     std::printf("%-14s %10s %9s %9s %10s %10s %12s\n", "profile", "fragments", "textures", "mismatch", "cyc/pixel",
                 "seconds", "fragments/s");
-    for (const std::string& name : hw.profiles) {
-        const Profile p = profileByName(name);
+    std::vector<Profile> profiles;
+    for (const std::string& name : hw.profiles) profiles.push_back(profileByName(name, true));
+    for (const Profile& p : profiles) {
+        const std::string& name = p.name;
         if (!quiet && isatty(STDERR_FILENO))
             o.progress = [&](uint64_t done, uint64_t total) {
                 std::fprintf(stderr, "\r%s: %llu / %llu", p.name.c_str(), (unsigned long long)done,
@@ -317,12 +381,12 @@ int runRender(const RenderArgs& a) {
     RenderResult r = render(scene, opt);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-    fs::create_directories(dir);
-    writeImage(r.filtered, (dir / "filtered.png").string());
-    writeImage(r.filtered, (dir / "filtered.exr").string());
-    writeImage(r.unfiltered, (dir / "unfiltered.png").string());
-    writeImage(r.filterWidth, (dir / "width.png").string(), Tone::FilterWidth);
-    writeImage(r.filterWidth, (dir / "width.exr").string(), Tone::FilterWidth);
+    OutputFiles out(dir);
+    writeImage(r.filtered, out("filtered.png"));
+    writeImage(r.filtered, out("filtered.exr"));
+    writeImage(r.unfiltered, out("unfiltered.png"));
+    writeImage(r.filterWidth, out("width.png"), Tone::FilterWidth);
+    writeImage(r.filterWidth, out("width.exr"), Tone::FilterWidth);
 
     nlohmann::json j;
     j["scene"] = a.scene;
@@ -338,8 +402,8 @@ int runRender(const RenderArgs& a) {
     line << stem << ": " << scene.camera.width << "x" << scene.camera.height << ", "
          << r.stats.fragments << " fragments, " << seconds << " s";
     if (a.truth > 0) {
-        writeImage(r.truth, (dir / "truth.png").string());
-        writeImage(r.truth, (dir / "truth.exr").string());
+        writeImage(r.truth, out("truth.png"));
+        writeImage(r.truth, out("truth.exr"));
         const ImageDiff df = compareRgb(r.filtered, r.truth), du = compareRgb(r.unfiltered, r.truth);
         j["truth_samples"] = a.truth * a.truth;
         j["vs_truth"] = {{"filtered", {{"rms", df.rmsError}, {"psnr", df.psnr}, {"max", df.maxError}}},
@@ -349,7 +413,7 @@ int runRender(const RenderArgs& a) {
     // Variants: every texture's filter and bandlimit replaced (variant_<name>.png).
     for (size_t v = 0; v < opt.variants.size(); ++v) {
         const FilterVariant& fv = opt.variants[v];
-        writeImage(r.variants[v], (dir / ("variant_" + fv.name + ".png")).string());
+        writeImage(r.variants[v], out("variant_" + fv.name + ".png"));
         nlohmann::json e = {{"filter", toString(fv.filter)}, {"bandlimit", toString(fv.bandlimit)}};
         if (a.truth > 0) {
             const ImageDiff d = compareRgb(r.variants[v], r.truth);
@@ -358,7 +422,8 @@ int runRender(const RenderArgs& a) {
         }
         j["variants"][fv.name] = e;
     }
-    writeTextFile((dir / "report.json").string(), j.dump(2) + "\n");
+    writeTextFile(out("report.json"), j.dump(2) + "\n");
+    out.keep();
     std::cout << line.str() << " -> " << dir.string() << "\n";
     return 0;
 }
@@ -374,7 +439,7 @@ int runEval(const std::string& texPath, const std::string& fragPath, const std::
     if (model != "reference") {
         // The hardware models: same columns, from the fixed-point values.
         if (hw.profiles.size() != 1) throw InputError("--profile: eval takes exactly one profile");
-        const Profile p = profileByName(hw.profiles[0]);
+        const Profile p = profileByName(hw.profiles[0], model == "rtl");
         tex.filter = kind;
         TextureProgram prog = programTexture(p, tex);
         std::vector<FragmentFx> in;
@@ -434,14 +499,52 @@ int runFragments(const std::string& scenePath, int size, int layer, const std::s
     return 0;
 }
 
+// An image for compare: readable, and every pixel finite (NaN would make RMS and PSNR
+// meaningless: an image full of NaN compared with itself gave RMS 0).
+Image readFiniteImage(const std::string& path) {
+    Image img;
+    try {
+        img = readImage(path);
+    } catch (const std::runtime_error& e) {
+        throw InputError(e.what());
+    }
+    for (size_t i = 0; i < img.data.size(); ++i)
+        if (!std::isfinite(img.data[i])) {
+            const size_t px = i / size_t(img.channels);
+            throw InputError(path + ": pixel (" + std::to_string(px % size_t(img.width)) + ", " +
+                             std::to_string(px / size_t(img.width)) + "): NaN or infinite value");
+        }
+    return img;
+}
+
 int runCompare(const std::string& a, const std::string& b) {
-    const ImageDiff d = compareRgb(readImage(a), readImage(b));
+    const Image A = readFiniteImage(a), B = readFiniteImage(b);
+    if (A.width != B.width || A.height != B.height || A.channels < 3 || B.channels < 3)
+        throw InputError(b + ": " + std::to_string(B.width) + " x " + std::to_string(B.height) + " x " +
+                         std::to_string(B.channels) + " does not match " + a + " (" + std::to_string(A.width) + " x " +
+                         std::to_string(A.height) + " x " + std::to_string(A.channels) + "; RGB needed)");
+    const ImageDiff d = compareRgb(A, B);
     std::cout << "mean " << d.meanError << "  rms " << d.rmsError << "  max " << d.maxError
               << "  psnr " << d.psnr << " dB\n";
     return 0;
 }
 
 }  // namespace
+
+// CLI11's Range lets NaN through (every comparison with NaN is false).
+const CLI::Validator kFinite(
+    [](std::string& s) {
+        char* end = nullptr;
+        const double v = std::strtod(s.c_str(), &end);
+        return std::isfinite(v) ? std::string() : std::string("must be a finite number");
+    },
+    "FINITE");
+
+// An output file given with -o must not be an existing folder.
+void checkOutFile(const std::string& flag, const std::string& path) {
+    if (!path.empty() && path != "-" && fs::is_directory(path))
+        throw InputError(flag + ": '" + path + "' is a folder; give a file name");
+}
 
 int main(int argc, char** argv) {
     CLI::App app{"pst: cycle-level simulator of the Hart et al. 1999 procedural solid-texturing ASIC"};
@@ -470,11 +573,12 @@ int main(int argc, char** argv) {
     HwArgs hw;
     auto addSimOptions = [&hw](CLI::App* sc) {
         sc->add_option("--sim-seed", hw.sim.seed, "Seed of the random input gaps and output stalls");
-        sc->add_option("--gap-rate", hw.sim.inputGapRate, "Probability of an idle input cycle")->check(CLI::Range(0.0, 0.95));
-        sc->add_option("--stall-rate", hw.sim.outputStallRate, "Probability of out_ready low in a cycle")->check(CLI::Range(0.0, 0.95));
+        sc->add_option("--gap-rate", hw.sim.inputGapRate, "Probability of an idle input cycle")->check(kFinite & CLI::Range(0.0, 0.95));
+        sc->add_option("--stall-rate", hw.sim.outputStallRate, "Probability of out_ready low in a cycle")->check(kFinite & CLI::Range(0.0, 0.95));
         sc->add_option("--timeout", hw.sim.timeoutCycles, "Cycle limit of one stream (0 = automatic)");
     };
-    render->add_option("--profile", hw.profiles, "Hardware profile(s): full, reduced or a profile file; renders through the RTL");
+    render->add_option("--profile", hw.profiles, "Hardware profile(s): full, reduced or a profile file; renders through the RTL")
+        ->allow_extra_args(false);
     render->add_option("--model", hw.model, "Hardware model for --profile: rtl or golden")->check(CLI::IsMember({"rtl", "golden"}));
     render->add_option("--trace", hw.trace, "FST waveform of the RTL run (off unless given)");
     render->add_option("--trace-start", hw.sim.traceStart, "First traced cycle");
@@ -490,7 +594,7 @@ int main(int argc, char** argv) {
     eval->add_option("--filter", filterName, "Override the texture's filter: none, mip, mip_linear, sat, box, trapezoid");
     eval->add_option("--model", evalModel, "reference (double), golden (fixed point) or rtl (verilated)")
         ->check(CLI::IsMember({"reference", "golden", "rtl"}));
-    eval->add_option("--profile", hw.profiles, "Hardware profile for --model golden|rtl");
+    eval->add_option("--profile", hw.profiles, "Hardware profile for --model golden|rtl")->allow_extra_args(false);
 
     std::vector<std::string> regScenes;
     int regSize = 64;
@@ -498,7 +602,8 @@ int main(int argc, char** argv) {
     auto* regress = app.add_subcommand("regress", "Every scene through every profile's RTL, checked against the golden model");
     regress->add_option("scenes", regScenes, "Scene files (default: scenes/*.toml)")->check(CLI::ExistingFile);
     regress->add_option("--size", regSize, "Square image size")->check(CLI::Range(1, 4096));
-    regress->add_option("--profile", hw.profiles, "Profiles (default: every verilated profile)");
+    regress->add_option("--profile", hw.profiles, "Profiles (default: every verilated profile; one per --profile)")
+        ->allow_extra_args(false);
     regress->add_option("-o,--out", regOut, "JSON summary file");
     std::string regJunit;
     regress->add_option("--junit", regJunit, "JUnit XML of the runs (one test case per scene x profile, or per profile with --random)");
@@ -537,8 +642,9 @@ int main(int argc, char** argv) {
     animate->add_option("--frames", an.frames, "Frames (default: the scene's animation.frames)")->check(CLI::Range(1, 10000));
     animate->add_option("--size", an.size, "Square image size, overrides the scene's")->check(CLI::Range(1, 4096));
     animate->add_option("--truth", an.truth, "N x N ground truth per frame (the flicker metric needs it)")->check(CLI::Range(1, 64));
-    animate->add_option("--fps", an.fps, "Video frame rate (default: the scene's animation.fps)")->check(CLI::Range(0.1, 240.0));
-    animate->add_option("--profile", an.profiles, "Also through the hardware model(s) of these profiles, scoreboarded");
+    animate->add_option("--fps", an.fps, "Video frame rate (default: the scene's animation.fps)")->check(kFinite & CLI::Range(0.1, 240.0));
+    animate->add_option("--profile", an.profiles, "Also through the hardware model(s) of these profiles, scoreboarded")
+        ->allow_extra_args(false);
     animate->add_option("--model", an.model, "Hardware model for --profile: rtl or golden")->check(CLI::IsMember({"rtl", "golden"}));
     animate->add_option("-o,--out", an.outDir, "Output folder (default out/anim/<scene name>)");
     animate->add_option("-j,--threads", an.threads, "Threads (default: all cores)")->check(CLI::Range(0, 256));
@@ -563,10 +669,20 @@ int main(int argc, char** argv) {
     try {
         if (*render) {
             if (!hw.html.empty() && hw.profiles.empty()) throw InputError("--html: needs --profile");
+            const bool traceOpts = !hw.trace.empty() || render->count("--trace-start") || render->count("--trace-end");
+            if (traceOpts && hw.profiles.empty()) throw InputError("--trace: needs --profile (the waves are the RTL's)");
+            if (traceOpts && hw.model != "rtl") throw InputError("--trace: needs --model rtl (the golden model has no waves)");
+            if (traceOpts && hw.trace.empty()) throw InputError("--trace-start, --trace-end: need --trace FILE");
+            if (hw.sim.traceStart > hw.sim.traceEnd)
+                throw InputError("--trace-start: " + std::to_string(hw.sim.traceStart) + " is after --trace-end " +
+                                 std::to_string(hw.sim.traceEnd));
+            if (!ra.outDir.empty() && fs::exists(ra.outDir) && !fs::is_directory(ra.outDir))
+                throw InputError("-o: '" + ra.outDir + "' is a file; give a folder");
             return hw.profiles.empty() ? runRender(ra) : runHardwareRender(ra, hw);
         }
         if (*eval) {
             if (evalModel != "reference" && hw.profiles.empty()) hw.profiles = {"full"};
+            checkOutFile("-o", evalOut);
             return runEval(texPath, fragPath, evalOut, filterName, evalModel, hw);
         }
         if (*regress) {
@@ -593,7 +709,7 @@ int main(int argc, char** argv) {
         if (*animate) {
             an.video = !noVideo;
             an.variants = parseVariants(animVariants);
-            an.loadProfile = profileByName;
+            an.loadProfile = [&an](const std::string& n) { return profileByName(n, an.model == "rtl"); };
             // One line per frame and model (rewritten in place on a terminal).
             if (!animQuiet)
                 an.progress = [name = fs::path(an.scene).stem().string(), tty = isatty(STDERR_FILENO)](
@@ -604,7 +720,10 @@ int main(int argc, char** argv) {
                 };
             return runAnimate(an);
         }
-        if (*frag) return runFragments(fragScene, fragSize, fragLayer, fragOut);
+        if (*frag) {
+            checkOutFile("-o", fragOut);
+            return runFragments(fragScene, fragSize, fragLayer, fragOut);
+        }
         if (*cmp) return runCompare(cmpA, cmpB);
     } catch (const InputError& e) {
         std::cerr << "error: " << e.what() << "\n";

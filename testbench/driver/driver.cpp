@@ -41,15 +41,21 @@ std::string hardwareUnsupported(const Profile& p, const Texture& tex) {
         return "texture '" + tex.name + "': bandlimit: bandlimited octaves are in the reference model only (profile '" +
                p.name + "' has no unit for them yet); render it without --profile";
     // The profile's noise unit computes one basis (hardwareBasis of its interp / corner / hash).
-    if (tex.noise.basis == p.noise.basis) return "";
-    const std::string where =
-        tex.basisSource.empty() ? "texture '" + tex.name + "': noise.basis" : tex.basisSource;
-    const std::string how = tex.noise.basis == NoiseBasis::Worley
-                                ? "render it with the reference model (no --profile)"
-                                : std::string("render it with a profile of basis ") + toString(tex.noise.basis) +
-                                      " or with the reference model (no --profile)";
-    return where + ": basis '" + toString(tex.noise.basis) + "' has no hardware unit in profile '" + p.name +
-           "' (its noise unit computes '" + toString(p.noise.basis) + "'); " + how;
+    if (tex.noise.basis != p.noise.basis) {
+        const std::string where =
+            tex.basisSource.empty() ? "texture '" + tex.name + "': noise.basis" : tex.basisSource;
+        const std::string how = tex.noise.basis == NoiseBasis::Worley
+                                    ? "render it with the reference model (no --profile)"
+                                    : std::string("render it with a profile of basis ") + toString(tex.noise.basis) +
+                                          " or with the reference model (no --profile)";
+        return where + ": basis '" + toString(tex.noise.basis) + "' has no hardware unit in profile '" + p.name +
+               "' (its noise unit computes '" + toString(p.noise.basis) + "'); " + how;
+    }
+    if (tex.clut.size() != p.clutSize())
+        return (tex.clutSource.empty() ? "texture '" + tex.name + "': colormap.size" : tex.clutSource) + ": " +
+               std::to_string(tex.clut.size()) + " entries; profile '" + p.name + "' has a " +
+               std::to_string(p.clutSize()) + "-entry colour table (pipeline.log2_clut = " + std::to_string(p.log2Clut) + ")";
+    return "";
 }
 
 TextureProgram programTexture(const Profile& p, const Texture& tex) {

@@ -15,6 +15,21 @@ namespace pst {
 
 namespace {
 const char* kFieldNames[9] = {"s", "t", "r", "ds/dx", "dt/dx", "dr/dx", "ds/dy", "dt/dy", "dr/dy"};
+
+// A token for a message: control bytes (NUL among them) as \xNN.
+std::string printable(const std::string& tok) {
+    std::string out;
+    char buf[8];
+    for (unsigned char ch : tok) {
+        if (ch < 0x20 || ch == 0x7f) {
+            std::snprintf(buf, sizeof buf, "\\x%02x", ch);
+            out += buf;
+        } else {
+            out += char(ch);
+        }
+    }
+    return out;
+}
 }
 
 std::vector<FragmentRecord> readFragments(std::istream& in, const std::string& path) {
@@ -34,10 +49,14 @@ std::vector<FragmentRecord> readFragments(std::istream& in, const std::string& p
             errno = 0;
             char* end = nullptr;
             double x = std::strtod(tok.c_str(), &end);
-            if (end == tok.c_str() || *end != '\0')
-                throw InputError(where(kFieldNames[n]) + "not a number: '" + tok + "'");
-            if (!std::isfinite(x) || errno == ERANGE)
+            // The whole token must be the number (a NUL byte inside it is not).
+            if (end == tok.c_str() || end != tok.c_str() + tok.size())
+                throw InputError(where(kFieldNames[n]) + "not a number: '" + printable(tok) + "'");
+            // ERANGE on underflow (a subnormal or smaller) is a valid tiny number; on overflow not.
+            if (!std::isfinite(x) || (errno == ERANGE && std::abs(x) >= 1.0))
                 throw InputError(where(kFieldNames[n]) + "NaN, infinite or out-of-range number '" + tok + "'");
+            if (std::abs(x) > kMaxSceneNumber)
+                throw InputError(where(kFieldNames[n]) + "magnitude must be at most 1e6 (got '" + tok + "')");
             v[n++] = x;
         }
         if (n == 0) continue;

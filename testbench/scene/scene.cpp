@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <set>
 #include <sstream>
@@ -17,6 +18,7 @@ namespace {
 // Error reporting: every message is "file:line: field: what".
 struct Ctx {
     std::string file;
+    bool meshes = true;   // false: check the objects' keys and values only, build no meshes
 
     [[noreturn]] void fail(const toml::node* n, const std::string& field,
                            const std::string& what) const {
@@ -52,6 +54,10 @@ double asNumber(const Ctx& c, const toml::node& n, const std::string& field) {
     else if (auto f = n.as_floating_point()) v = f->get();
     else c.fail(&n, field, "expected a number");
     if (!std::isfinite(v)) c.fail(&n, field, "NaN and infinite numbers are not allowed");
+    // Every number of a scene is a coordinate, a coefficient, an angle or a colour: a bound far
+    // beyond any of them keeps products and squares finite (no NaN or infinite pixels).
+    if (std::abs(v) > kMaxSceneNumber)
+        c.fail(&n, field, "magnitude must be at most 1e6 (got " + std::to_string(v) + ")");
     return v;
 }
 
@@ -118,6 +124,8 @@ glm::dvec4 getColor(const Ctx& c, const toml::table& t, const std::string& path,
     const toml::node* n = find(t, key);
     if (!n) return def;
     auto v = asNumbers(c, *n, join(path, key), 3, 4);
+    for (double x : v)
+        if (x < 0.0 || x > 1.0) c.fail(n, join(path, key), "colour components must be in [0, 1]");
     return {v[0], v[1], v[2], v.size() == 4 ? v[3] : 1.0};
 }
 
@@ -171,6 +179,8 @@ ColorMap parseColorMap(const Ctx& c, const toml::table& t, const std::string& pa
         if (v[0] < 0.0 || v[0] > 1.0) c.fail(ra->get(i), f, "position must be in [0, 1]");
         if (!keys.empty() && v[0] < keys.back().first)
             c.fail(ra->get(i), f, "positions must not decrease");
+        for (size_t k = 1; k < v.size(); ++k)
+            if (v[k] < 0.0 || v[k] > 1.0) c.fail(ra->get(i), f, "colour components must be in [0, 1]");
         keys.push_back({v[0], {v[1], v[2], v[3], v.size() == 5 ? v[4] : 1.0}});
     }
     // Entry i takes the ramp at its centre (i + 0.5) / N.
@@ -279,6 +289,15 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
     tex.filter = getEnum(c, t, path, "filter", tex.filter, parseFilterKind, "none, mip, mip_linear, sat, box or trapezoid");
     tex.norm = getEnum(c, t, path, "norm", tex.norm, parseGradNorm, "euclid, max_half_min or l1");
     tex.clut = parseColorMap(c, requireTable(c, t, path, "colormap"), join(path, "colormap"));
+    {
+        const toml::table& ct = requireTable(c, t, path, "colormap");
+        const toml::node* sn = find(ct, "size") ? find(ct, "size") : find(t, "colormap");
+        std::ostringstream os;
+        os << c.file;
+        if (sn->source().begin.line > 0) os << ":" << sn->source().begin.line;
+        os << ": " << join(join(path, "colormap"), "size");
+        tex.clutSource = os.str();
+    }
     return tex;
 }
 
@@ -286,6 +305,8 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
 glm::dmat4 placement(const Ctx& c, const toml::table& t, const std::string& path,
                      const char* scaleKey, const char* rotateKey, const char* translateKey) {
     glm::dvec3 sc = getScale(c, t, path, scaleKey);
+    if (sc.x == 0.0 || sc.y == 0.0 || sc.z == 0.0)
+        c.fail(find(t, scaleKey), join(path, scaleKey), "must be non-zero (a zero scale flattens the object)");
     glm::dvec3 rot = getVec3(c, t, path, rotateKey, glm::dvec3(0.0));
     glm::dvec3 tr = getVec3(c, t, path, translateKey, glm::dvec3(0.0));
     // Applied in the order scale, rotate about x, then y, then z, translate.
@@ -303,21 +324,35 @@ SceneObject parseObject(const Ctx& c, const toml::table& t, const std::string& p
                            "translate", "tex_scale", "tex_rotate", "tex_offset"});
     SceneObject o;
     const std::string kind = getString(c, t, path, "mesh", "");
-    Mesh mesh;
+    // Tessellation keys belong to one mesh kind each.
+    const std::pair<const char*, const char*> owner[] = {
+        {"subdiv", "teapot"}, {"slices", "sphere"}, {"stacks", "sphere"}, {"major_radius", "torus"},
+        {"minor_radius", "torus"}, {"segments", "torus"}, {"half_size", "plane"}, {"divisions", "plane"}};
+    for (const auto& [key, mk] : owner)
+        if (find(t, key) && kind != mk)
+            c.fail(find(t, key), join(path, key), std::string("belongs to mesh = \"") + mk + "\", not \"" + kind + "\"");
+    // Every value is checked first; the meshes are built only when wanted (c.meshes), which
+    // is what a parse costs (the animation keys are checked without them).
+    std::function<Mesh()> make;
     if (kind == "teapot") {
-        mesh = makeTeapot(getInt(c, t, path, "subdiv", 4, 1, 64));
+        const int subdiv = getInt(c, t, path, "subdiv", 4, 1, 64);
+        make = [=] { return makeTeapot(subdiv); };
     } else if (kind == "cube") {
-        mesh = makeCube();
+        make = [] { return makeCube(); };
     } else if (kind == "sphere") {
-        mesh = makeSphere(getInt(c, t, path, "slices", 24, 3, 1024), getInt(c, t, path, "stacks", 12, 2, 1024));
+        const int slices = getInt(c, t, path, "slices", 24, 3, 1024), stacks = getInt(c, t, path, "stacks", 12, 2, 1024);
+        make = [=] { return makeSphere(slices, stacks); };
     } else if (kind == "torus") {
         int seg = getInt(c, t, path, "segments", 32, 3, 1024);
-        mesh = makeTorus(getNumber(c, t, path, "major_radius", 1.0), getNumber(c, t, path, "minor_radius", 0.4),
-                         seg, std::max(3, seg / 2));
+        const double R = getNumber(c, t, path, "major_radius", 1.0), r = getNumber(c, t, path, "minor_radius", 0.4);
+        if (R <= 0) c.fail(find(t, "major_radius"), join(path, "major_radius"), "must be positive");
+        if (r <= 0) c.fail(find(t, "minor_radius"), join(path, "minor_radius"), "must be positive");
+        make = [=] { return makeTorus(R, r, seg, std::max(3, seg / 2)); };
     } else if (kind == "plane") {
         double hs = getNumber(c, t, path, "half_size", 1.0);
         if (hs <= 0) c.fail(find(t, "half_size"), join(path, "half_size"), "must be positive");
-        mesh = makePlane(hs, getInt(c, t, path, "divisions", 1, 1, 1024));
+        const int div = getInt(c, t, path, "divisions", 1, 1, 1024);
+        make = [=] { return makePlane(hs, div); };
     } else {
         c.fail(find(t, "mesh") ? find(t, "mesh") : &t, join(path, "mesh"),
                "unknown mesh '" + kind + "' (expected teapot, cube, sphere, torus or plane)");
@@ -332,7 +367,8 @@ SceneObject parseObject(const Ctx& c, const toml::table& t, const std::string& p
     o.layer = getInt(c, t, path, "layer", 0, 0, 15);
     // Solid texture space: s = tex_rotate(tex_scale * object position) + tex_offset.
     glm::dmat4 texMap = placement(c, t, path, "tex_scale", "tex_rotate", "tex_offset");
-    o.mesh = mesh.transformed(placement(c, t, path, "scale", "rotate", "translate"), texMap);
+    glm::dmat4 world = placement(c, t, path, "scale", "rotate", "translate");
+    if (c.meshes) o.mesh = make().transformed(world, texMap);
     return o;
 }
 
@@ -526,8 +562,19 @@ Scene buildScene(const Ctx& c, const toml::table& root, const std::string& path,
 
     const toml::table& img = requireTable(c, root, "", "image");
     checkKeys(c, img, "image", {"width", "height", "background"});
-    sc.camera.width = width > 0 ? width : getInt(c, img, "image", "width", 512, 1, 16384);
-    sc.camera.height = height > 0 ? height : getInt(c, img, "image", "height", 512, 1, 16384);
+    // The file's size is checked even when the caller overrides it (--size).
+    const int fileW = getInt(c, img, "image", "width", 512, 1, kMaxImageSide);
+    const int fileH = getInt(c, img, "image", "height", 512, 1, kMaxImageSide);
+    if (int64_t(fileW) * fileH > kMaxImagePixels)
+        c.fail(find(img, "width") ? find(img, "width") : &img, "image",
+               std::to_string(fileW) + " x " + std::to_string(fileH) + " pixels: at most " +
+                   std::to_string(kMaxImagePixels) + " pixels (4096 x 4096; about 140 bytes each)");
+    sc.camera.width = width > 0 ? width : fileW;
+    sc.camera.height = height > 0 ? height : fileH;
+    if (int64_t(sc.camera.width) * sc.camera.height > kMaxImagePixels)
+        throw InputError("--size: " + std::to_string(sc.camera.width) + " x " + std::to_string(sc.camera.height) +
+                         " pixels: at most " + std::to_string(kMaxImagePixels) +
+                         " pixels (4096 x 4096; about 140 bytes each)");
     sc.background = getColor(c, img, "image", "background", sc.background);
 
     const toml::table& cam = requireTable(c, root, "", "camera");
@@ -560,9 +607,16 @@ Scene buildScene(const Ctx& c, const toml::table& root, const std::string& path,
     if (!on || !on->is_array_of_tables())
         c.fail(on ? on : &root, "objects", "expected one or more [[objects]] tables");
     auto oa = on->as_array();
-    for (size_t i = 0; i < oa->size(); ++i)
+    size_t triangles = 0;
+    for (size_t i = 0; i < oa->size(); ++i) {
         sc.objects.push_back(parseObject(c, *oa->get(i)->as_table(),
                                          "objects[" + std::to_string(i) + "]", textureIndex));
+        triangles += sc.objects.back().mesh.triangles.size();
+        if (triangles > kMaxSceneTriangles)
+            c.fail(oa->get(i), "objects[" + std::to_string(i) + "]",
+                   "the scene's meshes exceed " + std::to_string(kMaxSceneTriangles) +
+                       " triangles (lower slices, stacks, segments, divisions or subdiv)");
+    }
     return sc;
 }
 
@@ -597,7 +651,9 @@ Scene parseScene(const std::string& text, const std::string& path, int width, in
             toml::table r = root;
             applyTrack(r, an.tracks[i], an.tracks[i].keys[k].t);
             try {
-                buildScene(c, r, path, 1, 1);
+                Ctx check = c;
+                check.meshes = false;
+                buildScene(check, r, path, 1, 1);
             } catch (const InputError& e) {
                 const toml::node* kn = root["animation"]["track"][i]["keys"][k].node();
                 std::ostringstream os;

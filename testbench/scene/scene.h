@@ -21,6 +21,13 @@ class table;
 
 namespace pst {
 
+// Bounds on what a scene file (or a size flag) may ask for: every number's magnitude, the
+// image (memory grows about 140 bytes a pixel) and the meshes' triangles (about 40 bytes each).
+constexpr double kMaxSceneNumber = 1e6;
+constexpr int kMaxImageSide = 16384;
+constexpr long long kMaxImagePixels = 4096LL * 4096;
+constexpr size_t kMaxSceneTriangles = size_t(1) << 22;
+
 struct SceneObject {
     std::string name;   // mesh kind and index, for messages
     Mesh mesh;          // world space, texcoords already mapped to texture space

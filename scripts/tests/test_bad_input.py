@@ -1,0 +1,262 @@
+"""Bad input to the `pst` tool, one test per class of issue 10 (found by trying the tool as a
+hostile user would): each must give `error: FILE:LINE: FIELD: ...` (or `error: --flag: ...` for
+a flag), exit status 2, and leave no output file behind. Run by ctest (cli_bad_input) with
+PST_BIN set to the built tool; skipped without it."""
+import os
+import pathlib
+import re
+import shutil
+import subprocess
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+PST = os.environ.get("PST_BIN", "")
+pytestmark = pytest.mark.skipif(not PST or not os.path.exists(PST), reason="PST_BIN not set")
+
+SCENE = """title = "tiny"
+[image]
+width = {width}
+height = 8
+background = {background}
+[camera]
+eye = {eye}
+target = [0.5, 0.5, 0.0]
+fovy = 53.13
+[textures.t]
+quadric = {{ A = 5.0, E = 5.0 }}
+filter = "sat"
+colormap = {{ size = {clut}, wrap = "mod", ramp = [[0.0, 0.0, 0.0, 0.0], [1.0, {ramp}, 1.0, 1.0]] }}
+[[textures.t.octaves]]
+amplitude = {amplitude}
+scale = 4.0
+[[objects]]
+{object}
+texture = "t"
+rotate = [90.0, 0.0, 0.0]
+translate = [0.5, 0.5, 0.0]
+"""
+PLANE = 'mesh = "plane"\nhalf_size = 0.5'
+
+
+def scene(tmp, name="s.toml", **kw):
+    v = dict(width=8, background="[0.0, 0.0, 0.0]", eye="[0.5, 0.5, 1.0]", clut=256, ramp=1.0,
+             amplitude=0.5, object=PLANE)
+    v.update(kw)
+    p = tmp / name
+    p.write_text(SCENE.format(**v))
+    return p
+
+
+def pst(*args, cwd=None):
+    r = subprocess.run([PST, *map(str, args)], capture_output=True, text=True, cwd=cwd, timeout=300,
+                       env=dict(os.environ, PST_SOURCE_DIR=str(ROOT)))
+    return r.returncode, r.stderr
+
+
+def refused(args, pattern, absent=(), cwd=None):
+    """Exit 2, an `error: ...` line matching pattern, and none of `absent` exists afterwards."""
+    rc, err = pst(*args, cwd=cwd)
+    assert rc == 2, f"exit {rc}, stderr:\n{err}"
+    assert re.search(r"^error: " + pattern, err, re.M), f"stderr does not match {pattern!r}:\n{err}"
+    for a in absent:
+        assert not pathlib.Path(a).exists(), f"{a} was left behind"
+
+
+def profile_copy(tmp, name, edit=None, src="full"):
+    text = (ROOT / "rtl" / "configs" / f"{src}.toml").read_text()
+    if edit:
+        text = edit(text)
+    d = tmp / "profiles"
+    d.mkdir(exist_ok=True)
+    p = d / f"{name}.toml"
+    p.write_text(text)
+    return p
+
+
+# 1. Nothing is written before every input is loaded and checked.
+def test_1_second_profile_bad_writes_nothing(tmp_path):
+    bad = profile_copy(tmp_path, "bad", lambda t: t.replace("octaves = 8", "octaves = 99"))
+    out = tmp_path / "out"
+    refused(["render", scene(tmp_path), "--profile", "full", "--profile", bad, "--model", "golden", "-o", out, "-q"],
+            re.escape(str(bad)) + r":\d+: pipeline\.octaves: ", [out])
+
+
+def test_1_regress_bad_second_scene_writes_nothing(tmp_path):
+    bad = scene(tmp_path, "bad.toml", width='"wide"')
+    images = tmp_path / "images"
+    refused(["regress", scene(tmp_path), bad, "--profile", "full", "--size", 4, "--images", images],
+            re.escape(str(bad)) + r":\d+: image\.width: ", [images])
+
+
+# 2. A profile is matched to the verilated RTL by its values, not by its file name.
+def test_2_profile_named_like_verilated_but_different(tmp_path):
+    fake = profile_copy(tmp_path, "full", lambda t: re.sub(r"(?m)^f *= \{ int = (\d+)", r"f = { int = 9", t))
+    assert fake.read_text() != (ROOT / "rtl/configs/full.toml").read_text()
+    out = tmp_path / "out"
+    refused(["render", scene(tmp_path), "--profile", fake, "--size", 4, "-o", out, "-q"],
+            re.escape(str(fake)) + r": formats\.f: differs from the profile the 'full' RTL was verilated from", [out])
+
+
+# 3. Input errors are input errors (exit 2 with FILE:LINE: FIELD), not internal errors.
+def test_3_profile_cross_constraint(tmp_path):
+    # reduced: matrix.frac + coord.frac = 8 + 12 < 24
+    bad = profile_copy(tmp_path, "bad", lambda t: re.sub(r"(?m)^offset( *)= \{ int = (\d+), *frac = \d+ \}",
+                                                          r"offset\1= { int = 4, frac = 24 }", t), src="reduced")
+    out = tmp_path / "out"
+    refused(["render", scene(tmp_path), "--profile", bad, "--model", "golden", "-o", out, "-q"],
+            re.escape(str(bad)) + r":\d+: formats\.offset: ", [out])
+
+
+def test_3_colour_map_size_differs_from_profile(tmp_path):
+    s = scene(tmp_path, clut=64)
+    out = tmp_path / "out"
+    refused(["render", s, "--profile", "full", "--model", "golden", "-o", out, "-q"],
+            re.escape(str(s)) + r":\d+: textures\.t\.colormap\.size: 64 entries; profile 'full' has a 256-entry", [out])
+
+
+def test_3_profile_without_verilated_model(tmp_path):
+    other = profile_copy(tmp_path, "other")
+    out = tmp_path / "out"
+    refused(["render", scene(tmp_path), "--profile", other, "-o", out, "-q"],
+            re.escape(str(other)) + r": profile 'other' has no verilated model in this build", [out])
+
+
+# 4. Huge finite numbers and colours outside [0, 1] are refused (they gave NaN pixels).
+@pytest.mark.parametrize("kw,field", [
+    (dict(ramp=2.0), r"textures\.t\.colormap\.ramp\[1\]: colour components must be in \[0, 1\]"),
+    (dict(background="[1e308, 0.0, 0.0]"), r"image\.background\[0\]: magnitude must be at most 1e6"),
+    (dict(background="[0.5, -0.1, 0.0]"), r"image\.background: colour components must be in \[0, 1\]"),
+    (dict(amplitude="1e308"), r"textures\.t\.octaves\[0\]\.amplitude: magnitude must be at most 1e6"),
+    (dict(eye="[1.7e308, 0.5, 1.0]"), r"camera\.eye\[0\]: magnitude must be at most 1e6"),
+])
+def test_4_huge_numbers(tmp_path, kw, field):
+    s = scene(tmp_path, **kw)
+    out = tmp_path / "out"
+    refused(["render", s, "-o", out, "-q"], re.escape(str(s)) + r":\d+: " + field, [out])
+
+
+# 5. Profiles reject unknown keys and sections, as scene files do.
+@pytest.mark.parametrize("extra,field", [
+    ("\n[extra]\nfoo = 1\n", r"extra: unknown section"),
+    ("", r"pipeline\.octavez: unknown key"),
+])
+def test_5_profile_unknown_keys(tmp_path, extra, field):
+    bad = profile_copy(tmp_path, "bad", lambda t: t.replace("[pipeline]\n", "[pipeline]\noctavez = 3\n") if not extra
+                       else t + extra)
+    out = tmp_path / "out"
+    refused(["render", scene(tmp_path), "--profile", bad, "--model", "golden", "-o", out, "-q"],
+            re.escape(str(bad)) + r":\d+: " + field, [out])
+
+
+# 6. NaN rates are refused by the range check.
+@pytest.mark.parametrize("flag", ["--stall-rate", "--gap-rate"])
+def test_6_nan_rates(tmp_path, flag):
+    out = tmp_path / "out"
+    rc, err = pst("render", scene(tmp_path), "--profile", "full", flag, "nan", "-o", out, "-q")
+    assert rc == 2 and re.search(flag + r".*finite", err), (rc, err)
+    assert not out.exists()
+
+
+# 7. Trace options that would write nothing are refused.
+@pytest.mark.parametrize("args,pattern", [
+    (["--profile", "full", "--trace", "{tmp}/missing/t.fst"], r"--trace: folder '.*missing' does not exist"),
+    (["--profile", "full", "--trace", "{tmp}/t.fst", "--trace-start", "50", "--trace-end", "10"],
+     r"--trace-start: 50 is after --trace-end 10"),
+    (["--trace", "{tmp}/t.fst"], r"--trace: needs --profile"),
+    (["--profile", "full", "--model", "golden", "--trace", "{tmp}/t.fst"], r"--trace: needs --model rtl"),
+])
+def test_7_trace_options(tmp_path, args, pattern):
+    out = tmp_path / "out"
+    args = [a.replace("{tmp}", str(tmp_path)) for a in args]
+    refused(["render", scene(tmp_path), *args, "--size", 4, "-o", out, "-q"], pattern, [out, tmp_path / "t.fst"])
+
+
+# 8. What a flag or a file may ask for is bounded (memory).
+def test_8_huge_image_flag(tmp_path):
+    out = tmp_path / "out"
+    refused(["render", scene(tmp_path), "--size", 16384, "-o", out, "-q"], r"--size: 16384 x 16384 pixels: at most",
+            [out])
+
+
+def test_8_huge_meshes(tmp_path):
+    objs = "\n".join(f'[[objects]]\nmesh = "sphere"\nslices = 1024\nstacks = 1024\ntexture = "t"\n' for _ in range(50))
+    s = scene(tmp_path)
+    s.write_text(s.read_text() + objs)
+    out = tmp_path / "out"
+    refused(["render", s, "--size", 8, "-o", out, "-q"],
+            re.escape(str(s)) + r":\d+: objects\[\d+\]: the scene's meshes exceed 4194304 triangles", [out])
+
+
+# 9. The scene's own size is checked with --size too; --profile takes one value per flag.
+def test_9_scene_size_checked_with_size_flag(tmp_path):
+    for w in ['"wide"', -5, 100000]:
+        s = scene(tmp_path, width=w)
+        out = tmp_path / "out"
+        refused(["render", s, "--size", 8, "-o", out, "-q"], re.escape(str(s)) + r":\d+: image\.width: ", [out])
+
+
+def test_9_regress_profiles_before_scene(tmp_path):
+    s = scene(tmp_path, "one.toml")
+    r = subprocess.run([PST, "regress", "--profile", "full", "--profile", "reduced", str(s), "--size", "4"],
+                       capture_output=True, text=True, timeout=300, env=dict(os.environ, PST_SOURCE_DIR=str(ROOT)))
+    assert r.returncode == 0, r.stdout + r.stderr
+    rows = [l.split()[:2] for l in r.stdout.splitlines() if l.startswith("one ")]
+    assert rows == [["one", "full"], ["one", "reduced"]], r.stdout
+
+
+# 10. Minor classes.
+@pytest.mark.parametrize("obj,field", [
+    ('mesh = "torus"\nmajor_radius = 0.0', r"objects\[0\]\.major_radius: must be positive"),
+    ('mesh = "torus"\nminor_radius = -0.2', r"objects\[0\]\.minor_radius: must be positive"),
+    ('mesh = "cube"\nslices = 8', r"objects\[0\]\.slices: belongs to mesh = \"sphere\""),
+    (PLANE + "\nscale = [1.0, 0.0, 1.0]", r"objects\[0\]\.scale: must be non-zero"),
+])
+def test_10_object_parameters(tmp_path, obj, field):
+    s = scene(tmp_path, object=obj)
+    out = tmp_path / "out"
+    refused(["render", s, "-o", out, "-q"], re.escape(str(s)) + r":\d+: " + field, [out])
+
+
+def tex_and_frags(tmp):
+    t = tmp / "tex.toml"
+    t.write_text('quadric = { A = 1.0 }\nfilter = "sat"\n'
+                 'colormap = { size = 256, ramp = [[0, 0, 0, 0], [1, 1, 1, 1]] }\n')
+    f = tmp / "f.frag"
+    f.write_text("0.1 0.2 0.3  0.01 0 0  0 0.01 0\n")
+    return t, f
+
+
+def test_10_eval_out_is_folder(tmp_path):
+    t, f = tex_and_frags(tmp_path)
+    d = tmp_path / "dir"
+    d.mkdir()
+    refused(["eval", "-t", t, "-f", f, "-o", d], r"-o: '.*dir' is a folder; give a file name")
+    assert list(d.iterdir()) == []
+
+
+def test_10_fragment_numbers(tmp_path):
+    t, f = tex_and_frags(tmp_path)
+    f.write_text("1e-320 0.2 0.3  0.01 0 0  0 0.01 0\n")   # subnormal: a valid number
+    rc, err = pst("eval", "-t", t, "-f", f)
+    assert rc == 0, err
+    f.write_bytes(b"0.1\x00junk 0.2 0.3  0.01 0 0  0 0.01 0\n")  # NUL inside a number
+    refused(["eval", "-t", t, "-f", f], re.escape(str(f)) + r":1: s: not a number: '0\.1\\x00junk'")
+
+
+def test_10_compare_nan_image(tmp_path):
+    oiio = pytest.importorskip("OpenImageIO")
+    import numpy as np
+    p = tmp_path / "nan.exr"
+    buf = oiio.ImageBuf(oiio.ImageSpec(4, 4, 3, oiio.FLOAT))
+    buf.set_pixels(oiio.ROI(), np.full((4, 4, 3), np.nan, dtype=np.float32))
+    assert buf.write(str(p))
+    refused(["compare", p, p], re.escape(str(p)) + r": pixel \(0, 0\): NaN or infinite value")
+
+
+def test_10_failed_write_leaves_no_partial_output(tmp_path):
+    out = tmp_path / "out"
+    (out / "width.png").mkdir(parents=True)     # stands for a full disk at the third image
+    rc, err = pst("render", scene(tmp_path), "-o", out, "-q")
+    assert rc != 0 and "width.png" in err, err
+    assert sorted(p.name for p in out.iterdir()) == ["width.png"], list(out.iterdir())
