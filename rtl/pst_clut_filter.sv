@@ -12,9 +12,14 @@
 //   FilterRecipFrac  RF, fraction bits of the SAT reciprocal ROM: the division's precision.
 //   Datapath         parallel: four channel units, rgba_o combinational. serial: one
 //                    channel unit, channel c = step_i per cycle (0..3); adv_i stores the
-//                    channel, rgba_o is valid at step 3 (channels 0..2 from registers). The
-//                    arithmetic is the same bit for bit; the SAT table needs 3 read ports
+//                    channel, rgba_o is valid at step 3 + Regs (channels 0..2 from registers).
+//                    The arithmetic is the same bit for bit; the SAT table needs 3 read ports
 //                    instead of 12.
+//   Regs             pipeline registers (pst_delay, enabled by en_i; the profile's
+//                    pipeline.colour_regs): the first after the table reads, the second after
+//                    the SAT sums and the MIP blend (before the division). Parallel: rgba_o
+//                    comes Regs advances after f_i, w_i; serial: channel c's reads at step c,
+//                    its result at step c + Regs.
 //
 // Tables: RAMs written through the register port (clk_i, we_i, addr_i, wdata_i); other
 // addresses are ignored. Reads are combinational (a later revision may register them).
@@ -80,13 +85,14 @@ module pst_clut_filter #(
   parameter int WidthFrac       = pst_pkg::WidthFracDefault,
   parameter int FilterRecipFrac = pst_pkg::FilterRecipFracDefault,
   parameter int Datapath        = pst_pkg::DatapathDefault,
+  parameter int Regs            = 0,
   localparam int FW  = FInt + FFrac,              // f
   localparam int WW  = Log2Clut + pst_pkg::WidthExtraIntBits + WidthFrac,  // W = w N in entries, < 4N
   localparam int CB4 = 4 * ColourBits,            // packed RGBA
   localparam int AB  = pst_pkg::RegAddrBits,
   localparam int DB  = pst_pkg::RegDataBits,
   localparam int KB  = pst_pkg::RegControlKindWidth,  // filter kind
-  localparam int SB  = pst_pkg::ColourStepBits
+  localparam int SB  = $clog2(pst_pkg::ColourSteps + Regs)   // serial step 0 .. 3 + Regs
 ) (
   input  logic           clk_i,
   // Table write port (register map; other addresses are ignored).
@@ -102,6 +108,7 @@ module pst_clut_filter #(
   input  logic           rst_ni,
   input  logic [SB-1:0]  step_i,
   input  logic           adv_i,
+  input  logic           en_i,    // Regs > 0: the pipeline registers advance
   output logic [CB4-1:0] rgba_o
 );
 
@@ -136,7 +143,9 @@ module pst_clut_filter #(
   localparam logic [KB-1:0] KindMip        = KB'(pst_pkg::FilterKindMip);
   localparam logic [KB-1:0] KindMipBlended = KB'(pst_pkg::FilterKindMipBlended);
   localparam logic [KB-1:0] KindSat        = KB'(pst_pkg::FilterKindSat);
-  localparam logic [SB-1:0] LastStep       = SB'(pst_pkg::ColourSteps - 1);
+  localparam logic [SB-1:0] LastStep       = SB'(pst_pkg::ColourSteps - 1 + Regs);
+  localparam int R0 = (Regs > 0) ? 1 : 0;   // after the table reads
+  localparam int R1 = (Regs > 1) ? 1 : 0;   // after the sums and the blend
 
   // ---------------------------------------------------------------------------------------
   // Table RAMs and the write decoder
@@ -293,6 +302,28 @@ module pst_clut_filter #(
   localparam int Lanes = (Datapath == pst_pkg::DatapathParallel) ? pst_pkg::ColourSteps : 1;
   logic [Lanes*CB-1:0] lane_out;
 
+  // Shared values past the registers: _1 after the first, _2 after the second.
+  localparam int ShW1 = TFrac + RecipBits + 2 * CountBits + 7 + KB;
+  logic [TFrac-1:0]     t_1;
+  logic [RecipBits-1:0] recip_1, recip_2;
+  logic [CountBits-1:0] nb_1, na_1;
+  logic                 clamp_1, w_ge_n_1, mod_wrap_1, cl_entry_1, count0_1, lo_neg_1, mip_point_1;
+  logic                 clamp_2, w_ge_n_2, cl_entry_2, count0_2, mip_point_2;
+  logic [KB-1:0]        kind_1, kind_2;
+  pst_delay #(.Width(ShW1), .Depth(R0)) u_sh1 (
+    .clk_i, .rst_ni, .en_i,
+    .d_i ({t, recip, nb, na, clamp_i, w_ge_n, mod_wrap, cl_entry, count == '0, lo < 0, mip_point,
+           kind_i}),
+    .q_o ({t_1, recip_1, nb_1, na_1, clamp_1, w_ge_n_1, mod_wrap_1, cl_entry_1, count0_1, lo_neg_1,
+           mip_point_1, kind_1})
+  );
+  localparam int ShW2 = RecipBits + 5 + KB;
+  pst_delay #(.Width(ShW2), .Depth(R1)) u_sh2 (
+    .clk_i, .rst_ni, .en_i,
+    .d_i ({recip_1, clamp_1, w_ge_n_1, cl_entry_1, count0_1, mip_point_1, kind_1}),
+    .q_o ({recip_2, clamp_2, w_ge_n_2, cl_entry_2, count0_2, mip_point_2, kind_2})
+  );
+
   for (genvar l = 0; l < Lanes; l++) begin : g_ch
     logic [1:0]              ch;      // the channel of this lane
     logic [CB-1:0]           ca, cb, first, last, entry;
@@ -306,45 +337,58 @@ module pst_clut_filter #(
     logic [CB-1:0]           mean;    // <= 2^CB - 1: a mean of CB-bit entries
     logic [CB-1:0]           div_ch, sat_ch, out_ch;
 
-    assign ch    = (Datapath == pst_pkg::DatapathParallel) ? SB'(l) : step_i;
-    assign ca    = CB'(lev_a >> (ch * CB));
-    assign cb    = CB'(lev_b >> (ch * CB));
-    assign first = CB'(clut_first >> (ch * CB));
-    assign last  = CB'(clut_last >> (ch * CB));
-    assign entry = CB'(clut_e >> (ch * CB));
+    assign ch    = (Datapath == pst_pkg::DatapathParallel) ? 2'(l) : 2'(step_i);
+    // Reads (before the first register): the entries of this channel.
+    logic [CB-1:0]      ca_d, cb_d, first_d, last_d, entry_d, entry_1, entry_2;
+    logic [SatBits-1:0] sh_d, sl_d, sn_d;
+    assign ca_d    = CB'(lev_a >> (ch * CB));
+    assign cb_d    = CB'(lev_b >> (ch * CB));
+    assign first_d = CB'(clut_first >> (ch * CB));
+    assign last_d  = CB'(clut_last >> (ch * CB));
+    assign entry_d = CB'(clut_e >> (ch * CB));
     // SAT reads: csat at the high end (hidx), the low end (lo mod N) and N-1.
-    assign sh    = sat_q[{hidx, ch}];
-    assign sl    = sat_q[{lm, ch}];
-    assign sn    = sat_q[{Log2Clut'(N - 1), ch}];
+    assign sh_d    = sat_q[{hidx, ch}];
+    assign sl_d    = sat_q[{lm, ch}];
+    assign sn_d    = sat_q[{Log2Clut'(N - 1), ch}];
+    pst_delay #(.Width(5*CB + 3*SatBits), .Depth(R0)) u_r0 (
+      .clk_i, .rst_ni, .en_i, .d_i ({ca_d, cb_d, first_d, last_d, entry_d, sh_d, sl_d, sn_d}),
+      .q_o ({ca, cb, first, last, entry_1, sh, sl, sn})
+    );
 
     // MIP: round half up of lerp(a, b, t); the result lies between a and b.
     assign d      = $signed({1'b0, cb}) - $signed({1'b0, ca});
-    assign acc    = ($signed(AccW'(ca)) <<< TFrac) + AccW'(d) * $signed(AccW'(t)) +
+    assign acc    = ($signed(AccW'(ca)) <<< TFrac) + AccW'(d) * $signed(AccW'(t_1)) +
                     $signed(AccW'(1) <<< (TFrac - 1));
-    assign mip_ch = CB'(acc >>> TFrac);
 
     // SAT sums (all terms non-negative; see the header).
-    assign sum_mod = SumBits'(sh) + (mod_wrap ? SumBits'(sn) : '0) - SumBits'(sl);
-    assign sum_cl  = SumBits'(nb) * SumBits'(first) + SumBits'(sh) -
-                     ((lo < 0) ? '0 : SumBits'(sl)) + SumBits'(na) * SumBits'(last);
-    assign sum     = clamp_i ? sum_cl : sum_mod;
+    assign sum_mod = SumBits'(sh) + (mod_wrap_1 ? SumBits'(sn) : '0) - SumBits'(sl);
+    assign sum_cl  = SumBits'(nb_1) * SumBits'(first) + SumBits'(sh) -
+                     (lo_neg_1 ? '0 : SumBits'(sl)) + SumBits'(na_1) * SumBits'(last);
+    logic [CB-1:0]      mip_d, mean_d;
+    logic [SumBits-1:0] sum_d;
+    assign mip_d  = CB'(acc >>> TFrac);
+    assign sum_d  = clamp_1 ? sum_cl : sum_mod;
+    assign mean_d = CB'(((SatBits + 1)'(sn) + (SatBits + 1)'(N / 2)) >> Log2Clut);
+    pst_delay #(.Width(3*CB + SumBits), .Depth(R1)) u_r1 (
+      .clk_i, .rst_ni, .en_i, .d_i ({mip_d, mean_d, entry_1, sum_d}), .q_o ({mip_ch, mean, entry_2, sum})
+    );
+    assign entry = entry_2;
 
-    assign prod   = ProdBits'(sum) * ProdBits'(recip);
+    assign prod   = ProdBits'(sum) * ProdBits'(recip_2);
     assign quo    = QBits'((prod + (ProdBits'(1) << (RF - 1))) >> RF);
     assign div_ch = (quo > QBits'(MaxC)) ? MaxC : quo[CB-1:0];
-    assign mean   = CB'(((SatBits + 1)'(sn) + (SatBits + 1)'(N / 2)) >> Log2Clut);
 
     always_comb begin
-      if (!clamp_i && w_ge_n) begin
+      if (!clamp_2 && w_ge_n_2) begin
         sat_ch = mean;
-      end else if (clamp_i ? cl_entry : (count == '0)) begin
+      end else if (clamp_2 ? cl_entry_2 : count0_2) begin
         sat_ch = entry;
       end else begin
         sat_ch = div_ch;
       end
-      unique case (kind_i)
+      unique case (kind_2)
         KindNone:                out_ch = entry;
-        KindMip, KindMipBlended: out_ch = mip_point ? entry : mip_ch;
+        KindMip, KindMipBlended: out_ch = mip_point_2 ? entry : mip_ch;
         default:                 out_ch = sat_ch;
       endcase
     end
@@ -355,13 +399,15 @@ module pst_clut_filter #(
   if (Datapath == pst_pkg::DatapathParallel) begin : g_out_par
     assign rgba_o = lane_out;
     logic unused_serial;
-    assign unused_serial = ^{rst_ni, step_i, adv_i};
+    assign unused_serial = ^{step_i, adv_i};
   end else begin : g_out_ser
-    // Channels 0..2 stored as they are computed; channel 3 is live at step 3.
+    // Channels 0..2 stored as they come out (step c + Regs); channel 3 is live at the last step.
     logic [3*CB-1:0] ch_q;
+    logic [SB:0]     out_ch;   // the channel at the output: step - Regs (negative: none yet)
+    assign out_ch = {1'b0, step_i} - (SB + 1)'(Regs);
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) ch_q <= '0;
-      else if (adv_i && step_i != LastStep) ch_q[step_i*CB +: CB] <= lane_out;
+      else if (adv_i && !out_ch[SB] && step_i != LastStep) ch_q[2'(out_ch)*CB +: CB] <= lane_out;
     end
     assign rgba_o = {lane_out, ch_q};
   end

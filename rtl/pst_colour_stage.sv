@@ -3,6 +3,10 @@
 // channel per cycle (pst_pkg::ColourSteps steps, counted here); the fragment leaves [C] at
 // the last (valid_o), when the next stage takes it. The tables are written through the
 // register port (we_i, addr_i, wdata_i).
+// Pipeline registers (ColourRegs, the profile's pipeline.colour_regs; pst_clut_filter's Regs):
+// parallel: the fragment leaves [C] at once into them with side_i beside it, valid_o and
+// side_o come ColourRegs cycles later and the pipeline stalls while [D] refuses its end
+// (busy_o: a fragment is in the registers); serial: ColourSteps + ColourRegs steps in [C].
 //
 // Parameters: the profile's formats and choices (pst_top's header).
 `include "pst_pkg.sv"
@@ -16,6 +20,8 @@ module pst_colour_stage #(
   parameter int ColourBits      = pst_pkg::ColourBitsDefault,
   parameter int WidthFrac       = pst_pkg::WidthFracDefault,
   parameter int FilterRecipFrac = pst_pkg::FilterRecipFracDefault,
+  parameter int ColourRegs      = pst_pkg::ColourRegsDefault,
+  parameter int SideW           = 1,
   localparam int FW  = FInt + FFrac,
   localparam int WW  = Log2Clut + pst_pkg::WidthExtraIntBits + WidthFrac,
   localparam int CB4 = 4 * ColourBits,
@@ -32,29 +38,58 @@ module pst_colour_stage #(
   output logic                            ready_o,
   input  logic [FW-1:0]                   f_i,
   input  logic [WW-1:0]                   w_i,
+  input  logic [SideW-1:0]                side_i,   // carried to side_o with the fragment
   output logic                            valid_o,
   input  logic                            ready_i,
-  output logic [CB4-1:0]                  rgba_o
+  output logic [CB4-1:0]                  rgba_o,
+  output logic [SideW-1:0]                side_o,
+  output logic                            busy_o
 );
 
-  localparam int SB = pst_pkg::ColourStepBits;
+  localparam bit Serial = (Datapath == pst_pkg::DatapathSerial);
+  localparam int SB = $clog2(pst_pkg::ColourSteps + ColourRegs);
   logic          done;   // RGBA is valid this cycle
   logic [SB-1:0] step_q;
-  assign done = (Datapath == pst_pkg::DatapathParallel) || (step_q == SB'(pst_pkg::ColourSteps - 1));
+  logic          en;     // pst_clut_filter's registers advance
+  assign done = !Serial || (step_q == SB'(pst_pkg::ColourSteps - 1 + ColourRegs));
   pst_step_counter #(.Width(SB)) u_step (
     .clk_i, .rst_ni, .valid_i, .done_i (done), .ready_i, .step_o (step_q)
   );
 
   pst_clut_filter #(
     .FInt(FInt), .FFrac(FFrac), .Log2Clut(Log2Clut), .ColourBits(ColourBits),
-    .WidthFrac(WidthFrac), .FilterRecipFrac(FilterRecipFrac), .Datapath(Datapath)
+    .WidthFrac(WidthFrac), .FilterRecipFrac(FilterRecipFrac), .Datapath(Datapath),
+    .Regs(ColourRegs)
   ) u_clut (
     .clk_i, .we_i, .addr_i, .wdata_i, .f_i, .w_i, .clamp_i, .kind_i, .rst_ni,
-    .step_i (step_q), .adv_i (valid_i & ~done), .rgba_o
+    .step_i (step_q), .adv_i (valid_i & ~done), .en_i (en), .rgba_o
   );
 
-  assign valid_o = valid_i & done;
-  assign ready_o = done & ready_i;
+  if (Serial || ColourRegs == 0) begin : g_hold
+    assign valid_o = valid_i & done;
+    assign ready_o = done & ready_i;
+    assign side_o  = side_i;
+    assign busy_o  = 1'b0;
+    assign en      = valid_i & ~done;
+  end else begin : g_flow
+    logic valid_e;
+    assign en      = ~(valid_o & ~ready_i);
+    assign ready_o = en;
+    pst_delay #(.Width(1), .Depth(ColourRegs), .Reset(1'b1)) u_valid (
+      .clk_i, .rst_ni, .en_i (en), .d_i (valid_i), .q_o (valid_e));
+    pst_delay #(.Width(SideW), .Depth(ColourRegs)) u_side (
+      .clk_i, .rst_ni, .en_i (en), .d_i (side_i), .q_o (side_o));
+    assign valid_o = valid_e;
+    localparam int IW = $clog2(ColourRegs + 2);
+    logic [IW-1:0] inflight_q;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) inflight_q <= '0;
+      else if (en) inflight_q <= inflight_q + IW'(valid_i) - IW'(valid_e);
+    end
+    assign busy_o = (inflight_q != '0);
+    logic unused_done;
+    assign unused_done = done;
+  end
 
 endmodule
 

@@ -28,6 +28,11 @@
 //                               ...L1).
 //   Serial                      0: all six products at once; 1: one product per cycle
 //                               (the profile's datapath = "serial").
+//   Regs                        pipeline registers (Serial = 0 only; the profile's
+//                               pipeline.width_regs): the first after the dot products gx, gy,
+//                               the second after ax^2 + ay^2 (other norms: after the norm), the
+//                               rest inside pst_isqrt (other norms: after the second); w_o
+//                               comes Regs advances (en_i) after grad_i, j_i.
 // Steps (Serial): pst_pkg::WidthProducts products, then for the euclidean norm
 // pst_pkg::WidthEuclidSquares squares and NSq root cycles; NSteps in all (16 in reduced).
 `include "pst_pkg.sv"
@@ -42,6 +47,7 @@ module pst_filter_width #(
   parameter int WidthFrac    = pst_pkg::WidthFracDefault,
   parameter int FilterNorm   = pst_pkg::FilterNormDefault,
   parameter bit Serial       = 1'b0,
+  parameter int Regs         = 0,
   // Derived widths (not profile keys).
   localparam int GW = GradInt + GradFrac,           // one grad_i component
   localparam int JW = JacobianInt + JacobianFrac,   // one j_i entry
@@ -51,6 +57,7 @@ module pst_filter_width #(
   input  logic            rst_ni,
   input  logic [pst_pkg::StepBits-1:0] step_i,   // Serial only: product 3 d + k (0..5), then the norm's steps
   input  logic            adv_i,    // Serial only: store this step's partial sums
+  input  logic            en_i,     // Regs > 0: the pipeline advances
   output logic            done_o,   // Serial only: w_o is valid (the last step; always 1 if not Serial)
   input  logic [3*GW-1:0] grad_i,   // element k at [k*GW +: GW]
   input  logic [6*JW-1:0] j_i,      // ds/dx, dt/dx, dr/dx, ds/dy, dt/dy, dr/dy
@@ -78,20 +85,26 @@ module pst_filter_width #(
   localparam int NSteps   = (!Serial) ? 1 : Euclid ? RootStep + NSq : pst_pkg::WidthProducts;
   localparam int LastStep = NSteps - 1;
   localparam int SB = pst_pkg::StepBits;
+  // Pipeline registers (parallel): after g, after the squares (or the norm), the rest.
+  localparam int R0 = (!Serial && Regs > 0) ? 1 : 0;
+  localparam int R1 = (!Serial && Regs > 1) ? 1 : 0;
+  localparam int RS = (!Serial && Regs > 2) ? Regs - 2 : 0;
   // (Not '1: Yosys 0.23 reads '1 in a parameter declaration as the 1-bit value 1.)
   localparam logic [WW-1:0] WMax = {WW{1'b1}};
 
   // Step 1 per direction d (0: x with dsdx = j[0..2], 1: y with dsdy = j[3..5]): gd.
   logic [2*XW-1:0] g;    // g_d at [d*XW +: XW]
   if (!Serial) begin : g_par
+    logic [2*XW-1:0] g_d;
     for (genvar d = 0; d < 2; d++) begin : g_dir
-      assign g[d*XW +: XW] =
+      assign g_d[d*XW +: XW] =
           XW'($signed(grad_i[0*GW +: GW])) * XW'($signed(j_i[(3*d+0)*JW +: JW])) +
           XW'($signed(grad_i[1*GW +: GW])) * XW'($signed(j_i[(3*d+1)*JW +: JW])) +
           XW'($signed(grad_i[2*GW +: GW])) * XW'($signed(j_i[(3*d+2)*JW +: JW]));
     end
+    pst_delay #(.Width(2*XW), .Depth(R0)) u_reg_g (.clk_i, .rst_ni, .en_i, .d_i (g_d), .q_o (g));
     logic unused_serial;
-    assign unused_serial = ^{clk_i, rst_ni, step_i, adv_i};
+    assign unused_serial = ^{step_i, adv_i};
     assign done_o = 1'b1;
   end else begin : g_ser
     // Product 3 d + k = step_i: grad_k ds_k/d(x or y) added to direction d's sum (k = 0
@@ -124,8 +137,15 @@ module pst_filter_width #(
       end
     end
     assign sum = ((k == 2'd0) ? '0 : ((d == 2'd0) ? gx_q : gy_q)) + XW'(gk) * XW'(jk);
-    // Direction y is live at step 5, held after it (the euclidean norm's steps).
-    assign g   = prod_step ? {sum, gx_q} : {gy_q, gx_q};
+    // Direction y is live at step 5, held after it (the euclidean norm's steps, which take
+    // both from the registers: the product does not run into the squares).
+    if (Euclid) begin : g_held
+      assign g = {gy_q, gx_q};
+    end else begin : g_live
+      assign g = prod_step ? {sum, gx_q} : {gy_q, gx_q};
+    end
+    logic unused_en;
+    assign unused_en = en_i;
     assign done_o = (32'(step_i) == LastStep);
   end
 
@@ -147,10 +167,11 @@ module pst_filter_width #(
   // Step 4: the norm (at most WW + 1 bits), then saturate to WW bits.
   logic [WW:0] nrm;
   if (Euclid && !Serial) begin : g_euclid
-    logic [SqW-1:0] sumsq;
+    logic [SqW-1:0] sumsq_d, sumsq;
     logic [WW:0]    root;   // pst_isqrt: ceil(SqW / 2) = WW + 1 bits
-    assign sumsq = SqW'(ax) * SqW'(ax) + SqW'(ay) * SqW'(ay);
-    pst_isqrt #(.InWidth(SqW)) u_isqrt (.x_i (sumsq), .y_o (root));
+    assign sumsq_d = SqW'(ax) * SqW'(ax) + SqW'(ay) * SqW'(ay);
+    pst_delay #(.Width(SqW), .Depth(R1)) u_reg_sq (.clk_i, .rst_ni, .en_i, .d_i (sumsq_d), .q_o (sumsq));
+    pst_isqrt #(.InWidth(SqW), .Regs(RS)) u_isqrt (.clk_i, .rst_ni, .en_i, .x_i (sumsq), .y_o (root));
     assign nrm = root;
   end else if (Euclid) begin : g_euclid_ser
     // xs_q: ax^2 (step 6), ax^2 + ay^2 (step 7), then shifted left two digits (4 bits) a cycle;
@@ -203,11 +224,15 @@ module pst_filter_width #(
     assign unused_root = ^root_d[RW-1:WW+1];
   end else if (FilterNorm == pst_pkg::FilterNormMaxHalfMin) begin : g_max_half_min
     logic [WW-1:0] amax, amin;
-    assign amax = (ax >= ay) ? ax : ay;
-    assign amin = (ax >= ay) ? ay : ax;
-    assign nrm  = (WW + 1)'(amax) + ((WW + 1)'(amin) >> 1);
+    logic [WW:0]   nrm_d;
+    assign amax  = (ax >= ay) ? ax : ay;
+    assign amin  = (ax >= ay) ? ay : ax;
+    assign nrm_d = (WW + 1)'(amax) + ((WW + 1)'(amin) >> 1);
+    pst_delay #(.Width(WW + 1), .Depth(R1 + RS)) u_reg_n (.clk_i, .rst_ni, .en_i, .d_i (nrm_d), .q_o (nrm));
   end else begin : g_l1
-    assign nrm = (WW + 1)'(ax) + (WW + 1)'(ay);
+    logic [WW:0] nrm_d;
+    assign nrm_d = (WW + 1)'(ax) + (WW + 1)'(ay);
+    pst_delay #(.Width(WW + 1), .Depth(R1 + RS)) u_reg_n (.clk_i, .rst_ni, .en_i, .d_i (nrm_d), .q_o (nrm));
   end
   assign w_o = nrm[WW] ? WMax : nrm[WW-1:0];
 
@@ -217,10 +242,14 @@ module pst_filter_width #(
     assert (Euclid || FilterNorm == pst_pkg::FilterNormMaxHalfMin || FilterNorm == pst_pkg::FilterNormL1)
       else $error("pst_filter_width: FilterNorm must be euclid, max_half_min or l1");
     assert (NSteps - 1 <= pst_pkg::StepMax) else $error("pst_filter_width: %0d steps do not fit step_i", NSteps);
+    assert (!Serial || Regs == 0) else $error("pst_filter_width: the serial unit has no pipeline registers");
   end
-  // W is at least the larger component and at most their sum (every norm).
+  // W is at least the larger component and at most their sum (every norm), with the ax, ay
+  // of the same fragment (R1 + RS registers earlier).
+  logic [WW-1:0] ax_chk, ay_chk;
+  pst_delay #(.Width(2*WW), .Depth(R1 + RS)) u_chk (.clk_i, .rst_ni, .en_i, .d_i ({ay, ax}), .q_o ({ay_chk, ax_chk}));
   always_comb begin
-    if (done_o) assert (w_o >= ax && w_o >= ay && (WW + 1)'(w_o) <= (WW + 1)'(ax) + (WW + 1)'(ay))
+    if (done_o) assert (w_o >= ax_chk && w_o >= ay_chk && (WW + 1)'(w_o) <= (WW + 1)'(ax_chk) + (WW + 1)'(ay_chk))
       else $error("pst_filter_width: W outside [max(|Wx|, |Wy|), |Wx| + |Wy|]");
   end
 `endif

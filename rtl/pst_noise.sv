@@ -211,14 +211,24 @@ module pst_noise #(
     end
   end
 
-  // The hash table T (Rayshade's 4096 x 12 or the 256 x 8 permutation).
-  logic [HW-1:0] rom [1 << HW];
+  // The hash table T (Rayshade's 4096 x 12 or the 256 x 8 permutation) in two banks: T[2a]
+  // in rom_e[a], T[2a + 1] in rom_o[a]. The two lookups of a corner pair (X and X + 1, or
+  // h ^ Y and h ^ (Y + 1), h ^ Z and h ^ (Z + 1)) always differ in bit 0, so a pair takes one
+  // read of each bank (parallel: 7 pairs, 7 read ports per half-size bank instead of 14 on
+  // the whole table); a lookup without a partner reads both banks at its address and picks
+  // by bit 0.
+  localparam int HD = (1 << HW) / 2;   // bank depth
+  logic [HW-1:0] rom_e [HD];
+  logic [HW-1:0] rom_o [HD];
   if (NoiseHash == pst_pkg::NoiseHashRayshade) begin : g_rayshade
-    initial $readmemh({`PST_ROM_DIR, "/hash4096.memh"}, rom);
+    initial $readmemh({`PST_ROM_DIR, "/hash4096_even.memh"}, rom_e);
+    initial $readmemh({`PST_ROM_DIR, "/hash4096_odd.memh"}, rom_o);
   end else if (NoiseHash == pst_pkg::NoiseHashPerm256) begin : g_perm256
-    initial $readmemh({`PST_ROM_DIR, "/perm256.memh"}, rom);
+    initial $readmemh({`PST_ROM_DIR, "/perm256_even.memh"}, rom_e);
+    initial $readmemh({`PST_ROM_DIR, "/perm256_odd.memh"}, rom_o);
   end else begin : g_perlin256
-    initial $readmemh({`PST_ROM_DIR, "/perlin256.memh"}, rom);
+    initial $readmemh({`PST_ROM_DIR, "/perlin256_even.memh"}, rom_e);
+    initial $readmemh({`PST_ROM_DIR, "/perlin256_odd.memh"}, rom_o);
   end
   // The chain's combining step: XOR (rayshade, perm256) or an HW-bit add (perlin256).
   function automatic logic [HW-1:0] chain_op(logic [HW-1:0] h, logic [HW-1:0] x);
@@ -233,26 +243,71 @@ module pst_noise #(
   if (NoiseSteps == 1) begin : g_hash_par
     logic [2*HW-1:0] h1;   // T[X_bx] at [bx*HW +: HW]
     logic [4*HW-1:0] h2;   // T[h1 ^ Y_by] at [(bx + 2 by)*HW +: HW]
-    for (genvar bx = 0; bx < 2; bx++) begin : g_h1
-      assign h1[bx*HW +: HW] = rom[idx[bx*HW +: HW]];
-    end
-    for (genvar i = 0; i < 4; i++) begin : g_h2
-      assign h2[i*HW +: HW] = rom[chain_op(h1[(i%2)*HW +: HW], idx[(2 + i/2)*HW +: HW])];
+    // Pair X_0, X_1: one read per bank.
+    logic [HW-1:0] x0, x1, xe, xo;
+    assign x0 = idx[0*HW +: HW];
+    assign x1 = idx[1*HW +: HW];
+    assign xe = rom_e[x0[0] ? x1[HW-1:1] : x0[HW-1:1]];
+    assign xo = rom_o[x0[0] ? x0[HW-1:1] : x1[HW-1:1]];
+    assign h1 = x0[0] ? {xe, xo} : {xo, xe};
+    logic unused_x1;   // bit 0 of the partner is ~x0[0]
+    assign unused_x1 = x1[0];
+    // Pairs h1[bx] ^ Y_0, h1[bx] ^ Y_1.
+    for (genvar bx = 0; bx < 2; bx++) begin : g_h2
+      logic [HW-1:0] a0, a1, de, dd;
+      assign a0 = chain_op(h1[bx*HW +: HW], idx[2*HW +: HW]);
+      assign a1 = chain_op(h1[bx*HW +: HW], idx[3*HW +: HW]);
+      assign de = rom_e[a0[0] ? a1[HW-1:1] : a0[HW-1:1]];
+      assign dd = rom_o[a0[0] ? a0[HW-1:1] : a1[HW-1:1]];
+      assign h2[bx*HW +: HW]       = a0[0] ? dd : de;
+      assign h2[(bx + 2)*HW +: HW] = a0[0] ? de : dd;
+      logic unused_a1;
+      assign unused_a1 = a1[0];
     end
     for (genvar c = 0; c < 8; c++) begin : g_c
       assign h2_d[c*HW +: HW] = h2[(c%4)*HW +: HW];
       assign z_d[c*HW +: HW]  = idx[(4 + c/4)*HW +: HW];
     end
   end else begin : g_hash_ser
+    // The step's corners, three chained lookups each (only the h1 lookups of corners
+    // 2j, 2j + 1, X_0 and X_1, pair up: the others read both banks).
+    logic [CPS*HW-1:0] h1;
     for (genvar i = 0; i < CPS; i++) begin : g_chain
       logic [2:0]    c;
-      logic [HW-1:0] x, y, h1;
+      logic [HW-1:0] y, a, de, dd;
       assign c  = corner_of(tok[0 +: 3], 3'(i));
-      assign x  = c[0] ? idx[1*HW +: HW] : idx[0*HW +: HW];
       assign y  = c[1] ? idx[3*HW +: HW] : idx[2*HW +: HW];
       assign z_d[i*HW +: HW] = c[2] ? idx[5*HW +: HW] : idx[4*HW +: HW];
-      assign h1 = rom[x];
-      assign h2_d[i*HW +: HW] = rom[chain_op(h1, y)];
+      assign a  = chain_op(h1[i*HW +: HW], y);
+      assign de = rom_e[a[HW-1:1]];
+      assign dd = rom_o[a[HW-1:1]];
+      assign h2_d[i*HW +: HW] = a[0] ? dd : de;
+      logic unused_c;
+      assign unused_c = c[0];
+    end
+    if (CPS == 1) begin : g_h1_single
+      logic [HW-1:0] x, de, dd;
+      logic [2:0]    c;
+      assign c  = corner_of(tok[0 +: 3], 3'd0);
+      assign x  = c[0] ? idx[1*HW +: HW] : idx[0*HW +: HW];
+      assign de = rom_e[x[HW-1:1]];
+      assign dd = rom_o[x[HW-1:1]];
+      assign h1 = x[0] ? dd : de;
+      logic unused_c;
+      assign unused_c = ^c[2:1];
+    end else begin : g_h1_pairs
+      // Corners 2j (x = X_0) and 2j + 1 (X_1) share one read per bank.
+      logic [HW-1:0] x0, x1, xe, xo;
+      assign x0 = idx[0*HW +: HW];
+      assign x1 = idx[1*HW +: HW];
+      assign xe = rom_e[x0[0] ? x1[HW-1:1] : x0[HW-1:1]];
+      assign xo = rom_o[x0[0] ? x0[HW-1:1] : x1[HW-1:1]];
+      for (genvar j = 0; j < CPS / 2; j++) begin : g_pair
+        assign h1[(2*j)*HW +: HW]     = x0[0] ? xo : xe;
+        assign h1[(2*j + 1)*HW +: HW] = x0[0] ? xe : xo;
+      end
+      logic unused_x1;
+      assign unused_x1 = x1[0];
     end
   end
   pst_delay #(.Width(2*CPS*HW), .Depth(NoiseRegs > 0 ? 1 : 0)) u_b0 (
@@ -260,34 +315,85 @@ module pst_noise #(
   );
 
   // ---- 3. level 3 and the value table (before b1) -----------------------------------------
-  // h3 = T[h2 ^ Z]; value ROM: R[m + k], m = h3 & 0xff.
+  // h3 = T[h2 ^ Z] (parallel: corners c and c + 4, Z_0 and Z_1, pair up); value ROM R[m + k],
+  // m = h3 & 0xff, in four banks by address mod 4 (value_b<b>[j] = R[4 j + b]): a corner's four
+  // consecutive entries are one read of each bank, rotated by m mod 4 (8 read ports per
+  // 67-entry bank instead of 32 on the whole table in full).
   // (unread, and dropped by synthesis, when the corners are grad12)
+  localparam int VD = 67;   // bank depth: R[0..266] (bank 3's entry 66 is padding)
   /* verilator lint_off UNUSEDSIGNAL */
-  logic [15:0] value_rom [0:266];
+  logic [15:0] value_b0 [VD];
+  logic [15:0] value_b1 [VD];
+  logic [15:0] value_b2 [VD];
+  logic [15:0] value_b3 [VD];
   /* verilator lint_on UNUSEDSIGNAL */
-  initial $readmemh({`PST_ROM_DIR, "/value16.memh"}, value_rom);
+  initial $readmemh({`PST_ROM_DIR, "/value16_b0.memh"}, value_b0);
+  initial $readmemh({`PST_ROM_DIR, "/value16_b1.memh"}, value_b1);
+  initial $readmemh({`PST_ROM_DIR, "/value16_b2.memh"}, value_b2);
+  initial $readmemh({`PST_ROM_DIR, "/value16_b3.memh"}, value_b3);
+
+  logic [CPS*HW-1:0] h3;   // corner i at [i*HW +: HW]
+  if (NoiseSteps == 1) begin : g_h3_pairs
+    for (genvar i = 0; i < 4; i++) begin : g_pair
+      logic [HW-1:0] a0, a1, de, dd;
+      assign a0 = chain_op(h2_q[i*HW +: HW], z_q[i*HW +: HW]);
+      assign a1 = chain_op(h2_q[(i + 4)*HW +: HW], z_q[(i + 4)*HW +: HW]);
+      assign de = rom_e[a0[0] ? a1[HW-1:1] : a0[HW-1:1]];
+      assign dd = rom_o[a0[0] ? a0[HW-1:1] : a1[HW-1:1]];
+      assign h3[i*HW +: HW]       = a0[0] ? dd : de;
+      assign h3[(i + 4)*HW +: HW] = a0[0] ? de : dd;
+      logic unused_a1;
+      assign unused_a1 = a1[0];
+    end
+  end else begin : g_h3_single
+    for (genvar i = 0; i < CPS; i++) begin : g_corner
+      logic [HW-1:0] a, de, dd;
+      assign a  = chain_op(h2_q[i*HW +: HW], z_q[i*HW +: HW]);
+      assign de = rom_e[a[HW-1:1]];
+      assign dd = rom_o[a[HW-1:1]];
+      assign h3[i*HW +: HW] = a[0] ? dd : de;
+    end
+  end
 
   logic [CPS*4*RW-1:0] r_d, r_q;   // corner i: R[m + k] at [(4i + k)*RW +: RW]
   logic [CPS*4-1:0]    hb_d, hb_q; // corner i: m[3:0] (grad12's direction) at [4i +: 4]
   for (genvar i = 0; i < CPS; i++) begin : g_value
-    logic [HW-1:0] h3;
     logic [7:0]    m;
-    assign h3 = rom[chain_op(h2_q[i*HW +: HW], z_q[i*HW +: HW])];
-    assign m  = h3[7:0];
+    logic [4*16-1:0] bank;   // bank b's entry: R[m + ((b - m) mod 4)] at [b*16 +: 16]
+    assign m  = h3[i*HW +: 8];
     assign hb_d[4*i +: 4] = m[3:0];
     if (NoiseCorner == pst_pkg::NoiseCornerGrad12) begin : g_unused_m
-      logic unused_m;  // grad12 corners use the hash's low four bits only
-      assign unused_m = ^m[7:4];
+      logic unused_m;  // grad12 corners use the hash's low four bits only, no value table
+      assign unused_m = ^{m[7:4], bank};
+    end
+    for (genvar b = 0; b < 4; b++) begin : g_bank
+      logic [8:0] e;   // the entry of bank b among R[m .. m + 3]
+      logic [6:0] j;
+      logic [1:0] off;
+      assign off = 2'(b) - m[1:0];
+      assign e = {1'b0, m} + {7'b0, off};
+      assign j = e[8:2];
+      if (b == 0) begin : g_b0
+        assign bank[b*16 +: 16] = value_b0[j];
+      end else if (b == 1) begin : g_b1
+        assign bank[b*16 +: 16] = value_b1[j];
+      end else if (b == 2) begin : g_b2
+        assign bank[b*16 +: 16] = value_b2[j];
+      end else begin : g_b3
+        assign bank[b*16 +: 16] = value_b3[j];
+      end
+      logic unused_e;
+      assign unused_e = ^e[1:0];
     end
     if (HW > 8) begin : g_unused_h3
       logic unused_h3;
-      assign unused_h3 = ^h3[HW-1:8];
+      assign unused_h3 = ^h3[i*HW+8 +: HW-8];
     end
     for (genvar k = 0; k < 4; k++) begin : g_r
       if (NoiseCorner != pst_pkg::NoiseCornerGrad12 &&
           (k == 0 || NoiseCorner == pst_pkg::NoiseCornerValueGradient)) begin : g_read
         logic [15:0] r16;
-        assign r16 = value_rom[{1'b0, m} + 9'(k)];
+        assign r16 = bank[2'(m[1:0] + 2'(k))*16 +: 16];
         assign r_d[(4*i+k)*RW +: RW] = r16[15 -: RW];  // floor: value16 >>> (15 - VF)
         if (RW < 16) begin : g_unused_low
           logic unused_r16;

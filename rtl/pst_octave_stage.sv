@@ -160,32 +160,58 @@ module pst_octave_stage #(
   logic quad_done;   // the quadric's result is valid (always, when parallel)
   assign last_cycle = (32'(cyc_q) + 1 >= Cycles) && quad_done;
 
-  always_comb begin
-    int c, cn, ct;
-    c  = 32'(cyc_q);
+  // The schedule of cycle c: {noise_on, npass, nstep, xf_on, xpass, xrow, tm_on, tpass, trow}.
+  localparam int SchW = 3 * PassBits + 10;
+  function automatic logic [SchW-1:0] sched(input int c);
+    int                  cn, ct;
+    logic                no, xo, to;
+    logic [PassBits-1:0] np, xp, tp;
+    logic [2:0]          ns;
+    logic [1:0]          xr, tr;
     cn = c - SR;
     ct = c - SR - NR;
     if (!Serial) begin
-      noise_on = 1'b1;
-      npass    = PassBits'(c / NoiseSteps);
-      nstep    = 3'(c % NoiseSteps);
-      xf_on    = 1'b0;
-      xpass    = '0;
-      xrow     = '0;
-      tm_on    = 1'b0;
-      tpass    = '0;
-      trow     = '0;
+      no = 1'b1;
+      np = PassBits'(c / NoiseSteps);
+      ns = 3'(c % NoiseSteps);
+      xo = 1'b0;
+      xp = '0;
+      xr = '0;
+      to = 1'b0;
+      tp = '0;
+      tr = '0;
     end else begin
-      noise_on = (c >= SR) && (c < SR + Passes * NoiseSteps);
-      npass    = noise_on ? PassBits'(cn / NoiseSteps) : '0;
-      nstep    = noise_on ? 3'(cn % NoiseSteps) : '0;
-      xf_on    = (c < Passes * NoiseSteps) && (c % NoiseSteps < SR);
-      xpass    = PassBits'(c / NoiseSteps);
-      xrow     = 2'(c % NoiseSteps);
-      tm_on    = (ct >= NoiseSteps) && (ct < (Passes + 1) * NoiseSteps) && (ct % NoiseSteps < SR);
-      tpass    = tm_on ? PassBits'(ct / NoiseSteps - 1) : '0;
-      trow     = tm_on ? 2'(ct % NoiseSteps) : '0;
+      no = (c >= SR) && (c < SR + Passes * NoiseSteps);
+      np = no ? PassBits'(cn / NoiseSteps) : '0;
+      ns = no ? 3'(cn % NoiseSteps) : '0;
+      xo = (c < Passes * NoiseSteps) && (c % NoiseSteps < SR);
+      xp = PassBits'(c / NoiseSteps);
+      xr = 2'(c % NoiseSteps);
+      to = (ct >= NoiseSteps) && (ct < (Passes + 1) * NoiseSteps) && (ct % NoiseSteps < SR);
+      tp = to ? PassBits'(ct / NoiseSteps - 1) : '0;
+      tr = to ? 2'(ct % NoiseSteps) : '0;
     end
+    sched = {no, np, ns, xo, xp, xr, to, tp, tr};
+  endfunction
+
+  // Parallel: decoded from cyc_q. Serial: registered, the next cycle's decoded from cyc_d
+  // (the decode stays off the term rows' multiplier paths; sch_q = sched(cyc_q) always).
+  logic [SchW-1:0] sch, sch_d;   // this cycle's, the next cycle's
+  assign {noise_on, npass, nstep, xf_on, xpass, xrow, tm_on, tpass, trow} = sch;
+  assign sch_d = sched(32'(cyc_d));
+  if (!Serial) begin : g_sched_comb
+    assign sch = sched(32'(cyc_q));
+    logic unused_sch_d;
+    assign unused_sch_d = ^sch_d;
+  end else begin : g_sched_reg
+    logic [SchW-1:0] sch_q;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) sch_q <= sched(0);
+      else sch_q <= sch_d;
+    end
+    assign sch = sch_q;
+    logic unused_xpass;   // the lanes select their rows from sch_d
+    assign unused_xpass = ^xpass;
   end
   if (!Serial) begin : g_unused_sched
     logic unused_sched;   // the serial schedule's signals (constant here)
@@ -413,19 +439,26 @@ module pst_octave_stage #(
     end
 
     // Quadric: one multiplier stepped by the cycle count (pst_quadric_serial), its result
-    // complete by the last cycle, where it is added.
-    logic [SB-1:0] qstep;
-    logic          qdone;
+    // complete by the last cycle, where it is added. With the term register (MR) its result
+    // passes a register too, so the last cycle's sum starts at registers: the last cycle
+    // comes one cycle after the quadric's last step at the earliest.
+    logic [SB-1:0]   qstep;
+    logic            qdone, qdone_e;
+    logic [FW-1:0]   q_s;
+    logic [3*GW-1:0] gradq_s;
     assign qstep = (32'(cyc_q) < pst_pkg::StepMax) ? SB'(cyc_q) : SB'(pst_pkg::StepMax);
     pst_quadric_serial #(
       .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
-      .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
+      .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac),
+      .Regs(MR)
     ) u_quadric (
       .clk_i, .rst_ni,
       .step_i (qstep), .adv_i (advance), .done_o (qdone),
-      .s_i (s_i), .coef_i (quad_i), .q_o (q_e), .gradq_o (gradq_e)
+      .s_i (s_i), .coef_i (quad_i), .q_o (q_s), .gradq_o (gradq_s)
     );
-    assign quad_done = qdone;
+    pst_delay #(.Width(1 + FW + 3*GW), .Depth(MR)) u_q_reg (
+      .clk_i, .rst_ni, .en_i (en), .d_i ({qdone, gradq_s, q_s}), .q_o ({qdone_e, gradq_e, q_e}));
+    assign quad_done = qdone_e;
 
     assign nz_en    = en;
     assign nz_valid = noise_on;
@@ -442,27 +475,42 @@ module pst_octave_stage #(
       assign t_oct = (OctBits + 1)'(tpass) * (OctBits + 1)'(NoiseUnits) + (OctBits + 1)'(u);
 
       // Register reads: row xrow of M and o of octave x_oct; row trow of GM and a of t_oct.
-      logic [3*MW-1:0]  m_row;
-      logic [OW-1:0]    o_row;
-      logic [3*GMW-1:0] gm_row;
-      logic [AW-1:0]    a_t;
+      // Selected for the next cycle (its schedule from cyc_d) and registered, like sch: the
+      // register arrays do not change while a fragment is in flight (pst_top: writes only
+      // while idle).
+      logic [3*MW-1:0]  m_row, m_row_d;
+      logic [OW-1:0]    o_row, o_row_d;
+      logic [3*GMW-1:0] gm_row, gm_row_d;
+      logic [AW-1:0]    a_t, a_t_d;
+      logic [PassBits-1:0] xp, tp;   // the next cycle's transform and term rows (sched's fields)
+      logic [1:0]          xr, tr;
+      assign tr = sch_d[0 +: 2];
+      assign tp = sch_d[2 +: PassBits];
+      assign xr = sch_d[PassBits + 3 +: 2];
+      assign xp = sch_d[PassBits + 5 +: PassBits];
       always_comb begin
-        m_row  = '0;
-        o_row  = '0;
-        gm_row = '0;
-        a_t    = '0;
+        m_row_d  = '0;
+        o_row_d  = '0;
+        gm_row_d = '0;
+        a_t_d    = '0;
         for (int p = 0; p < Passes; p++) begin
           for (int r = 0; r < SR; r++) begin
-            if (32'(xpass) == p && 32'(xrow) == r) begin
-              m_row = oct_m_i[((p * NoiseUnits + u)*9 + 3*r)*MW +: 3*MW];
-              o_row = oct_o_i[((p * NoiseUnits + u)*3 + r)*OW +: OW];
+            if (32'(xp) == p && 32'(xr) == r) begin
+              m_row_d = oct_m_i[((p * NoiseUnits + u)*9 + 3*r)*MW +: 3*MW];
+              o_row_d = oct_o_i[((p * NoiseUnits + u)*3 + r)*OW +: OW];
             end
-            if (32'(tpass) == p && 32'(trow) == r) begin
-              gm_row = oct_gm_i[((p * NoiseUnits + u)*9 + 3*r)*GMW +: 3*GMW];
+            if (32'(tp) == p && 32'(tr) == r) begin
+              gm_row_d = oct_gm_i[((p * NoiseUnits + u)*9 + 3*r)*GMW +: 3*GMW];
             end
           end
-          if (32'(tpass) == p) a_t = oct_a_i[(p * NoiseUnits + u)*AW +: AW];
+          if (32'(tp) == p) a_t_d = oct_a_i[(p * NoiseUnits + u)*AW +: AW];
         end
+      end
+      always_ff @(posedge clk_i) begin
+        m_row  <= m_row_d;
+        o_row  <= o_row_d;
+        gm_row <= gm_row_d;
+        a_t    <= a_t_d;
       end
 
       // Transform, one row: lattice index and fraction of axis xrow.

@@ -10,6 +10,8 @@ initial begin
   assert (Datapath >= 0 && Datapath < 2) else $fatal(1, "pipeline.datapath: unknown value");
   assert (NoiseRegs >= 0 && NoiseRegs <= 6) else $fatal(1, "pipeline.noise_regs: must be in [0, 6]");
   assert (OctaveRegs >= 0 && OctaveRegs <= 2) else $fatal(1, "pipeline.octave_regs: must be in [0, 2]");
+  assert (WidthRegs >= 0 && WidthRegs <= 8) else $fatal(1, "pipeline.width_regs: must be in [0, 8]");
+  assert (ColourRegs >= 0 && ColourRegs <= 2) else $fatal(1, "pipeline.colour_regs: must be in [0, 2]");
   assert (NoiseInterp >= 0 && NoiseInterp < 3) else $fatal(1, "noise.interp: unknown value");
   assert (NoiseCorner >= 0 && NoiseCorner < 3) else $fatal(1, "noise.corner: unknown value");
   assert (NoiseHash >= 0 && NoiseHash < 3) else $fatal(1, "noise.hash: unknown value");

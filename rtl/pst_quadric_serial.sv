@@ -21,6 +21,11 @@
 // NSteps on hold the result), raising adv_i on each cycle whose step it leaves. At the last
 // step q_o is combinational; after it, it comes from the registers alone.
 //
+// Regs = 1 (pst_octave_stage sets it with the term register): the product is registered and
+// accumulated one step later, so the multiplier and the sums are separate paths. A row then
+// takes RS = 4 + NChunks steps (step e = 3 waits for u_r, the chunks follow at e = 4 + j) and
+// NSteps = 3 RS + 1 (the last product's sum).
+//
 // Parameters: as pst_quadric (CoordInt/Frac, QuadricInt/Frac: multiplier widths and the step
 // count; FInt/Frac, GradInt/Frac: output formats).
 `include "pst_pkg.sv"
@@ -35,6 +40,7 @@ module pst_quadric_serial #(
   parameter int FFrac       = pst_pkg::FFracDefault,
   parameter int GradInt     = pst_pkg::GradIntDefault,
   parameter int GradFrac    = pst_pkg::GradFracDefault,
+  parameter int Regs        = 0,
   // Derived widths (not profile keys).
   localparam int CW = CoordInt + CoordFrac,       // one texture coordinate
   localparam int QW = QuadricInt + QuadricFrac,   // one coefficient
@@ -61,8 +67,8 @@ module pst_quadric_serial #(
   // u_r in NChunks chunks of L bits (the top one signed, TopW <= L bits), RS steps a row.
   localparam int L      = QW - 1;
   localparam int NChunks = (UW + L - 1) / L;
-  localparam int RS     = 3 + NChunks;
-  localparam int NSteps = 3 * RS;
+  localparam int RS     = 3 + Regs + NChunks;   // steps a row (the chunks from e = 3 + Regs)
+  localparam int NSteps = 3 * RS + Regs;
   localparam int TopW   = UW - (NChunks - 1) * L;
   localparam int PW     = CW + QW;   // the product, exact
 
@@ -72,15 +78,14 @@ module pst_quadric_serial #(
   assign {s2, s1, s0} = s_i;
 
   // Step 1: this step's row r and position e, and the multiplier's operands.
-  logic                 live;    // step_i < NSteps
+  logic                 live;    // step_i < NSteps (a product step)
   logic [1:0]           r;
   logic [4:0]           e;
-  logic signed [QW-1:0] k3;      // Q_r3
   logic signed [CW-1:0] sr;      // s_r
   logic signed [CW-1:0] ma;      // multiplier operand: s_e or s_r
   logic signed [QW-1:0] mb;      // multiplier operand: Q_re or chunk_j(u_r)
   logic signed [UW-1:0] u_q;     // u_r, held for the chunk steps
-  assign live = (32'(step_i) < NSteps);
+  assign live = (32'(step_i) < 3 * RS);
   always_comb begin
     r = 2'd0;
     e = 5'd0;
@@ -89,9 +94,9 @@ module pst_quadric_serial #(
       e = 5'(32'(step_i) % RS);
     end
     unique case (r)
-      2'd1:    begin k3 = cg; sr = s1; end
-      2'd2:    begin k3 = ci; sr = s2; end
-      default: begin k3 = cd; sr = s0; end
+      2'd1:    sr = s1;
+      2'd2:    sr = s2;
+      default: sr = s0;
     endcase
     ma = sr;
     mb = '0;
@@ -109,7 +114,7 @@ module pst_quadric_serial #(
       endcase
     end else begin
       for (int j = 0; j < NChunks; j++) begin
-        if (32'(e) == 3 + j) begin
+        if (32'(e) == 3 + Regs + j) begin
           if (j < NChunks - 1) mb = QW'({1'b0, u_q[j*L +: L]});          // unsigned low chunk
           else mb = QW'($signed(u_q[UW-1 -: TopW]));                // signed top chunk
         end
@@ -117,15 +122,33 @@ module pst_quadric_serial #(
     end
   end
 
-  logic signed [PW-1:0] prod;
-  assign prod = PW'(ma) * PW'(mb);
+  logic signed [PW-1:0] prod_d, prod;
+  assign prod_d = PW'(ma) * PW'(mb);
+
+  // Regs = 1: the product and its step's control wait a step (the sums below use the _a
+  // values: the step whose product they add).
+  logic [1:0]           r_a;
+  logic [4:0]           e_a;
+  logic                 live_a, first_a;
+  pst_delay #(.Width(PW + 2 + 5 + 2), .Depth(Regs), .Reset(1'b1)) u_prod (
+    .clk_i, .rst_ni, .en_i (adv_i), .d_i ({prod_d, r, e, live, step_i == 5'd0}),
+    .q_o ({prod, r_a, e_a, live_a, first_a})
+  );
+  logic signed [QW-1:0] k3_a;   // Q_r3 of the adding step's row
+  always_comb begin
+    unique case (r_a)
+      2'd1:    k3_a = cg;
+      2'd2:    k3_a = ci;
+      default: k3_a = cd;
+    endcase
+  end
 
   // Step 2: the partial v_r; at e = 2 v_r, u_r and grad row r.
   logic signed [VW-1:0]  vacc_q, vsum, v;
   logic signed [UW-1:0]  u;
-  assign vsum = ((e == 5'd0) ? '0 : vacc_q) + VW'(prod);
-  assign v    = vsum + (VW'(k3) <<< CoordFrac);
-  assign u    = UW'(v) + (UW'(k3) <<< CoordFrac);
+  assign vsum = ((e_a == 5'd0) ? '0 : vacc_q) + VW'(prod);
+  assign v    = vsum + (VW'(k3_a) <<< CoordFrac);
+  assign u    = UW'(v) + (UW'(k3_a) <<< CoordFrac);
 
   // Step 3: grad q_r = 2 v_r (v_r << 1, exact), floor to GradFrac, saturate to GW bits.
   logic [GW-1:0] grow;
@@ -140,10 +163,10 @@ module pst_quadric_serial #(
   always_comb begin
     part = '0;
     for (int j = 0; j < NChunks; j++) begin
-      if (live && 32'(e) == 3 + j) part = QXW'(prod) <<< (j * L);
+      if (live_a && 32'(e_a) == 3 + Regs + j) part = QXW'(prod) <<< (j * L);
     end
   end
-  assign sum = ((step_i == 5'd0) ? '0 : acc_q) + part;
+  assign sum = (first_a ? '0 : acc_q) + part;
 
   logic [3*GW-1:0] grad_q;
   always_ff @(posedge clk_i or negedge rst_ni) begin
@@ -152,12 +175,12 @@ module pst_quadric_serial #(
       u_q    <= '0;
       acc_q  <= '0;
       grad_q <= '0;
-    end else if (adv_i && live) begin
-      vacc_q <= vsum;
+    end else if (adv_i && live_a) begin
+      if (e_a < 5'd3) vacc_q <= vsum;
       acc_q  <= sum;
-      if (e == 5'd2) begin
+      if (e_a == 5'd2) begin
         u_q <= u;
-        grad_q[r*GW +: GW] <= grow;
+        grad_q[r_a*GW +: GW] <= grow;
       end
     end
   end

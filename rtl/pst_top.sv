@@ -9,7 +9,10 @@
 //
 // [A]..[D] are pst_pipe_reg stages (valid/ready, ready[i] = ready[i+1] | ~valid[i+1]) carrying
 // the named payloads frag_t, acc_t, width_t, out_t. Each stage module holds a fragment for its
-// cycles (pst_pkg: the serial datapath's step counts) and hands it on at the last.
+// cycles (pst_pkg: the serial datapath's step counts) and hands it on at the last. Pipeline
+// registers inside the stages (NoiseRegs, OctaveRegs, WidthRegs, ColourRegs; docs/HARDWARE.md):
+// a parallel stage takes a fragment every cycle into them and carries the payload fields it
+// does not compute (side_i/side_o) beside it; busy_o joins idle_o.
 //
 // Parameters (all from the profile, rtl/configs/NAME.toml, through scripts/profile.py; the
 // schema is rtl/contract.toml):
@@ -20,6 +23,7 @@
 //                         cycle, the filter width one product per cycle (6 cycles in [B], 16 in
 //                         reduced with the euclidean norm: squares and square root serial too),
 //                         the colour-table filter one channel per cycle (4 cycles in [C]).
+//   NoiseRegs, OctaveRegs, WidthRegs, ColourRegs   pipeline registers (latency; serial: cycles).
 //   Log2Clut, ColourBits; Noise*; FilterNorm, FilterRecipFrac; <Format>Int/Frac: colour
 //   table, noise unit, |grad| and SAT precision, number formats (docs/HARDWARE.md).
 //
@@ -47,6 +51,7 @@ module pst_top #(
   parameter int FInt = pst_pkg::FIntDefault, parameter int FFrac = pst_pkg::FFracDefault,
   parameter int GradInt = pst_pkg::GradIntDefault, parameter int GradFrac = pst_pkg::GradFracDefault,
   parameter int NoiseRegs = pst_pkg::NoiseRegsDefault, parameter int OctaveRegs = pst_pkg::OctaveRegsDefault,
+  parameter int WidthRegs = pst_pkg::WidthRegsDefault, parameter int ColourRegs = pst_pkg::ColourRegsDefault,
   parameter bit DebugProbes = 1'b1,
   // Derived widths (not profile keys).
   localparam int CW  = CoordInt + CoordFrac,                                // one coordinate
@@ -109,7 +114,7 @@ module pst_top #(
   out_t   d_d, d_q;
   logic a_valid, a_ready, b_in_valid, b_in_ready, b_valid, b_ready;
   logic c_in_valid, c_in_ready, c_valid, c_ready, d_in_valid, d_in_ready;
-  logic octave_busy;   // fragments inside the octave stage's pipeline registers
+  logic octave_busy, width_busy, colour_busy;   // fragments inside the stages' pipeline registers
 
   // Registers: control, quadric, octaves.
   localparam int RegOctW = $clog2(Octaves + 1);
@@ -157,25 +162,22 @@ module pst_top #(
   // [B] -> filter width -> [C]
   pst_width_stage #(.Datapath(Datapath), .FilterNorm(FilterNorm), .GradInt(GradInt),
     .GradFrac(GradFrac), .JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut),
-    .WidthFrac(WidthFrac)
+    .WidthFrac(WidthFrac), .WidthRegs(WidthRegs), .SideW(3*GW + FW + TB)
   ) u_width (.clk_i, .rst_ni, .valid_i (b_valid), .ready_o (b_ready), .grad_i (b_q.grad),
-    .j_i (b_q.j), .valid_o (c_in_valid), .ready_i (c_in_ready), .w_o (c_d.w));
-  assign c_d.grad = b_q.grad;
-  assign c_d.f    = b_q.f;
-  assign c_d.tag  = b_q.tag;
+    .j_i (b_q.j), .side_i ({b_q.grad, b_q.f, b_q.tag}), .valid_o (c_in_valid),
+    .ready_i (c_in_ready), .w_o (c_d.w), .side_o ({c_d.grad, c_d.f, c_d.tag}), .busy_o (width_busy));
   pst_pipe_reg #(.Width($bits(c_d))) u_reg_c (.clk_i, .rst_ni, .valid_i (c_in_valid),
     .ready_o (c_in_ready), .data_i (c_d), .valid_o (c_valid), .ready_i (c_ready), .data_o (c_q));
 
   // [C] -> colour-table filter -> [D] -> out
   pst_colour_stage #(.Datapath(Datapath), .FInt(FInt), .FFrac(FFrac), .Log2Clut(Log2Clut),
-    .ColourBits(ColourBits), .WidthFrac(WidthFrac), .FilterRecipFrac(FilterRecipFrac)
+    .ColourBits(ColourBits), .WidthFrac(WidthFrac), .FilterRecipFrac(FilterRecipFrac),
+    .ColourRegs(ColourRegs), .SideW(WW + 3*GW + FW + TB)
   ) u_colour (.clk_i, .rst_ni, .we_i (reg_we_i), .addr_i (reg_addr_i), .wdata_i (reg_wdata_i),
     .clamp_i (clamp), .kind_i (kind), .valid_i (c_valid), .ready_o (c_ready), .f_i (c_q.f),
-    .w_i (c_q.w), .valid_o (d_in_valid), .ready_i (d_in_ready), .rgba_o (d_d.rgba));
-  assign d_d.w    = c_q.w;
-  assign d_d.grad = c_q.grad;
-  assign d_d.f    = c_q.f;
-  assign d_d.tag  = c_q.tag;
+    .w_i (c_q.w), .side_i ({c_q.w, c_q.grad, c_q.f, c_q.tag}), .valid_o (d_in_valid),
+    .ready_i (d_in_ready), .rgba_o (d_d.rgba), .side_o ({d_d.w, d_d.grad, d_d.f, d_d.tag}),
+    .busy_o (colour_busy));
   pst_pipe_reg #(.Width($bits(d_d))) u_reg_d (.clk_i, .rst_ni, .valid_i (d_in_valid),
     .ready_o (d_in_ready), .data_i (d_d), .valid_o (out_valid_o), .ready_i (out_ready_i), .data_o (d_q));
   assign out_tag_o  = d_q.tag;
@@ -184,7 +186,7 @@ module pst_top #(
   assign out_grad_o = d_q.grad;
   assign out_w_o    = d_q.w;
 
-  assign idle_o = ~(a_valid | octave_busy | b_valid | c_valid | out_valid_o);
+  assign idle_o = ~(a_valid | octave_busy | b_valid | width_busy | c_valid | colour_busy | out_valid_o);
 
   // Assertions
 `ifndef SYNTHESIS

@@ -3,6 +3,10 @@
 // Parallel: one cycle. Serial: the unit's steps (pst_pkg::WidthProducts products, then the
 // euclidean norm's squares and root), counted here; the fragment leaves [B] at the last step
 // (valid_o), when the next stage takes it (ready_o = done & ready_i).
+// Pipelined (parallel, WidthRegs > 0: the profile's pipeline.width_regs): the fragment leaves
+// [B] at once into pst_filter_width's registers with side_i (what [C] needs besides W) beside
+// it; valid_o, side_o come WidthRegs cycles later, and the pipeline stalls while [C] refuses
+// its end (busy_o: a fragment is in the registers).
 //
 // Parameters: the profile's formats and choices (pst_top's header).
 `include "pst_pkg.sv"
@@ -17,6 +21,8 @@ module pst_width_stage #(
   parameter int JacobianFrac = pst_pkg::JacobianFracDefault,
   parameter int Log2Clut     = pst_pkg::Log2ClutDefault,
   parameter int WidthFrac    = pst_pkg::WidthFracDefault,
+  parameter int WidthRegs    = pst_pkg::WidthRegsDefault,
+  parameter int SideW        = 1,
   localparam int GW = GradInt + GradFrac,
   localparam int JW = JacobianInt + JacobianFrac,
   localparam int WW = Log2Clut + pst_pkg::WidthExtraIntBits + WidthFrac
@@ -27,10 +33,16 @@ module pst_width_stage #(
   output logic            ready_o,
   input  logic [3*GW-1:0] grad_i,
   input  logic [6*JW-1:0] j_i,
+  input  logic [SideW-1:0] side_i,   // carried to side_o with the fragment
   output logic            valid_o,
   input  logic            ready_i,
-  output logic [WW-1:0]   w_o
+  output logic [WW-1:0]   w_o,
+  output logic [SideW-1:0] side_o,
+  output logic            busy_o
 );
+
+  localparam bit Serial = (Datapath == pst_pkg::DatapathSerial);
+  localparam int Regs   = Serial ? 0 : WidthRegs;
 
   logic                         done;   // W is valid this cycle
   logic [pst_pkg::StepBits-1:0] step_q;
@@ -41,14 +53,38 @@ module pst_width_stage #(
   pst_filter_width #(
     .GradInt(GradInt), .GradFrac(GradFrac), .JacobianInt(JacobianInt),
     .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac),
-    .FilterNorm(FilterNorm), .Serial(Datapath == pst_pkg::DatapathSerial)
+    .FilterNorm(FilterNorm), .Serial(Serial), .Regs(Regs)
   ) u_width (
-    .clk_i, .rst_ni, .step_i (step_q), .adv_i (valid_i & ~done), .done_o (done),
+    .clk_i, .rst_ni, .step_i (step_q), .adv_i (valid_i & ~done), .en_i (en), .done_o (done),
     .grad_i, .j_i, .w_o
   );
 
-  assign valid_o = valid_i & done;
-  assign ready_o = done & ready_i;
+  logic en;   // the pipeline advances (Regs > 0)
+  if (Regs == 0) begin : g_hold
+    assign valid_o = valid_i & done;
+    assign ready_o = done & ready_i;
+    assign side_o  = side_i;
+    assign busy_o  = 1'b0;
+    assign en      = 1'b0;
+  end else begin : g_flow
+    logic valid_e;
+    assign en      = ~(valid_o & ~ready_i);
+    assign ready_o = en;
+    pst_delay #(.Width(1), .Depth(Regs), .Reset(1'b1)) u_valid (
+      .clk_i, .rst_ni, .en_i (en), .d_i (valid_i), .q_o (valid_e));
+    pst_delay #(.Width(SideW), .Depth(Regs)) u_side (
+      .clk_i, .rst_ni, .en_i (en), .d_i (side_i), .q_o (side_o));
+    assign valid_o = valid_e;
+    localparam int IW = $clog2(Regs + 2);
+    logic [IW-1:0] inflight_q;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) inflight_q <= '0;
+      else if (en) inflight_q <= inflight_q + IW'(valid_i) - IW'(valid_e);
+    end
+    assign busy_o = (inflight_q != '0);
+    logic unused_done;
+    assign unused_done = done;
+  end
 
 endmodule
 

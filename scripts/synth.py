@@ -652,8 +652,9 @@ def markdown(r: dict) -> str:
     md.append("")
     opts = [m for m in r["memories"] if m.get("port_options")]
     if opts:
-        md += ["Port options of the many-ported ROMs (cost now; the RTL keeps replication until the "
-               "pst_top refactor lands):\n",
+        md += ["Port options of the many-ported ROMs as built (the RTL banks the noise unit's hash table "
+               "even/odd and its value table by address mod 4: the rows above are the banks; these are "
+               "further options on them):\n",
                "| memory | option | copies | GE per instance | GE all instances | cycles factor | note |",
                "|---|---|---:|---:|---:|---:|---|"]
         for m in opts:

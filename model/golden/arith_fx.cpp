@@ -36,7 +36,10 @@ int magnitudeBits(i128 v) {
 int quadricSerialSteps(const Profile& p) {
     const int QW = p.quadric.width(), CW = p.coord.width();
     const int chunks = (QW + CW + 2 + QW - 2) / (QW - 1);  // u_r (QW + CW + 2 bits) in QW - 1-bit chunks
-    return contract::kSerialRows * (contract::kSerialRows + chunks);
+    // With the octave stage's term register the product is registered too: a row waits a step
+    // for u_r, and the last product's sum takes one more (rtl/pst_quadric_serial.sv, Regs).
+    const int regs = p.octaveRegs >= 1 ? 1 : 0;
+    return contract::kSerialRows * (contract::kSerialRows + regs + chunks) + regs;
 }
 
 int filterWidthSerialSteps(const Profile& p) {

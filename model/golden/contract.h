@@ -17,6 +17,8 @@ enum Param : int {
     Datapath,
     NoiseRegs,
     OctaveRegs,
+    WidthRegs,
+    ColourRegs,
     NoiseInterp,
     NoiseCorner,
     NoiseHash,
@@ -76,6 +78,8 @@ inline constexpr int kLog2ClutMin = 1, kLog2ClutMax = 11;
 inline constexpr int kColourBitsMin = 1, kColourBitsMax = 8;
 inline constexpr int kNoiseRegsMin = 0, kNoiseRegsMax = 6;
 inline constexpr int kOctaveRegsMin = 0, kOctaveRegsMax = 2;
+inline constexpr int kWidthRegsMin = 0, kWidthRegsMax = 8;
+inline constexpr int kColourRegsMin = 0, kColourRegsMax = 2;
 inline constexpr int kNoiseValueFracMin = 1, kNoiseValueFracMax = 15;
 inline constexpr int kNoiseLatticeFracMin = 1, kNoiseLatticeFracMax = 20;
 inline constexpr int kNoiseOutFracMin = 1, kNoiseOutFracMax = 24;
@@ -91,6 +95,8 @@ inline constexpr KeySpec kSchema[] = {
     {"pipeline", "datapath", KeyKind::Enum, Datapath, 0, 1, {}, 2, kDatapathNames, 0},
     {"pipeline", "noise_regs", KeyKind::Range, NoiseRegs, 0, 6, {}, 0, nullptr, 0},
     {"pipeline", "octave_regs", KeyKind::Range, OctaveRegs, 0, 2, {}, 0, nullptr, 0},
+    {"pipeline", "width_regs", KeyKind::Range, WidthRegs, 0, 8, {}, 0, nullptr, 0},
+    {"pipeline", "colour_regs", KeyKind::Range, ColourRegs, 0, 2, {}, 0, nullptr, 0},
     {"noise", "interp", KeyKind::Enum, NoiseInterp, 0, 2, {}, 3, kNoiseInterpNames, 0},
     {"noise", "corner", KeyKind::Enum, NoiseCorner, 0, 2, {}, 3, kNoiseCornerNames, 0},
     {"noise", "hash", KeyKind::Enum, NoiseHash, 0, 2, {}, 3, kNoiseHashNames, 0},

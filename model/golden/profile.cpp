@@ -143,6 +143,8 @@ Profile parseProfile(const std::string& text, const std::string& path) {
     p.datapath = Datapath(v[c::Datapath]);
     p.noiseRegs = v[c::NoiseRegs];
     p.octaveRegs = v[c::OctaveRegs];
+    p.widthRegs = v[c::WidthRegs];
+    p.colourRegs = v[c::ColourRegs];
     p.noise.interp = NoiseInterp(v[c::NoiseInterp]);
     p.noise.corner = NoiseCorner(v[c::NoiseCorner]);
     p.noise.hash = NoiseHash(v[c::NoiseHash]);

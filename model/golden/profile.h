@@ -40,6 +40,8 @@ struct Profile {
     Datapath datapath = Datapath::Parallel;
     int noiseRegs = 0;      // pipeline registers in each noise unit (0..6)
     int octaveRegs = 0;     // pipeline registers around it: 1 after the term, 2 also after the transform
+    int widthRegs = 0;      // pipeline registers in the parallel filter width
+    int colourRegs = 0;     // pipeline registers in the colour-table filter
     // [noise] (noise.basis: hardwareBasis of interp / corner / hash)
     NoiseOptions noise;
     int noiseValueFrac = 15;    // R table fraction bits
@@ -68,11 +70,7 @@ struct Profile {
                     ? contract::kSerialOctaveExtraCycles + noiseRegs + (octaveRegs >= 1 ? 1 : 0)
                     : 0);
     }
-    // Cycles from a fragment's last cycle in [A] to its f leaving the octave stage (parallel:
-    // the pipeline registers it passes; serial: 0, it leaves from [A]).
-    int octaveLatency() const {
-        return datapath == Datapath::Serial ? 0 : noiseRegs + octaveRegs;
-    }
+
     // W = w N in entries: unsigned, log2Clut + 2 integer bits, widthFrac fraction bits.
     int widthIntBits() const { return log2Clut + 2; }
 

@@ -527,9 +527,14 @@ def stage_cycles(doc: dict, c: Contract | None = None) -> dict[str, int]:
     # [A] for its last pass's noise registers and the term register).
     regs = v["NoiseRegs"] + (1 if v["OctaveRegs"] >= 1 else 0)
     octave = v["Octaves"] // v["NoiseUnits"] * v["NoiseSteps"] + (k["SerialOctaveExtraCycles"] + regs if serial else 0)
-    quadric = k["SerialRows"] * (k["SerialRows"] + (qw + cw + 2 + qw - 2) // (qw - 1)) if serial else 1
+    # With the term register (octave_regs >= 1) the serial quadric's product is registered (a
+    # row waits a step for u_r, the last sum one more) and its result passes a register
+    # before the sum (pst_quadric_serial's Regs, pst_octave_stage).
+    qr = 1 if v["OctaveRegs"] >= 1 else 0
+    quadric = (k["SerialRows"] * (k["SerialRows"] + qr + (qw + cw + 2 + qw - 2) // (qw - 1)) + 2 * qr
+               if serial else 1)
     width = (k["WidthProducts"] + (k["WidthEuclidSquares"] + (ww + 2) // 2 if euclid else 0)) if serial else 1
-    colour = k["ColourSteps"] if serial else 1
+    colour = k["ColourSteps"] + v["ColourRegs"] if serial else 1
     return {"octave": octave, "quadric": quadric, "width": width, "colour": colour,
             "pixel": max(octave, quadric, width, colour)}
 

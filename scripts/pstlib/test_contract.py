@@ -37,8 +37,8 @@ def test_parameters_of_reduced():
     assert p["Octaves"] == 4 and p["NoiseUnits"] == 1 and p["NoiseSteps"] == 4
     assert p["Datapath"] == 1 and p["NoiseInterp"] == 0 and p["FilterNorm"] == 0
     assert (p["CoordInt"], p["CoordFrac"], p["WidthFrac"]) == (10, 12, 4)
-    assert (p["NoiseRegs"], p["OctaveRegs"]) == (5, 1)
-    assert len(p) == 36
+    assert (p["NoiseRegs"], p["OctaveRegs"], p["WidthRegs"], p["ColourRegs"]) == (5, 1, 0, 2)
+    assert len(p) == 38
 
 
 def test_enum_tables():
@@ -76,10 +76,11 @@ def test_validate_names_the_field(edit, field):
 
 def test_stage_cycles():
     # reduced: 4 octaves x 4 steps + 6 serial rows + 5 noise registers + the term register = 28
-    # cycles per pixel (`pst regress` measures 28); its serial quadric takes 18 steps, its
-    # euclidean filter width 16 (the RTL's, checked by sim/unit/arith_unit_test against the
-    # golden model); full is one pixel per clock whatever its pipeline registers.
-    assert contract.stage_cycles(reduced()) == {"octave": 28, "quadric": 18, "width": 16, "colour": 4, "pixel": 28}
+    # cycles per pixel (`pst regress` measures 28); its serial quadric takes 3 (3 + 1 + 3) + 1
+    # steps with its product register, + 1 for its result register, its euclidean filter width
+    # 16 (the RTL's, checked by sim/unit/arith_unit_test against the golden model), its colour
+    # filter 4 + 2 registers; full is one pixel per clock whatever its pipeline registers.
+    assert contract.stage_cycles(reduced()) == {"octave": 28, "quadric": 23, "width": 16, "colour": 6, "pixel": 28}
     with open(ROOT / "rtl" / "configs" / "full.toml", "rb") as f:
         assert contract.stage_cycles(tomllib.load(f))["pixel"] == 1
 

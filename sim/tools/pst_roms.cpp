@@ -6,6 +6,11 @@
 //   OUTDIR/value16.memh    267 lines, 4 hex digits: R[i] * 32768 as a 16-bit two's-complement
 //                          number (exact: R = (crc - 32768) / 32768). The RTL and the golden
 //                          model bring it to NoiseValueFrac bits with value16 >>> (15 - frac).
+// and the banks rtl/pst_noise.sv reads (the same entries, split by address):
+//   OUTDIR/hash4096_even.memh, hash4096_odd.memh   T[2a], T[2a + 1] (2048 lines each)
+//   OUTDIR/perm256_even.memh, perm256_odd.memh     P[2a], P[2a + 1] (128 lines each)
+//   OUTDIR/value16_b<b>.memh, b = 0..3             value16[4j + b], j = 0..66 (67 lines; the
+//                                                  entry past value16[266] is 0, never read)
 // Each file is written to a temporary name and renamed, so a reader never sees half a file.
 #include <cmath>
 #include <cstdint>
@@ -77,10 +82,28 @@ int main(int argc, char** argv) {
                         [&](int i) { return uint32_t(t.hash[i]) & 0xfffu; });
     ok = ok && writeMemh(dir, "perm256.memh", pst::NoiseTables::kPermSize, 2,
                          [&](int i) { return uint32_t(t.perm[i]) & 0xffu; });
+    const auto value16 = [&](int i) {
+        return i < pst::NoiseTables::kValueSize ? uint32_t(uint16_t(int16_t(std::lround(t.value[i] * 32768.0))))
+                                                : 0u;
+    };
     ok = ok && writeMemh(dir, "perlin256.memh", 256, 2,
                          [&](int i) { return uint32_t(pst::perlin2002Permutation()[size_t(i)]); });
-    ok = ok && writeMemh(dir, "value16.memh", pst::NoiseTables::kValueSize, 4, [&](int i) {
-        return uint32_t(uint16_t(int16_t(std::lround(t.value[i] * 32768.0))));
-    });
+    ok = ok && writeMemh(dir, "perlin256_even.memh", 128, 2,
+                         [&](int a) { return uint32_t(pst::perlin2002Permutation()[size_t(2 * a)]); });
+    ok = ok && writeMemh(dir, "perlin256_odd.memh", 128, 2,
+                         [&](int a) { return uint32_t(pst::perlin2002Permutation()[size_t(2 * a + 1)]); });
+    ok = ok && writeMemh(dir, "value16.memh", pst::NoiseTables::kValueSize, 4, value16);
+    ok = ok && writeMemh(dir, "hash4096_even.memh", pst::NoiseTables::kHashSize / 2, 3,
+                         [&](int a) { return uint32_t(t.hash[2 * a]) & 0xfffu; });
+    ok = ok && writeMemh(dir, "hash4096_odd.memh", pst::NoiseTables::kHashSize / 2, 3,
+                         [&](int a) { return uint32_t(t.hash[2 * a + 1]) & 0xfffu; });
+    ok = ok && writeMemh(dir, "perm256_even.memh", pst::NoiseTables::kPermSize / 2, 2,
+                         [&](int a) { return uint32_t(t.perm[2 * a]) & 0xffu; });
+    ok = ok && writeMemh(dir, "perm256_odd.memh", pst::NoiseTables::kPermSize / 2, 2,
+                         [&](int a) { return uint32_t(t.perm[2 * a + 1]) & 0xffu; });
+    const int banks = 4, depth = (pst::NoiseTables::kValueSize + banks - 1) / banks;
+    for (int b = 0; b < banks; ++b)
+        ok = ok && writeMemh(dir, "value16_b" + std::to_string(b) + ".memh", depth, 4,
+                             [&](int j) { return value16(banks * j + b); });
     return ok ? 0 : 1;
 }

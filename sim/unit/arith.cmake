@@ -2,7 +2,7 @@
 # pst_isqrt) against the golden model (model/golden/arith_fx.cpp), one verilated top per
 # profile. Seed: PST_SEED=<n> in the environment replays a run (the test prints its seed).
 set(PST_ARITH_UNIT_PARAMS
-    CoordInt,CoordFrac,QuadricInt,QuadricFrac,NoiseOutFrac,AmplitudeInt,AmplitudeFrac,GradMatrixInt,GradMatrixFrac,JacobianInt,JacobianFrac,Log2Clut,WidthFrac,FilterNorm,FInt,FFrac,GradInt,GradFrac)
+    CoordInt,CoordFrac,QuadricInt,QuadricFrac,NoiseOutFrac,AmplitudeInt,AmplitudeFrac,GradMatrixInt,GradMatrixFrac,JacobianInt,JacobianFrac,Log2Clut,WidthFrac,FilterNorm,FInt,FFrac,GradInt,GradFrac,OctaveRegs)
 set(PST_ARITH_UNIT_SOURCES
     ${PROJECT_SOURCE_DIR}/sim/unit/pst_arith_unit_top.sv
     ${PROJECT_SOURCE_DIR}/rtl/pst_quadric.sv

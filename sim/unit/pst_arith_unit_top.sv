@@ -30,6 +30,7 @@ module pst_arith_unit_top #(
   parameter int FFrac          = pst_pkg::FFracDefault,
   parameter int GradInt        = pst_pkg::GradIntDefault,
   parameter int GradFrac       = pst_pkg::GradFracDefault,
+  parameter int OctaveRegs     = pst_pkg::OctaveRegsDefault,   // the serial quadric's product register
   // Derived widths (not profile keys).
   localparam int CW  = CoordInt + CoordFrac,             // one texture coordinate
   localparam int QW  = QuadricInt + QuadricFrac,         // one quadric coefficient
@@ -96,6 +97,7 @@ module pst_arith_unit_top #(
   pst_quadric_serial #(
     .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
     .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
+    , .Regs(OctaveRegs >= 1 ? 1 : 0)   // as pst_octave_stage builds it
   ) u_quadric_ser (
     .clk_i, .rst_ni, .step_i (quad_ser_step_i), .adv_i (quad_ser_adv_i), .done_o (quad_ser_done_o),
     .s_i (quad_s_i), .coef_i (quad_coef_i), .q_o (quad_ser_q_o), .gradq_o (quad_ser_gradq_o)
@@ -115,7 +117,7 @@ module pst_arith_unit_top #(
     .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac),
     .FilterNorm(FilterNorm)
   ) u_width (
-    .clk_i, .rst_ni, .step_i ('0), .adv_i (1'b0), .done_o (),
+    .clk_i, .rst_ni, .step_i ('0), .adv_i (1'b0), .en_i (1'b0), .done_o (),
     .grad_i (fw_grad_i), .j_i (fw_j_i), .w_o (fw_w_o)
   );
 
@@ -124,7 +126,7 @@ module pst_arith_unit_top #(
     .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac),
     .FilterNorm(FilterNorm), .Serial(1'b1)
   ) u_width_ser (
-    .clk_i, .rst_ni, .step_i (ser_step_i), .adv_i (ser_adv_i), .done_o (fw_ser_done_o),
+    .clk_i, .rst_ni, .step_i (ser_step_i), .adv_i (ser_adv_i), .en_i (1'b0), .done_o (fw_ser_done_o),
     .grad_i (fw_grad_i), .j_i (fw_j_i), .w_o (fw_ser_w_o)
   );
 
@@ -133,7 +135,7 @@ module pst_arith_unit_top #(
     .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac),
     .FilterNorm(pst_pkg::FilterNormEuclid), .Serial(1'b1)
   ) u_width_ser_euclid (
-    .clk_i, .rst_ni, .step_i (ser_step_i), .adv_i (ser_adv_i), .done_o (fw_ser_euclid_done_o),
+    .clk_i, .rst_ni, .step_i (ser_step_i), .adv_i (ser_adv_i), .en_i (1'b0), .done_o (fw_ser_euclid_done_o),
     .grad_i (fw_grad_i), .j_i (fw_j_i), .w_o (fw_ser_euclid_w_o)
   );
 
@@ -143,12 +145,12 @@ module pst_arith_unit_top #(
       .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac),
       .FilterNorm(n)
     ) u_width_n (
-      .clk_i, .rst_ni, .step_i ('0), .adv_i (1'b0), .done_o (),
+      .clk_i, .rst_ni, .step_i ('0), .adv_i (1'b0), .en_i (1'b0), .done_o (),
       .grad_i (fw_grad_i), .j_i (fw_j_i), .w_o (fw_w_norm_o[n*WW +: WW])
     );
   end
 
-  pst_isqrt #(.InWidth(SqW)) u_isqrt (.x_i (sqrt_x_i), .y_o (sqrt_y_o));
+  pst_isqrt #(.InWidth(SqW)) u_isqrt (.clk_i, .rst_ni, .en_i (1'b0), .x_i (sqrt_x_i), .y_o (sqrt_y_o));
 
   // {InWidth, InFrac, OutWidth, OutFrac}: right shift with saturation, left shift into a wider
   // format, no shift, left shift with saturation, a wide right shift.
