@@ -72,21 +72,9 @@ module pst_colour_stage #(
     assign busy_o  = 1'b0;
     assign en      = valid_i & ~done;
   end else begin : g_flow
-    logic valid_e;
-    assign en      = ~(valid_o & ~ready_i);
-    assign ready_o = en;
-    pst_delay #(.Width(1), .Depth(ColourRegs), .Reset(1'b1)) u_valid (
-      .clk_i, .rst_ni, .en_i (en), .d_i (valid_i), .q_o (valid_e));
-    pst_delay #(.Width(SideW), .Depth(ColourRegs)) u_side (
-      .clk_i, .rst_ni, .en_i (en), .d_i (side_i), .q_o (side_o));
-    assign valid_o = valid_e;
-    localparam int IW = $clog2(ColourRegs + 2);
-    logic [IW-1:0] inflight_q;
-    always_ff @(posedge clk_i or negedge rst_ni) begin
-      if (!rst_ni) inflight_q <= '0;
-      else if (en) inflight_q <= inflight_q + IW'(valid_i) - IW'(valid_e);
-    end
-    assign busy_o = (inflight_q != '0);
+    pst_pipe_flow #(.Depth(ColourRegs), .SideW(SideW)) u_flow (
+      .clk_i, .rst_ni, .valid_i, .ready_o, .side_i, .valid_o, .ready_i, .side_o,
+      .en_o (en), .busy_o);
     logic unused_done;
     assign unused_done = done;
   end
