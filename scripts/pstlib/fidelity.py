@@ -6,7 +6,6 @@ flicker of each sequence and the issue's goals, met or missed.
 Inputs: `pst render SCENE --truth N --variants sat,...` (report.json: vs_truth of the unfiltered
 image and of every variant) and `pst animate SCENE --truth N --variants ...` (flicker.json: per
 stream the RMS against the truth per frame and the temporal RMS error per frame)."""
-import json
 import math
 from pathlib import Path
 
@@ -27,15 +26,7 @@ def psnr(rms):
 
 def load_still(path):
     """A `pst render --truth N --variants ...` report: {scene, size, truth, rms: {stream: rms}}."""
-    path = Path(path)
-    if path.is_dir():
-        path = path / "report.json"
-    try:
-        doc = json.loads(path.read_text())
-    except OSError as e:
-        raise FidelityError(f"{path}: {e.strerror}") from None
-    except json.JSONDecodeError as e:
-        raise FidelityError(f"{path}:{e.lineno}: {e.msg}") from None
+    path, doc = flicker.read_json(path, "report.json", FidelityError)
     if not isinstance(doc, dict) or "vs_truth" not in doc:
         raise FidelityError(f"{path}: vs_truth: missing (rendered without --truth?)")
     variants = doc.get("variants")

@@ -43,16 +43,22 @@ def validate(doc, where="flicker.json"):
     return doc
 
 
-def load(path):
+def read_json(path, name, error):
+    """(Path, document) of a JSON file, or of DIR/name when path is a folder; unreadable or
+    malformed: error('FILE[:LINE]: what')."""
     path = Path(path)
     if path.is_dir():
-        path = path / "flicker.json"
+        path = path / name
     try:
-        doc = json.loads(path.read_text())
+        return path, json.loads(path.read_text())
     except OSError as e:
-        raise FlickerError(f"{path}: {e.strerror}") from None
+        raise error(f"{path}: {e.strerror}") from None
     except json.JSONDecodeError as e:
-        raise FlickerError(f"{path}:{e.lineno}: {e.msg}") from None
+        raise error(f"{path}:{e.lineno}: {e.msg}") from None
+
+
+def load(path):
+    path, doc = read_json(path, "flicker.json", FlickerError)
     return validate(doc, str(path))
 
 
