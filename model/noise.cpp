@@ -64,6 +64,29 @@ const char* toString(NoiseBasis v) {
 }
 const char* toString(WorleyMetric v) { return v == WorleyMetric::Euclid ? "euclid" : "manhattan"; }
 
+bool parseWorleySearch(const std::string& name, WorleySearchKind* out) {
+    if (name == "exact") *out = WorleySearchKind::Exact;
+    else if (name == "cube27") *out = WorleySearchKind::Cube27;
+    else if (name == "octant") *out = WorleySearchKind::Octant;
+    else return false;
+    return true;
+}
+bool parseWorleyCubes(const std::string& name, WorleyCubes* out) {
+    if (name == "lcg") *out = WorleyCubes::Lcg;
+    else if (name == "rom256") *out = WorleyCubes::Rom256;
+    else return false;
+    return true;
+}
+const char* toString(WorleySearchKind v) {
+    switch (v) {
+    case WorleySearchKind::Exact: return "exact";
+    case WorleySearchKind::Cube27: return "cube27";
+    case WorleySearchKind::Octant: return "octant";
+    }
+    return "?";
+}
+const char* toString(WorleyCubes v) { return v == WorleyCubes::Lcg ? "lcg" : "rom256"; }
+
 const char* toString(NoiseInterp v) {
     switch (v) {
     case NoiseInterp::SCurve: return "scurve";

@@ -65,6 +65,16 @@ enum class WorleyMetric {
     Manhattan,  // |d|_1: "rigidly rectangular" regions (Worley, Fig. 3), grad F_k = sign(d)
 };
 
+// Which cubes Worley's basis searches: the paper's exact search (shells of cubes until no
+// nearer point can exist), or a hardware unit's fixed neighbourhood: the 27 cubes around the
+// home cube, or the 2 x 2 x 2 cubes on the side of the home cube's nearest faces (octant).
+enum class WorleySearchKind { Exact, Cube27, Octant };
+
+// Where a cube's feature points come from: the paper's (Worley's 32-bit cube hash, a Poisson
+// count and an LCG for the positions), or the hardware's 256-entry feature-point ROM indexed by
+// the 256 x 8 permutation hash of the cube (worley.h, worleyRomCube).
+enum class WorleyCubes { Lcg, Rom256 };
+
 struct NoiseOptions {
     NoiseInterp interp = NoiseInterp::SCurve;
     NoiseCorner corner = NoiseCorner::ValueGradient;
@@ -74,6 +84,11 @@ struct NoiseOptions {
     WorleyMetric metric = WorleyMetric::Euclid;
     std::array<double, 4> coef = {1.0, 0.0, 0.0, 0.0};
     double cell = 0.0;
+    // Worley only: the search and the feature points (the paper's: Exact, 9, Lcg; a hardware
+    // unit's variant: Octant or Cube27, its maximum points per cube, Rom256).
+    WorleySearchKind search = WorleySearchKind::Exact;
+    int maxPoints = 9;
+    WorleyCubes cubes = WorleyCubes::Lcg;
 };
 
 // Parse/print the enum names used in scene files ("scurve", "linear", "value_gradient",
@@ -84,11 +99,15 @@ bool parseNoiseCorner(const std::string& name, NoiseCorner* out);
 bool parseNoiseHash(const std::string& name, NoiseHash* out);
 bool parseNoiseBasis(const std::string& name, NoiseBasis* out);  // rayshade|perlin2002|worley
 bool parseWorleyMetric(const std::string& name, WorleyMetric* out);  // euclid | manhattan
+bool parseWorleySearch(const std::string& name, WorleySearchKind* out);  // exact | cube27 | octant
+bool parseWorleyCubes(const std::string& name, WorleyCubes* out);        // lcg | rom256
 const char* toString(NoiseInterp v);
 const char* toString(NoiseCorner v);
 const char* toString(NoiseHash v);
 const char* toString(NoiseBasis v);
 const char* toString(WorleyMetric v);
+const char* toString(WorleySearchKind v);
+const char* toString(WorleyCubes v);
 
 // The tables of Rayshade's NoiseInit(), built once on first use (thread-safe). The
 // srand48(1)/drand48() stream is reproduced with erand48 on a private state, so building

@@ -61,6 +61,43 @@ WorleyCube worleyCube(int64_t i, int64_t j, int64_t k) {
     return c;
 }
 
+int worleyRomIndex(int64_t i, int64_t j, int64_t k) {
+    const auto& P = NoiseTables::get().perm;
+    const int off = int(NoiseTables::kLatticeOffset) % 4096;  // 576, as the hardware's L
+    auto idx = [&](int64_t x) { return int((x + off) & 0xff); };
+    return P[size_t(P[size_t(P[size_t(idx(i))] ^ idx(j))] ^ idx(k))];
+}
+
+std::array<uint8_t, 3 * kWorleyMaxPoints> worleyRomBytes(int entry) {
+    // The top bytes of the LCG values of cube (entry, 0, 0), as worleyCube draws them.
+    std::array<uint8_t, 3 * kWorleyMaxPoints> b{};
+    uint32_t s = lcg(kHashI * static_cast<uint32_t>(entry));
+    for (int n = 0; n < kWorleyMaxPoints; ++n)
+        for (int a = 0; a < 3; ++a) {
+            s = lcg(s);
+            b[size_t(3 * n + a)] = uint8_t(s >> 24);
+        }
+    return b;
+}
+
+WorleyCube worleyRomCube(int entry, int maxPoints) {
+    WorleyCube c = worleyCube(entry, 0, 0);
+    const auto b = worleyRomBytes(entry);
+    c.count = std::min(c.count, std::clamp(maxPoints, 1, kWorleyMaxPoints));
+    for (int n = 0; n < kWorleyMaxPoints; ++n)
+        for (int a = 0; a < 3; ++a) c.offset[size_t(n)][a] = (2.0 * b[size_t(3 * n + a)] + 1.0) / 512.0;
+    return c;
+}
+
+WorleySearch worleySearchOf(const NoiseOptions& opt) {
+    WorleySearch s;
+    s.radius = opt.search == WorleySearchKind::Cube27 ? 1 : -1;
+    s.octant = opt.search == WorleySearchKind::Octant;
+    s.maxPoints = opt.maxPoints;
+    s.cubes = opt.cubes;
+    return s;
+}
+
 double worleyCellValue(uint32_t id) { return lcg(id) * (1.0 / 4294967296.0); }
 
 WorleyResult worley(const glm::dvec3& pIn, int order, WorleyMetric metric) {
@@ -92,7 +129,9 @@ WorleyResult worley(const glm::dvec3& pIn, int order, WorleyMetric metric, const
         glm::dvec3 gap(0.0);
         for (int a = 0; a < 3; ++a) gap[a] = o[a] > 0 ? o[a] - fr[a] : (o[a] < 0 ? fr[a] - (o[a] + 1) : 0.0);
         if (metricOf(gap) >= best[order - 1]) return;
-        const WorleyCube c = worleyCube(b[0] + ox, b[1] + oy, b[2] + oz);
+        const WorleyCube c = search.cubes == WorleyCubes::Rom256
+                                 ? worleyRomCube(worleyRomIndex(b[0] + ox, b[1] + oy, b[2] + oz), search.maxPoints)
+                                 : worleyCube(b[0] + ox, b[1] + oy, b[2] + oz);
         const int count = std::min(c.count, std::max(search.maxPoints, 1));
         for (int n = 0; n < count; ++n) {
             const glm::dvec3 d = fr - (glm::dvec3(ox, oy, oz) + c.offset[n]);
@@ -115,7 +154,19 @@ WorleyResult worley(const glm::dvec3& pIn, int order, WorleyMetric metric, const
     // order-th best. With at least one point per cube this ends by r = 4 (Euclid) or 6.
     double edge = 1.0;
     for (int a = 0; a < 3; ++a) edge = std::min({edge, fr[a], 1.0 - fr[a]});
-    const int maxR = search.radius < 0 ? 63 : search.radius;
+    if (search.octant) {
+        // The hardware's 8 cubes, c = bx + 2 by + 4 bz, o_a = b_a (fr_a >= 1/2 ? +1 : -1).
+        int dir[3];
+        for (int a = 0; a < 3; ++a) dir[a] = fr[a] >= 0.5 ? 1 : -1;
+        for (int c = 0; c < 8; ++c) visit((c & 1) * dir[0], ((c >> 1) & 1) * dir[1], ((c >> 2) & 1) * dir[2]);
+    } else if (search.radius >= 0) {
+        // (2 radius + 1)^3 cubes, x fastest (the hardware's order for radius 1).
+        const int rr = search.radius;
+        for (int oz = -rr; oz <= rr; ++oz)
+            for (int oy = -rr; oy <= rr; ++oy)
+                for (int ox = -rr; ox <= rr; ++ox) visit(ox, oy, oz);
+    }
+    const int maxR = search.radius < 0 && !search.octant ? 63 : -1;
     for (int rr = 0; rr <= maxR; ++rr) {
         if (rr > 0) {
             const double lb = rr - 1 + edge;
@@ -148,7 +199,7 @@ double worleyBasis(const glm::dvec3& p, const NoiseOptions& opt, glm::dvec3* gra
     int order = 1;
     for (int k = 0; k < kWorleyMaxOrder; ++k)
         if (opt.coef[k] != 0.0) order = k + 1;
-    const WorleyResult r = worley(p, order, opt.metric);
+    const WorleyResult r = worley(p, order, opt.metric, worleySearchOf(opt));
     double n = 0.0;
     glm::dvec3 g(0.0);
     for (int k = 0; k < order; ++k) {

@@ -68,11 +68,35 @@ WorleyResult worley(const glm::dvec3& p, int order, WorleyMetric metric);
 // maxPoints >= 9 is the exact search above. F_n is then never smaller than the exact F_n;
 // where the search misses a point, F_n is too large (or infinite, and the gradient 0, when
 // fewer than n points were seen).
+// octant: instead, the 2 x 2 x 2 cubes made of the home cube and its neighbours on the side of
+// its nearest faces (o_a in {0, fr_a >= 1/2 ? +1 : -1}; Worley's own shortcut for F1, section
+// 4 of the paper, turned into a fixed search). cubes: where the points come from (noise.h).
+// A fixed search (radius >= 0 or octant) visits its cubes in the hardware's order (x fastest,
+// then y, then z; strict comparisons, so ties keep the earlier point), the exact one in shells.
 struct WorleySearch {
     int radius = -1;
     int maxPoints = kWorleyMaxPoints;
+    bool octant = false;
+    WorleyCubes cubes = WorleyCubes::Lcg;
 };
 WorleyResult worley(const glm::dvec3& p, int order, WorleyMetric metric, const WorleySearch& search);
+
+// The hardware's feature points (WorleyCubes::Rom256, rtl/pst_worley.sv). Cube (i, j, k) is
+// hashed like the noise unit's perm256 lattice hash: X = (i + 576) mod 256 (576 = Rayshade's
+// 1e6 offset mod 4096, as in the hardware's lattice index), h = P[P[P[X] ^ Y] ^ Z] with P the
+// 256 x 8 permutation (NoiseTables::perm). ROM entry h holds the paper's cube (h, 0, 0)
+// (worleyCube: Poisson count, LCG positions) with its count clamped to maxPoints and each
+// position coordinate cut to its top 8 bits b and put at the centre of that 1/256 bin,
+// (2 b + 1) / 512: exact at kWorleyPointFrac fraction bits. So the hardware's texture repeats
+// every 256 cubes and has 256 distinct cube contents (Worley's: 2^32 and a fresh LCG stream).
+constexpr int kWorleyPointFrac = 9;
+int worleyRomIndex(int64_t i, int64_t j, int64_t k);
+WorleyCube worleyRomCube(int entry, int maxPoints);
+// The ROM's top bytes b of entry's first `maxPoints` points, 3 per point (x, y, z).
+std::array<uint8_t, 3 * kWorleyMaxPoints> worleyRomBytes(int entry);
+
+// The options' search as a WorleySearch (Exact, Cube27 = radius 1, Octant).
+WorleySearch worleySearchOf(const NoiseOptions& opt);
 
 // A cell's value in [0, 1) from a point's ID (one more LCG step of the ID, over 2^32): what
 // `cell` scales in the texture (constant over each cell, e.g. one colour per flagstone).

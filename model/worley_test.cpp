@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <cstdio>
 #include <vector>
 
 #include <glm/common.hpp>
@@ -226,6 +227,119 @@ TEST(Worley, NonFiniteAndHugeInputs) {
     EXPECT_NEAR(a.F[1], b.F[1], 1e-6);
 }
 
+
+// The hardware's cube contents: ROM entry e is the paper's cube (e, 0, 0) with its count
+// clamped and each coordinate cut to its top byte, put at the centre of its 1/256 bin.
+TEST(Worley, RomCubesAreThePapersCubesQuantized) {
+    for (int m = 1; m <= kWorleyMaxPoints; ++m)
+        for (int e = 0; e < 256; ++e) {
+            const WorleyCube paper = worleyCube(e, 0, 0);
+            const WorleyCube rom = worleyRomCube(e, m);
+            ASSERT_EQ(rom.count, std::min(paper.count, m)) << "entry " << e;
+            for (int n = 0; n < rom.count; ++n)
+                for (int a = 0; a < 3; ++a) {
+                    const double b = std::floor(paper.offset[n][a] * 256.0);
+                    ASSERT_EQ(rom.offset[n][a], (2.0 * b + 1.0) / 512.0) << "entry " << e << " point " << n;
+                    ASSERT_LE(std::abs(rom.offset[n][a] - paper.offset[n][a]), 1.0 / 512.0);
+                }
+        }
+    // The cube hash is the perm256 lattice hash of (i + 576) mod 256: period 256 on each axis.
+    std::mt19937_64 rng(5);
+    std::uniform_int_distribution<int64_t> u(-100000, 100000);
+    for (int t = 0; t < 1000; ++t) {
+        const int64_t i = u(rng), j = u(rng), k = u(rng);
+        const int h = worleyRomIndex(i, j, k);
+        ASSERT_GE(h, 0);
+        ASSERT_LT(h, 256);
+        ASSERT_EQ(h, worleyRomIndex(i + 256, j - 512, k + 768));
+        const auto& P = NoiseTables::get().perm;
+        auto X = [](int64_t x) { return int(((x % 256) + 256 + 64) % 256); };
+        ASSERT_EQ(h, P[size_t(P[size_t(P[size_t(X(i))] ^ X(j))] ^ X(k))]);
+    }
+}
+
+// The octant search equals a brute force over its eight cubes written here (sorting every
+// candidate), for both cube sources and several caps.
+TEST(Worley, OctantSearchIsABruteForceOverItsEightCubes) {
+    std::mt19937_64 rng(17);
+    std::uniform_real_distribution<double> u(-200.0, 200.0);
+    for (WorleyCubes cubes : {WorleyCubes::Lcg, WorleyCubes::Rom256})
+        for (int m : {1, 2, 4, 9})
+            for (int t = 0; t < 3000; ++t) {
+                const glm::dvec3 p(u(rng), u(rng), u(rng));
+                WorleySearch s;
+                s.octant = true;
+                s.maxPoints = m;
+                s.cubes = cubes;
+                const WorleyResult r = worley(p, 4, WorleyMetric::Euclid, s);
+                const glm::dvec3 base = glm::floor(p), fr = p - base;
+                std::vector<double> d2;
+                for (int c = 0; c < 8; ++c) {
+                    glm::dvec3 o(0.0);
+                    for (int a = 0; a < 3; ++a) o[a] = (c >> a) & 1 ? (fr[a] >= 0.5 ? 1.0 : -1.0) : 0.0;
+                    const int64_t ci = int64_t(base.x + o.x), cj = int64_t(base.y + o.y), ck = int64_t(base.z + o.z);
+                    const WorleyCube cube = cubes == WorleyCubes::Rom256 ? worleyRomCube(worleyRomIndex(ci, cj, ck), m)
+                                                                         : worleyCube(ci, cj, ck);
+                    for (int n = 0; n < std::min(cube.count, m); ++n) {
+                        const glm::dvec3 d = fr - (o + cube.offset[n]);
+                        d2.push_back(glm::dot(d, d));
+                    }
+                }
+                std::sort(d2.begin(), d2.end());
+                ASSERT_GE(d2.size(), 8u);
+                for (int n = 0; n < 4; ++n)
+                    ASSERT_EQ(r.F[n], std::sqrt(d2[size_t(n)])) << "F" << n + 1 << " at " << p.x << " " << p.y << " " << p.z;
+            }
+}
+
+// The hardware variants (octant or 27 cubes, <= M points per cube, the ROM's cubes) against
+// the paper's algorithm: the search's loss at the same points (LCG cubes), and the ROM's
+// statistics (its points are other points: only distributions compare).
+TEST(Worley, HardwareVariantDifferenceFromTheExactAlgorithm) {
+    std::mt19937_64 rng(99);
+    std::uniform_real_distribution<double> u(-300.0, 300.0);
+    std::vector<glm::dvec3> pts(50000);
+    for (auto& p : pts) p = glm::dvec3(u(rng), u(rng), u(rng));
+    std::vector<WorleyResult> exact;
+    double exactMean[2] = {0, 0};
+    for (const auto& p : pts) {
+        exact.push_back(worley(p, 2, WorleyMetric::Euclid));
+        for (int n = 0; n < 2; ++n) exactMean[n] += exact.back().F[n] / double(pts.size());
+    }
+    std::printf("[ worley ] exact: mean F1 %.4f, F2 %.4f\n", exactMean[0], exactMean[1]);
+    for (bool octant : {true, false})
+        for (int m : {9, 4, 3, 2}) {
+            WorleySearch s;
+            s.octant = octant;
+            s.radius = octant ? -1 : 1;
+            s.maxPoints = m;
+            int differ[2] = {0, 0};
+            double sumEx[2] = {0, 0}, romMean[2] = {0, 0};
+            for (size_t i = 0; i < pts.size(); ++i) {
+                s.cubes = WorleyCubes::Lcg;
+                const WorleyResult r = worley(pts[i], 2, WorleyMetric::Euclid, s);
+                s.cubes = WorleyCubes::Rom256;
+                const WorleyResult rr = worley(pts[i], 2, WorleyMetric::Euclid, s);
+                for (int n = 0; n < 2; ++n) {
+                    ASSERT_GE(r.F[n], exact[i].F[n]);
+                    if (r.F[n] > exact[i].F[n]) ++differ[n];
+                    sumEx[n] += r.F[n] - exact[i].F[n];
+                    romMean[n] += rr.F[n] / double(pts.size());
+                }
+            }
+            std::printf("[ worley ] %s, <= %d points/cube: F1 differs at %6.3f%% (mean +%.4f), F2 at %6.3f%% "
+                        "(mean +%.4f); with the ROM's cubes mean F1 %.4f, F2 %.4f\n",
+                        octant ? "octant (8 cubes)" : "cube27 (27)    ", m, 100.0 * differ[0] / pts.size(),
+                        sumEx[0] / pts.size(), 100.0 * differ[1] / pts.size(), sumEx[1] / pts.size(), romMean[0],
+                        romMean[1]);
+            if (m == 9) {
+                // The 27 cubes hold F1 and F2 almost always; the octant misses F1 only when the
+                // nearest point is beyond a far face (F1 > 1/2 at least): rare at 4 points/cube.
+                EXPECT_LT(differ[0], int(pts.size() / (octant ? 50 : 1000)));
+            }
+        }
+}
+
 }  // namespace
 }  // namespace pst
 
@@ -273,6 +387,7 @@ TEST(Worley, FixedSearchDifferenceFromTheExactSearch) {
         }
     }
 }
+
 
 }  // namespace
 }  // namespace pst

@@ -34,6 +34,9 @@ module pst_octave_stage #(
   parameter int NoiseOutFrac     = pst_pkg::NoiseOutFracDefault,
   parameter int NoiseSteps       = pst_pkg::NoiseStepsDefault,
   parameter int NoiseGuardBits   = pst_pkg::NoiseGuardBitsDefault,
+  parameter int NoiseWorleySearch = pst_pkg::NoiseWorleySearchDefault,  // not none: worley units
+  parameter int NoiseWorleyPoints = pst_pkg::NoiseWorleyPointsDefault,
+  parameter int NoiseWorleyOrder  = pst_pkg::NoiseWorleyOrderDefault,
   parameter int CoordInt         = pst_pkg::CoordIntDefault,
   parameter int CoordFrac        = pst_pkg::CoordFracDefault,
   parameter int MatrixInt        = pst_pkg::MatrixIntDefault,
@@ -89,6 +92,7 @@ module pst_octave_stage #(
   input  logic [Octaves*3*OW-1:0]   oct_o_i,
   input  logic [Octaves*AW-1:0]     oct_a_i,
   input  logic [Octaves*9*GMW-1:0]  oct_gm_i,
+  input  logic [pst_pkg::RegWorleyCount*(pst_pkg::WorleyCoefInt+pst_pkg::WorleyCoefFrac)-1:0] worley_c_i,
   // Debug probes (pst_top's; zero when DebugProbes = 0)
   output logic                      probe_valid_o,
   output logic [pst_pkg::TagBits-1:0] probe_tag_o,
@@ -609,16 +613,32 @@ module pst_octave_stage #(
   // ---- noise units ---------------------------------------------------------------------------
   for (genvar u = 0; u < NoiseUnits; u++) begin : g_noise
     logic nz_valid_o;
-    pst_noise #(
-      .NoiseInterp(NoiseInterp), .NoiseCorner(NoiseCorner), .NoiseHash(NoiseHash),
-      .NoiseValueFrac(NoiseValueFrac), .NoiseLatticeFrac(NoiseLatticeFrac),
-      .NoiseOutFrac(NoiseOutFrac), .NoiseSteps(NoiseSteps), .NoiseGuardBits(NoiseGuardBits),
-      .NoiseRegs(NoiseRegs)
-    ) u_noise (
-      .clk_i, .rst_ni, .en_i (nz_en), .valid_i (nz_valid), .step_i (nz_step),
-      .lat_i (nz_lat[u*LTW +: LTW]), .frac_i (nz_frac[u*3*LF +: 3*LF]), .valid_o (nz_valid_o),
-      .last_o (nz_last[u]), .n_o (nz_n[u*NW +: NW]), .grad_o (nz_g[u*3*NGW +: 3*NGW])
-    );
+    // The basis select: the lattice-noise unit, or a worley unit (noise.worley_search).
+    if (NoiseWorleySearch == pst_pkg::NoiseWorleySearchNone) begin : g_lattice
+      pst_noise #(
+        .NoiseInterp(NoiseInterp), .NoiseCorner(NoiseCorner), .NoiseHash(NoiseHash),
+        .NoiseValueFrac(NoiseValueFrac), .NoiseLatticeFrac(NoiseLatticeFrac),
+        .NoiseOutFrac(NoiseOutFrac), .NoiseSteps(NoiseSteps), .NoiseGuardBits(NoiseGuardBits),
+        .NoiseRegs(NoiseRegs)
+      ) u_noise (
+        .clk_i, .rst_ni, .en_i (nz_en), .valid_i (nz_valid), .step_i (nz_step),
+        .lat_i (nz_lat[u*LTW +: LTW]), .frac_i (nz_frac[u*3*LF +: 3*LF]), .valid_o (nz_valid_o),
+        .last_o (nz_last[u]), .n_o (nz_n[u*NW +: NW]), .grad_o (nz_g[u*3*NGW +: 3*NGW])
+      );
+      logic unused_wc;
+      assign unused_wc = ^worley_c_i;
+    end else begin : g_worley
+      pst_worley #(
+        .NoiseLatticeFrac(NoiseLatticeFrac), .NoiseOutFrac(NoiseOutFrac), .NoiseSteps(NoiseSteps),
+        .NoiseGuardBits(NoiseGuardBits), .NoiseRegs(NoiseRegs), .NoiseWorleySearch(NoiseWorleySearch),
+        .NoiseWorleyPoints(NoiseWorleyPoints), .NoiseWorleyOrder(NoiseWorleyOrder)
+      ) u_noise (
+        .clk_i, .rst_ni, .en_i (nz_en), .valid_i (nz_valid), .step_i (nz_step),
+        .lat_i (nz_lat[u*LTW +: LTW]), .frac_i (nz_frac[u*3*LF +: 3*LF]), .coef_i (worley_c_i),
+        .valid_o (nz_valid_o), .last_o (nz_last[u]), .n_o (nz_n[u*NW +: NW]),
+        .grad_o (nz_g[u*3*NGW +: 3*NGW])
+      );
+    end
     logic unused_nz;
     assign unused_nz = nz_valid_o;
 

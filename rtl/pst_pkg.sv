@@ -28,6 +28,10 @@ package pst_pkg;
   localparam int NoiseHashRayshade = 0;
   localparam int NoiseHashPerm256 = 1;
   localparam int NoiseHashPerlin256 = 2;
+  // noise.worley_search: none: the noise unit is the lattice-noise unit above; else a worley unit (basis worley, rtl/pst_worley.sv) searching the 2 x 2 x 2 cubes toward the nearest faces (octant) or the 27 cubes around the home cube (cube27), its cubes' points from the 256-entry feature-point ROM indexed by the perm256 cube hash
+  localparam int NoiseWorleySearchNone = 0;
+  localparam int NoiseWorleySearchOctant = 1;
+  localparam int NoiseWorleySearchCube27 = 2;
   // filter.norm: |grad_x f|: euclid (sqrt), max + min / 2, |gx| + |gy|
   localparam int FilterNormEuclid = 0;
   localparam int FilterNormMaxHalfMin = 1;
@@ -60,6 +64,10 @@ package pst_pkg;
   localparam int NoiseOutFracMax = 24;
   localparam int NoiseGuardBitsMin = 1;
   localparam int NoiseGuardBitsMax = 8;
+  localparam int NoiseWorleyPointsMin = 1;
+  localparam int NoiseWorleyPointsMax = 9;
+  localparam int NoiseWorleyOrderMin = 1;
+  localparam int NoiseWorleyOrderMax = 4;
   localparam int FilterRecipFracMin = 4;
   localparam int FilterRecipFracMax = 24;
   localparam int WidthFracMin = 0;
@@ -83,6 +91,9 @@ package pst_pkg;
   localparam int NoiseLatticeFracDefault = 16;
   localparam int NoiseOutFracDefault = 16;
   localparam int NoiseGuardBitsDefault = 4;
+  localparam int NoiseWorleySearchDefault = NoiseWorleySearchNone;
+  localparam int NoiseWorleyPointsDefault = 4;
+  localparam int NoiseWorleyOrderDefault = 2;
   localparam int FilterNormDefault = FilterNormEuclid;
   localparam int FilterRecipFracDefault = 18;
   localparam int CoordIntDefault = 12;
@@ -131,6 +142,9 @@ package pst_pkg;
   localparam int RegOctaveACount = 1;
   localparam int RegOctaveGm = 13;
   localparam int RegOctaveGmCount = 9;
+  // 0x0020: worley unit: coefficient C_k, k = 0..3 (n = sum C_k F_{k+1}), signed Q(WorleyCoefInt).(WorleyCoefFrac)
+  localparam logic [15:0] RegWorley = 16'h0020;
+  localparam int RegWorleyCount = 4;
   // 0x1000 + e: colour table entry e: RGBA packed, ColourBits each, R at bit 0
   localparam logic [15:0] RegClut = 16'h1000;
   // 0x2000 + 4 e + c: summed-area table entry e, channel c (ColourBits + Log2Clut bits)
@@ -161,6 +175,11 @@ package pst_pkg;
   localparam int ColourSteps = 4;  // serial colour-table filter: one RGBA channel per cycle
   localparam int ColourStepBits = 2;  // its step counter (log2 ColourSteps)
   localparam int WidthProducts = 6;  // serial filter width: the six dot-product products, one per cycle
+  localparam int WorleyPointFrac = 9;  // worley unit: fraction bits of a feature point's position in its cube ((2 b + 1) / 512 from the ROM byte b)
+  localparam int WorleyPointBytes = 8;  // worley unit: bits of one position coordinate in the feature-point ROM
+  localparam int WorleyCountBits = 4;  // worley unit: bits of a cube's point count in the feature-point ROM
+  localparam int WorleyCoefInt = 4;  // worley unit: integer bits (with sign) of the coefficients C_k
+  localparam int WorleyCoefFrac = 12;  // worley unit: fraction bits of the coefficients C_k
   localparam int WidthEuclidSquares = 2;  // serial euclidean norm: the two squares, one per cycle, before the root's ceil((WW + 1) / 2) cycles
 
   /* verilator lint_on UNUSEDPARAM */

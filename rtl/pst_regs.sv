@@ -41,7 +41,9 @@ module pst_regs #(
   localparam int NQ  = pst_pkg::RegQuadricCount,        // A..J
   localparam int NM  = pst_pkg::RegOctaveMCount,        // M entries
   localparam int NO  = pst_pkg::RegOctaveOCount,        // o entries
-  localparam int NGM = pst_pkg::RegOctaveGmCount        // GM entries
+  localparam int NGM = pst_pkg::RegOctaveGmCount,       // GM entries
+  localparam int NWC = pst_pkg::RegWorleyCount,         // worley coefficients
+  localparam int WCW = pst_pkg::WorleyCoefInt + pst_pkg::WorleyCoefFrac
 ) (
   input  logic                       clk_i,
   input  logic                       rst_ni,
@@ -55,7 +57,8 @@ module pst_regs #(
   output logic [Octaves*NM*MW-1:0]   oct_m_o,
   output logic [Octaves*NO*OW-1:0]   oct_o_o,
   output logic [Octaves*AW-1:0]      oct_a_o,
-  output logic [Octaves*NGM*GMW-1:0] oct_gm_o
+  output logic [Octaves*NGM*GMW-1:0] oct_gm_o,
+  output logic [NWC*WCW-1:0]         worley_o   // the worley unit's C_k (k at [k*WCW +: WCW])
 );
 
   localparam int CB = pst_pkg::RegControlBits;
@@ -68,11 +71,15 @@ module pst_regs #(
       ctrl_q   <= '0;
       active_o <= '0;
       quad_o   <= '0;
+      worley_o <= '0;
     end else if (we_i) begin
       if (addr_i == pst_pkg::RegControl) ctrl_q <= wdata_i[CB-1:0];
       if (addr_i == pst_pkg::RegActive) active_o <= wdata_i[OctBits-1:0];
       for (int k = 0; k < NQ; k++) begin
         if (addr_i == pst_pkg::RegQuadric + AB'(k)) quad_o[k*QW +: QW] <= wdata_i[QW-1:0];
+      end
+      for (int k = 0; k < NWC; k++) begin
+        if (addr_i == pst_pkg::RegWorley + AB'(k)) worley_o[k*WCW +: WCW] <= wdata_i[WCW-1:0];
       end
     end
   end

@@ -39,7 +39,10 @@ module pst_top #(
   parameter int NoiseInterp = pst_pkg::NoiseInterpDefault, parameter int NoiseCorner = pst_pkg::NoiseCornerDefault,
   parameter int NoiseHash = pst_pkg::NoiseHashDefault, parameter int NoiseValueFrac = pst_pkg::NoiseValueFracDefault,
   parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault, parameter int NoiseOutFrac = pst_pkg::NoiseOutFracDefault,
-  parameter int NoiseGuardBits = pst_pkg::NoiseGuardBitsDefault, parameter int FilterNorm = pst_pkg::FilterNormDefault,
+  parameter int NoiseGuardBits = pst_pkg::NoiseGuardBitsDefault,
+  parameter int NoiseWorleySearch = pst_pkg::NoiseWorleySearchDefault,
+  parameter int NoiseWorleyPoints = pst_pkg::NoiseWorleyPointsDefault,
+  parameter int NoiseWorleyOrder = pst_pkg::NoiseWorleyOrderDefault, parameter int FilterNorm = pst_pkg::FilterNormDefault,
   parameter int FilterRecipFrac = pst_pkg::FilterRecipFracDefault, parameter int WidthFrac = pst_pkg::WidthFracDefault,
   parameter int CoordInt = pst_pkg::CoordIntDefault, parameter int CoordFrac = pst_pkg::CoordFracDefault,
   parameter int JacobianInt = pst_pkg::JacobianIntDefault, parameter int JacobianFrac = pst_pkg::JacobianFracDefault,
@@ -126,13 +129,14 @@ module pst_top #(
   logic [Octaves*3*(OffsetInt+OffsetFrac)-1:0]     oct_o;
   logic [Octaves*(AmplitudeInt+AmplitudeFrac)-1:0] oct_a;
   logic [Octaves*9*(GradMatrixInt+GradMatrixFrac)-1:0] oct_gm;
+  logic [pst_pkg::RegWorleyCount*(pst_pkg::WorleyCoefInt+pst_pkg::WorleyCoefFrac)-1:0] worley_c;
   pst_regs #(.Octaves(Octaves), .QuadricInt(QuadricInt), .QuadricFrac(QuadricFrac),
     .MatrixInt(MatrixInt), .MatrixFrac(MatrixFrac), .OffsetInt(OffsetInt), .OffsetFrac(OffsetFrac),
     .AmplitudeInt(AmplitudeInt), .AmplitudeFrac(AmplitudeFrac), .GradMatrixInt(GradMatrixInt),
     .GradMatrixFrac(GradMatrixFrac)
   ) u_regs (.clk_i, .rst_ni, .we_i (reg_we_i), .addr_i (reg_addr_i), .wdata_i (reg_wdata_i),
     .clamp_o (clamp), .kind_o (kind), .active_o (active), .quad_o (quad), .oct_m_o (oct_m),
-    .oct_o_o (oct_o), .oct_a_o (oct_a), .oct_gm_o (oct_gm));
+    .oct_o_o (oct_o), .oct_a_o (oct_a), .oct_gm_o (oct_gm), .worley_o (worley_c));
 
   // [A] fragment -> octave stage -> [B]
   assign a_d.tag = frag_tag_i;
@@ -144,7 +148,8 @@ module pst_top #(
   pst_octave_stage #(.Octaves(Octaves), .NoiseUnits(NoiseUnits), .Datapath(Datapath),
     .NoiseInterp(NoiseInterp), .NoiseCorner(NoiseCorner), .NoiseHash(NoiseHash),
     .NoiseValueFrac(NoiseValueFrac), .NoiseLatticeFrac(NoiseLatticeFrac), .NoiseOutFrac(NoiseOutFrac),
-    .NoiseSteps(NoiseSteps), .NoiseGuardBits(NoiseGuardBits), .CoordInt(CoordInt), .CoordFrac(CoordFrac),
+    .NoiseSteps(NoiseSteps), .NoiseGuardBits(NoiseGuardBits), .NoiseWorleySearch(NoiseWorleySearch),
+    .NoiseWorleyPoints(NoiseWorleyPoints), .NoiseWorleyOrder(NoiseWorleyOrder), .CoordInt(CoordInt), .CoordFrac(CoordFrac),
     .MatrixInt(MatrixInt), .MatrixFrac(MatrixFrac), .OffsetInt(OffsetInt), .OffsetFrac(OffsetFrac),
     .AmplitudeInt(AmplitudeInt), .AmplitudeFrac(AmplitudeFrac), .GradMatrixInt(GradMatrixInt),
     .GradMatrixFrac(GradMatrixFrac), .QuadricInt(QuadricInt), .QuadricFrac(QuadricFrac), .FInt(FInt),
@@ -154,7 +159,7 @@ module pst_top #(
     .side_i ({a_q.j, a_q.tag}), .valid_o (b_in_valid), .ready_i (b_in_ready), .f_o (b_d.f),
     .grad_o (b_d.grad), .side_o ({b_d.j, b_d.tag}), .busy_o (octave_busy),
     .active_i (active), .quad_i (quad), .oct_m_i (oct_m), .oct_o_i (oct_o), .oct_a_i (oct_a),
-    .oct_gm_i (oct_gm), .probe_valid_o, .probe_tag_o, .probe_pass_o, .probe_q_valid_o,
+    .oct_gm_i (oct_gm), .worley_c_i (worley_c), .probe_valid_o, .probe_tag_o, .probe_pass_o, .probe_q_valid_o,
     .probe_q_tag_o, .probe_q_o, .probe_lat_o, .probe_frac_o, .probe_n_o, .probe_g_o);
   pst_pipe_reg #(.Width($bits(b_d))) u_reg_b (.clk_i, .rst_ni, .valid_i (b_in_valid),
     .ready_o (b_in_ready), .data_i (b_d), .valid_o (b_valid), .ready_i (b_ready), .data_o (b_q));

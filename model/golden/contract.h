@@ -26,6 +26,9 @@ enum Param : int {
     NoiseLatticeFrac,
     NoiseOutFrac,
     NoiseGuardBits,
+    NoiseWorleySearch,
+    NoiseWorleyPoints,
+    NoiseWorleyOrder,
     FilterNorm,
     FilterRecipFrac,
     CoordInt,
@@ -55,6 +58,7 @@ inline constexpr const char* kDatapathNames[] = {"parallel", "serial"};
 inline constexpr const char* kNoiseInterpNames[] = {"scurve", "linear", "quintic"};
 inline constexpr const char* kNoiseCornerNames[] = {"value_gradient", "value", "grad12"};
 inline constexpr const char* kNoiseHashNames[] = {"rayshade", "perm256", "perlin256"};
+inline constexpr const char* kNoiseWorleySearchNames[] = {"none", "octant", "cube27"};
 inline constexpr const char* kFilterNormNames[] = {"euclid", "max_half_min", "l1"};
 
 enum class KeyKind { Range, Values, Enum, Format };
@@ -84,6 +88,8 @@ inline constexpr int kNoiseValueFracMin = 1, kNoiseValueFracMax = 15;
 inline constexpr int kNoiseLatticeFracMin = 1, kNoiseLatticeFracMax = 20;
 inline constexpr int kNoiseOutFracMin = 1, kNoiseOutFracMax = 24;
 inline constexpr int kNoiseGuardBitsMin = 1, kNoiseGuardBitsMax = 8;
+inline constexpr int kNoiseWorleyPointsMin = 1, kNoiseWorleyPointsMax = 9;
+inline constexpr int kNoiseWorleyOrderMin = 1, kNoiseWorleyOrderMax = 4;
 inline constexpr int kFilterRecipFracMin = 4, kFilterRecipFracMax = 24;
 inline constexpr int kWidthFracMin = 0, kWidthFracMax = 24;
 inline constexpr KeySpec kSchema[] = {
@@ -104,6 +110,9 @@ inline constexpr KeySpec kSchema[] = {
     {"noise", "lattice_frac", KeyKind::Range, NoiseLatticeFrac, 1, 20, {}, 0, nullptr, 0},
     {"noise", "out_frac", KeyKind::Range, NoiseOutFrac, 1, 24, {}, 0, nullptr, 0},
     {"noise", "guard_bits", KeyKind::Range, NoiseGuardBits, 1, 8, {}, 0, nullptr, 0},
+    {"noise", "worley_search", KeyKind::Enum, NoiseWorleySearch, 0, 2, {}, 3, kNoiseWorleySearchNames, 0},
+    {"noise", "worley_points", KeyKind::Range, NoiseWorleyPoints, 1, 9, {}, 0, nullptr, 0},
+    {"noise", "worley_order", KeyKind::Range, NoiseWorleyOrder, 1, 4, {}, 0, nullptr, 0},
     {"filter", "norm", KeyKind::Enum, FilterNorm, 0, 2, {}, 3, kFilterNormNames, 0},
     {"filter", "recip_frac", KeyKind::Range, FilterRecipFrac, 4, 24, {}, 0, nullptr, 0},
     {"formats", "coord", KeyKind::Format, CoordInt, 0, 0, {}, 0, nullptr, 40},
@@ -133,6 +142,8 @@ inline constexpr Constraint kConstraints[] = {
      [](const int* v) { return ( v[NoiseInterp] == 2 ) == ( v[NoiseCorner] == 2 ); }},
     {"noise.hash", "perlin256 comes with interp quintic and corner grad12 (basis perlin2002), and only with them",
      [](const int* v) { return ( v[NoiseCorner] == 2 ) == ( v[NoiseHash] == 2 ); }},
+    {"noise.hash", "must be perm256 with a worley unit (noise.worley_search): it hashes the cubes",
+     [](const int* v) { return v[NoiseWorleySearch] == 0 || v[NoiseHash] == 1; }},
     {"noise.lattice_frac", "must be at least 2 with interp quintic (its derivative 30 u^2 (1 - u)^2 must stay below 4, pst_noise_weight)",
      [](const int* v) { return v[NoiseInterp] != 2 || v[NoiseLatticeFrac] >= 2; }},
     {"noise.lattice_frac", "must be at most formats.matrix.frac + formats.coord.frac (pst_octave_transform)",
@@ -165,6 +176,9 @@ inline constexpr int kRegOctaveM = 0, kRegOctaveMCount = 9;
 inline constexpr int kRegOctaveO = 9, kRegOctaveOCount = 3;
 inline constexpr int kRegOctaveA = 12, kRegOctaveACount = 1;
 inline constexpr int kRegOctaveGm = 13, kRegOctaveGmCount = 9;
+// 0x0020: worley unit: coefficient C_k, k = 0..3 (n = sum C_k F_{k+1}), signed Q(WorleyCoefInt).(WorleyCoefFrac)
+inline constexpr uint16_t kRegWorley = 0x0020;
+inline constexpr int kRegWorleyCount = 4;
 // 0x1000 + e: colour table entry e: RGBA packed, ColourBits each, R at bit 0
 inline constexpr uint16_t kRegClut = 0x1000;
 // 0x2000 + 4 e + c: summed-area table entry e, channel c (ColourBits + Log2Clut bits)
@@ -191,6 +205,11 @@ inline constexpr int kStepMax = 31;  // the serial quadric's and filter width's 
 inline constexpr int kColourSteps = 4;  // serial colour-table filter: one RGBA channel per cycle
 inline constexpr int kColourStepBits = 2;  // its step counter (log2 ColourSteps)
 inline constexpr int kWidthProducts = 6;  // serial filter width: the six dot-product products, one per cycle
+inline constexpr int kWorleyPointFrac = 9;  // worley unit: fraction bits of a feature point's position in its cube ((2 b + 1) / 512 from the ROM byte b)
+inline constexpr int kWorleyPointBytes = 8;  // worley unit: bits of one position coordinate in the feature-point ROM
+inline constexpr int kWorleyCountBits = 4;  // worley unit: bits of a cube's point count in the feature-point ROM
+inline constexpr int kWorleyCoefInt = 4;  // worley unit: integer bits (with sign) of the coefficients C_k
+inline constexpr int kWorleyCoefFrac = 12;  // worley unit: fraction bits of the coefficients C_k
 inline constexpr int kWidthEuclidSquares = 2;  // serial euclidean norm: the two squares, one per cycle, before the root's ceil((WW + 1) / 2) cycles
 
 }  // namespace pst::contract

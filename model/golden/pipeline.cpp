@@ -7,6 +7,7 @@
 #include "contract.h"
 #include "fixed.h"
 #include "noise_fx.h"
+#include "worley_fx.h"
 
 namespace pst {
 
@@ -29,6 +30,7 @@ GoldenPipeline::GoldenPipeline(const GoldenPipeline& o)
     : profile_(o.profile_), fault_(o.fault_), ctrl_(o.ctrl_), active_(o.active_), oct_(o.oct_),
       clut_(std::make_unique<ClutFilterFx>(*o.clut_)) {
     std::copy(std::begin(o.quad_), std::end(o.quad_), quad_);
+    std::copy(std::begin(o.worley_), std::end(o.worley_), worley_);
 }
 GoldenPipeline& GoldenPipeline::operator=(const GoldenPipeline& o) {
     if (this != &o) *this = GoldenPipeline(o);
@@ -47,6 +49,8 @@ void GoldenPipeline::write(uint16_t addr, uint32_t data) {
         active_ = int(fx::wrapUnsigned(data, bits));  // the RTL keeps $clog2(Octaves + 1) bits
     } else if (addr >= c::kRegQuadric && addr < c::kRegQuadric + c::kRegQuadricCount) {
         quad_[addr - c::kRegQuadric] = fx::wrapSigned(data, p.quadric.width());
+    } else if (addr >= c::kRegWorley && addr < c::kRegWorley + c::kRegWorleyCount) {
+        worley_[addr - c::kRegWorley] = fx::wrapSigned(data, c::kWorleyCoefInt + c::kWorleyCoefFrac);
     } else if (addr >= c::kRegOctave && addr < c::kRegOctave + c::kRegOctaveStride * p.octaves) {
         Octave& o = oct_[(addr - c::kRegOctave) / c::kRegOctaveStride];
         const int k = (addr - c::kRegOctave) % c::kRegOctaveStride;
@@ -82,7 +86,10 @@ PixelFx GoldenPipeline::eval(const FragmentFx& fr, StageTrace* trace) const {
         octaveTransformFx(p, fr.s, o.m, o.o, t.lat[i], t.frac[i]);
         if (i == 0 && fault_ == Stage::Transform)
             t.frac[i][0] = int64_t(fx::wrapUnsigned(t.frac[i][0] + 1, p.noiseLatticeFrac));
-        noiseFx(p, t.lat[i], t.frac[i], &t.n[i], t.g[i]);
+        if (p.noise.basis == NoiseBasis::Worley)
+            worleyFx(p, t.lat[i], t.frac[i], worley_, &t.n[i], t.g[i]);
+        else
+            noiseFx(p, t.lat[i], t.frac[i], &t.n[i], t.g[i]);
         if (i == 0) t.n[i] += bump(Stage::Noise);
         octaveTermFx(p, t.n[i], t.g[i], o.a, o.gm, &t.fterm[i], t.gterm[i]);
         fsum += t.fterm[i];

@@ -75,6 +75,7 @@ private:
     uint32_t ctrl_ = 0;
     int active_ = 0;
     int64_t quad_[contract::kRegQuadricCount] = {};
+    int64_t worley_[contract::kRegWorleyCount] = {};  // the worley unit's C_k
     struct Octave {
         int64_t m[contract::kRegOctaveMCount] = {}, o[contract::kRegOctaveOCount] = {}, a = 0,
                 gm[contract::kRegOctaveGmCount] = {};

@@ -149,6 +149,17 @@ Profile parseProfile(const std::string& text, const std::string& path) {
     p.noise.corner = NoiseCorner(v[c::NoiseCorner]);
     p.noise.hash = NoiseHash(v[c::NoiseHash]);
     p.noise.basis = hardwareBasis(p.noise);
+    // A worley unit (rtl/pst_worley.sv) instead of the lattice-noise unit: basis worley, the
+    // hardware's search and its 256-entry feature-point ROM, Euclidean distances, no cell term.
+    p.worleyOrder = v[c::NoiseWorleyOrder];
+    p.noise.maxPoints = v[c::NoiseWorleyPoints];
+    // (c::kNoiseWorleySearchNames: 0 none, 1 octant, 2 cube27; checked by profile_test.)
+    if (v[c::NoiseWorleySearch] != 0) {
+        p.noise.basis = NoiseBasis::Worley;
+        p.noise.search = v[c::NoiseWorleySearch] == 1 ? WorleySearchKind::Octant : WorleySearchKind::Cube27;
+        p.noise.cubes = WorleyCubes::Rom256;
+        p.noise.metric = WorleyMetric::Euclid;
+    }
     p.noiseValueFrac = v[c::NoiseValueFrac];
     p.noiseLatticeFrac = v[c::NoiseLatticeFrac];
     p.noiseOutFrac = v[c::NoiseOutFrac];

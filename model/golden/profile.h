@@ -48,6 +48,9 @@ struct Profile {
     int noiseLatticeFrac = 16;  // fraction bits of T_i s into the noise unit
     int noiseOutFrac = 16;      // noise value and gradient fraction bits
     int noiseGuardBits = 4;     // fraction bits of the noise unit's nodes below noiseOutFrac
+    // noise.worley_search != none: the noise unit is a worley unit (noise.basis Worley;
+    // noise.search, noise.maxPoints, noise.cubes = Rom256 say which variant), F1..F_worleyOrder.
+    int worleyOrder = 2;
     // [filter]
     GradNorm filterNorm = GradNorm::Euclid;
     int filterRecipFrac = 18;

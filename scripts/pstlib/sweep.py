@@ -49,14 +49,30 @@ def _knob(desc, values, section, key):
 
 
 # The noise unit's basis: its interp / corner / hash triple (rtl/contract.toml allows
-# perlin2002's only whole). rayshade sets the paper's triple.
-BASIS_NOISE = {"rayshade": {"interp": "scurve", "corner": "value_gradient", "hash": "rayshade"},
-               "perlin2002": {"interp": "quintic", "corner": "grad12", "hash": "perlin256"}}
+# perlin2002's only whole), or a worley unit (noise.worley_search, the perm256 cube hash).
+# rayshade sets the paper's triple; worley the octant search (worley_points, worley_order as
+# the base has them).
+BASIS_NOISE = {"rayshade": {"interp": "scurve", "corner": "value_gradient", "hash": "rayshade",
+                            "worley_search": "none"},
+               "perlin2002": {"interp": "quintic", "corner": "grad12", "hash": "perlin256",
+                              "worley_search": "none"},
+               "worley": {"interp": "linear", "corner": "value", "hash": "perm256",
+                          "worley_search": "octant"}}
 
 
 def basis_of(doc: dict) -> str:
-    """The basis a profile's noise unit computes (the golden model's hardwareBasis)."""
+    """The basis a profile's noise unit computes (the golden model's hardwareBasis and
+    Profile::noise.basis)."""
+    if doc["noise"].get("worley_search", "none") != "none":
+        return "worley"
     return "perlin2002" if doc["noise"]["corner"] == "grad12" else "rayshade"
+
+
+def worley_keys(doc: dict) -> dict:
+    """The texture noise keys of the variant a profile's worley unit computes."""
+    n = doc["noise"]
+    return {"basis": "worley", "search": n["worley_search"], "max_points": n["worley_points"],
+            "cubes": "rom256"}
 
 
 def _apply_basis(doc, v):
@@ -94,9 +110,10 @@ KNOBS = {
                       ENUMS[("pipeline", "datapath")], "pipeline", "datapath"),
     "noise_steps": _knob("pipeline.noise_steps (gates and cycles only: the images are the same bit for bit)",
                          list(RANGES[("pipeline", "noise_steps")]), "pipeline", "noise_steps"),
-    "basis": ("noise.interp / corner / hash of the noise unit's basis (rayshade: the paper's scurve, "
-              "value_gradient, rayshade; perlin2002: quintic, grad12, perlin256); the scene copies' "
-              "textures ask for it", list(BASIS_NOISE), _apply_basis, basis_of),
+    "basis": ("noise.interp / corner / hash / worley_search of the noise unit's basis (rayshade: the "
+              "paper's scurve, value_gradient, rayshade; perlin2002: quintic, grad12, perlin256; worley: "
+              "a worley unit, octant search, perm256 cube hash); the scene copies' textures ask for it "
+              "(worley: F1 unless a texture has coefficients)", list(BASIS_NOISE), _apply_basis, basis_of),
     "filter": ("every texture's filter (scene copies; not a profile key)", ["none", "mip", "mip_linear", "sat"],
                None, lambda d: None),
 }
@@ -168,6 +185,8 @@ def variant_keys(doc: dict) -> dict:
     """The texture keys that make the reference use a profile's noise variant and |grad| norm
     (perlin2002's variant is its basis: the scenes name the basis, not the triple)."""
     n = doc["noise"]
+    if basis_of(doc) == "worley":
+        return {"noise": worley_keys(doc), "norm": doc["filter"]["norm"]}
     if basis_of(doc) != "rayshade":
         return {"noise": {"basis": basis_of(doc)}, "norm": doc["filter"]["norm"]}
     return {"noise": {"interp": n["interp"], "corner": n["corner"], "hash": n["hash"]},
@@ -178,6 +197,8 @@ def basis_keys(doc: dict) -> dict:
     """The texture keys a profile needs of any scene: its basis, unless the default rayshade
     (a profile runs only textures of its own basis)."""
     b = basis_of(doc)
+    if b == "worley":
+        return {"noise": worley_keys(doc)}
     return {} if b == "rayshade" else {"noise": {"basis": b}}
 
 

@@ -38,7 +38,8 @@ def test_parameters_of_reduced():
     assert p["Datapath"] == 1 and p["NoiseInterp"] == 0 and p["FilterNorm"] == 0
     assert (p["CoordInt"], p["CoordFrac"], p["WidthFrac"]) == (10, 12, 4)
     assert (p["NoiseRegs"], p["OctaveRegs"], p["WidthRegs"], p["ColourRegs"]) == (5, 1, 0, 2)
-    assert len(p) == 38
+    assert p["NoiseWorleySearch"] == 0 and p["NoiseWorleyPoints"] == 4 and p["NoiseWorleyOrder"] == 2
+    assert len(p) == 41
 
 
 def test_enum_tables():

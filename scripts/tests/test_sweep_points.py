@@ -131,3 +131,15 @@ def test_basis_knob_sets_the_triple_and_the_scene_copies(tmp_path):
         assert tex and all(t["noise"] == {"basis": "perlin2002"} for t in tex.values())
         if match:
             assert all(t["norm"] == "euclid" for t in tex.values())
+
+
+def test_basis_knob_worley_sets_the_unit_and_the_variant_keys(tmp_path):
+    doc, bad = sweep.point_profile(load(REDUCED), "basis", "worley")
+    assert bad == [] and doc["noise"]["worley_search"] == "octant" and doc["noise"]["hash"] == "perm256"
+    assert sweep.basis_of(doc) == "worley"
+    a = args_for(tmp_path, ["basis"], {"basis": ["worley"]})
+    base, points, skipped, bv = sweep.make_points(a, tmp_path)
+    assert skipped == [] and [p.name for p in points] == ["reduced_basis_worley"]
+    tex = tomllib.loads(points[0].scene_files["marble"].read_text())["textures"]
+    want = {"basis": "worley", "search": "octant", "max_points": doc["noise"]["worley_points"], "cubes": "rom256"}
+    assert tex and all(t["noise"] == want for t in tex.values())

@@ -11,6 +11,10 @@
 //   OUTDIR/perm256_even.memh, perm256_odd.memh     P[2a], P[2a + 1] (128 lines each)
 //   OUTDIR/value16_b<b>.memh, b = 0..3             value16[4j + b], j = 0..66 (67 lines; the
 //                                                  entry past value16[266] is 0, never read)
+// and the worley unit's feature-point ROMs (rtl/pst_worley.sv, model/worley.h worleyRomCube):
+//   OUTDIR/worley256_p<M>.memh, M = 1..9   256 words of 4 + 24 M bits: [3:0] the cube's count
+//                                          (Poisson, clamped to 1..M), point j's x, y, z bytes
+//                                          at [4 + 24 j + 8 a +: 8] (1 + 6 M hex digits)
 // Each file is written to a temporary name and renamed, so a reader never sees half a file.
 #include <cmath>
 #include <cstdint>
@@ -22,6 +26,7 @@
 
 #include "noise.h"
 #include "perlin2002.h"
+#include "worley.h"
 
 namespace {
 
@@ -105,5 +110,28 @@ int main(int argc, char** argv) {
     for (int b = 0; b < banks; ++b)
         ok = ok && writeMemh(dir, "value16_b" + std::to_string(b) + ".memh", depth, 4,
                              [&](int j) { return value16(banks * j + b); });
+    for (int m = 1; m <= pst::kWorleyMaxPoints; ++m) {
+        const std::string path = dir + "/worley256_p" + std::to_string(m) + ".memh";
+        std::ofstream out(path + ".tmp", std::ios::trunc);
+        for (int e = 0; e < 256; ++e) {
+            const pst::WorleyCube c = pst::worleyRomCube(e, m);
+            const auto b = pst::worleyRomBytes(e);
+            char hex[8];
+            std::string line;
+            for (int j = m - 1; j >= 0; --j)
+                for (int a = 2; a >= 0; --a) {
+                    std::snprintf(hex, sizeof hex, "%02x", unsigned(b[size_t(3 * j + a)]));
+                    line += hex;
+                }
+            std::snprintf(hex, sizeof hex, "%x", unsigned(c.count));
+            out << line << hex << "\n";
+        }
+        ok = ok && bool(out.flush());
+        out.close();
+        std::error_code rec;
+        std::filesystem::rename(path + ".tmp", path, rec);
+        ok = ok && !rec;
+        if (!ok) std::fprintf(stderr, "pst_roms: cannot write %s\n", path.c_str());
+    }
     return ok ? 0 : 1;
 }

@@ -1,5 +1,6 @@
 #include "driver.h"
 
+#include <cmath>
 #include <iterator>
 #include <sstream>
 
@@ -51,6 +52,32 @@ std::string hardwareUnsupported(const Profile& p, const Texture& tex) {
         return where + ": basis '" + toString(tex.noise.basis) + "' has no hardware unit in profile '" + p.name +
                "' (its noise unit computes '" + toString(p.noise.basis) + "'); " + how;
     }
+    if (p.noise.basis == NoiseBasis::Worley) {
+        // The worley unit computes one variant (rtl/pst_worley.sv): the scene must ask for it,
+        // so that its reference is the variant the hardware computes.
+        const NoiseOptions& n = tex.noise;
+        // "FILE:LINE: textures.NAME.noise." (the noise table's line) when the scene named it.
+        const std::string src = tex.basisSource;
+        const std::string where = src.size() > 5 && src.compare(src.size() - 5, 5, "basis") == 0
+                                      ? src.substr(0, src.size() - 5)
+                                      : "texture '" + tex.name + "': noise.";
+        const std::string prof = "profile '" + p.name + "'";
+        if (n.search != p.noise.search || n.maxPoints != p.noise.maxPoints || n.cubes != WorleyCubes::Rom256)
+            return where + "search/max_points/cubes: " + toString(n.search) + ", " + std::to_string(n.maxPoints) + ", " +
+                   toString(n.cubes) + "; the worley unit of " + prof + " computes " + toString(p.noise.search) +
+                   ", " + std::to_string(p.noise.maxPoints) + ", rom256 (write these in the scene)";
+        if (n.metric != WorleyMetric::Euclid) return where + "metric: the worley unit of " + prof + " is euclid only";
+        if (n.cell != 0.0) return where + "cell: the worley unit of " + prof + " has no cell term";
+        const double cmax = double(1 << (contract::kWorleyCoefInt - 1));
+        for (int k = 0; k < 4; ++k) {
+            if (k >= p.worleyOrder && n.coef[k] != 0.0)
+                return where + "coef: C" + std::to_string(k + 1) + " is not 0; the worley unit of " + prof +
+                       " computes F1..F" + std::to_string(p.worleyOrder) + " (noise.worley_order)";
+            if (!(std::abs(n.coef[k]) < cmax))
+                return where + "coef: C" + std::to_string(k + 1) + " is outside the coefficient registers' range (-" +
+                       std::to_string(int(cmax)) + ", " + std::to_string(int(cmax)) + ")";
+        }
+    }
     if (tex.clut.size() != p.clutSize())
         return (tex.clutSource.empty() ? "texture '" + tex.name + "': colormap.size" : tex.clutSource) + ": " +
                std::to_string(tex.clut.size()) + " entries; profile '" + p.name + "' has a " +
@@ -95,6 +122,13 @@ TextureProgram programTexture(const Profile& p, const Texture& tex) {
             prog.writes.push_back({uint16_t(base + contract::kRegOctaveO + k), word(q(o.offset[k], p.offset))});
         prog.writes.push_back({uint16_t(base + contract::kRegOctaveA), word(q(o.amplitude, p.amplitude))});
     }
+
+    // The worley unit's coefficients C_k (n = sum C_k F_k).
+    if (p.noise.basis == NoiseBasis::Worley)
+        for (int k = 0; k < contract::kRegWorleyCount; ++k)
+            prog.writes.push_back({uint16_t(contract::kRegWorley + k),
+                                   word(fx::quantize(tex.noise.coef[size_t(k)], contract::kWorleyCoefInt,
+                                                     contract::kWorleyCoefFrac))});
 
     // Colour tables, built here (driver side) and written through the register port.
     if (tex.clut.size() != p.clutSize()) {

@@ -125,6 +125,15 @@ Texture randomTexture(RandomStream& r, const Profile& p) {
         t.octaves.push_back(o);
     }
     t.noise = p.noise;
+    if (p.noise.basis == NoiseBasis::Worley) {
+        // The worley unit's coefficients: random over the register range (-8, 8), some 0 or
+        // at the ends; 0 beyond the unit's order (the driver refuses others).
+        const double cmax = 8.0 - 1.0 / 4096.0;
+        for (int k = 0; k < 4; ++k) {
+            double c = r.chance(0.2) ? 0.0 : r.chance(0.1) ? (r.chance(0.5) ? cmax : -cmax) : (2 * r.uniform() - 1) * cmax;
+            t.noise.coef[size_t(k)] = k < p.worleyOrder ? c : 0.0;
+        }
+    }
     t.norm = p.filterNorm;
     const WrapMode wrap = r.chance(0.5) ? WrapMode::Clamp : WrapMode::Mod;
     t.clut = ColorMap(randomTable(r, p.clutSize()), wrap);

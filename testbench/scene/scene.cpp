@@ -245,7 +245,7 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
         const std::string np = join(path, "noise");
         auto nt = nn->as_table();
         if (!nt) c.fail(nn, np, "expected a table");
-        checkKeys(c, *nt, np, {"basis", "interp", "corner", "hash", "metric", "coef", "cell"});
+        checkKeys(c, *nt, np, {"basis", "interp", "corner", "hash", "metric", "coef", "cell", "search", "max_points", "cubes"});
         NoiseOptions& no = tex.noise;
         no.basis = getEnum(c, *nt, np, "basis", no.basis, parseNoiseBasis, "rayshade, perlin2002 or worley");
         if (const toml::node* bn = find(*nt, "basis")) {
@@ -260,7 +260,7 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
             if (no.basis != NoiseBasis::Rayshade && find(*nt, k))
                 c.fail(find(*nt, k), join(np, k), std::string("applies to basis rayshade only (basis is ") +
                                                       toString(no.basis) + ")");
-        for (const char* k : {"metric", "coef", "cell"})
+        for (const char* k : {"metric", "coef", "cell", "search", "max_points", "cubes"})
             if (no.basis != NoiseBasis::Worley && find(*nt, k))
                 c.fail(find(*nt, k), join(np, k), std::string("applies to basis worley only (basis is ") +
                                                       toString(no.basis) + ")");
@@ -280,6 +280,10 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
             for (size_t k = 0; k < v.size(); ++k) no.coef[k] = v[k];
         }
         no.cell = getNumber(c, *nt, np, "cell", 0.0);
+        // The worley search and feature points: the paper's (exact, 9, lcg) or a hardware unit's.
+        no.search = getEnum(c, *nt, np, "search", no.search, parseWorleySearch, "exact, cube27 or octant");
+        no.maxPoints = getInt(c, *nt, np, "max_points", no.maxPoints, 1, 9);
+        no.cubes = getEnum(c, *nt, np, "cubes", no.cubes, parseWorleyCubes, "lcg or rom256");
         if (no.basis == NoiseBasis::Worley && no.cell == 0.0 &&
             std::all_of(no.coef.begin(), no.coef.end(), [](double x) { return x == 0.0; }))
             c.fail(find(*nt, "coef") ? find(*nt, "coef") : nn, join(np, "coef"),
