@@ -50,6 +50,7 @@
 #include "fixed.h"
 #include "noise.h"
 #include "noise_fx.h"
+#include "worley_fx.h"
 #include "random_regress.h"
 #include "rtl_model.h"
 
@@ -71,7 +72,8 @@ struct Stats {
 
 void checkProfile(const Profile& p, uint64_t seed, int textures, int perTexture, Stats* st) {
     RandomStream r(seed);
-    const NoiseFxErrorBound bn = noiseFxErrorBound(p);
+    const bool worley = p.noise.basis == NoiseBasis::Worley;
+    NoiseFxErrorBound bn = worley ? NoiseFxErrorBound{} : noiseFxErrorBound(p);
     const double eF = std::ldexp(1.0, -p.f.fracBits), eG = std::ldexp(1.0, -p.grad.fracBits);
     const double eGM = std::ldexp(1.0, -p.gradMatrix.fracBits), eLF = std::ldexp(1.0, -p.noiseLatticeFrac);
     const double eW = std::ldexp(1.0, -p.widthFrac), N = double(p.clutSize());
@@ -87,6 +89,26 @@ void checkProfile(const Profile& p, uint64_t seed, int textures, int perTexture,
         tex.name = "bounds";
         tex.noise = p.noise;
         tex.norm = p.filterNorm;
+        if (worley) {
+            // Register-exact coefficients C_k (k < worley_order). n = sum C_k F_k is Lipschitz
+            // with constant sum |C_k| (each F_k is a distance to a point set, and p, p_q share
+            // the cube and the octant, so the same set): Gmax = sum |C_k|; the unit's error at
+            // p_q is worleyFxErrorBound (model/golden/worley_fx.cpp). grad F_k jumps at the cell
+            // walls (and turns without bound near a point), so grad and W have no such bound:
+            // they are checked for the lattice bases only (the worley unit's gradient is checked
+            // at the point it sees by golden_test WorleyFx.*).
+            const FixedFormat cf{contract::kWorleyCoefInt, contract::kWorleyCoefFrac};
+            double sumAbs = 0;
+            for (int k = 0; k < 4; ++k) {
+                // sum |C_k| <= 2 keeps |n| <= 2 sqrt(12) < 8, inside Q4.OF (no saturation).
+                tex.noise.coef[size_t(k)] = k < p.worleyOrder ? exactValue(r, cf, std::log2(2.0 / p.worleyOrder)) : 0.0;
+                sumAbs += std::abs(tex.noise.coef[size_t(k)]);
+            }
+            const WorleyFxErrorBound wb = worleyFxErrorBound(p, sumAbs);
+            bn.value = wb.value;
+            bn.grad = wb.gradN;
+            bn.gradMax = sumAbs;
+        }
         double* coef[10] = {&tex.quadric.A, &tex.quadric.B, &tex.quadric.C, &tex.quadric.D, &tex.quadric.E,
                             &tex.quadric.F, &tex.quadric.G, &tex.quadric.H, &tex.quadric.I, &tex.quadric.J};
         for (double* c : coef) *c = exactValue(r, p.quadric, qe);
@@ -157,7 +179,7 @@ void checkProfile(const Profile& p, uint64_t seed, int textures, int perTexture,
                     for (int c = 0; c < 3; ++c) m += std::abs(o.M[c][k]) * a[c];
                     pMag = std::max(pMag, m);
                 }
-                fMag += std::abs(o.amplitude) * (3.5 + 3 * bn.gradMax * pMag);
+                fMag += std::abs(o.amplitude) * ((worley ? 7.0 : 3.5) + 3 * bn.gradMax * pMag);
                 for (int k = 0; k < 3; ++k) {
                     double gt = 0;
                     for (int c = 0; c < 3; ++c) gt += std::abs(o.amplitude * o.M[k][c]) * gNoise;
@@ -182,6 +204,7 @@ void checkProfile(const Profile& p, uint64_t seed, int textures, int perTexture,
                 st->maxErrF = errF;
                 st->maxBoundF = bF;
             }
+            if (worley) continue;  // grad, W: see above
             glm::dvec3 bG;
             for (int k = 0; k < 3; ++k) {
                 bG[k] = boundG[k] + 1e-12 * (1 + gMag);
@@ -237,7 +260,7 @@ TEST(GoldenBounds, FGradAndWWithinTheFormatsBound) {
                     name.c_str(), st.kept, st.skipped, st.wKept, st.worstF, st.worstG, st.worstW, st.maxErrF,
                     st.maxBoundF);
         EXPECT_GT(st.kept, 20000);
-        EXPECT_GT(st.wKept, 10000);
+        if (p.noise.basis != NoiseBasis::Worley) EXPECT_GT(st.wKept, 10000);
     }
 }
 
