@@ -8,12 +8,15 @@
 //   Octaves                          octave register blocks (i < Octaves).
 //   QuadricInt/Frac, MatrixInt/Frac, OffsetInt/Frac, AmplitudeInt/Frac, GradMatrixInt/Frac
 //                                    register formats (the bits kept of each word).
+//   Worley                           the worley unit's coefficients C_k (RegWorley + k, signed
+//                                    WorleyCoefInt.WorleyCoefFrac) are held (else worley_o is 0).
 //
 // Outputs (flat vectors; octave i's block at [i*W +: W], element k of a block at [k*E +: E]):
 //   clamp_o, kind_o    control: wrap mode (1 clamp) and filter kind
 //   active_o           active octave count 0..Octaves
 //   quad_o             A..J
 //   oct_m_o, oct_o_o, oct_a_o, oct_gm_o   M (row-major), o, a, GM = a M^T (row-major)
+//   worley_o           C_0..C_3 of the worley unit
 `include "pst_pkg.sv"
 `default_nettype none
 
@@ -29,6 +32,7 @@ module pst_regs #(
   parameter int AmplitudeFrac  = pst_pkg::AmplitudeFracDefault,
   parameter int GradMatrixInt  = pst_pkg::GradMatrixIntDefault,
   parameter int GradMatrixFrac = pst_pkg::GradMatrixFracDefault,
+  parameter bit Worley         = 1'b0,   // the worley unit's coefficient registers exist
   localparam int QW  = QuadricInt + QuadricFrac,
   localparam int MW  = MatrixInt + MatrixFrac,
   localparam int OW  = OffsetInt + OffsetFrac,
@@ -79,7 +83,7 @@ module pst_regs #(
         if (addr_i == pst_pkg::RegQuadric + AB'(k)) quad_o[k*QW +: QW] <= wdata_i[QW-1:0];
       end
       for (int k = 0; k < NWC; k++) begin
-        if (addr_i == pst_pkg::RegWorley + AB'(k)) worley_o[k*WCW +: WCW] <= wdata_i[WCW-1:0];
+        if (Worley && addr_i == pst_pkg::RegWorley + AB'(k)) worley_o[k*WCW +: WCW] <= wdata_i[WCW-1:0];
       end
     end
   end

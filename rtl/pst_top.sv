@@ -133,7 +133,7 @@ module pst_top #(
   pst_regs #(.Octaves(Octaves), .QuadricInt(QuadricInt), .QuadricFrac(QuadricFrac),
     .MatrixInt(MatrixInt), .MatrixFrac(MatrixFrac), .OffsetInt(OffsetInt), .OffsetFrac(OffsetFrac),
     .AmplitudeInt(AmplitudeInt), .AmplitudeFrac(AmplitudeFrac), .GradMatrixInt(GradMatrixInt),
-    .GradMatrixFrac(GradMatrixFrac)
+    .GradMatrixFrac(GradMatrixFrac), .Worley(NoiseWorleySearch != pst_pkg::NoiseWorleySearchNone)
   ) u_regs (.clk_i, .rst_ni, .we_i (reg_we_i), .addr_i (reg_addr_i), .wdata_i (reg_wdata_i),
     .clamp_o (clamp), .kind_o (kind), .active_o (active), .quad_o (quad), .oct_m_o (oct_m),
     .oct_o_o (oct_o), .oct_a_o (oct_a), .oct_gm_o (oct_gm), .worley_o (worley_c));

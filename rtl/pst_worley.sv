@@ -23,7 +23,7 @@
 //    entry its S is strictly smaller than (K comparators, a mux per entry).
 // 5. At the last step, per k < K: R = isqrt(S_k 2^(2 NF)) (pst_isqrt), F_k = R >> DF;
 //    g_k,a = sign(d_a) min(floor(|d_a| 2^(2 NF) / R), 2^NF) (0 if R = 0): one square root and
-//    three dividers per k.
+//    three dividers per k (NF + 1 restoring steps each: the quotient is below 2^(NF+1)).
 // 6. n = sat(floor(sum C_k F_k / 2^(CF + NF - OF)), Q4.OF), grad_a likewise (Q6.OF).
 //
 // Pipeline (NoiseRegs): the first register (if any) after the list (boundary b0), the others
@@ -206,6 +206,22 @@ module pst_worley #(
   pst_delay #(.Width(4), .Depth(R0), .Reset(1'b1)) u_b0_tok (
     .clk_i, .rst_ni, .en_i, .d_i ({valid_i, step_i}), .q_o (tok_b));
 
+  // floor(num / den) for a quotient below 2^(NF+1): the restoring division's last NF + 1
+  // steps (RW + 1-bit compare-subtract each) instead of a QW-step divider. The quotient
+  // |d| 2^(2 NF) / R is below 2^NF + 2 whenever R > 0 (R >= |d| 2^NF - 1, |d| >= 2^-DF), so
+  // the skipped high steps would give 0 and the result is the exact floor (asserted below).
+  function automatic logic [NF:0] qdiv(input logic [QW-1:0] num, input logic [RW-1:0] den);
+    logic [RW:0] rem;
+    logic [NF:0] q;
+    rem = (RW+1)'(num >> (NF + 1));
+    for (int i = NF; i >= 0; i--) begin
+      rem = {rem[RW-1:0], num[i]};
+      q[i] = (rem >= {1'b0, den});
+      if (q[i]) rem = rem - {1'b0, den};
+    end
+    qdiv = q;
+  endfunction
+
   // ---- 5-6. F_k, grad F_k and the coefficient sums -------------------------------------------
   logic [K*AccW-1:0]   nk_all;    // C_k F_k
   logic [K*3*AccW-1:0] gk_all;    // C_k g_k,a
@@ -231,12 +247,16 @@ module pst_worley #(
       assign mag_d = d[DW-1] ? -d : d;
       assign num   = {mag_d[DW-2:0], {(2*NF){1'b0}}};
       assign den   = (r == '0) ? RW'(1) : r;
-      assign quo   = num / QW'(den);
+      assign quo   = QW'(qdiv(num, den));
       assign gm    = (r == '0) ? '0 : (quo > QW'(1 << NF)) ? GKW'(1 << NF) : GKW'(quo);
       assign ga    = d[DW-1] ? -gm : gm;
       assign gk_all[(3*k + a)*AccW +: AccW] = AccW'(ck) * AccW'(ga);
       logic unused_mag;
       assign unused_mag = mag_d[DW-1];
+`ifndef SYNTHESIS
+      // qdiv's precondition: the quotient fits NF + 1 bits.
+      assert property (@(posedge clk_i) disable iff (!rst_ni) (r != '0) |-> ((num >> (NF + 1)) < QW'(r)));
+`endif
     end
   end
 
