@@ -26,9 +26,9 @@
 //    three dividers per k (NF + 1 restoring steps each: the quotient is below 2^(NF+1)).
 // 6. n = sat(floor(sum C_k F_k / 2^(CF + NF - OF)), Q4.OF), grad_a likewise (Q6.OF).
 //
-// Pipeline (NoiseRegs): the first register (if any) after the list (boundary b0), the others
-// at the output; the result of the last step comes NoiseRegs advances (en_i) after its input,
-// as pst_noise's. The held list stores at every valid advance (steps come on consecutive
+// Pipeline (NoiseRegs): registers at b0 after the list, b1 after the square roots, b2 after
+// the dividers (the first NoiseRegs of the three), the others at the output; the result of
+// the last step comes NoiseRegs advances (en_i) after its input, as pst_noise's. The held list stores at every valid advance (steps come on consecutive
 // advances, as pst_noise requires).
 //
 // Parameters: the profile's noise keys (pst_noise's, and NoiseWorleySearch, NoiseWorleyPoints,
@@ -222,41 +222,67 @@ module pst_worley #(
     qdiv = q;
   endfunction
 
-  // ---- 5-6. F_k, grad F_k and the coefficient sums -------------------------------------------
-  logic [K*AccW-1:0]   nk_all;    // C_k F_k
-  logic [K*3*AccW-1:0] gk_all;    // C_k g_k,a
-  for (genvar k = 0; k < K; k++) begin : g_k
-    logic [SW-1:0]  sk;
-    logic [RW-1:0]  r;
-    logic [FW-1:0]  f;
-    logic signed [CW-1:0] ck;
-    assign sk = list_b[k*EW +: SW];
+  // ---- 5. square roots | b1 | dividers | b2 ------------------------------------------------
+  localparam int R1  = (NoiseRegs >= 2) ? 1 : 0;
+  localparam int R2  = (NoiseRegs >= 3) ? 1 : 0;
+  localparam int RO  = NoiseRegs - R0 - R1 - R2;   // the rest, at the output
+  localparam int DLW = 3 * DW;                     // one entry's d
+  logic [K*RW-1:0]    r_a, r_c;     // R_k before / after b1
+  logic [K*DLW-1:0]   d_a, d_c;     // d_k before / after b1
+  logic [K*FW-1:0]    f_c, f_e;     // F_k before / after b2
+  logic [K*3*GKW-1:0] g_c, g_e;     // g_k,a before / after b2
+  logic [3:0]         tok_c, tok_e;
+  for (genvar k = 0; k < K; k++) begin : g_sqrt
     pst_isqrt #(.InWidth(SW + 2*NF), .Regs(0)) u_sqrt (
-      .clk_i, .rst_ni, .en_i, .x_i ({sk, {(2*NF){1'b0}}}), .y_o (r));
-    assign f  = FW'(r >> DF);
-    assign ck = coef_i[k*CW +: CW];
-    assign nk_all[k*AccW +: AccW] = AccW'(ck) * AccW'($signed({1'b0, f}));
+      .clk_i, .rst_ni, .en_i, .x_i ({list_b[k*EW +: SW], {(2*NF){1'b0}}}), .y_o (r_a[k*RW +: RW]));
+    assign d_a[k*DLW +: DLW] = list_b[k*EW + SW +: DLW];
+  end
+  pst_delay #(.Width(K*(RW + DLW)), .Depth(R1)) u_b1 (
+    .clk_i, .rst_ni, .en_i, .d_i ({r_a, d_a}), .q_o ({r_c, d_c}));
+  pst_delay #(.Width(4), .Depth(R1), .Reset(1'b1)) u_b1_tok (
+    .clk_i, .rst_ni, .en_i, .d_i (tok_b), .q_o (tok_c));
+
+  for (genvar k = 0; k < K; k++) begin : g_k
+    logic [RW-1:0] r;
+    assign r = r_c[k*RW +: RW];
+    assign f_c[k*FW +: FW] = FW'(r >> DF);
     for (genvar a = 0; a < 3; a++) begin : g_axis
       logic signed [DW-1:0] d;
       logic [DW-1:0]  mag_d;
       logic [QW-1:0]  num, quo;
       logic [RW-1:0]  den;
       logic [GKW-1:0] gm;
-      logic signed [GKW-1:0] ga;
-      assign d     = list_b[k*EW + SW + a*DW +: DW];
+      assign d     = d_c[k*DLW + a*DW +: DW];
       assign mag_d = d[DW-1] ? -d : d;
       assign num   = {mag_d[DW-2:0], {(2*NF){1'b0}}};
       assign den   = (r == '0) ? RW'(1) : r;
       assign quo   = QW'(qdiv(num, den));
       assign gm    = (r == '0) ? '0 : (quo > QW'(1 << NF)) ? GKW'(1 << NF) : GKW'(quo);
-      assign ga    = d[DW-1] ? -gm : gm;
-      assign gk_all[(3*k + a)*AccW +: AccW] = AccW'(ck) * AccW'(ga);
+      assign g_c[(3*k + a)*GKW +: GKW] = d[DW-1] ? -gm : gm;
       logic unused_mag;
       assign unused_mag = mag_d[DW-1];
 `ifndef SYNTHESIS
       // qdiv's precondition: the quotient fits NF + 1 bits.
       assert property (@(posedge clk_i) disable iff (!rst_ni) (r != '0) |-> ((num >> (NF + 1)) < QW'(r)));
 `endif
+    end
+  end
+  pst_delay #(.Width(K*(FW + 3*GKW)), .Depth(R2)) u_b2 (
+    .clk_i, .rst_ni, .en_i, .d_i ({f_c, g_c}), .q_o ({f_e, g_e}));
+  pst_delay #(.Width(4), .Depth(R2), .Reset(1'b1)) u_b2_tok (
+    .clk_i, .rst_ni, .en_i, .d_i (tok_c), .q_o (tok_e));
+
+  // ---- 6. the coefficient sums --------------------------------------------------------------
+  logic [K*AccW-1:0]   nk_all;    // C_k F_k
+  logic [K*3*AccW-1:0] gk_all;    // C_k g_k,a
+  for (genvar k = 0; k < K; k++) begin : g_prod
+    logic signed [CW-1:0] ck;
+    assign ck = coef_i[k*CW +: CW];
+    assign nk_all[k*AccW +: AccW] = AccW'(ck) * AccW'($signed({1'b0, f_e[k*FW +: FW]}));
+    for (genvar a = 0; a < 3; a++) begin : g_axis
+      logic signed [GKW-1:0] ga;
+      assign ga = g_e[(3*k + a)*GKW +: GKW];
+      assign gk_all[(3*k + a)*AccW +: AccW] = AccW'(ck) * AccW'(ga);
     end
   end
 
@@ -284,10 +310,10 @@ module pst_worley #(
 
   // The remaining pipeline registers at the output.
   logic [3:0] tok_o;
-  pst_delay #(.Width(NW + 3*NGW), .Depth(NoiseRegs - R0)) u_out (
+  pst_delay #(.Width(NW + 3*NGW), .Depth(RO)) u_out (
     .clk_i, .rst_ni, .en_i, .d_i ({g_b, n_b}), .q_o ({grad_o, n_o}));
-  pst_delay #(.Width(4), .Depth(NoiseRegs - R0), .Reset(1'b1)) u_out_tok (
-    .clk_i, .rst_ni, .en_i, .d_i (tok_b), .q_o (tok_o));
+  pst_delay #(.Width(4), .Depth(RO), .Reset(1'b1)) u_out_tok (
+    .clk_i, .rst_ni, .en_i, .d_i (tok_e), .q_o (tok_o));
   assign valid_o = tok_o[3];
   assign last_o  = tok_o[3] && (32'(tok_o[2:0]) == NoiseSteps - 1);
 
