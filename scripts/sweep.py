@@ -24,9 +24,11 @@ Per point:
     A point with a result is not recomputed (resumable; a result without synthesis gets only
     its synthesis added; other scenes / size / truth re-render it; --retry-failed reruns the
     failed ones).
-The knob `basis` sets the noise unit's interp / corner / hash triple (rayshade or perlin2002) and renders
-scene copies whose textures ask for that basis (a profile runs only its own basis), so PSNR vs
-reference is against the basis's own double reference.
+The knob `basis` sets the noise unit's interp / corner / hash triple (rayshade or perlin2002), or a
+worley unit (noise.worley_search octant, the base's worley_points and worley_order), and renders
+scene copies whose textures ask for that basis (worley: its variant, F1 where a texture has no
+coefficients; a profile runs only its own basis), so PSNR vs reference is against the basis's own
+double reference.
 The knob `filter` is per texture, not a profile key: its points render copies of the scene
 files with every texture's filter replaced, through the base profile (the hardware holds every
 filter kind, so the GE of those points is the base's). Its reference images use the same
