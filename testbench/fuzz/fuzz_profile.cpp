@@ -3,15 +3,9 @@
 #include <cstdint>
 #include <string>
 
-#include "input_error.h"
-#include "profile.h"
+#include "fuzz_inputs.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-    const std::string text(reinterpret_cast<const char*>(data), size);
-    try {
-        pst::Profile p = pst::parseProfile(text, "fuzz.toml");
-        (void)p.clutSize();
-    } catch (const pst::InputError&) {
-    }
+    pst::fuzz::profile(std::string(reinterpret_cast<const char*>(data), size));
     return 0;
 }

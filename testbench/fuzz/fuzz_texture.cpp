@@ -1,17 +1,11 @@
-// libFuzzer target: the texture-block parser (testbench/scene parseTexture, `pst eval --texture`).
+// libFuzzer target: the texture-block parser (testbench/scene checkTexture, `pst eval --texture`).
 #include <cstddef>
 #include <cstdint>
 #include <string>
 
-#include "input_error.h"
-#include "scene.h"
+#include "fuzz_inputs.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-    const std::string text(reinterpret_cast<const char*>(data), size);
-    try {
-        pst::Texture t = pst::parseTexture(text, "fuzz.toml");
-        (void)t.clut.size();
-    } catch (const pst::InputError&) {
-    }
+    pst::fuzz::texture(std::string(reinterpret_cast<const char*>(data), size));
     return 0;
 }

@@ -19,6 +19,7 @@ namespace {
 struct Ctx {
     std::string file;
     bool meshes = true;   // false: check the objects' keys and values only, build no meshes
+    bool tables = true;   // false: check the colour maps' keys and values only, build no tables
 
     [[noreturn]] void fail(const toml::node* n, const std::string& field,
                            const std::string& what) const {
@@ -183,6 +184,7 @@ ColorMap parseColorMap(const Ctx& c, const toml::table& t, const std::string& pa
             if (v[k] < 0.0 || v[k] > 1.0) c.fail(ra->get(i), f, "colour components must be in [0, 1]");
         keys.push_back({v[0], {v[1], v[2], v[3], v.size() == 5 ? v[4] : 1.0}});
     }
+    if (!c.tables) return ColorMap();   // checked; the entries and SAT/MIP tables are not built
     // Entry i takes the ramp at its centre (i + 0.5) / N.
     std::vector<glm::dvec4> entries(n);
     for (int i = 0; i < n; ++i) {
@@ -644,8 +646,10 @@ std::vector<double> Track::at(double t) const {
     return v;
 }
 
-Scene parseScene(const std::string& text, const std::string& path, int width, int height) {
-    const Ctx c{path};
+namespace {
+
+// The scene of a file (c.meshes/c.tables false: checked only), every animation key checked.
+Scene parseSceneWith(const Ctx& c, const std::string& text, const std::string& path, int width, int height) {
     toml::table root = parseToml(text, path);
     Animation an = parseAnimation(c, root);
     Scene sc = buildScene(c, root, path, width, height);
@@ -657,6 +661,7 @@ Scene parseScene(const std::string& text, const std::string& path, int width, in
             try {
                 Ctx check = c;
                 check.meshes = false;
+                check.tables = false;
                 buildScene(check, r, path, 1, 1);
             } catch (const InputError& e) {
                 const toml::node* kn = root["animation"]["track"][i]["keys"][k].node();
@@ -669,6 +674,19 @@ Scene parseScene(const std::string& text, const std::string& path, int width, in
         }
     sc.animation = std::move(an);
     return sc;
+}
+
+}  // namespace
+
+Scene parseScene(const std::string& text, const std::string& path, int width, int height) {
+    return parseSceneWith(Ctx{path}, text, path, width, height);
+}
+
+void checkScene(const std::string& text, const std::string& path) {
+    Ctx c{path};
+    c.meshes = false;
+    c.tables = false;
+    parseSceneWith(c, text, path, 0, 0);
 }
 
 Scene parseSceneAt(const std::string& text, const std::string& path, double t, int width, int height) {
@@ -702,6 +720,12 @@ Texture parseTexture(const std::string& text, const std::string& path) {
     Texture tex = parseTextureTable(c, root, "");
     tex.name = path;
     return tex;
+}
+
+void checkTexture(const std::string& text, const std::string& path) {
+    Ctx c{path};
+    c.tables = false;
+    parseTextureTable(c, parseToml(text, path), "");
 }
 
 Texture loadTexture(const std::string& path) { return parseTexture(readFile(path), path); }

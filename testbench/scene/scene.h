@@ -71,6 +71,11 @@ struct Scene {
 Scene loadScene(const std::string& path, int width = 0, int height = 0);
 Scene parseScene(const std::string& text, const std::string& path, int width = 0, int height = 0);
 
+// Every check of parseScene (keys, values, bounds, every animation key) without building the
+// meshes or the colour tables (what a parse costs): throws the same InputError for a bad file,
+// except the meshes' triangle bound, which needs the meshes. For fuzzing (testbench/fuzz).
+void checkScene(const std::string& text, const std::string& path);
+
 // The scene at sequence time t in [0, 1]: the file with every track's value at t in place of the
 // field it keys (a file without tracks gives the still). loadScene/parseScene already checked
 // every track at each of its keys, so these fail only between keys (e.g. eye == target).
@@ -80,6 +85,8 @@ Scene parseSceneAt(const std::string& text, const std::string& path, double t, i
 // Reads a texture block: the same keys as a [textures.NAME] table of a scene file, at the
 // top level of its own file (used by `pst eval`).
 Texture loadTexture(const std::string& path);
+// parseTexture's checks without building the colour tables.
+void checkTexture(const std::string& text, const std::string& path);
 Texture parseTexture(const std::string& text, const std::string& path);
 
 }  // namespace pst

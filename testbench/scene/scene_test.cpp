@@ -3,6 +3,8 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include <gtest/gtest.h>
 
@@ -40,6 +42,13 @@ void expectError(const std::string& text, std::initializer_list<const char*> par
     } catch (const InputError& e) {
         for (const char* p : parts) EXPECT_NE(std::string(e.what()).find(p), std::string::npos)
             << "message '" << e.what() << "' lacks '" << p << "'";
+        // The check-only parse (the fuzz target's) refuses it with the same message.
+        try {
+            checkScene(text, "bad.toml");
+            ADD_FAILURE() << "checkScene accepts:\n" << text;
+        } catch (const InputError& c) {
+            EXPECT_EQ(std::string(c.what()), std::string(e.what()));
+        }
     }
 }
 
@@ -83,8 +92,13 @@ TEST(Scene, EveryPaperSceneParses) {
                            "zoneplate", "wood_torus", "bases"};
     for (const char* n : names) {
         SCOPED_TRACE(n);
-        Scene s = loadScene(sourceDir() + "/scenes/" + n + ".toml");
+        const std::string path = sourceDir() + "/scenes/" + n + ".toml";
+        Scene s = loadScene(path);
         EXPECT_FALSE(s.objects.empty());
+        std::ifstream in(path);
+        std::stringstream text;
+        text << in.rdbuf();
+        EXPECT_NO_THROW(checkScene(text.str(), path));
         EXPECT_FALSE(s.textures.empty());
     }
     EXPECT_EQ(loadScene(sourceDir() + "/scenes/zoneplate.toml").camera.width, 256);
@@ -182,6 +196,8 @@ noise = { interp = "linear", corner = "value", hash = "perm256" }
 colormap = { size = 2, wrap = "mod", interp = "step", ramp = [[0.0, 0, 0, 0], [0.5, 1, 1, 1]] }
 )";
     Texture t = parseTexture(text, "tex.toml");
+    EXPECT_NO_THROW(checkTexture(text, "tex.toml"));
+    EXPECT_THROW(checkTexture("filter = \"gauss\"\n", "tex.toml"), InputError);
     EXPECT_EQ(t.filter, FilterKind::Box);
     EXPECT_EQ(t.norm, GradNorm::L1);
     EXPECT_EQ(t.noise.interp, NoiseInterp::Linear);
