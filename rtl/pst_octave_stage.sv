@@ -446,18 +446,19 @@ module pst_octave_stage #(
     // complete by the last cycle, where it is added. With the term register (MR) its result
     // passes a register too, so the last cycle's sum starts at registers: the last cycle
     // comes one cycle after the quadric's last step at the earliest.
-    logic [SB-1:0]   qstep;
+    logic [SB-1:0]   qstep, qstep_d;   // this cycle's step, the next cycle's (from cyc_d)
     logic            qdone, qdone_e;
     logic [FW-1:0]   q_s;
     logic [3*GW-1:0] gradq_s;
-    assign qstep = (32'(cyc_q) < pst_pkg::StepMax) ? SB'(cyc_q) : SB'(pst_pkg::StepMax);
+    assign qstep   = (32'(cyc_q) < pst_pkg::StepMax) ? SB'(cyc_q) : SB'(pst_pkg::StepMax);
+    assign qstep_d = (32'(cyc_d) < pst_pkg::StepMax) ? SB'(cyc_d) : SB'(pst_pkg::StepMax);
     pst_quadric_serial #(
       .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
       .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac),
       .Regs(MR)
     ) u_quadric (
       .clk_i, .rst_ni,
-      .step_i (qstep), .adv_i (advance), .done_o (qdone),
+      .step_i (qstep), .step_next_i (qstep_d), .adv_i (advance), .done_o (qdone),
       .s_i (s_i), .coef_i (quad_i), .q_o (q_s), .gradq_o (gradq_s)
     );
     pst_delay #(.Width(1 + FW + 3*GW), .Depth(MR)) u_q_reg (

@@ -19,7 +19,10 @@
 //
 // Timing: the caller holds s_i and coef_i and steps step_i through 0, 1, ... (values from
 // NSteps on hold the result), raising adv_i on each cycle whose step it leaves. At the last
-// step q_o is combinational; after it, it comes from the registers alone.
+// step q_o is combinational; after it, it comes from the registers alone. step_next_i is the
+// step of the next cycle (what step_i will be after this clock edge): its row, position and
+// first-step flag are decoded one cycle ahead and registered, so the step decode is not on
+// the multiplier's path (step -> row / position -> operand mux -> multiplier).
 //
 // Regs = 1 (pst_octave_stage sets it with the term register): the product is registered and
 // accumulated one step later, so the multiplier and the sums are separate paths. A row then
@@ -50,6 +53,7 @@ module pst_quadric_serial #(
   input  logic              clk_i,
   input  logic              rst_ni,
   input  logic [4:0]        step_i,   // 0..NSteps-1: this cycle's product; >= NSteps: hold
+  input  logic [4:0]        step_next_i,   // the next cycle's step_i
   input  logic              adv_i,    // store this step's partial sums (leaving the step)
   output logic                   done_o,   // q_o and gradq_o are valid (step_i >= NSteps - 1)
   input  logic [3*CW-1:0]   s_i,      // s, t, r; element k at [k*CW +: CW]
@@ -85,14 +89,26 @@ module pst_quadric_serial #(
   logic signed [CW-1:0] ma;      // multiplier operand: s_e or s_r
   logic signed [QW-1:0] mb;      // multiplier operand: Q_re or chunk_j(u_r)
   logic signed [UW-1:0] u_q;     // u_r, held for the chunk steps
-  assign live = (32'(step_i) < 3 * RS);
-  always_comb begin
-    r = 2'd0;
-    e = 5'd0;
-    if (live) begin
-      r = 2'(32'(step_i) / RS);
-      e = 5'(32'(step_i) % RS);
+  logic                 first;   // step_i == 0
+  // The decode of a step: {live, r, e, first}.
+  function automatic logic [8:0] decode(input logic [4:0] k);
+    logic [1:0] dr;
+    logic [4:0] de;
+    dr = 2'd0;
+    de = 5'd0;
+    if (32'(k) < 3 * RS) begin
+      dr = 2'(32'(k) / RS);
+      de = 5'(32'(k) % RS);
     end
+    decode = {32'(k) < 3 * RS, dr, de, k == 5'd0};
+  endfunction
+  logic [8:0] dec_q;   // decode(step_i), registered from the previous cycle's step_next_i
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) dec_q <= decode(5'd0);
+    else         dec_q <= decode(step_next_i);
+  end
+  assign {live, r, e, first} = dec_q;
+  always_comb begin
     unique case (r)
       2'd1:    sr = s1;
       2'd2:    sr = s2;
@@ -131,7 +147,7 @@ module pst_quadric_serial #(
   logic [4:0]           e_a;
   logic                 live_a, first_a;
   pst_delay #(.Width(PW + 2 + 5 + 2), .Depth(Regs), .Reset(1'b1)) u_prod (
-    .clk_i, .rst_ni, .en_i (adv_i), .d_i ({prod_d, r, e, live, step_i == 5'd0}),
+    .clk_i, .rst_ni, .en_i (adv_i), .d_i ({prod_d, r, e, live, first}),
     .q_o ({prod, r_a, e_a, live_a, first_a})
   );
   logic signed [QW-1:0] k3_a;   // Q_r3 of the adding step's row
@@ -222,6 +238,14 @@ module pst_quadric_serial #(
     if (rst_ni && adv_prev_q && 32'(step_prev_q) < NSteps - 1) begin
       assert (step_i == step_prev_q + 5'd1)
         else $error("pst_quadric_serial: step %0d left to step %0d", step_prev_q, step_i);
+    end
+  end
+  // The registered decode is this cycle's step's (the caller's step_next_i was right) on
+  // every cycle whose step is used.
+  always_ff @(posedge clk_i) begin
+    if (rst_ni && adv_i) begin
+      assert (dec_q == decode(step_i))
+        else $error("pst_quadric_serial: step %0d decoded as another (step_next_i was wrong)", step_i);
     end
   end
   initial begin

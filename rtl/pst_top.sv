@@ -7,8 +7,11 @@
 //     frag_t            (quadric, lanes,   acc_t   (filter width)   width_t  (colour table)   out_t
 //                        accumulation)
 //
-// [A]..[D] are pst_pipe_reg stages (valid/ready, ready[i] = ready[i+1] | ~valid[i+1]) carrying
-// the named payloads frag_t, acc_t, width_t, out_t. Each stage module holds a fragment for its
+// [A]..[D] are pst_pipe_reg stages (valid/ready) carrying the named payloads frag_t, acc_t,
+// width_t, out_t: on the parallel datapath skid buffers with a registered ready_o (the
+// downstream ready stops at each boundary instead of reaching the enables of every stage's
+// pipeline registers), on the serial datapath single registers (ready[i] = ready[i+1] |
+// ~valid[i+1]: a short chain of a few gates per stage). Each stage module holds a fragment for its
 // cycles (pst_pkg: the serial datapath's step counts) and hands it on at the last. Pipeline
 // registers inside the stages (NoiseRegs, OctaveRegs, WidthRegs, ColourRegs; docs/HARDWARE.md):
 // a parallel stage takes a fragment every cycle into them and carries the payload fields it
@@ -118,6 +121,8 @@ module pst_top #(
   logic a_valid, a_ready, b_in_valid, b_in_ready, b_valid, b_ready;
   logic c_in_valid, c_in_ready, c_valid, c_ready, d_in_valid, d_in_ready;
   logic octave_busy, width_busy, colour_busy;   // fragments inside the stages' pipeline registers
+  // Skid buffers at the boundaries of the parallel datapath (registered ready).
+  localparam bit Skid = (Datapath == pst_pkg::DatapathParallel);
 
   // Registers: control, quadric, octaves.
   localparam int RegOctW = $clog2(Octaves + 1);
@@ -142,7 +147,7 @@ module pst_top #(
   assign a_d.tag = frag_tag_i;
   assign a_d.s   = frag_s_i;
   assign a_d.j   = frag_j_i;
-  pst_pipe_reg #(.Width($bits(a_d))) u_reg_a (.clk_i, .rst_ni, .valid_i (frag_valid_i),
+  pst_pipe_reg #(.Width($bits(a_d)), .Skid(Skid)) u_reg_a (.clk_i, .rst_ni, .valid_i (frag_valid_i),
     .ready_o (frag_ready_o), .data_i (a_d), .valid_o (a_valid), .ready_i (a_ready), .data_o (a_q));
 
   pst_octave_stage #(.Octaves(Octaves), .NoiseUnits(NoiseUnits), .Datapath(Datapath),
@@ -161,7 +166,7 @@ module pst_top #(
     .active_i (active), .quad_i (quad), .oct_m_i (oct_m), .oct_o_i (oct_o), .oct_a_i (oct_a),
     .oct_gm_i (oct_gm), .worley_c_i (worley_c), .probe_valid_o, .probe_tag_o, .probe_pass_o, .probe_q_valid_o,
     .probe_q_tag_o, .probe_q_o, .probe_lat_o, .probe_frac_o, .probe_n_o, .probe_g_o);
-  pst_pipe_reg #(.Width($bits(b_d))) u_reg_b (.clk_i, .rst_ni, .valid_i (b_in_valid),
+  pst_pipe_reg #(.Width($bits(b_d)), .Skid(Skid)) u_reg_b (.clk_i, .rst_ni, .valid_i (b_in_valid),
     .ready_o (b_in_ready), .data_i (b_d), .valid_o (b_valid), .ready_i (b_ready), .data_o (b_q));
 
   // [B] -> filter width -> [C]
@@ -171,7 +176,7 @@ module pst_top #(
   ) u_width (.clk_i, .rst_ni, .valid_i (b_valid), .ready_o (b_ready), .grad_i (b_q.grad),
     .j_i (b_q.j), .side_i ({b_q.grad, b_q.f, b_q.tag}), .valid_o (c_in_valid),
     .ready_i (c_in_ready), .w_o (c_d.w), .side_o ({c_d.grad, c_d.f, c_d.tag}), .busy_o (width_busy));
-  pst_pipe_reg #(.Width($bits(c_d))) u_reg_c (.clk_i, .rst_ni, .valid_i (c_in_valid),
+  pst_pipe_reg #(.Width($bits(c_d)), .Skid(Skid)) u_reg_c (.clk_i, .rst_ni, .valid_i (c_in_valid),
     .ready_o (c_in_ready), .data_i (c_d), .valid_o (c_valid), .ready_i (c_ready), .data_o (c_q));
 
   // [C] -> colour-table filter -> [D] -> out
@@ -183,7 +188,7 @@ module pst_top #(
     .w_i (c_q.w), .side_i ({c_q.w, c_q.grad, c_q.f, c_q.tag}), .valid_o (d_in_valid),
     .ready_i (d_in_ready), .rgba_o (d_d.rgba), .side_o ({d_d.w, d_d.grad, d_d.f, d_d.tag}),
     .busy_o (colour_busy));
-  pst_pipe_reg #(.Width($bits(d_d))) u_reg_d (.clk_i, .rst_ni, .valid_i (d_in_valid),
+  pst_pipe_reg #(.Width($bits(d_d)), .Skid(Skid)) u_reg_d (.clk_i, .rst_ni, .valid_i (d_in_valid),
     .ready_o (d_in_ready), .data_i (d_d), .valid_o (out_valid_o), .ready_i (out_ready_i), .data_o (d_q));
   assign out_tag_o  = d_q.tag;
   assign out_rgba_o = d_q.rgba;

@@ -77,9 +77,15 @@ BLOCKS = {
     "pst_filter_width": "gradient and filter width",
     "pst_isqrt": "gradient and filter width",
     "pst_clut_filter": "colour-table filter",
+    "pst_width_stage": "gradient and filter width",
+    "pst_colour_stage": "colour-table filter",
+    "pst_octave_stage": "control",
+    "pst_regs": "control",
     "pst_pipe_reg": "control",
     "pst_top": "control",
 }
+# A module not named above (pst_delay: pipeline registers, pst_pipe_flow, pst_floor_sat, ...)
+# is counted in the block of the instance that holds it.
 BLOCK_ORDER = ["quadric", "noise", "octave accumulation", "gradient and filter width",
                "colour-table filter", "control"]
 # Path-group key (top-level block) -> pipeline stage it ends in.
@@ -91,6 +97,9 @@ STAGE_OF = {
     "pst_octave_transform": "octave stage [A] -> [B] (octave transform)",
     "pst_noise": "octave stage [A] -> [B] (noise unit)",
     "pst_octave_term": "octave stage [A] -> [B] (octave term)",
+    "pst_octave_stage": "octave stage [A] -> [B]",
+    "pst_width_stage": "filter width [B] -> [C]",
+    "pst_colour_stage": "colour-table filter [C] -> [D]",
     "u_reg_b": "octave stage [A] -> [B] (into [B])",
     "pst_step_counter": "serial step counters",
     "pst_filter_width": "filter width [B] -> [C]",
@@ -225,17 +234,19 @@ def analyse(stat: dict, ltp_text: str, areas: dict, ff_cells: set, mems: list) -
         depth[m.group(1)] = int(m.group(2))
 
     count = {}
+    count_in = {}   # (module, block) -> instances
 
-    def walk(name: str, k: int) -> None:
+    def walk(name: str, k: int, parent: str) -> None:
+        b = BLOCKS.get(base_name(name), parent)
         count[name] = count.get(name, 0) + k
+        count_in[(name, b)] = count_in.get((name, b), 0) + k
         for sub, n in own[name]["subs"].items():
-            walk(sub, k * n)
+            walk(sub, k * n, b)
 
     top = next(n for n in modules if base_name(n) == "pst_top")
-    walk(top, 1)
+    walk(top, 1, "control")
     blocks = {b: {"area": 0.0, "ffs": 0, "cells": 0, "modules": {}} for b in BLOCK_ORDER}
-    for name, k in count.items():
-        b = BLOCKS.get(base_name(name), "control")
+    for (name, b), k in count_in.items():
         blocks[b]["area"] += k * own[name]["logic"]
         blocks[b]["ffs"] += k * own[name]["ffs"]
         blocks[b]["cells"] += k * own[name]["cells"]
@@ -306,19 +317,6 @@ def synth_memory(mem: dict, lib: pathlib.Path, cache: pathlib.Path, yosys: str, 
     cache.mkdir(parents=True, exist_ok=True)
     hit.write_text(json.dumps(rec, indent=1) + "\n")
     return rec
-
-
-def hash_pairs(prof: dict) -> int:
-    """Lookup pairs of the hash ROM whose addresses always differ in bit 0 (even/odd banks
-    serve both): parallel noise (8 corners a cycle, 2 + 4 + 8 shared lookups) pairs X/X+1,
-    Y/Y+1 and Z/Z+1 in every level: 7 of 14. Serial (CPS corners a cycle, three lookups per
-    corner): the h1 lookups of corners differing in x only (CPS/2 pairs), the h2 lookups of
-    corners differing in y only (CPS/2 more when CPS >= 4)."""
-    steps = prof["pipeline"].get("noise_steps", 1)
-    cps = 8 // steps
-    if steps == 1:
-        return 7
-    return (cps // 2) * (1 + (1 if cps >= 4 else 0))
 
 
 # ---- main ----------------------------------------------------------------------------------
@@ -480,14 +478,12 @@ def main() -> int:
                 if not memarea.is_rom(m):
                     entry["flop_ram_ge"] = round(n * memarea.ram_model(m)["flop_area_um2"] / ge)
                 if memarea.is_rom(m) and m["read_ports"] > 1:
-                    noise = base_name(m["module"]) == "pst_noise"
-                    pairs = hash_pairs(prof) if m["size"] == 4096 and noise else 0
-                    # value table: a value-gradient corner reads R[m..m+3] (pst_noise step 3)
-                    quads = m["read_ports"] // 4 if (noise and m["memory"].lstrip("\\") == "value_rom"
-                                                     and prof["noise"].get("corner") == "value_gradient") else 0
+                    # The noise unit's tables are banked in the RTL already (hash even/odd, value
+                    # table by address mod 4: each bank is a memory of its own here), so the
+                    # options left on a bank are replication (as built) and scheduling.
                     entry["port_options"] = [dict(o, area_um2=round(o["area"]), ge=round(o["area"] / ge),
                                                   total_ge=round(n * o["area"] / ge))
-                                             for o in memarea.port_options(m, rec["area_um2"], pairs, quads)]
+                                             for o in memarea.port_options(m, rec["area_um2"])]
                     for o in entry["port_options"]:
                         o.pop("area")
                 if n:
@@ -652,9 +648,10 @@ def markdown(r: dict) -> str:
     md.append("")
     opts = [m for m in r["memories"] if m.get("port_options")]
     if opts:
-        md += ["Port options of the many-ported ROMs as built (the RTL banks the noise unit's hash table "
-               "even/odd and its value table by address mod 4: the rows above are the banks; these are "
-               "further options on them):\n",
+        md += ["Port options of the many-ported ROMs (the RTL banks the noise unit's hash table "
+               "even/odd and its value table by address mod 4: the rows above are the banks; the options "
+               "left on a bank are one copy per read port, as built and counted, or its lookups "
+               "scheduled over fewer ports):\n",
                "| memory | option | copies | GE per instance | GE all instances | cycles factor | note |",
                "|---|---|---:|---:|---:|---:|---|"]
         for m in opts:

@@ -151,7 +151,7 @@ protected:
         clearPort(d.term_n_i), clearPort(d.term_g_i), clearPort(d.term_a_i), clearPort(d.term_gm_i);
         clearPort(d.fw_grad_i), clearPort(d.fw_j_i), clearPort(d.sqrt_x_i), clearPort(d.fs_x_i);
         // The serial variants: out of reset, at step 0, clock low.
-        d.clk_i = 0, d.rst_ni = 1, d.ser_step_i = 0, d.ser_adv_i = 0, d.quad_ser_step_i = 0, d.quad_ser_adv_i = 0;
+        d.clk_i = 0, d.rst_ni = 1, d.ser_step_i = 0, d.ser_adv_i = 0, d.quad_ser_step_i = 0, d.quad_ser_step_next_i = 0, d.quad_ser_adv_i = 0;
         ASSERT_TRUE(eval()) << "an RTL assertion fired on all-zero inputs";
     }
     static void TearDownTestSuite() {
@@ -185,22 +185,31 @@ protected:
     // clock edge each) to `last` on the inputs already driven: its result is then live
     // (combinational). With hold, step `last` is stored too and the step moves to last + 1,
     // where the result comes from the registers alone. An idle cycle comes first, whatever
-    // step the previous vector left. Returns false if an assertion fired.
+    // step the previous vector left. A unit that decodes its step one cycle ahead (the serial
+    // quadric) also gets the step after each clock edge (next). Returns false if an assertion
+    // fired.
     template <typename S>
-    static bool runSerial(S& step, uint8_t& adv, int last, bool hold) {
+    static bool runSerial(S& step, uint8_t& adv, int last, bool hold, S* next = nullptr) {
         bool ok = true;
+        auto setNext = [&](int k) {
+            if (next) *next = S(k);
+        };
         adv = 0;
+        setNext(0);
         ok = eval() && ok;
         ok = tick() && ok;
         adv = 1;
         for (int k = 0; k < last; ++k) {
             step = S(k);
+            setNext(k + 1);
             ok = eval() && ok;
             ok = tick() && ok;
         }
         step = S(last);
         ok = eval() && ok;
         if (hold) {
+            setNext(last + 1);
+            ok = eval() && ok;
             ok = tick() && ok;
             step = S(last + 1);
             adv = 0;
@@ -250,7 +259,8 @@ protected:
         int64_t sq[2], sg[2][3];
         bool serialOk = true;
         for (int h = 0; h < 2; ++h) {
-            serialOk = runSerial(d.quad_ser_step_i, d.quad_ser_adv_i, quadricSteps() - 1, h == 1) && serialOk;
+            serialOk = runSerial(d.quad_ser_step_i, d.quad_ser_adv_i, quadricSteps() - 1, h == 1,
+                                 &d.quad_ser_step_next_i) && serialOk;
             sq[h] = getSigned(d.quad_ser_q_o, 0, FW);
             for (int k = 0; k < 3; ++k) sg[h][k] = getSigned(d.quad_ser_gradq_o, k * GW, GW);
         }

@@ -57,11 +57,12 @@ module pst_arith_unit_top #(
   output logic [FW-1:0]     term_fterm_o,
   output logic [3*GW-1:0]   term_gterm_o,
   // Serial variants (datapath = "serial"), on the same inputs: pst_quadric_serial (stepped
-  // by quad_ser_step_i / quad_ser_adv_i) and pst_filter_width #(.Serial(1)) (ser_step_i /
+  // by quad_ser_step_i / quad_ser_adv_i, quad_ser_step_next_i: the step after the clock edge) and pst_filter_width #(.Serial(1)) (ser_step_i /
   // ser_adv_i).
   input  logic              clk_i,
   input  logic              rst_ni,
   input  logic [pst_pkg::StepBits-1:0] quad_ser_step_i,
+  input  logic [pst_pkg::StepBits-1:0] quad_ser_step_next_i,   // the step after the next clock edge
   input  logic              quad_ser_adv_i,
   output logic              quad_ser_done_o,
   input  logic [pst_pkg::StepBits-1:0] ser_step_i,
@@ -99,7 +100,7 @@ module pst_arith_unit_top #(
     .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
     , .Regs(OctaveRegs >= 1 ? 1 : 0)   // as pst_octave_stage builds it
   ) u_quadric_ser (
-    .clk_i, .rst_ni, .step_i (quad_ser_step_i), .adv_i (quad_ser_adv_i), .done_o (quad_ser_done_o),
+    .clk_i, .rst_ni, .step_i (quad_ser_step_i), .step_next_i (quad_ser_step_next_i), .adv_i (quad_ser_adv_i), .done_o (quad_ser_done_o),
     .s_i (quad_s_i), .coef_i (quad_coef_i), .q_o (quad_ser_q_o), .gradq_o (quad_ser_gradq_o)
   );
 
