@@ -76,6 +76,7 @@ bool parseBandlimit(const std::string& name, Bandlimit* out) {
     else if (name == "widen") *out = Bandlimit::Widen;
     else if (name == "match") *out = Bandlimit::Match;
     else if (name == "footprint") *out = Bandlimit::Footprint;
+    else if (name == "isotropic") *out = Bandlimit::Isotropic;
     else return false;
     return true;
 }
@@ -87,6 +88,7 @@ const char* toString(Bandlimit v) {
     case Bandlimit::Widen: return "widen";
     case Bandlimit::Match: return "match";
     case Bandlimit::Footprint: return "footprint";
+    case Bandlimit::Isotropic: return "isotropic";
     }
     return "?";
 }
@@ -185,6 +187,39 @@ double octaveMatch(const Octave& o, const NoiseOptions& opt, const glm::dvec3& d
     return std::sqrt(noiseBoxGain(opt, glm::length(o.M * dsdx)) * noiseBoxGain(opt, glm::length(o.M * dsdy)));
 }
 
+double spectralNorm(const glm::dmat3& M) {
+    // Power iteration on M^T M from each axis (the largest Rayleigh quotient wins).
+    const glm::dmat3 A = glm::transpose(M) * M;
+    double best = 0;
+    for (int k = 0; k < 3; ++k) {
+        glm::dvec3 v(0.0);
+        v[k] = 1;
+        for (int it = 0; it < 100; ++it) {
+            const glm::dvec3 w = A * v;
+            const double l = glm::length(w);
+            if (!(l > 0)) break;
+            v = w / l;
+        }
+        best = std::max(best, glm::dot(v, A * v));
+    }
+    return std::sqrt(best);
+}
+
+double footprintNorm(const glm::dvec3& v) {
+    const double a = std::abs(v.x), b = std::abs(v.y), c = std::abs(v.z);
+    const double mx = std::max({a, b, c});
+    return mx + 0.375 * (a + b + c - mx);
+}
+
+double octaveIsotropic(const Octave& o, const NoiseOptions& opt, const glm::dvec3& dsdx, const glm::dvec3& dsdy) {
+    const double m = spectralNorm(o.M);
+    auto h = [&](const glm::dvec3& e) {
+        const double nu = std::clamp(m * footprintNorm(e), std::exp2(kIsoLgLo), std::exp2(kIsoLgHi));
+        return std::sqrt(noiseBoxGain(opt, nu));
+    };
+    return h(dsdx) * h(dsdy);
+}
+
 double octaveFootprint(const Octave& o, const NoiseOptions& opt, const glm::dvec3& s, const glm::dvec3& dsdx,
                        const glm::dvec3& dsdy, glm::dvec3* grad, double* keptVar) {
     const NoiseMoments m = noiseMoments(opt);
@@ -220,6 +255,13 @@ double evalFBandlimited(const Texture& tex, const glm::dvec3& s, const glm::dvec
             f += o.amplitude * octaveFootprint(o, tex.noise, s, dsdx, dsdy, gradS ? &gt : nullptr, &kept);
             if (gradS) g += o.amplitude * gt;
             var += std::pow(o.amplitude * m.sd, 2) * (1.0 - kept);
+            continue;
+        }
+        if (tex.bandlimit == Bandlimit::Isotropic) {
+            const double a = o.amplitude * octaveIsotropic(o, tex.noise, dsdx, dsdy);
+            glm::dvec3 gn;
+            f += a * noise(o.M * s + o.offset, tex.noise, gradS ? &gn : nullptr);
+            if (gradS) g += a * (glm::transpose(o.M) * gn);
             continue;
         }
         const double alpha =

@@ -49,9 +49,10 @@ const char* toString(GradNorm v);
 // fade: each term keeps the standard deviation the pixel's box average of it has; widened as widen),
 // footprint (match across the footprint's minor edge; along its major edge the term is the mean of
 // up to kFootprintSamples point samples spread over the edge, so it follows the pixel's own average
-// from frame to frame; octaveFootprint).
-enum class Bandlimit { Off, Fade, Widen, Match, Footprint };
-// "off", "fade", "widen", "match", "footprint"
+// from frame to frame; octaveFootprint), isotropic (the hardware's variant, octaveIsotropic: the
+// term and its gradient scaled by alpha toward 0, no widening).
+enum class Bandlimit { Off, Fade, Widen, Match, Footprint, Isotropic };
+// "off", "fade", "widen", "match", "footprint", "isotropic"
 bool parseBandlimit(const std::string& name, Bandlimit* out);
 const char* toString(Bandlimit v);
 
@@ -110,6 +111,19 @@ double noiseBoxGain(const NoiseOptions& opt, double nu);
 // share of the term's standard deviation that survives the pixel's box average (the footprint's
 // two edges averaged independently: exact for a separable correlation).
 double octaveMatch(const Octave& o, const NoiseOptions& opt, const glm::dvec3& dsdx, const glm::dvec3& dsdy);
+
+// Bandlimit::Isotropic, the hardware's variant (rtl/pst_octave_fade.sv): each edge's footprint in
+// lattice cells bounded by nu = ||M||_2 footprintNorm(edge) (one per-octave register, lg ||M||_2,
+// instead of |M edge|'s 9 products), clamped to [2^kIsoLgLo, 2^kIsoLgHi] (the fade table's range),
+// and alpha = sqrt(g(nu_x)) sqrt(g(nu_y)), g = noiseBoxGain: the term a alpha n and its gradient
+// a alpha M^T grad n (toward 0, not toward the basis's mean; no widening).
+constexpr double kIsoLgLo = -3.0, kIsoLgHi = 5.0;
+double octaveIsotropic(const Octave& o, const NoiseOptions& opt, const glm::dvec3& dsdx, const glm::dvec3& dsdy);
+// The spectral norm ||M||_2 (largest singular value).
+double spectralNorm(const glm::dmat3& M);
+// The hardware's cheap length of a Jacobian column: max + 3/8 (mid + min) of |v_k| (within
+// -3 % .. +13.2 % of |v|).
+double footprintNorm(const glm::dvec3& v);
 
 // Bandlimit::Footprint's term of octave o at s: with nu = |M dsdx|, |M dsdy| the footprint's edges
 // in lattice cells, K = clamp(ceil(2 nu_major), 1, kFootprintSamples) samples n_k at s + ((k + 1/2) / K

@@ -383,3 +383,74 @@ TEST(Texture, GradNormNamesRoundTrip) {
 
 }  // namespace
 }  // namespace pst
+
+namespace pst {
+namespace {
+
+TEST(Texture, SpectralNormAndFootprintNorm) {
+    EXPECT_NEAR(spectralNorm(glm::dmat3(4.0)), 4.0, 1e-12);
+    // diag(1, -3, 2) rotated: the largest |singular value| is 3.
+    const glm::dmat3 D(1, 0, 0, 0, -3, 0, 0, 0, 2);
+    const double c = std::cos(0.7), s = std::sin(0.7);
+    const glm::dmat3 R(c, s, 0, -s, c, 0, 0, 0, 1);
+    EXPECT_NEAR(spectralNorm(R * D * glm::transpose(R)), 3.0, 1e-9);
+    // A rank-one matrix u v^T: |u| |v|.
+    const glm::dvec3 u(1, 2, 2), v(0, 3, 4);
+    glm::dmat3 uv;
+    for (int col = 0; col < 3; ++col) uv[col] = u * v[col];
+    EXPECT_NEAR(spectralNorm(uv), 15.0, 1e-9);
+    // max + 3/8 (mid + min): exact on an axis, within -2.8 % (1, 1, 0) .. +13.2 % (1, 3/8, 3/8) of |v|.
+    EXPECT_DOUBLE_EQ(footprintNorm(glm::dvec3(0, -2, 0)), 2.0);
+    EXPECT_DOUBLE_EQ(footprintNorm(glm::dvec3(1, -1, 1)), 1.75);
+    for (int i = 0; i < 1000; ++i) {
+        const glm::dvec3 w(std::sin(i * 1.3), std::cos(i * 0.7), std::sin(i * 2.9 + 1));
+        const double r = footprintNorm(w) / glm::length(w);
+        EXPECT_GE(r, 0.9722);
+        EXPECT_LE(r, 1.1320);
+    }
+}
+
+TEST(Texture, IsotropicBandlimitBoundsEachEdgeAndScalesTermAndGradient) {
+    Texture tex = testTexture({});
+    tex.octaves.resize(2);
+    tex.octaves[0].M = glm::dmat3(1.0);
+    tex.octaves[1].M = glm::dmat3(8.0);
+    const glm::dvec3 s(0.3, -1.2, 2.7);
+    const Octave& o1 = tex.octaves[1];
+    // Small footprints keep the term whole (the table's lowest nu, 1/8 cell, as good as a point).
+    const glm::dvec3 tiny(1e-6, 0, 0), tinyY(0, 1e-6, 0);
+    const double h0 = std::sqrt(noiseBoxGain(tex.noise, 0.125));
+    EXPECT_DOUBLE_EQ(octaveIsotropic(o1, tex.noise, tiny, tinyY), h0 * h0);
+    EXPECT_GT(h0, 0.99);
+    // Each edge by its own bound: nu = 8 |edge| for a scaled identity.
+    const glm::dvec3 ex(0.25, 0, 0), ey(0, 0, 0.05);
+    EXPECT_DOUBLE_EQ(octaveIsotropic(o1, tex.noise, ex, ey),
+                     std::sqrt(noiseBoxGain(tex.noise, 2.0)) * std::sqrt(noiseBoxGain(tex.noise, 0.4)));
+    // Above the table (2^5 cells) the fade stops falling.
+    EXPECT_DOUBLE_EQ(octaveIsotropic(o1, tex.noise, glm::dvec3(100, 0, 0), tinyY),
+                     octaveIsotropic(o1, tex.noise, glm::dvec3(4, 0, 0), tinyY));
+    // f and grad: each term a alpha n, a alpha M^T grad n (toward 0, no widening).
+    tex.bandlimit = Bandlimit::Isotropic;
+    glm::dvec3 gb;
+    double sd = -1;
+    const double fb = evalFBandlimited(tex, s, ex, ey, &gb, &sd);
+    double f = tex.quadric.value(s);
+    glm::dvec3 g = tex.quadric.gradient(s);
+    for (const Octave& o : tex.octaves) {
+        glm::dvec3 gn;
+        const double a = o.amplitude * octaveIsotropic(o, tex.noise, ex, ey);
+        f += a * noise(o.M * s + o.offset, tex.noise, &gn);
+        g += a * (glm::transpose(o.M) * gn);
+    }
+    EXPECT_DOUBLE_EQ(fb, f);
+    EXPECT_NEAR(glm::length(gb - g), 0.0, 1e-12);
+    EXPECT_EQ(sd, 0.0);
+    EXPECT_DOUBLE_EQ(shade(tex, s, ex, ey).filterWidth, filterWidth(gb, ex, ey, tex.norm));
+    Bandlimit b;
+    ASSERT_TRUE(parseBandlimit("isotropic", &b));
+    EXPECT_EQ(b, Bandlimit::Isotropic);
+    EXPECT_STREQ(toString(b), "isotropic");
+}
+
+}  // namespace
+}  // namespace pst

@@ -17,8 +17,14 @@
 //             NoiseRegs + (OctaveRegs >= 1).
 // busy_o: a beat is inside the pipeline's registers (pst_top's idle_o).
 //
+// Bandlimited octaves (FilterBandlimit = isotropic): the pixel's two edges' lg lengths
+// (pst_fade_lg, from the Jacobian in side_i, once per fragment) and per lane the octave's fade
+// alpha (pst_octave_fade; parallel: at the beat's issue, delayed beside the noise unit; serial:
+// registered with the term rows' operands), which the octave term multiplies in.
+//
 // Parameters: the profile's (pst_top's header); Datapath selects the schedule below.
-// Registers (pst_regs, flat): quad_i A..J; oct_*_i octave i's M, o, a, GM at block i.
+// Registers (pst_regs, flat): quad_i A..J; oct_*_i octave i's M, o, a, GM, lg ||M|| at block i;
+// bl_i, fade_i: control.bandlimit and the fade table.
 `include "pst_pkg.sv"
 `default_nettype none
 
@@ -53,9 +59,13 @@ module pst_octave_stage #(
   parameter int FFrac            = pst_pkg::FFracDefault,
   parameter int GradInt          = pst_pkg::GradIntDefault,
   parameter int GradFrac         = pst_pkg::GradFracDefault,
+  parameter int JacobianInt      = pst_pkg::JacobianIntDefault,
+  parameter int JacobianFrac     = pst_pkg::JacobianFracDefault,
+  parameter int FilterBandlimit  = pst_pkg::FilterBandlimitDefault,
   parameter int NoiseRegs        = pst_pkg::NoiseRegsDefault,
   parameter int OctaveRegs       = pst_pkg::OctaveRegsDefault,
-  parameter int SideW            = pst_pkg::TagBits,   // side_i: the tag at its low TagBits
+  parameter int SideW            = pst_pkg::TagBits,   // side_i: the tag at its low TagBits, the
+                                                       // Jacobian (6 x Jacobian) above it
   parameter bit DebugProbes      = 1'b1,
   localparam int CW  = CoordInt + CoordFrac,
   localparam int MW  = MatrixInt + MatrixFrac,
@@ -70,7 +80,9 @@ module pst_octave_stage #(
   localparam int NGW = pst_pkg::NoiseGradIntBits + NoiseOutFrac,  // one noise gradient component
   localparam int LTW = pst_pkg::LatticeWidth,                     // one lane's lattice index
   localparam int PPB = pst_pkg::ProbePassBits,
-  localparam int OctBits = $clog2(Octaves + 1)                    // active octave count
+  localparam int OctBits = $clog2(Octaves + 1),                   // active octave count
+  localparam int FB  = pst_pkg::FadeBits,                         // a fade table entry, alpha
+  localparam int LMW = pst_pkg::FadeLgBits                        // lg ||M||
 ) (
   input  logic                      clk_i,
   input  logic                      rst_ni,
@@ -93,6 +105,9 @@ module pst_octave_stage #(
   input  logic [Octaves*AW-1:0]     oct_a_i,
   input  logic [Octaves*9*GMW-1:0]  oct_gm_i,
   input  logic [pst_pkg::RegWorleyCount*(pst_pkg::WorleyCoefInt+pst_pkg::WorleyCoefFrac)-1:0] worley_c_i,
+  input  logic [Octaves*LMW-1:0]    oct_lgm_i,
+  input  logic                      bl_i,
+  input  logic [pst_pkg::FadeEntries*FB-1:0] fade_i,
   // Debug probes (pst_top's; zero when DebugProbes = 0)
   output logic                      probe_valid_o,
   output logic [pst_pkg::TagBits-1:0] probe_tag_o,
@@ -134,6 +149,25 @@ module pst_octave_stage #(
   localparam int GAccW     = GW + AccGuard;
   // A beat (parallel): {valid, pass, step, first, last}.
   localparam int BW        = 1 + PassBits + 3 + 2;
+  // Bandlimited octaves.
+  localparam bit Bl        = (FilterBandlimit == pst_pkg::FilterBandlimitIsotropic);
+  localparam int JW        = JacobianInt + JacobianFrac;
+  localparam int LgW       = $clog2((JW + 1) << pst_pkg::FadeLgFrac) + 1;   // pst_fade_lg's lg_o
+  localparam logic [FB-1:0] AlphaOne = FB'(1 << pst_pkg::FadeFrac);
+
+  // The pixel's edges' lg lengths (the fragment's Jacobian in side_i: dsdx, then dsdy).
+  logic [LgW-1:0] lgx, lgy;
+  if (Bl) begin : g_lg
+    pst_fade_lg #(.JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac)) u_lgx (
+      .e_i (side_i[TB +: 3*JW]), .lg_o (lgx));
+    pst_fade_lg #(.JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac)) u_lgy (
+      .e_i (side_i[TB + 3*JW +: 3*JW]), .lg_o (lgy));
+  end else begin : g_no_lg
+    assign lgx = '0;
+    assign lgy = '0;
+    logic unused_fade;
+    assign unused_fade = ^{bl_i, fade_i, oct_lgm_i, lgx, lgy};
+  end
 
   // The fragment in [A] stays Cycles cycles; cyc_q counts them. Schedule of a lane:
   //   parallel: pass p, noise step j at cycle p NoiseSteps + j (a beat each); the octave
@@ -359,15 +393,18 @@ module pst_octave_stage #(
       logic [3*OW-1:0]  o_sel;
       logic [AW-1:0]    a_sel;
       logic [9*GMW-1:0] gm_sel;
+      logic [LMW-1:0]   lgm_sel;
       always_comb begin
         m_sel  = oct_m_i[u*9*MW +: 9*MW];
         o_sel  = oct_o_i[u*3*OW +: 3*OW];
+        lgm_sel = oct_lgm_i[u*LMW +: LMW];
         a_sel  = oct_a_i[u*AW +: AW];
         gm_sel = oct_gm_i[u*9*GMW +: 9*GMW];
         for (int p = 1; p < Passes; p++) begin
           if (32'(npass) == p) begin
             m_sel  = oct_m_i[(p * NoiseUnits + u)*9*MW +: 9*MW];
             o_sel  = oct_o_i[(p * NoiseUnits + u)*3*OW +: 3*OW];
+            lgm_sel = oct_lgm_i[(p * NoiseUnits + u)*LMW +: LMW];
           end
           if (32'(pass_n) == p) begin
             a_sel  = oct_a_i[(p * NoiseUnits + u)*AW +: AW];
@@ -389,13 +426,28 @@ module pst_octave_stage #(
         .q_o ({nz_lat[u*LTW +: LTW], nz_frac[u*3*LF +: 3*LF]})
       );
 
+      // The octave's fade at the beat's issue, delayed beside the transform register and the
+      // noise unit to the term.
+      logic [FB-1:0] alpha_n;
+      if (Bl) begin : g_fade
+        logic [FB-1:0] alpha_f;
+        pst_octave_fade #(.LgW(LgW)) u_fade (
+          .en_i (bl_i), .lgx_i (lgx), .lgy_i (lgy), .lgm_i (lgm_sel), .table_i (fade_i), .alpha_o (alpha_f));
+        pst_delay #(.Width(FB), .Depth(XR + NR)) u_alpha (
+          .clk_i, .rst_ni, .en_i (en), .d_i (alpha_f), .q_o (alpha_n));
+      end else begin : g_whole
+        assign alpha_n = AlphaOne;
+        logic unused_lgm;
+        assign unused_lgm = ^lgm_sel;
+      end
+
       pst_octave_term #(
         .NoiseOutFrac(NoiseOutFrac), .AmplitudeInt(AmplitudeInt), .AmplitudeFrac(AmplitudeFrac),
         .GradMatrixInt(GradMatrixInt), .GradMatrixFrac(GradMatrixFrac), .FInt(FInt),
-        .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
+        .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac), .Bandlimit(Bl)
       ) u_term (
         .n_i (nz_n[u*NW +: NW]), .g_i (nz_g[u*3*NGW +: 3*NGW]), .a_i (a_sel), .gm_i (gm_sel),
-        .fterm_o (fterm_raw), .gterm_o (gterm_raw)
+        .alpha_i (alpha_n), .fterm_o (fterm_raw), .gterm_o (gterm_raw)
       );
       pst_delay #(.Width(FW + 3*GW), .Depth(MR)) u_m (
         .clk_i, .rst_ni, .en_i (en),
@@ -487,6 +539,7 @@ module pst_octave_stage #(
       logic [OW-1:0]    o_row, o_row_d;
       logic [3*GMW-1:0] gm_row, gm_row_d;
       logic [AW-1:0]    a_t, a_t_d;
+      logic [LMW-1:0]   lgm_t_d;
       logic [PassBits-1:0] xp, tp;   // the next cycle's transform and term rows (sched's fields)
       logic [1:0]          xr, tr;
       assign tr = sch_d[0 +: 2];
@@ -498,6 +551,7 @@ module pst_octave_stage #(
         o_row_d  = '0;
         gm_row_d = '0;
         a_t_d    = '0;
+        lgm_t_d  = '0;
         for (int p = 0; p < Passes; p++) begin
           for (int r = 0; r < SR; r++) begin
             if (32'(xp) == p && 32'(xr) == r) begin
@@ -508,7 +562,10 @@ module pst_octave_stage #(
               gm_row_d = oct_gm_i[((p * NoiseUnits + u)*9 + 3*r)*GMW +: 3*GMW];
             end
           end
-          if (32'(tp) == p) a_t_d = oct_a_i[(p * NoiseUnits + u)*AW +: AW];
+          if (32'(tp) == p) begin
+            a_t_d   = oct_a_i[(p * NoiseUnits + u)*AW +: AW];
+            lgm_t_d = oct_lgm_i[(p * NoiseUnits + u)*LMW +: LMW];
+          end
         end
       end
       always_ff @(posedge clk_i) begin
@@ -571,12 +628,26 @@ module pst_octave_stage #(
       logic [GW-1:0] gterm_raw;
       logic [3*GW-1:0] gterm_d;
       logic          lane_on;
+      // The term pass's fade, registered with its operands (the fragment's Jacobian in side_i
+      // stays while it is in [A]).
+      logic [FB-1:0] alpha_t;
+      if (Bl) begin : g_fade
+        logic [FB-1:0] alpha_t_d;
+        pst_octave_fade #(.LgW(LgW)) u_fade (
+          .en_i (bl_i), .lgx_i (lgx), .lgy_i (lgy), .lgm_i (lgm_t_d), .table_i (fade_i), .alpha_o (alpha_t_d));
+        always_ff @(posedge clk_i) alpha_t <= alpha_t_d;
+      end else begin : g_whole
+        assign alpha_t = AlphaOne;
+        logic unused_lgm;
+        assign unused_lgm = ^lgm_t_d;
+      end
       pst_octave_term #(
         .NoiseOutFrac(NoiseOutFrac), .AmplitudeInt(AmplitudeInt), .AmplitudeFrac(AmplitudeFrac),
         .GradMatrixInt(GradMatrixInt), .GradMatrixFrac(GradMatrixFrac), .FInt(FInt),
-        .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac), .Rows(1)
+        .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac), .Rows(1), .Bandlimit(Bl)
       ) u_term (
-        .n_i (n_q), .g_i (g_q), .a_i (a_t), .gm_i (gm_row), .fterm_o (fterm_raw), .gterm_o (gterm_raw)
+        .n_i (n_q), .g_i (g_q), .a_i (a_t), .gm_i (gm_row), .alpha_i (alpha_t), .fterm_o (fterm_raw),
+        .gterm_o (gterm_raw)
       );
       assign lane_on = tm_on && (t_oct < {1'b0, active_i});
       assign fterm_d = (lane_on && trow == 2'd0) ? fterm_raw : '0;
@@ -712,6 +783,7 @@ module pst_octave_stage #(
   initial begin
     if (OctaveRegs < 0 || OctaveRegs > 2) $error("pst_octave_stage: OctaveRegs must be 0..2");
     if (SideW < TB) $error("pst_octave_stage: SideW must hold the tag");
+    if (Bl && SideW < TB + 6*JW) $error("pst_octave_stage: SideW must hold the Jacobian above the tag");
   end
   // The cycle counter stays within the fragment's cycles.
   assert property (@(posedge clk_i) disable iff (!rst_ni) 32'(cyc_q) < CycMax);

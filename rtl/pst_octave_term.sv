@@ -7,7 +7,9 @@
 //   fterm_o    = sat_F(floor(a n to FFrac))                      a n exact at AmplitudeFrac + NoiseOutFrac
 //   gterm_o[r] = sat_Grad(floor(sum_c GM[r][c] g[c] to GradFrac)) exact at GradMatrixFrac + NoiseOutFrac
 // floor = arithmetic shift right (a left shift, exact, if the target has more fraction bits);
-// sat = clamp to the signed output width.
+// sat = clamp to the signed output width. With Bandlimit (filter.bandlimit = isotropic) both are
+// then faded by the octave's alpha_i (pst_octave_fade; octaveTermFx + fadeScaleFx):
+//   fterm_o = floor(fterm alpha / 2^FadeFrac), gterm_o[r] likewise   (|alpha| <= 1: no saturation)
 //
 // Parameters:
 //   NoiseOutFrac                    fraction bits of n_i (Q4.NoiseOutFrac) and g_i (Q6.NoiseOutFrac).
@@ -17,6 +19,7 @@
 //   GradInt, GradFrac               gterm_o component format (grad_s f).
 //   Rows                            3: all of GM g; 1: one row (the caller hands in that row of
 //                                   GM: the serial datapath, one row per cycle).
+//   Bandlimit                       1: fade by alpha_i (1 + Rows multipliers); 0: alpha_i unused.
 `include "pst_pkg.sv"
 `default_nettype none
 
@@ -31,18 +34,21 @@ module pst_octave_term #(
   parameter int GradInt        = pst_pkg::GradIntDefault,
   parameter int GradFrac       = pst_pkg::GradFracDefault,
   parameter int Rows           = 3,
+  parameter bit Bandlimit      = 1'b0,
   // Derived widths (not profile keys).
   localparam int NW  = pst_pkg::NoiseIntBits + NoiseOutFrac,                  // noise value Q4.NoiseOutFrac
   localparam int NGW = pst_pkg::NoiseGradIntBits + NoiseOutFrac,                  // noise gradient Q6.NoiseOutFrac
   localparam int AW  = AmplitudeInt + AmplitudeFrac,      // a_i
   localparam int GMW = GradMatrixInt + GradMatrixFrac,    // one GM entry
   localparam int FW  = FInt + FFrac,                      // fterm_o
-  localparam int GW  = GradInt + GradFrac                 // one gterm_o component
+  localparam int GW  = GradInt + GradFrac,                // one gterm_o component
+  localparam int FB  = pst_pkg::FadeBits                  // alpha_i
 ) (
   input  logic [NW-1:0]    n_i,       // noise value
   input  logic [3*NGW-1:0] g_i,       // noise gradient dn/dp; element k at [k*NGW +: NGW]
   input  logic [AW-1:0]    a_i,       // amplitude
   input  logic [Rows*3*GMW-1:0] gm_i,  // GM = a M^T row-major: GM[r][c] at [(3r+c)*GMW +: GMW]
+  input  logic [FB-1:0]         alpha_i, // the octave's fade, FadeFrac fraction bits (Bandlimit)
   output logic [FW-1:0]         fterm_o,
   output logic [Rows*GW-1:0]    gterm_o    // element r at [r*GW +: GW]
 );
@@ -52,13 +58,17 @@ module pst_octave_term #(
   // GM . g: three GMW x NGW products, |sum| <= 3 * 2^(GMW+NGW-2) -> GMW + NGW + 2 bits.
   localparam int DW  = GMW + NGW + 2;
 
+  // The saturated terms before the fade.
+  logic [FW-1:0]      f_sat;
+  logic [Rows*GW-1:0] g_sat;
+
   // fterm = sat_F(floor(a n to FFrac)).
   logic signed [PW-1:0] an;
   assign an = PW'($signed(a_i)) * PW'($signed(n_i));
   pst_floor_sat #(
     .InWidth (PW), .InFrac (AmplitudeFrac + NoiseOutFrac), .OutWidth (FW), .OutFrac (FFrac)
   ) u_f_sat (
-    .x_i (an), .y_o (fterm_o)
+    .x_i (an), .y_o (f_sat)
   );
 
   // gterm_r = sat_Grad(floor(sum_c GM[r][c] g[c] to GradFrac)).
@@ -70,8 +80,31 @@ module pst_octave_term #(
     pst_floor_sat #(
       .InWidth (DW), .InFrac (GradMatrixFrac + NoiseOutFrac), .OutWidth (GW), .OutFrac (GradFrac)
     ) u_g_sat (
-      .x_i (dot), .y_o (gterm_o[r*GW +: GW])
+      .x_i (dot), .y_o (g_sat[r*GW +: GW])
     );
+  end
+
+  // The fade: floor(v alpha / 2^FadeFrac), alpha unsigned (a zero bit above it).
+  if (Bandlimit) begin : g_fade
+    localparam int FPW = FW + FB + 1;
+    localparam int GPW = GW + FB + 1;
+    logic signed [FPW-1:0] fp;
+    assign fp = FPW'($signed(f_sat)) * FPW'($signed({1'b0, alpha_i}));
+    assign fterm_o = fp[pst_pkg::FadeFrac +: FW];
+    for (genvar r = 0; r < Rows; r++) begin : g_row
+      logic signed [GPW-1:0] gp;
+      assign gp = GPW'($signed(g_sat[r*GW +: GW])) * GPW'($signed({1'b0, alpha_i}));
+      assign gterm_o[r*GW +: GW] = gp[pst_pkg::FadeFrac +: GW];
+      logic unused_gp;
+      assign unused_gp = ^{gp[GPW-1:pst_pkg::FadeFrac+GW], gp[pst_pkg::FadeFrac-1:0]};
+    end
+    logic unused_fp;
+    assign unused_fp = ^{fp[FPW-1:pst_pkg::FadeFrac+FW], fp[pst_pkg::FadeFrac-1:0]};
+  end else begin : g_whole
+    assign fterm_o = f_sat;
+    assign gterm_o = g_sat;
+    logic unused_alpha;
+    assign unused_alpha = ^alpha_i;
   end
 
   // Assertions

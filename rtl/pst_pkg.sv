@@ -36,6 +36,9 @@ package pst_pkg;
   localparam int FilterNormEuclid = 0;
   localparam int FilterNormMaxHalfMin = 1;
   localparam int FilterNormL1 = 2;
+  // filter.bandlimit: bandlimited octaves (beyond the paper): isotropic builds the fade unit (pst_octave_fade: per octave alpha = h(lg ||M|| + lg |dsdx|) h(lg ||M|| + lg |dsdy|) from a driver-written table, scaling the octave term and its gradient; enabled per texture by control.bandlimit); off builds none
+  localparam int FilterBandlimitOff = 0;
+  localparam int FilterBandlimitIsotropic = 1;
 
   // Profile ranges (model/golden/profile.cpp and scripts/pstlib/contract.py check them).
   localparam int OctavesMin = 1;
@@ -96,6 +99,7 @@ package pst_pkg;
   localparam int NoiseWorleyOrderDefault = 2;
   localparam int FilterNormDefault = FilterNormEuclid;
   localparam int FilterRecipFracDefault = 18;
+  localparam int FilterBandlimitDefault = FilterBandlimitOff;
   localparam int CoordIntDefault = 12;
   localparam int CoordFracDefault = 20;
   localparam int JacobianIntDefault = 8;
@@ -119,19 +123,24 @@ package pst_pkg;
   // Register map (docs/HARDWARE.md).
   localparam int RegAddrBits = 16;
   localparam int RegDataBits = 32;
-  // 0x0000: control: [0] wrap (0 mod, 1 clamp); [2:1] filter kind (0 none, 1 mip, 2 mip blended, 3 sat)
+  // 0x0000: control: [0] wrap (0 mod, 1 clamp); [2:1] filter kind (0 none, 1 mip, 2 mip blended, 3 sat); [3] bandlimited octaves (filter.bandlimit profiles only)
   localparam logic [15:0] RegControl = 16'h0000;
-  localparam int RegControlBits = 3;
+  localparam int RegControlBits = 4;
   localparam int RegControlClampLsb = 0;
   localparam int RegControlClampWidth = 1;
   localparam int RegControlKindLsb = 1;
   localparam int RegControlKindWidth = 2;
+  localparam int RegControlBandlimitLsb = 3;
+  localparam int RegControlBandlimitWidth = 1;
   // 0x0001: active octaves (0..Octaves)
   localparam logic [15:0] RegActive = 16'h0001;
   // 0x0010 + k: quadric coefficient k = 0..9 (A..J), Quadric format
   localparam logic [15:0] RegQuadric = 16'h0010;
   localparam int RegQuadricCount = 10;
-  // 0x0100 + 32 i + k: octave i: k = 0..8 M row-major (Matrix), 9..11 o (Offset), 12 a (Amplitude), 13..21 GM = a M^T row-major (GradMatrix)
+  // 0x0040: fade table entry k (filter.bandlimit profiles): h = sqrt(g(nu)) at lg nu = -FadeLgLo + (k + 1/2) / 4, unsigned FadeBits (1.0 = 2^FadeFrac); alpha is clamped to 1.0
+  localparam logic [15:0] RegFade = 16'h0040;
+  localparam int RegFadeCount = 32;
+  // 0x0100 + 32 i + k: octave i: k = 0..8 M row-major (Matrix), 9..11 o (Offset), 12 a (Amplitude), 13..21 GM = a M^T row-major (GradMatrix), 22 lg ||M||_2 (signed, FadeLgFrac fraction bits, FadeLgBits; filter.bandlimit profiles)
   localparam logic [15:0] RegOctave = 16'h0100;
   localparam int RegOctaveStride = 32;
   localparam int RegOctaveM = 0;
@@ -142,6 +151,8 @@ package pst_pkg;
   localparam int RegOctaveACount = 1;
   localparam int RegOctaveGm = 13;
   localparam int RegOctaveGmCount = 9;
+  localparam int RegOctaveLgm = 22;
+  localparam int RegOctaveLgmCount = 1;
   // 0x0020: worley unit: coefficient C_k, k = 0..3 (n = sum C_k F_{k+1}), signed Q(WorleyCoefInt).(WorleyCoefFrac)
   localparam logic [15:0] RegWorley = 16'h0020;
   localparam int RegWorleyCount = 4;
@@ -180,6 +191,12 @@ package pst_pkg;
   localparam int WorleyCountBits = 4;  // worley unit: bits of a cube's point count in the feature-point ROM
   localparam int WorleyCoefInt = 4;  // worley unit: integer bits (with sign) of the coefficients C_k
   localparam int WorleyCoefFrac = 12;  // worley unit: fraction bits of the coefficients C_k
+  localparam int FadeEntries = 32;  // fade table entries (registers.fade), a quarter octave of nu each
+  localparam int FadeFrac = 8;  // fraction bits of a fade table entry and of alpha (1.0 = 2^FadeFrac)
+  localparam int FadeBits = 9;  // bits of a fade table entry (unsigned, up to 1.0) (= FadeFrac + 1)
+  localparam int FadeLgFrac = 4;  // fraction bits of the fade unit's lg values (lg ||M||, lg |J|, lg nu)
+  localparam int FadeLgBits = 9;  // bits of the lg ||M||_2 register (signed)
+  localparam int FadeLgLo = 3;  // the fade table starts at lg nu = -FadeLgLo (entry 0 below -FadeLgLo + 1/4)
   localparam int WidthEuclidSquares = 2;  // serial euclidean norm: the two squares, one per cycle, before the root's ceil((WW + 1) / 2) cycles
 
   /* verilator lint_on UNUSEDPARAM */

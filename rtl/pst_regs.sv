@@ -10,6 +10,8 @@
 //                                    register formats (the bits kept of each word).
 //   Worley                           the worley unit's coefficients C_k (RegWorley + k, signed
 //                                    WorleyCoefInt.WorleyCoefFrac) are held (else worley_o is 0).
+//   FilterBandlimit                  FilterBandlimitIsotropic: the fade table and the octaves' lg ||M||
+//                                    registers and control.bandlimit are kept; otherwise none (zeros).
 //
 // Outputs (flat vectors; octave i's block at [i*W +: W], element k of a block at [k*E +: E]):
 //   clamp_o, kind_o    control: wrap mode (1 clamp) and filter kind
@@ -17,6 +19,7 @@
 //   quad_o             A..J
 //   oct_m_o, oct_o_o, oct_a_o, oct_gm_o   M (row-major), o, a, GM = a M^T (row-major)
 //   worley_o           C_0..C_3 of the worley unit
+//   bl_o, fade_o, oct_lgm_o            control.bandlimit, the fade table, lg ||M||_2 (FilterBandlimit)
 `include "pst_pkg.sv"
 `default_nettype none
 
@@ -33,6 +36,7 @@ module pst_regs #(
   parameter int GradMatrixInt  = pst_pkg::GradMatrixIntDefault,
   parameter int GradMatrixFrac = pst_pkg::GradMatrixFracDefault,
   parameter bit Worley         = 1'b0,   // the worley unit's coefficient registers exist
+  parameter int FilterBandlimit = pst_pkg::FilterBandlimitDefault,
   localparam int QW  = QuadricInt + QuadricFrac,
   localparam int MW  = MatrixInt + MatrixFrac,
   localparam int OW  = OffsetInt + OffsetFrac,
@@ -47,7 +51,10 @@ module pst_regs #(
   localparam int NO  = pst_pkg::RegOctaveOCount,        // o entries
   localparam int NGM = pst_pkg::RegOctaveGmCount,       // GM entries
   localparam int NWC = pst_pkg::RegWorleyCount,         // worley coefficients
-  localparam int WCW = pst_pkg::WorleyCoefInt + pst_pkg::WorleyCoefFrac
+  localparam int WCW = pst_pkg::WorleyCoefInt + pst_pkg::WorleyCoefFrac,
+  localparam int FB  = pst_pkg::FadeBits,
+  localparam int FE  = pst_pkg::FadeEntries,
+  localparam int LMW = pst_pkg::FadeLgBits
 ) (
   input  logic                       clk_i,
   input  logic                       rst_ni,
@@ -62,7 +69,10 @@ module pst_regs #(
   output logic [Octaves*NO*OW-1:0]   oct_o_o,
   output logic [Octaves*AW-1:0]      oct_a_o,
   output logic [Octaves*NGM*GMW-1:0] oct_gm_o,
-  output logic [NWC*WCW-1:0]         worley_o   // the worley unit's C_k (k at [k*WCW +: WCW])
+  output logic [NWC*WCW-1:0]         worley_o,  // the worley unit's C_k (k at [k*WCW +: WCW])
+  output logic                       bl_o,
+  output logic [FE*FB-1:0]           fade_o,
+  output logic [Octaves*LMW-1:0]     oct_lgm_o
 );
 
   localparam int CB = pst_pkg::RegControlBits;
@@ -110,6 +120,28 @@ module pst_regs #(
           oct_a_o[i*AW +: AW] <= wdata_i[AW-1:0];
       end
     end
+  end
+
+  // Bandlimited octaves: the fade table and lg ||M_i||_2 (no reset: the driver writes them).
+  if (FilterBandlimit == pst_pkg::FilterBandlimitIsotropic) begin : g_fade
+    assign bl_o = ctrl_q[pst_pkg::RegControlBandlimitLsb];
+    always_ff @(posedge clk_i) begin
+      if (we_i) begin
+        for (int k = 0; k < FE; k++) begin
+          if (addr_i == pst_pkg::RegFade + AB'(k)) fade_o[k*FB +: FB] <= wdata_i[FB-1:0];
+        end
+        for (int i = 0; i < Octaves; i++) begin
+          if (addr_i == pst_pkg::RegOctave + AB'(pst_pkg::RegOctaveStride * i + pst_pkg::RegOctaveLgm))
+            oct_lgm_o[i*LMW +: LMW] <= wdata_i[LMW-1:0];
+        end
+      end
+    end
+  end else begin : g_no_fade
+    assign bl_o      = 1'b0;
+    assign fade_o    = '0;
+    assign oct_lgm_o = '0;
+    logic unused_bl;
+    assign unused_bl = ctrl_q[pst_pkg::RegControlBandlimitLsb];
   end
 
   // Assertions

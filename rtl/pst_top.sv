@@ -29,6 +29,8 @@
 //   NoiseRegs, OctaveRegs, WidthRegs, ColourRegs   pipeline registers (latency; serial: cycles).
 //   Log2Clut, ColourBits; Noise*; FilterNorm, FilterRecipFrac; <Format>Int/Frac: colour
 //   table, noise unit, |grad| and SAT precision, number formats (docs/HARDWARE.md).
+//   FilterBandlimit       isotropic: the fade unit for bandlimited octaves (pst_fade_lg per
+//                         pixel, pst_octave_fade per lane, in pst_octave_stage); off: none.
 //
 // Register writes (reg_we_i) are legal only while idle_o is high: the driver drains the
 // pipeline before it changes the texture, as a driver between two objects would.
@@ -47,6 +49,7 @@ module pst_top #(
   parameter int NoiseWorleyPoints = pst_pkg::NoiseWorleyPointsDefault,
   parameter int NoiseWorleyOrder = pst_pkg::NoiseWorleyOrderDefault, parameter int FilterNorm = pst_pkg::FilterNormDefault,
   parameter int FilterRecipFrac = pst_pkg::FilterRecipFracDefault, parameter int WidthFrac = pst_pkg::WidthFracDefault,
+  parameter int FilterBandlimit = pst_pkg::FilterBandlimitDefault,
   parameter int CoordInt = pst_pkg::CoordIntDefault, parameter int CoordFrac = pst_pkg::CoordFracDefault,
   parameter int JacobianInt = pst_pkg::JacobianIntDefault, parameter int JacobianFrac = pst_pkg::JacobianFracDefault,
   parameter int MatrixInt = pst_pkg::MatrixIntDefault, parameter int MatrixFrac = pst_pkg::MatrixFracDefault,
@@ -135,13 +138,19 @@ module pst_top #(
   logic [Octaves*(AmplitudeInt+AmplitudeFrac)-1:0] oct_a;
   logic [Octaves*9*(GradMatrixInt+GradMatrixFrac)-1:0] oct_gm;
   logic [pst_pkg::RegWorleyCount*(pst_pkg::WorleyCoefInt+pst_pkg::WorleyCoefFrac)-1:0] worley_c;
+  logic [Octaves*pst_pkg::FadeLgBits-1:0] oct_lgm;       // bandlimited octaves (FilterBandlimit)
+  logic                          bl;
+  logic [pst_pkg::FadeEntries*pst_pkg::FadeBits-1:0] fade;
   pst_regs #(.Octaves(Octaves), .QuadricInt(QuadricInt), .QuadricFrac(QuadricFrac),
     .MatrixInt(MatrixInt), .MatrixFrac(MatrixFrac), .OffsetInt(OffsetInt), .OffsetFrac(OffsetFrac),
     .AmplitudeInt(AmplitudeInt), .AmplitudeFrac(AmplitudeFrac), .GradMatrixInt(GradMatrixInt),
-    .GradMatrixFrac(GradMatrixFrac), .Worley(NoiseWorleySearch != pst_pkg::NoiseWorleySearchNone)
+    .GradMatrixFrac(GradMatrixFrac), .Worley(NoiseWorleySearch != pst_pkg::NoiseWorleySearchNone),
+    .FilterBandlimit(FilterBandlimit)
   ) u_regs (.clk_i, .rst_ni, .we_i (reg_we_i), .addr_i (reg_addr_i), .wdata_i (reg_wdata_i),
     .clamp_o (clamp), .kind_o (kind), .active_o (active), .quad_o (quad), .oct_m_o (oct_m),
-    .oct_o_o (oct_o), .oct_a_o (oct_a), .oct_gm_o (oct_gm), .worley_o (worley_c));
+    .oct_o_o (oct_o), .oct_a_o (oct_a), .oct_gm_o (oct_gm), .worley_o (worley_c),
+    .bl_o (bl), .fade_o (fade),
+    .oct_lgm_o (oct_lgm));
 
   // [A] fragment -> octave stage -> [B]
   assign a_d.tag = frag_tag_i;
@@ -159,12 +168,13 @@ module pst_top #(
     .AmplitudeInt(AmplitudeInt), .AmplitudeFrac(AmplitudeFrac), .GradMatrixInt(GradMatrixInt),
     .GradMatrixFrac(GradMatrixFrac), .QuadricInt(QuadricInt), .QuadricFrac(QuadricFrac), .FInt(FInt),
     .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac), .NoiseRegs(NoiseRegs),
-    .OctaveRegs(OctaveRegs), .SideW(6*JW + TB), .DebugProbes(DebugProbes)
+    .OctaveRegs(OctaveRegs), .JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac),
+    .FilterBandlimit(FilterBandlimit), .SideW(6*JW + TB), .DebugProbes(DebugProbes)
   ) u_octave (.clk_i, .rst_ni, .valid_i (a_valid), .ready_o (a_ready), .s_i (a_q.s),
     .side_i ({a_q.j, a_q.tag}), .valid_o (b_in_valid), .ready_i (b_in_ready), .f_o (b_d.f),
     .grad_o (b_d.grad), .side_o ({b_d.j, b_d.tag}), .busy_o (octave_busy),
     .active_i (active), .quad_i (quad), .oct_m_i (oct_m), .oct_o_i (oct_o), .oct_a_i (oct_a),
-    .oct_gm_i (oct_gm), .worley_c_i (worley_c), .probe_valid_o, .probe_tag_o, .probe_pass_o, .probe_q_valid_o,
+    .oct_gm_i (oct_gm), .worley_c_i (worley_c), .oct_lgm_i (oct_lgm), .bl_i (bl), .fade_i (fade), .probe_valid_o, .probe_tag_o, .probe_pass_o, .probe_q_valid_o,
     .probe_q_tag_o, .probe_q_o, .probe_lat_o, .probe_frac_o, .probe_n_o, .probe_g_o);
   pst_pipe_reg #(.Width($bits(b_d)), .Skid(Skid)) u_reg_b (.clk_i, .rst_ni, .valid_i (b_in_valid),
     .ready_o (b_in_ready), .data_i (b_d), .valid_o (b_valid), .ready_i (b_ready), .data_o (b_q));

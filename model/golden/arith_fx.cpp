@@ -96,6 +96,37 @@ void octaveTermFx(const Profile& p, int64_t n, const int64_t g[3], int64_t a, co
     }
 }
 
+int64_t fadeLgFx(const Profile& p, const int64_t e[3]) {
+    namespace c = contract;
+    uint64_t v[3], mx = 0, sum = 0;
+    for (int k = 0; k < 3; ++k) {
+        v[k] = uint64_t(e[k] < 0 ? -e[k] : e[k]);  // <= 2^(JW-1)
+        mx = std::max(mx, v[k]);
+        sum += v[k];
+    }
+    const uint64_t r = sum - mx, len = std::max<uint64_t>(1, mx + (r >> 2) + (r >> 3));  // < 2^JW
+    int lead = 63;
+    while (!((len >> lead) & 1u)) --lead;
+    // The FadeLgFrac bits below the leading one (zeros shifted in below bit 0).
+    const uint64_t below = len & ((uint64_t(1) << lead) - 1);
+    const int64_t mant = lead >= c::kFadeLgFrac ? int64_t(below >> (lead - c::kFadeLgFrac))
+                                                : int64_t(below << (c::kFadeLgFrac - lead));
+    return int64_t(lead - p.jacobian.fracBits) * (int64_t(1) << c::kFadeLgFrac) + mant;
+}
+
+int64_t octaveFadeFx(int64_t lgx, int64_t lgy, int64_t lgm, const int64_t table[contract::kFadeEntries]) {
+    namespace c = contract;
+    auto index = [&](int64_t lg) {
+        // floor((lg nu + FadeLgLo) * 4) with lg nu at FadeLgFrac fraction bits: an arithmetic shift.
+        const int64_t t = (lg + lgm + (int64_t(c::kFadeLgLo) << c::kFadeLgFrac)) >> (c::kFadeLgFrac - 2);
+        return int(std::clamp<int64_t>(t, 0, c::kFadeEntries - 1));
+    };
+    const int64_t one = int64_t(1) << c::kFadeFrac;
+    return std::min((table[index(lgx)] * table[index(lgy)]) >> c::kFadeFrac, one);
+}
+
+int64_t fadeScaleFx(int64_t v, int64_t alpha) { return int64_t((i128(v) * alpha) >> contract::kFadeFrac); }
+
 int64_t accumulateF(const Profile& p, int64_t q, const std::vector<int64_t>& terms) {
     i128 sum = q;
     for (int64_t t : terms) sum += t;

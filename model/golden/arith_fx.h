@@ -33,6 +33,19 @@ void octaveTermFx(const Profile& p, int64_t n, const int64_t g[3], int64_t a, co
 // active octaves' terms (wide enough for 16 terms), saturated once at the end.
 //   accumulateF    = sat_F(q + sum terms)
 //   accumulateGrad = sat_Grad(gradq_k + sum terms_k), one component.
+// Stage 4, bandlimited octaves (filter.bandlimit = isotropic; rtl/pst_fade_lg.sv and
+// rtl/pst_octave_fade.sv). Per pixel, one Jacobian column e (3 x Jacobian):
+//   v_k = |e_k|, mx = max v_k, r = sum v_k - mx, L = mx + floor(r / 4) + floor(r / 8)  (max + 3/8 (mid + min))
+//   fadeLgFx = lg L with FadeLgFrac fraction bits by Mitchell's approximation: 2^FadeLgFrac
+//   (P - JacobianFrac) + the FadeLgFrac bits below L's leading one (bit P); L = 0 counts as L = 1.
+int64_t fadeLgFx(const Profile& p, const int64_t e[3]);
+// Per octave: lg nu_x = lgx + lgm (lgm = lg ||M||_2, the octave's register), idx_x = clamp(floor((lg nu_x
+//   + FadeLgLo) 4), 0, FadeEntries - 1) (a quarter octave per entry), likewise y;
+//   alpha = min(floor(table[idx_x] table[idx_y] / 2^FadeFrac), 2^FadeFrac)  (FadeFrac fraction bits).
+int64_t octaveFadeFx(int64_t lgx, int64_t lgy, int64_t lgm, const int64_t table[contract::kFadeEntries]);
+// The faded term: floor(v alpha / 2^FadeFrac) (|result| <= |v|: no saturation).
+int64_t fadeScaleFx(int64_t v, int64_t alpha);
+
 int64_t accumulateF(const Profile& p, int64_t q, const std::vector<int64_t>& terms);
 int64_t accumulateGrad(const Profile& p, int64_t gradq, const std::vector<int64_t>& terms);
 

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <random>
@@ -388,6 +389,102 @@ TEST(ArithFx, FilterWidthExactCases) {
         EXPECT_EQ(w(GradNorm::MaxHalfMin, (wmax - 1) * u, 2 * u), wmax);
         EXPECT_EQ(w(GradNorm::L1, (wmax - 1) * u, 2 * u), wmax);
     }
+}
+
+}  // namespace
+}  // namespace pst
+
+namespace pst {
+namespace {
+
+// Bandlimited octaves: the golden fade (fadeLgFx, octaveFadeFx) against the reference's exact
+// form octaveIsotropic, on quantized Jacobians. The golden lg nu per edge is below the exact
+// one by at most Mitchell's 0.0861 + the truncated mantissa 1/16, lg ||M|| rounds by 1/32, the
+// integer L = mx + floor(r/4) + floor(r/8) is up to 2 LSB under the exact max + 3/8 r, and the
+// table holds h at its entry's centre (1/8 from any lg nu in it, and from the range's ends for
+// the clamped ones): the entry is h at some lg nu within E of the reference's (clamped) one, rounded to 1/2^FadeFrac; alpha = the product
+// floored, clamped to 1.
+TEST(ArithFx, FadeWithinBoundOfReferenceIsotropic) {
+    namespace c = contract;
+    const double one = double(1 << c::kFadeFrac);
+    for (const char* name : {"full", "reduced"}) {
+        const Profile p = load(name);
+        NoiseOptions noise = p.noise;
+        int64_t table[c::kFadeEntries];
+        for (int k = 0; k < c::kFadeEntries; ++k)
+            table[k] = std::min<int64_t>(int64_t(one), std::llround(one * std::sqrt(noiseBoxGain(
+                                                           noise, std::exp2(-c::kFadeLgLo + (k + 0.5) / 4.0)))));
+        auto h = [&](double lg) { return std::sqrt(noiseBoxGain(noise, std::exp2(lg))); };
+        std::mt19937_64 g(29);
+        std::uniform_real_distribution<double> u(-1, 1);
+        int checked = 0;
+        for (int i = 0; i < 4000; ++i) {
+            Octave o;
+            for (int col = 0; col < 3; ++col)
+                for (int k = 0; k < 3; ++k) o.M[col][k] = u(g) * std::exp2(4 * u(g) + 1);
+            const double m = spectralNorm(o.M);
+            const int64_t lgm = std::llround(std::log2(m) * (1 << c::kFadeLgFrac));
+            glm::dvec3 e[2];
+            int64_t j[6];
+            int64_t lint[2];
+            bool ok = true;
+            for (int d = 0; d < 2; ++d) {
+                const double len = std::exp2(5 * u(g) - 3);
+                for (int k = 0; k < 3; ++k) {
+                    j[3 * d + k] = fx::quantize(len * u(g), p.jacobian.intBits, p.jacobian.fracBits);
+                    e[d][k] = fx::toDouble(j[3 * d + k], p.jacobian.fracBits);
+                }
+                lint[d] = int64_t(std::ldexp(footprintNorm(e[d]), p.jacobian.fracBits));
+                ok = ok && lint[d] >= 64;  // the integer L within 3 % of the exact
+            }
+            if (!ok) continue;
+            ++checked;
+            const int64_t lgx = fadeLgFx(p, j), lgy = fadeLgFx(p, j + 3);
+            const int64_t alpha = octaveFadeFx(lgx, lgy, lgm, table);
+            double lo = 1, hi = 1;
+            for (int d = 0; d < 2; ++d) {
+                // The reference clamps lg nu to the table's range; the entry's centre is within E of that.
+                const double lg = std::clamp(std::log2(m * footprintNorm(e[d])), kIsoLgLo, kIsoLgHi);
+                const double E = 0.0861 + 1.0 / 16 + 1.0 / 32 + 1.0 / 8 + std::log2(1 + 2.0 / double(lint[d])) + 1e-9;
+                double hmin = 2, hmax = 0;
+                for (int s = 0; s <= 64; ++s) {
+                    const double v = h(lg - E + 2 * E * s / 64.0);
+                    hmin = std::min(hmin, v);
+                    hmax = std::max(hmax, v);
+                }
+                lo *= std::max(0.0, hmin - 0.5 / one);
+                hi *= std::min(1.0, hmax + 0.5 / one);
+            }
+            const double a = double(alpha) / one;
+            ASSERT_GE(a, lo - 1 / one) << name << " i " << i;
+            ASSERT_LE(a, std::min(1.0, hi)) << name << " i " << i << " lgx " << lgx << " lgy " << lgy << " lgm " << lgm
+                                            << " ref lg " << std::log2(m * footprintNorm(e[0])) << " "
+                                            << std::log2(m * footprintNorm(e[1])) << " L " << lint[0] << " " << lint[1];
+            ASSERT_NEAR(a, octaveIsotropic(o, noise, e[0], e[1]), hi - lo + 1 / one) << name;
+        }
+        EXPECT_GT(checked, 1000) << name;
+        // The scale: exact at 1, floored, never above |v|.
+        EXPECT_EQ(fadeScaleFx(-12345, int64_t(one)), -12345);
+        EXPECT_EQ(fadeScaleFx(-1, int64_t(one) / 2), -1);
+        EXPECT_EQ(fadeScaleFx(7, int64_t(one) / 2), 3);
+        EXPECT_EQ(fadeScaleFx(7, 0), 0);
+    }
+}
+
+// fadeLgFx on exact powers of two and Mitchell's mantissa.
+TEST(ArithFx, FadeLgIsMitchellsLog) {
+    const Profile p = load("reduced");
+    const int jf = p.jacobian.fracBits;
+    const int64_t unit[3] = {int64_t(1) << jf, 0, 0};
+    EXPECT_EQ(fadeLgFx(p, unit), 0);                                  // |e| = 1
+    const int64_t half[3] = {0, -(int64_t(1) << (jf - 1)), 0};
+    EXPECT_EQ(fadeLgFx(p, half), -(1 << contract::kFadeLgFrac));      // 1/2
+    const int64_t three[3] = {3 << jf, 0, 0};                          // 3 = 2 (1 + 1/2): 1 + 8/16
+    EXPECT_EQ(fadeLgFx(p, three), (1 << contract::kFadeLgFrac) + 8);
+    const int64_t diag[3] = {int64_t(1) << jf, int64_t(1) << jf, int64_t(1) << jf};  // L = 1.75
+    EXPECT_EQ(fadeLgFx(p, diag), 12);
+    const int64_t zero[3] = {0, 0, 0};                                  // counts as one LSB
+    EXPECT_EQ(fadeLgFx(p, zero), -jf * (1 << contract::kFadeLgFrac));
 }
 
 }  // namespace

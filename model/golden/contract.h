@@ -31,6 +31,7 @@ enum Param : int {
     NoiseWorleyOrder,
     FilterNorm,
     FilterRecipFrac,
+    FilterBandlimit,
     CoordInt,
     CoordFrac,
     JacobianInt,
@@ -60,6 +61,7 @@ inline constexpr const char* kNoiseCornerNames[] = {"value_gradient", "value", "
 inline constexpr const char* kNoiseHashNames[] = {"rayshade", "perm256", "perlin256"};
 inline constexpr const char* kNoiseWorleySearchNames[] = {"none", "octant", "cube27"};
 inline constexpr const char* kFilterNormNames[] = {"euclid", "max_half_min", "l1"};
+inline constexpr const char* kFilterBandlimitNames[] = {"off", "isotropic"};
 
 enum class KeyKind { Range, Values, Enum, Format };
 struct KeySpec {
@@ -115,6 +117,7 @@ inline constexpr KeySpec kSchema[] = {
     {"noise", "worley_order", KeyKind::Range, NoiseWorleyOrder, 1, 4, {}, 0, nullptr, 0},
     {"filter", "norm", KeyKind::Enum, FilterNorm, 0, 2, {}, 3, kFilterNormNames, 0},
     {"filter", "recip_frac", KeyKind::Range, FilterRecipFrac, 4, 24, {}, 0, nullptr, 0},
+    {"filter", "bandlimit", KeyKind::Enum, FilterBandlimit, 0, 1, {}, 2, kFilterBandlimitNames, 0},
     {"formats", "coord", KeyKind::Format, CoordInt, 0, 0, {}, 0, nullptr, 40},
     {"formats", "jacobian", KeyKind::Format, JacobianInt, 0, 0, {}, 0, nullptr, 40},
     {"formats", "matrix", KeyKind::Format, MatrixInt, 0, 0, {}, 0, nullptr, 32},
@@ -159,23 +162,28 @@ inline constexpr Constraint kConstraints[] = {
 // Register map (docs/HARDWARE.md).
 inline constexpr int kRegAddrBits = 16;
 inline constexpr int kRegDataBits = 32;
-// 0x0000: control: [0] wrap (0 mod, 1 clamp); [2:1] filter kind (0 none, 1 mip, 2 mip blended, 3 sat)
+// 0x0000: control: [0] wrap (0 mod, 1 clamp); [2:1] filter kind (0 none, 1 mip, 2 mip blended, 3 sat); [3] bandlimited octaves (filter.bandlimit profiles only)
 inline constexpr uint16_t kRegControl = 0x0000;
-inline constexpr int kRegControlBits = 3;
+inline constexpr int kRegControlBits = 4;
 inline constexpr int kRegControlClampLsb = 0, kRegControlClampWidth = 1;
 inline constexpr int kRegControlKindLsb = 1, kRegControlKindWidth = 2;
+inline constexpr int kRegControlBandlimitLsb = 3, kRegControlBandlimitWidth = 1;
 // 0x0001: active octaves (0..Octaves)
 inline constexpr uint16_t kRegActive = 0x0001;
 // 0x0010 + k: quadric coefficient k = 0..9 (A..J), Quadric format
 inline constexpr uint16_t kRegQuadric = 0x0010;
 inline constexpr int kRegQuadricCount = 10;
-// 0x0100 + 32 i + k: octave i: k = 0..8 M row-major (Matrix), 9..11 o (Offset), 12 a (Amplitude), 13..21 GM = a M^T row-major (GradMatrix)
+// 0x0040: fade table entry k (filter.bandlimit profiles): h = sqrt(g(nu)) at lg nu = -FadeLgLo + (k + 1/2) / 4, unsigned FadeBits (1.0 = 2^FadeFrac); alpha is clamped to 1.0
+inline constexpr uint16_t kRegFade = 0x0040;
+inline constexpr int kRegFadeCount = 32;
+// 0x0100 + 32 i + k: octave i: k = 0..8 M row-major (Matrix), 9..11 o (Offset), 12 a (Amplitude), 13..21 GM = a M^T row-major (GradMatrix), 22 lg ||M||_2 (signed, FadeLgFrac fraction bits, FadeLgBits; filter.bandlimit profiles)
 inline constexpr uint16_t kRegOctave = 0x0100;
 inline constexpr int kRegOctaveStride = 32;
 inline constexpr int kRegOctaveM = 0, kRegOctaveMCount = 9;
 inline constexpr int kRegOctaveO = 9, kRegOctaveOCount = 3;
 inline constexpr int kRegOctaveA = 12, kRegOctaveACount = 1;
 inline constexpr int kRegOctaveGm = 13, kRegOctaveGmCount = 9;
+inline constexpr int kRegOctaveLgm = 22, kRegOctaveLgmCount = 1;
 // 0x0020: worley unit: coefficient C_k, k = 0..3 (n = sum C_k F_{k+1}), signed Q(WorleyCoefInt).(WorleyCoefFrac)
 inline constexpr uint16_t kRegWorley = 0x0020;
 inline constexpr int kRegWorleyCount = 4;
@@ -210,6 +218,12 @@ inline constexpr int kWorleyPointBytes = 8;  // worley unit: bits of one positio
 inline constexpr int kWorleyCountBits = 4;  // worley unit: bits of a cube's point count in the feature-point ROM
 inline constexpr int kWorleyCoefInt = 4;  // worley unit: integer bits (with sign) of the coefficients C_k
 inline constexpr int kWorleyCoefFrac = 12;  // worley unit: fraction bits of the coefficients C_k
+inline constexpr int kFadeEntries = 32;  // fade table entries (registers.fade), a quarter octave of nu each
+inline constexpr int kFadeFrac = 8;  // fraction bits of a fade table entry and of alpha (1.0 = 2^FadeFrac)
+inline constexpr int kFadeBits = 9;  // bits of a fade table entry (unsigned, up to 1.0) (= FadeFrac + 1)
+inline constexpr int kFadeLgFrac = 4;  // fraction bits of the fade unit's lg values (lg ||M||, lg |J|, lg nu)
+inline constexpr int kFadeLgBits = 9;  // bits of the lg ||M||_2 register (signed)
+inline constexpr int kFadeLgLo = 3;  // the fade table starts at lg nu = -FadeLgLo (entry 0 below -FadeLgLo + 1/4)
 inline constexpr int kWidthEuclidSquares = 2;  // serial euclidean norm: the two squares, one per cycle, before the root's ceil((WW + 1) / 2) cycles
 
 }  // namespace pst::contract

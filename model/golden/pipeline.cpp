@@ -31,6 +31,7 @@ GoldenPipeline::GoldenPipeline(const GoldenPipeline& o)
       clut_(std::make_unique<ClutFilterFx>(*o.clut_)) {
     std::copy(std::begin(o.quad_), std::end(o.quad_), quad_);
     std::copy(std::begin(o.worley_), std::end(o.worley_), worley_);
+    std::copy(std::begin(o.fade_), std::end(o.fade_), fade_);
 }
 GoldenPipeline& GoldenPipeline::operator=(const GoldenPipeline& o) {
     if (this != &o) *this = GoldenPipeline(o);
@@ -43,7 +44,8 @@ void GoldenPipeline::write(uint16_t addr, uint32_t data) {
     namespace c = contract;
     const Profile& p = profile_;
     if (addr == c::kRegControl) {
-        ctrl_ = data & ((1u << c::kRegControlBits) - 1);  // [0] clamp, [2:1] filter kind
+        ctrl_ = data & ((1u << c::kRegControlBits) - 1);  // [0] clamp, [2:1] filter kind, [3] bandlimit
+        if (!p.bandlimit) ctrl_ &= ~(1u << c::kRegControlBandlimitLsb);  // no fade unit: the bit is not kept
     } else if (addr == c::kRegActive) {
         const int bits = [&] { int b = 0; while ((1 << b) < p.octaves + 1) ++b; return b; }();
         active_ = int(fx::wrapUnsigned(data, bits));  // the RTL keeps $clog2(Octaves + 1) bits
@@ -51,6 +53,8 @@ void GoldenPipeline::write(uint16_t addr, uint32_t data) {
         quad_[addr - c::kRegQuadric] = fx::wrapSigned(data, p.quadric.width());
     } else if (addr >= c::kRegWorley && addr < c::kRegWorley + c::kRegWorleyCount) {
         worley_[addr - c::kRegWorley] = fx::wrapSigned(data, c::kWorleyCoefInt + c::kWorleyCoefFrac);
+    } else if (addr >= c::kRegFade && addr < c::kRegFade + c::kRegFadeCount) {
+        if (p.bandlimit) fade_[addr - c::kRegFade] = int64_t(fx::wrapUnsigned(data, c::kFadeBits));
     } else if (addr >= c::kRegOctave && addr < c::kRegOctave + c::kRegOctaveStride * p.octaves) {
         Octave& o = oct_[(addr - c::kRegOctave) / c::kRegOctaveStride];
         const int k = (addr - c::kRegOctave) % c::kRegOctaveStride;
@@ -62,6 +66,8 @@ void GoldenPipeline::write(uint16_t addr, uint32_t data) {
             o.a = fx::wrapSigned(data, p.amplitude.width());
         else if (k >= c::kRegOctaveGm && k < c::kRegOctaveGm + c::kRegOctaveGmCount)
             o.gm[k - c::kRegOctaveGm] = fx::wrapSigned(data, p.gradMatrix.width());
+        else if (k == c::kRegOctaveLgm && p.bandlimit)
+            o.lgm = fx::wrapSigned(data, c::kFadeLgBits);
     }
     clut_->write(addr, data);  // decodes the table ranges itself
 }
@@ -81,6 +87,10 @@ PixelFx GoldenPipeline::eval(const FragmentFx& fr, StageTrace* trace) const {
     // Stages 1, 2, 4: per octave transform, noise, term; then the accumulation.
     fx::i128 fsum = t.q;
     fx::i128 gsum[3] = {t.gradq[0], t.gradq[1], t.gradq[2]};
+    // Bandlimited octaves: the footprint's two edges' lg lengths, once per pixel.
+    const bool fade = p.bandlimit && ((ctrl_ >> contract::kRegControlBandlimitLsb) & 1u);
+    t.lgx = fadeLgFx(p, fr.j);
+    t.lgy = fadeLgFx(p, fr.j + 3);
     for (int i = 0; i < t.octaves; ++i) {
         const Octave& o = oct_[i];
         octaveTransformFx(p, fr.s, o.m, o.o, t.lat[i], t.frac[i]);
@@ -92,6 +102,9 @@ PixelFx GoldenPipeline::eval(const FragmentFx& fr, StageTrace* trace) const {
             noiseFx(p, t.lat[i], t.frac[i], &t.n[i], t.g[i]);
         if (i == 0) t.n[i] += bump(Stage::Noise);
         octaveTermFx(p, t.n[i], t.g[i], o.a, o.gm, &t.fterm[i], t.gterm[i]);
+        t.alpha[i] = fade ? octaveFadeFx(t.lgx, t.lgy, o.lgm, fade_) : int64_t(1) << contract::kFadeFrac;
+        t.fterm[i] = fadeScaleFx(t.fterm[i], t.alpha[i]);
+        for (int k = 0; k < 3; ++k) t.gterm[i][k] = fadeScaleFx(t.gterm[i][k], t.alpha[i]);
         fsum += t.fterm[i];
         for (int k = 0; k < 3; ++k) gsum[k] += t.gterm[i][k];
     }
@@ -122,7 +135,7 @@ std::string StageTrace::describe(const Profile& p) const {
         os << "  octave " << i << ": lattice (" << lat[i][0] << ", " << lat[i][1] << ", " << lat[i][2]
            << ") frac (" << frac[i][0] << ", " << frac[i][1] << ", " << frac[i][2] << ")  n " << n[i]
            << " (" << fx::toDouble(n[i], p.noiseOutFrac) << ")  g (" << g[i][0] << ", " << g[i][1] << ", "
-           << g[i][2] << ")  fterm " << fterm[i] << "\n";
+           << g[i][2] << ")  alpha " << alpha[i] << "  fterm " << fterm[i] << "\n";
     }
     os << "  quadric: q " << q << " (" << fx::toDouble(q, p.f.fracBits) << ")  grad q (" << gradq[0]
        << ", " << gradq[1] << ", " << gradq[2] << ")\n";

@@ -35,7 +35,9 @@ struct StageTrace {
     int64_t n[kMaxOctaves] = {};            // stage 2: noise value
     int64_t g[kMaxOctaves][3] = {};         // stage 2: noise gradient
     int64_t q = 0, gradq[3] = {};           // stage 3
-    int64_t fterm[kMaxOctaves] = {};        // stage 4 terms
+    int64_t lgx = 0, lgy = 0;               // stage 4, bandlimited octaves: lg |dsdx|, lg |dsdy| (fadeLgFx)
+    int64_t alpha[kMaxOctaves] = {};        // stage 4: the octave's fade (2^FadeFrac = whole)
+    int64_t fterm[kMaxOctaves] = {};        // stage 4 terms (faded)
     int64_t gterm[kMaxOctaves][3] = {};
     int64_t f = 0, grad[3] = {};            // stage 4 result
     int64_t w = 0;                          // stage 5: W = w N in entries
@@ -78,8 +80,9 @@ private:
     int64_t worley_[contract::kRegWorleyCount] = {};  // the worley unit's C_k
     struct Octave {
         int64_t m[contract::kRegOctaveMCount] = {}, o[contract::kRegOctaveOCount] = {}, a = 0,
-                gm[contract::kRegOctaveGmCount] = {};
+                gm[contract::kRegOctaveGmCount] = {}, lgm = 0;
     };
+    int64_t fade_[contract::kFadeEntries] = {};  // the fade table (filter.bandlimit profiles)
     std::vector<Octave> oct_;
     std::unique_ptr<ClutFilterFx> clut_;
 };

@@ -166,6 +166,7 @@ Profile parseProfile(const std::string& text, const std::string& path) {
     p.noiseGuardBits = v[c::NoiseGuardBits];
     p.filterNorm = GradNorm(v[c::FilterNorm]);
     p.filterRecipFrac = v[c::FilterRecipFrac];
+    p.bandlimit = v[c::FilterBandlimit] == 1;  // kFilterBandlimitNames: off, isotropic
     const auto fmt = [&](c::Param i) { return FixedFormat{v[i], v[i + 1]}; };
     p.coord = fmt(c::CoordInt);
     p.jacobian = fmt(c::JacobianInt);

@@ -54,6 +54,7 @@ struct Profile {
     // [filter]
     GradNorm filterNorm = GradNorm::Euclid;
     int filterRecipFrac = 18;
+    bool bandlimit = false;     // filter.bandlimit = "isotropic": the fade unit (pst_octave_fade) is built
     // [formats]
     FixedFormat coord, jacobian, matrix, offset, amplitude, gradMatrix, quadric, f, grad;
     int widthFrac = 8;

@@ -1,5 +1,6 @@
 #include "driver.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <sstream>
@@ -18,6 +19,23 @@ int64_t q(double v, const FixedFormat& f) { return fx::quantize(v, f.intBits, f.
 
 }  // namespace
 
+int64_t fadeLgNorm(const glm::dmat3& M) {
+    namespace c = contract;
+    const double m = spectralNorm(M);
+    const int64_t lo = -(int64_t(1) << (c::kFadeLgBits - 1)), hi = -lo - 1;
+    if (!(m > 0)) return lo;
+    return std::clamp<int64_t>(std::llround(std::log2(m) * (1 << c::kFadeLgFrac)), lo, hi);
+}
+
+int64_t fadeTableEntry(const NoiseOptions& noise, int k) {
+    namespace c = contract;
+    static_assert(c::kFadeLgLo == -int(kIsoLgLo) && c::kFadeEntries == 4 * int(kIsoLgHi - kIsoLgLo),
+                  "the reference's isotropic range is the fade table's");
+    const double nu = std::exp2(-c::kFadeLgLo + (k + 0.5) / 4.0);
+    const int64_t one = int64_t(1) << c::kFadeFrac;
+    return std::min<int64_t>(one, std::llround(std::sqrt(noiseBoxGain(noise, nu)) * double(one)));
+}
+
 int hardwareFilterKind(FilterKind k) {
     using K = contract::FilterKind;
     switch (k) {
@@ -33,14 +51,20 @@ int hardwareFilterKind(FilterKind k) {
 
 std::pair<uint16_t, uint32_t> controlWrite(const Texture& tex, int filterKind) {
     const uint32_t clamp = tex.clut.wrap() == WrapMode::Clamp ? 1u : 0u;
-    return {contract::kRegControl,
-            (clamp << contract::kRegControlClampLsb) | (uint32_t(filterKind) << contract::kRegControlKindLsb)};
+    const uint32_t fade = tex.bandlimit == Bandlimit::Isotropic ? 1u : 0u;
+    return {contract::kRegControl, (clamp << contract::kRegControlClampLsb) |
+                                       (uint32_t(filterKind) << contract::kRegControlKindLsb) |
+                                       (fade << contract::kRegControlBandlimitLsb)};
 }
 
 std::string hardwareUnsupported(const Profile& p, const Texture& tex) {
-    if (tex.bandlimit != Bandlimit::Off)
-        return "texture '" + tex.name + "': bandlimit: bandlimited octaves are in the reference model only (profile '" +
-               p.name + "' has no unit for them yet); render it without --profile";
+    if (tex.bandlimit == Bandlimit::Isotropic && !p.bandlimit)
+        return "texture '" + tex.name + "': bandlimit: profile '" + p.name +
+               "' has no fade unit (filter.bandlimit = \"off\"); use a profile with filter.bandlimit = \"isotropic\" "
+               "(e.g. sim/test_profiles/reduced_bandlimit.toml) or render it without --profile";
+    if (tex.bandlimit != Bandlimit::Off && tex.bandlimit != Bandlimit::Isotropic)
+        return "texture '" + tex.name + "': bandlimit: '" + toString(tex.bandlimit) +
+               "' is in the reference model only (the hardware's is 'isotropic'); render it without --profile";
     // The profile's noise unit computes one basis (hardwareBasis of its interp / corner / hash).
     if (tex.noise.basis != p.noise.basis) {
         const std::string where =
@@ -121,7 +145,11 @@ TextureProgram programTexture(const Profile& p, const Texture& tex) {
         for (int k = 0; k < 3; ++k)
             prog.writes.push_back({uint16_t(base + contract::kRegOctaveO + k), word(q(o.offset[k], p.offset))});
         prog.writes.push_back({uint16_t(base + contract::kRegOctaveA), word(q(o.amplitude, p.amplitude))});
+        if (p.bandlimit) prog.writes.push_back({uint16_t(base + contract::kRegOctaveLgm), word(fadeLgNorm(o.M))});
     }
+    if (p.bandlimit)
+        for (int k = 0; k < contract::kFadeEntries; ++k)
+            prog.writes.push_back({uint16_t(contract::kRegFade + k), uint32_t(fadeTableEntry(tex.noise, k))});
 
     // The worley unit's coefficients C_k (n = sum C_k F_k).
     if (p.noise.basis == NoiseBasis::Worley)

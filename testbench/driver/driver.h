@@ -41,6 +41,12 @@ TextureProgram programTexture(const Profile& p, const Texture& tex);
 // Only the control register (wrap, filter kind), e.g. to render the unfiltered image.
 std::pair<uint16_t, uint32_t> controlWrite(const Texture& tex, int filterKind);
 
+// Bandlimited octaves (filter.bandlimit profiles): the octave's lg ||M||_2 register (FadeLgFrac
+// fraction bits, saturated to FadeLgBits; M = 0 gives the lowest) and fade table entry k,
+// round(2^FadeFrac sqrt(noiseBoxGain(noise, nu))) at the entry's centre, lg nu = -FadeLgLo + (k + 1/2) / 4.
+int64_t fadeLgNorm(const glm::dmat3& M);
+int64_t fadeTableEntry(const NoiseOptions& noise, int k);
+
 FragmentFx quantizeFragment(const Profile& p, uint32_t tag, const glm::dvec3& s,
                             const glm::dvec3& dsdx, const glm::dvec3& dsdy);
 

@@ -140,6 +140,8 @@ Texture randomTexture(RandomStream& r, const Profile& p) {
     static const FilterKind kinds[5] = {FilterKind::None, FilterKind::MipNearest, FilterKind::MipLinear,
                                         FilterKind::Sat, FilterKind::Box};
     t.filter = kinds[r.range(0, 4)];
+    // Bandlimited octaves on a profile with the fade unit (other profiles draw nothing more).
+    if (p.bandlimit) t.bandlimit = r.chance(0.7) ? Bandlimit::Isotropic : Bandlimit::Off;
     return t;
 }
 
@@ -215,6 +217,12 @@ RandomRegressResult runRandomRegress(const Profile& p, const std::string& rtlNam
                 prog = programTexture(p, tex);
                 writes = prog.writes;
                 programmed = true;
+                // Fade unit: sometimes arbitrary table entries (all FadeBits, above 1.0 too: alpha clamps).
+                if (p.bandlimit && r.chance(0.3))
+                    for (int k = 0; k < contract::kFadeEntries; ++k)
+                        if (r.chance(0.5))
+                            writes.push_back({uint16_t(contract::kRegFade + k),
+                                              uint32_t(r.range(0, (1 << contract::kFadeBits) - 1))});
             } else {
                 writes = {controlWrite(tex, int(r.range(0, 3)))};
             }

@@ -291,7 +291,7 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
             c.fail(find(*nt, "coef") ? find(*nt, "coef") : nn, join(np, "coef"),
                    "every coefficient and cell are 0: the basis would be constant");
     }
-    tex.bandlimit = getEnum(c, t, path, "bandlimit", tex.bandlimit, parseBandlimit, "off, fade, widen, match or footprint");
+    tex.bandlimit = getEnum(c, t, path, "bandlimit", tex.bandlimit, parseBandlimit, "off, fade, widen, match, footprint or isotropic");
     tex.filter = getEnum(c, t, path, "filter", tex.filter, parseFilterKind, "none, mip, mip_linear, sat, box or trapezoid");
     tex.norm = getEnum(c, t, path, "norm", tex.norm, parseGradNorm, "euclid, max_half_min or l1");
     tex.clut = parseColorMap(c, requireTable(c, t, path, "colormap"), join(path, "colormap"));
