@@ -35,11 +35,11 @@ def test_parameters_of_reduced():
     p = dict(contract.parameters(reduced()))
     # Values as written in rtl/configs/reduced.toml; enums as their index in the description.
     assert p["Octaves"] == 4 and p["NoiseUnits"] == 1 and p["NoiseSteps"] == 4
-    assert p["Datapath"] == 1 and p["NoiseInterp"] == 0 and p["FilterNorm"] == 0
+    assert p["Datapath"] == 1 and p["NoiseInterp"] == 0 and p["FilterNorm"] == 0 and p["FilterBandlimit"] == 0
     assert (p["CoordInt"], p["CoordFrac"], p["WidthFrac"]) == (10, 12, 4)
     assert (p["NoiseRegs"], p["OctaveRegs"], p["WidthRegs"], p["ColourRegs"]) == (5, 1, 0, 2)
     assert p["NoiseWorleySearch"] == 0 and p["NoiseWorleyPoints"] == 4 and p["NoiseWorleyOrder"] == 2
-    assert len(p) == 41
+    assert len(p) == 42
 
 
 def test_enum_tables():

@@ -184,7 +184,7 @@ TEST(Scene, Bandlimit) {
     EXPECT_EQ(parseScene(text, "min.toml").textures[0].bandlimit, Bandlimit::Widen);
     std::string bad = kMinimal;
     bad.insert(bad.find("colormap ="), "bandlimit = \"on\"\n");
-    expectError(bad, {"bad.toml:9: textures.t.bandlimit: unknown value 'on' (expected off, fade, widen, match or footprint)"});
+    expectError(bad, {"bad.toml:9: textures.t.bandlimit: unknown value 'on' (expected off, fade, widen, match, footprint or isotropic)"});
 }
 
 TEST(Scene, TextureBlockFile) {
