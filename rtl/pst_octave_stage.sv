@@ -17,10 +17,12 @@
 //             NoiseRegs + (OctaveRegs >= 1).
 // busy_o: a beat is inside the pipeline's registers (pst_top's idle_o).
 //
-// Bandlimited octaves (FilterBandlimit = isotropic): the pixel's two edges' lg lengths
-// (pst_fade_lg, from the Jacobian in side_i, once per fragment) and per lane the octave's fade
-// alpha (pst_octave_fade; parallel: at the beat's issue, delayed beside the noise unit; serial:
-// registered with the term rows' operands), which the octave term multiplies in.
+// Bandlimited octaves (FilterBandlimit = isotropic): the pixel's two edges' lengths and their lg
+// (pst_fade_norm, pst_fade_lg, from the Jacobian in side_i, once per fragment) and per lane the
+// octave's fade alpha (pst_octave_fade), which the octave term multiplies in. Parallel: the
+// chain spread over the beat's registers between issue and term (a register after the
+// lengths, one after the lg, the fade's delayed beside the noise unit); serial: lengths and lg
+// registered, the fade registered with the term rows' operands.
 //
 // Parameters: the profile's (pst_top's header); Datapath selects the schedule below.
 // Registers (pst_regs, flat): quad_i A..J; oct_*_i octave i's M, o, a, GM, lg ||M|| at block i;
@@ -155,18 +157,22 @@ module pst_octave_stage #(
   localparam int LgW       = $clog2((JW + 1) << pst_pkg::FadeLgFrac) + 1;   // pst_fade_lg's lg_o
   localparam logic [FB-1:0] AlphaOne = FB'(1 << pst_pkg::FadeFrac);
 
-  // The pixel's edges' lg lengths (the fragment's Jacobian in side_i: dsdx, then dsdy).
-  logic [LgW-1:0] lgx, lgy;
-  if (Bl) begin : g_lg
-    pst_fade_lg #(.JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac)) u_lgx (
-      .e_i (side_i[TB +: 3*JW]), .lg_o (lgx));
-    pst_fade_lg #(.JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac)) u_lgy (
-      .e_i (side_i[TB + 3*JW +: 3*JW]), .lg_o (lgy));
-  end else begin : g_no_lg
-    assign lgx = '0;
-    assign lgy = '0;
+  // The pixel's edges' lengths (the fragment's Jacobian in side_i: dsdx, then dsdy), at the
+  // fragment's issue; their lg (pst_fade_lg) and the fades follow behind registers (below).
+  logic [JW-1:0]  lenx_f, leny_f;
+  logic [LgW-1:0] lgx, lgy;   // the lg the lanes' fades use (parallel: with the beat at g_flow's F1 + F2)
+  if (Bl) begin : g_len
+    pst_fade_norm #(.JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac)) u_nx (
+      .e_i (side_i[TB +: 3*JW]), .len_o (lenx_f));
+    pst_fade_norm #(.JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac)) u_ny (
+      .e_i (side_i[TB + 3*JW +: 3*JW]), .len_o (leny_f));
+  end else begin : g_no_len
+    assign lenx_f = '0;
+    assign leny_f = '0;
+    assign lgx    = '0;
+    assign lgy    = '0;
     logic unused_fade;
-    assign unused_fade = ^{bl_i, fade_i, oct_lgm_i, lgx, lgy};
+    assign unused_fade = ^{bl_i, fade_i, oct_lgm_i, lenx_f, leny_f, lgx, lgy};
   end
 
   // The fragment in [A] stays Cycles cycles; cyc_q counts them. Schedule of a lane:
@@ -374,6 +380,26 @@ module pst_octave_stage #(
       assign busy_o = 1'b0;
     end
 
+    // Bandlimited octaves: the fade chain of a beat spread over the registers between its issue
+    // and its term (XR + NR): a register after the lengths (F1), one after their lg (F2), the
+    // rest after the lanes' fades (F3); fewer registers leave the chain combinational.
+    localparam int FL = XR + NR;
+    localparam int F1 = (FL >= 3) ? 1 : 0;
+    localparam int F2 = (FL >= 2) ? 1 : 0;
+    localparam int F3 = FL - F1 - F2;
+    if (Bl) begin : g_fade_px
+      logic [2*JW-1:0]  len_1;
+      logic [LgW-1:0]   lgx_1, lgy_1;
+      pst_delay #(.Width(2*JW), .Depth(F1)) u_len (
+        .clk_i, .rst_ni, .en_i (en), .d_i ({leny_f, lenx_f}), .q_o (len_1));
+      pst_fade_lg #(.JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac)) u_lgx (
+        .len_i (len_1[0 +: JW]), .lg_o (lgx_1));
+      pst_fade_lg #(.JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac)) u_lgy (
+        .len_i (len_1[JW +: JW]), .lg_o (lgy_1));
+      pst_delay #(.Width(2*LgW), .Depth(F2)) u_lg (
+        .clk_i, .rst_ni, .en_i (en), .d_i ({lgy_1, lgx_1}), .q_o ({lgy, lgx}));
+    end
+
     for (genvar u = 0; u < NoiseUnits; u++) begin : g_lane
       // Octave of this lane in the beat's pass at the front (transform) and after the noise
       // unit (term); lane_on: an active octave.
@@ -426,15 +452,18 @@ module pst_octave_stage #(
         .q_o ({nz_lat[u*LTW +: LTW], nz_frac[u*3*LF +: 3*LF]})
       );
 
-      // The octave's fade at the beat's issue, delayed beside the transform register and the
-      // noise unit to the term.
+      // The octave's fade: its lg ||M|| selected at the beat's issue and carried with the lg
+      // lengths (F1 + F2), the fade, delayed beside the noise unit to the term (F3).
       logic [FB-1:0] alpha_n;
       if (Bl) begin : g_fade
-        logic [FB-1:0] alpha_f;
+        logic [LMW-1:0] lgm_2;
+        logic [FB-1:0]  alpha_2;
+        pst_delay #(.Width(LMW), .Depth(F1 + F2)) u_lgm (
+          .clk_i, .rst_ni, .en_i (en), .d_i (lgm_sel), .q_o (lgm_2));
         pst_octave_fade #(.LgW(LgW)) u_fade (
-          .en_i (bl_i), .lgx_i (lgx), .lgy_i (lgy), .lgm_i (lgm_sel), .table_i (fade_i), .alpha_o (alpha_f));
-        pst_delay #(.Width(FB), .Depth(XR + NR)) u_alpha (
-          .clk_i, .rst_ni, .en_i (en), .d_i (alpha_f), .q_o (alpha_n));
+          .en_i (bl_i), .lgx_i (lgx), .lgy_i (lgy), .lgm_i (lgm_2), .table_i (fade_i), .alpha_o (alpha_2));
+        pst_delay #(.Width(FB), .Depth(F3)) u_alpha (
+          .clk_i, .rst_ni, .en_i (en), .d_i (alpha_2), .q_o (alpha_n));
       end else begin : g_whole
         assign alpha_n = AlphaOne;
         logic unused_lgm;
@@ -520,6 +549,25 @@ module pst_octave_stage #(
     assign nz_en    = en;
     assign nz_valid = noise_on;
     assign nz_step  = nstep;
+
+    // Bandlimited octaves: the lengths and their lg registered (free-running: the fragment's
+    // Jacobian stays in side_i while it is in [A]; the first term row's fade, registered one
+    // cycle ahead, is formed at cycle SR + NR + NoiseSteps - 1 >= 6, after both).
+    if (Bl) begin : g_fade_px
+      logic [2*JW-1:0]  len_q;
+      logic [LgW-1:0]   lgx_s, lgy_s, lgx_q, lgy_q;
+      always_ff @(posedge clk_i) len_q <= {leny_f, lenx_f};
+      pst_fade_lg #(.JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac)) u_lgx (
+        .len_i (len_q[0 +: JW]), .lg_o (lgx_s));
+      pst_fade_lg #(.JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac)) u_lgy (
+        .len_i (len_q[JW +: JW]), .lg_o (lgy_s));
+      always_ff @(posedge clk_i) begin
+        lgx_q <= lgx_s;
+        lgy_q <= lgy_s;
+      end
+      assign lgx = lgx_q;
+      assign lgy = lgy_q;
+    end
 
     // The pass of the noise units' output token (the probes name it).
     logic [PassBits-1:0] pass_n;
@@ -628,8 +676,7 @@ module pst_octave_stage #(
       logic [GW-1:0] gterm_raw;
       logic [3*GW-1:0] gterm_d;
       logic          lane_on;
-      // The term pass's fade, registered with its operands (the fragment's Jacobian in side_i
-      // stays while it is in [A]).
+      // The term pass's fade, registered with its operands (from the registered lg above).
       logic [FB-1:0] alpha_t;
       if (Bl) begin : g_fade
         logic [FB-1:0] alpha_t_d;
