@@ -15,6 +15,13 @@ Method (the Markdown repeats it beside the figures):
   then buffers fanout (`buffer -p`: an unbuffered netlist cannot be timed, one gate would
   drive picofarads) and sizes gates against the 10 ns target (`upsize`, `dnsize`; ABC sees
   module ports as driven by BUFX2 and loaded by 0.02 pF). The area includes those buffers.
+- Fanout buffers across the hierarchy (scripts/pstlib/fanout.py): ABC buffers the nets inside
+  one module only, so a net leaving a module into many sub-module instances (the octave
+  stage's stall enable into 32 sub-modules and on to their registers) would be one gate
+  driving picofarads. Standing in for a back end's high-fanout repair (repair_design), every
+  net of a module into the input ports of >= fanout.MIN_INSTANCES sub-module instances gets
+  one fanout.CELL (BUFX4) in front of each such instance, in the netlist that is timed and
+  counted (area in the module holding it; the report has a row with their number).
   Flip-flops: asynchronous resets become logic (`async2sync`), every flop a DFFPOSX1.
 - GE = cell area / NAND2X1 area (24 um^2). The old basis (scripts/synth/cells.lib, a
   21-cell generic library written by hand, ABC's fast delay mapping) is kept as a second
@@ -48,7 +55,7 @@ import tomllib
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(ROOT / "scripts"))
-from pstlib import contract, liberty, memarea, sta  # noqa: E402
+from pstlib import contract, fanout, liberty, memarea, sta  # noqa: E402
 
 SYNTH_DIR = ROOT / "scripts" / "synth"
 OLD_LIB = SYNTH_DIR / "cells.lib"
@@ -258,7 +265,8 @@ def analyse(stat: dict, ltp_text: str, areas: dict, ff_cells: set, mems: list) -
     for m in mems:
         inst[(m["module"], m["memory"])] = next(
             (n for name, n in count.items() if name.lstrip("\\") == m["module"].lstrip("\\")), 0)
-    return {"blocks": blocks, "depth": depth, "count": count, "mem_instances": inst, "top": top}
+    return {"blocks": blocks, "depth": depth, "count": count, "count_in": count_in, "mem_instances": inst,
+            "top": top}
 
 
 # ---- memories ------------------------------------------------------------------------------
@@ -433,6 +441,10 @@ def main() -> int:
             stat_old = parse_stat_json((tmp / "stat_old.json").read_text()) if not args.no_old_basis else None
             (out / f"{name}.ltp.txt").write_text(ltp_text)
             netlist = (tmp / "netlist.v").read_text()
+            # Fanout buffers across the hierarchy (a back end's repair_design; ABC buffers inside
+            # a module only): in the netlist that is timed, counted in the module holding them.
+            netlist, fob = fanout.insert_buffers(netlist)
+            add_cells(stat, fob, fanout.CELL)
 
             a = analyse(stat, ltp_text, areas, ff_cells, mems)
             a_old = analyse(stat_old, "", old_areas, old_ff, mems) if stat_old else None
@@ -510,12 +522,37 @@ def main() -> int:
     times["total"] = time.time() - t_all
 
     result = assemble(name, profile, prof, a, a_old, ge, old_ge, memories, timing, times, lib, args)
+    result["fanout_buffers"] = fanout_summary(fob, a, areas[fanout.CELL], ge)
     (out / f"{name}.json").write_text(json.dumps(result, indent=2) + "\n")
     text = markdown(result)
     (out / f"{name}.md").write_text(text)
     if not args.quiet:
         print(text)
     return 0
+
+
+def add_cells(stat: dict, per_module: dict, cell: str) -> None:
+    """Count inserted cells (module name -> number) in Yosys' `stat -json` modules."""
+    names = {n.lstrip("\\"): n for n in stat["modules"]}
+    for m, k in per_module.items():
+        if m not in names:
+            raise RuntimeError(f"fanout buffers in {m}: no such module in the statistics")
+        cells = stat["modules"][names[m]].setdefault("num_cells_by_type", {})
+        cells[cell] = cells.get(cell, 0) + k
+
+
+def fanout_summary(per_module: dict, a: dict, cell_area: float, ge: float) -> dict:
+    """Inserted fanout buffers: instances in the flattened design, area, per block."""
+    per = {m.lstrip("\\"): k for m, k in per_module.items()}
+    blocks = {}
+    for (name, b), k in a["count_in"].items():
+        n = k * per.get(name.lstrip("\\"), 0)
+        if n:
+            blocks[b] = blocks.get(b, 0) + n
+    total = sum(blocks.values())
+    return {"cell": fanout.CELL, "min_instances": fanout.MIN_INSTANCES, "in_netlist": sum(per.values()),
+            "instances": total, "area_um2": round(total * cell_area), "ge": round(total * cell_area / ge),
+            "blocks": blocks}
 
 
 def timing_result(rep: str, sta_out: str, name=lambda p: p) -> dict:
@@ -603,6 +640,12 @@ def markdown(r: dict) -> str:
            f"| **total area** | **{r['total_ge']:,} GE ({r['total_area_mm2']:.3f} mm^2)** |",
            f"| flip-flops | {r['flip_flops']:,} |",
            f"| ROM / RAM bits | {r['rom_bits']:,} / {r['ram_bits']:,} |"]
+    fob = r.get("fanout_buffers")
+    if fob:
+        md.append(f"| fanout buffers (in the logic above, in the blocks holding them) | {fob['instances']:,} {fob['cell']} "
+                  f"({fob['ge']:,} GE; {fob['in_netlist']:,} in the hierarchical netlist; nets into >= "
+                  f"{fob['min_instances']} sub-module instances; "
+                  + ", ".join(f"{b} {n:,}" for b, n in fob["blocks"].items()) + ") |")
     if r.get("paper_gates"):
         md.append(f"| paper's gate count | {r['paper_gates']:,} |")
     if r["logic_ge_cells_lib"] is not None:
