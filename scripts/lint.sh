@@ -8,7 +8,7 @@ for cfg in rtl/configs/*.toml sim/test_profiles/*.toml; do
   name=$(basename "$cfg" .toml)
   mapfile -t params < <(/usr/bin/python3 scripts/profile.py "$cfg" --verilator)
   if ! out=$(verilator --lint-only -Wall -Irtl --top-module pst_top \
-        +define+PST_ROM_DIR=\"build/rom\" "${params[@]}" rtl/*.sv 2>&1); then
+        +define+PST_ROM_DIR=\"build/rom\" "${params[@]}" rtl/*.sv rtl/sva/*.sv 2>&1); then
     status=1
   fi
   if [ -n "$out" ]; then

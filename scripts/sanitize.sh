@@ -1,21 +1,27 @@
 #!/usr/bin/env bash
 # The test suite under AddressSanitizer + UndefinedBehaviorSanitizer (gcc, -DPST_SANITIZE=ON,
-# any UB is fatal) in its own build tree build-asan/, with the `reduced` profile (and the test
-# profiles) verilated: every C++ test binary (model, golden model, scenes and fragment files,
-# rasterizer, renderer, hardware path with the RTL, random regression, golden bounds), then
-# a few renders, a short random regression and bad-input runs of the `pst` tool.
-# Third-party findings are suppressed in scripts/sanitize/*.supp (each entry says why).
-#   scripts/sanitize.sh        about 15 min on 2 cores from a clean tree (see README)
+# any UB is fatal but misalignment, which stays recoverable so the third-party suppression
+# applies) in its own build tree build-asan/, with one small profile verilated (default: the
+# test profile serial_short): every C++ test binary (model, golden model, scenes and fragment
+# files, the fuzzers' kept inputs, rasterizer, renderer, hardware path with the RTL, random
+# regression, golden bounds), then a few renders, a short random regression and bad-input runs
+# of the `pst` tool. Third-party findings are suppressed in scripts/sanitize/*.supp (each entry
+# says why).
+#   scripts/sanitize.sh        (README "Verification" gives the time)
+#   PST_SANITIZE_PROFILES=reduced PST_SANITIZE_TEST_PROFILES=all scripts/sanitize.sh   more RTL
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh >/dev/null
 B=build-asan
-if [ ! -f $B/CMakeCache.txt ]; then
-  cmake -S . -B $B -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPST_SANITIZE=ON -DPST_PROFILES=reduced >/dev/null
-fi
-TESTS=(model/model_test model/golden_test testbench/scene_test testbench/raster_test testbench/render_test
-       testbench/hw_test)
-cmake --build $B -j"$(nproc)" --target pst "${TESTS[@]##*/}"
+NAMED=${PST_SANITIZE_PROFILES-}
+TESTP=${PST_SANITIZE_TEST_PROFILES:-serial_short}
+cmake -S . -B $B -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPST_SANITIZE=ON "-DPST_PROFILES=${NAMED// /;}" \
+      "-DPST_TEST_PROFILES=${TESTP// /;}" >/dev/null
+# The RTL runs below use the first verilated profile.
+P=$(echo $NAMED ${TESTP/all/serial_short} | awk '{print $1}')
+TESTS=(model/model_test model/golden_test testbench/scene_test testbench/fuzz_corpus_test testbench/raster_test
+       testbench/render_test testbench/hw_test)
+cmake --build $B -j2 --target pst "${TESTS[@]##*/}"
 
 export ASAN_OPTIONS=detect_leaks=1:halt_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1:suppressions=$PWD/scripts/sanitize/ubsan.supp
@@ -37,14 +43,14 @@ for t in "${TESTS[@]}"; do run "${t##*/}" 0 $B/$t --gtest_brief=1; done
 O=$B/sanitize_out
 rm -rf $O && mkdir -p $O
 run render_marble 0 $B/pst render scenes/marble.toml --size 32 --truth 2 -q -o $O/marble
-run render_rtl_fire 0 $B/pst render scenes/fire.toml --size 32 --profile reduced --stall-rate 0.3 --gap-rate 0.2 -q -o $O/fire
-run render_rtl_trace 0 $B/pst render scenes/zoneplate.toml --size 16 --profile reduced --trace $O/z.fst --trace-end 200 -q -o $O/z
-run regress_scenes 0 $B/pst regress --size 16 --profile reduced
-run regress_random 0 $B/pst regress --random 20000 --seed 9 --profile reduced -q
+run render_rtl_fire 0 $B/pst render scenes/fire.toml --size 32 --profile $P --stall-rate 0.3 --gap-rate 0.2 -q -o $O/fire
+run render_rtl_trace 0 $B/pst render scenes/zoneplate.toml --size 16 --profile $P --trace $O/z.fst --trace-end 200 -q -o $O/z
+run regress_scenes 0 $B/pst regress --size 16 --profile $P
+run regress_random 0 $B/pst regress --random 20000 --seed 9 --profile $P -q
 run fragments 0 $B/pst fragments scenes/fire.toml --size 16 -o $O/fire.frag
 printf 'quadric = { I = 0.5 }\nfilter = "sat"\ncolormap = { size = 256, wrap = "mod", ramp = [[0, 0, 0, 0, 1], [1, 1, 1, 1, 1]] }\n[[octaves]]\namplitude = 0.5\nscale = 2.0\n' > $O/tex.toml
 run eval_reference 0 $B/pst eval -t $O/tex.toml -f $O/fire.frag -o $O/eval.txt
-run eval_rtl 0 $B/pst eval -t $O/tex.toml -f $O/fire.frag --model rtl --profile reduced -o $O/eval_rtl.txt
+run eval_rtl 0 $B/pst eval -t $O/tex.toml -f $O/fire.frag --model rtl --profile $P -o $O/eval_rtl.txt
 # Bad input: exit 2, no sanitizer report.
 printf '1 2 3 nan 5 6 7 8 9\n' > $O/bad.frag
 printf '[image]\nwidth = "wide"\n' > $O/bad.toml

@@ -14,6 +14,7 @@ PACKAGES=(
   clang-14 libclang-rt-14-dev     # scripts/fuzz.sh: libFuzzer and the sanitizer runtimes
   ffmpeg                            # pst animate: frames -> video (VP9 webm)
   slurm-wlm slurm-client munge      # scripts/search.py --backend slurm; ctest -L slurm (scripts/slurm_local.sh)
+  lcov                            # scripts/coverage.sh: genhtml
 )
 # Node.js for the report's browser test (playwright-core): Debian's nodejs/npm unless a node
 # (and npm) is already on the PATH (e.g. another distribution's nodejs package, which has npm).

@@ -3,6 +3,9 @@
 # JUnit XML in build/junit.xml).
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# scripts/test.sh --sanitize: the C++ tests and a few runs under ASan + UBSan instead
+# (scripts/sanitize.sh, its own build tree build-asan/).
+if [ "${1:-}" = "--sanitize" ]; then exec scripts/sanitize.sh; fi
 scripts/setup.sh
 scripts/build.sh
 # JUnit XML of every test for CI servers: build/junit.xml

@@ -1,6 +1,9 @@
 # The Verilator harness: pst_top verilated once per profile (prefix Vpst_top_<profile>) into
 # one library, pst_rtl, with makeRtlModel(name) choosing among them.
 file(GLOB PST_RTL_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/rtl/*.sv)
+# The assertion and cover checkers (rtl/sva/, attached by `bind`; never synthesized).
+file(GLOB PST_SVA_SOURCES CONFIGURE_DEPENDS ${PROJECT_SOURCE_DIR}/rtl/sva/*.sv)
+list(APPEND PST_RTL_SOURCES ${PST_SVA_SOURCES})
 
 set(PST_RTL_REGISTRY_DECLS "")
 set(PST_RTL_REGISTRY_CASES "")

@@ -13,6 +13,12 @@
 
 #include <verilated.h>
 #include <verilated_fst_c.h>
+#if VM_COVERAGE
+#include <atomic>
+#include <cstdlib>
+#include <unistd.h>
+#include <verilated_cov.h>
+#endif
 
 #include "contract.h"
 #include "fixed.h"
@@ -38,6 +44,16 @@ public:
     ~RtlModelImpl() override {
         if (trace_) trace_->close();
         top_->final();
+#if VM_COVERAGE
+        // Coverage build (-DPST_COVERAGE=ON): one file per model instance, merged by
+        // scripts/coverage.sh with verilator_coverage.
+        if (const char* dir = std::getenv("PST_COVERAGE_DIR")) {
+            static std::atomic<int> serial{0};
+            const std::string path = std::string(dir) + "/" + name_ + "_" + std::to_string(::getpid()) + "_" +
+                                     std::to_string(serial++) + ".dat";
+            ctx_.coveragep()->write(path.c_str());
+        }
+#endif
     }
 
     const std::string& profile() const override { return name_; }
