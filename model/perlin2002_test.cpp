@@ -13,14 +13,10 @@
 #include <gtest/gtest.h>
 
 #include "noise.h"
+#include "source_dir.h"
 
 namespace pst {
 namespace {
-
-std::string sourceDir() {
-    const char* d = std::getenv("PST_SOURCE_DIR");
-    return d ? d : PST_SOURCE_DIR_DEFAULT;
-}
 
 TEST(Perlin2002, EqualsThePublishedImplementationToTheLastBit) {
     const std::string path = sourceDir() + "/model/testdata/improved_noise_ref.txt";

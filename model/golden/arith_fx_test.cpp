@@ -12,21 +12,13 @@
 #include <string>
 
 #include "texture.h"
+#include "source_dir.h"
 
 namespace pst {
 namespace {
 
 using fx::i128;
 using u128 = unsigned __int128;
-
-std::string sourceDir() {
-    if (const char* e = std::getenv("PST_SOURCE_DIR")) return e;
-#ifdef PST_SOURCE_DIR_DEFAULT
-    return PST_SOURCE_DIR_DEFAULT;
-#else
-    return ".";
-#endif
-}
 
 Profile load(const char* name) { return loadProfile(profilePath(name, sourceDir())); }
 

@@ -17,18 +17,10 @@
 #include "noise.h"
 #include "perlin2002.h"
 #include "profile.h"
+#include "source_dir.h"
 
 namespace pst {
 namespace {
-
-std::string sourceDir() {
-    if (const char* env = std::getenv("PST_SOURCE_DIR")) return env;
-#ifdef PST_SOURCE_DIR_DEFAULT
-    return PST_SOURCE_DIR_DEFAULT;
-#else
-    return ".";
-#endif
-}
 
 Profile profile(const char* name) { return loadProfile(sourceDir() + "/rtl/configs/" + name + ".toml"); }
 

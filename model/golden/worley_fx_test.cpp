@@ -14,18 +14,10 @@
 #include "fixed.h"
 #include "noise_fx.h"
 #include "worley.h"
+#include "source_dir.h"
 
 namespace pst {
 namespace {
-
-std::string sourceDir() {
-    if (const char* env = std::getenv("PST_SOURCE_DIR")) return env;
-#ifdef PST_SOURCE_DIR_DEFAULT
-    return PST_SOURCE_DIR_DEFAULT;
-#else
-    return ".";
-#endif
-}
 
 // The test profile reduced_worley, and the full formats with a worley unit (search, points, order).
 Profile reducedWorley() { return loadProfile(sourceDir() + "/sim/test_profiles/reduced_worley.toml"); }

@@ -32,6 +32,7 @@
 #include "random_regress.h"
 #include "render.h"
 #include "scene.h"
+#include "source_dir.h"
 
 namespace fs = std::filesystem;
 using namespace pst;
@@ -92,11 +93,6 @@ struct HwArgs {
     std::string trace;
     std::string html;               // render --profile --html: the runs' page
 };
-
-std::string sourceDir() {
-    const char* d = std::getenv("PST_SOURCE_DIR");
-    return d ? d : PST_SOURCE_DIR_DEFAULT;
-}
 
 extern "C" char** environ;
 

@@ -4,6 +4,7 @@
 // them fails ctest (and the sanitizer build reports memory errors on them). For scene files the
 // check-only parse (checkScene) must also agree with the full parse (parseScene).
 #include "fuzz_inputs.h"
+#include "source_dir.h"
 
 #include <cstdlib>
 #include <filesystem>
@@ -17,11 +18,6 @@ namespace pst {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string sourceDir() {
-    const char* d = std::getenv("PST_SOURCE_DIR");
-    return d ? d : PST_SOURCE_DIR_DEFAULT;
-}
 
 std::string slurp(const fs::path& p) {
     std::ifstream in(p, std::ios::binary);

@@ -13,14 +13,11 @@
 #include "fragments.h"
 #include "fixed.h"
 #include "scoreboard.h"
+#include "source_dir.h"
 
 namespace pst {
 namespace {
 
-std::string sourceDir() {
-    const char* d = std::getenv("PST_SOURCE_DIR");
-    return d ? d : PST_SOURCE_DIR_DEFAULT;
-}
 // The file each verilated profile was built from (rtl/configs, sim/test_profiles, ...).
 Profile profile(const std::string& name) { return loadProfile(rtlProfilePath(name)); }
 

@@ -1,5 +1,6 @@
 // Scene and texture files: every paper scene parses; bad input names file, line and field.
 #include "scene.h"
+#include "source_dir.h"
 
 #include <cstdlib>
 #include <filesystem>
@@ -10,11 +11,6 @@
 
 namespace pst {
 namespace {
-
-std::string sourceDir() {
-    const char* d = std::getenv("PST_SOURCE_DIR");
-    return d ? d : PST_SOURCE_DIR_DEFAULT;
-}
 
 const char* kMinimal = R"(
 [image]
