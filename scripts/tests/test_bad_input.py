@@ -260,3 +260,33 @@ def test_10_failed_write_leaves_no_partial_output(tmp_path):
     rc, err = pst("render", scene(tmp_path), "-o", out, "-q")
     assert rc != 0 and "width.png" in err, err
     assert sorted(p.name for p in out.iterdir()) == ["width.png"], list(out.iterdir())
+
+
+# 7 (also): regress --random writes its -o JSON summary; the scene-mode options it cannot honour
+# are refused instead of silently ignored.
+@pytest.mark.parametrize("args,pattern", [
+    (["--images", "{tmp}/images"], r"--images: not with --random"),
+    (["--html", "{tmp}/page.html"], r"--html: not with --random"),
+    (["--size", "16"], r"--size: not with --random"),
+])
+def test_7_random_refuses_scene_options(tmp_path, args, pattern):
+    args = [a.replace("{tmp}", str(tmp_path)) for a in args]
+    out = tmp_path / "r.json"
+    refused(["regress", "--random", 10, "--seed", 1, "--profile", "reduced", "-o", out, "-q", *args], pattern,
+            [out, tmp_path / "images", tmp_path / "page.html"])
+
+
+def test_7_random_writes_its_summary(tmp_path):
+    import json
+    out = tmp_path / "r.json"
+    r = subprocess.run([PST, "regress", "--random", "300", "--seed", "5", "--from", "1000", "--profile", "reduced",
+                        "-o", str(out), "-q"], capture_output=True, text=True, timeout=300,
+                       env=dict(os.environ, PST_SOURCE_DIR=str(ROOT)))
+    assert r.returncode == 0, r.stdout + r.stderr
+    runs = json.loads(out.read_text())
+    assert [x["profile"] for x in runs] == ["reduced"]
+    run = runs[0]
+    assert run["seed"] == 5 and run["mismatches"] == 0 and run["passed"] is True and run["first_bad"] is None
+    # --from starts at the segment holding fragment 1000; at least the 300 fragments asked for are checked.
+    assert run["first_fragment"] <= 1000 and run["first_fragment"] + run["fragments"] >= 1300
+    assert run["textures"] >= 1 and run["cycles_per_pixel"] > 0

@@ -323,9 +323,11 @@ int runRegress(const std::vector<std::string>& scenes, int size, const HwArgs& h
 }
 
 // pst regress --random N: constrained-random textures and fragments (testbench/random).
-int runRandom(const HwArgs& hw, RandomRegressOptions o, bool quiet, const std::string& junitPath) {
+int runRandom(const HwArgs& hw, RandomRegressOptions o, bool quiet, const std::string& outPath,
+              const std::string& junitPath) {
     int failures = 0;
     std::vector<JunitCase> cases;
+    nlohmann::json all = nlohmann::json::array();
     std::printf("%-14s %10s %9s %9s %10s %10s %12s\n", "profile", "fragments", "textures", "mismatch", "cyc/pixel",
                 "seconds", "fragments/s");
     std::vector<Profile> profiles;
@@ -347,6 +349,16 @@ int runRandom(const HwArgs& hw, RandomRegressOptions o, bool quiet, const std::s
         JunitCase jc{"regress.random." + p.name, "seed " + std::to_string(o.seed) + " fragments " +
                      std::to_string(r.firstFragment) + ".." + std::to_string(r.firstFragment + r.fragments),
                      r.seconds, !r.passed, "", ""};
+        all.push_back({{"profile", p.name},
+                       {"seed", o.seed},
+                       {"first_fragment", r.firstFragment},
+                       {"fragments", r.fragments},
+                       {"textures", r.textures},
+                       {"mismatches", r.mismatches},
+                       {"first_bad", r.firstBad == UINT64_MAX ? nlohmann::json(nullptr) : nlohmann::json(r.firstBad)},
+                       {"cycles_per_pixel", r.fragments ? double(r.cycles) / double(r.fragments) : 0.0},
+                       {"seconds", r.seconds},
+                       {"passed", r.passed}});
         if (!r.passed) {
             ++failures;
             jc.message = std::to_string(r.mismatches) + " mismatches, first at fragment " +
@@ -362,6 +374,7 @@ int runRandom(const HwArgs& hw, RandomRegressOptions o, bool quiet, const std::s
             cases.push_back(jc);
         }
     }
+    if (!outPath.empty()) writeTextFile(outPath, all.dump(2) + "\n");
     if (!junitPath.empty()) writeJunit(junitPath, "pst regress --random", cases);
     std::printf("%s: %zu profiles, %d failed (seed %llu)\n", failures ? "FAILED" : "PASSED", hw.profiles.size(),
                 failures, (unsigned long long)o.seed);
@@ -691,12 +704,17 @@ int main(int argc, char** argv) {
         }
         if (*regress) {
             if (hw.profiles.empty()) hw.profiles = rtlProfiles();
+            checkOutFile("-o", regOut);
+            checkOutFile("--junit", regJunit);
             if (rndCount > 0) {
                 if (!regScenes.empty()) throw InputError("--random: takes no scene files");
+                if (!regImages.empty()) throw InputError("--images: not with --random (it writes no images)");
+                if (!regHtml.empty()) throw InputError("--html: not with --random (it writes no images)");
+                if (regress->get_option("--size")->count()) throw InputError("--size: not with --random");
                 if (rnd.from + rndCount > (uint64_t(1) << 32))
                     throw InputError("--from: fragment indices are 32-bit tags (from + N <= 2^32)");
                 rnd.fragments = rndCount;
-                return runRandom(hw, rnd, rndQuiet, regJunit);
+                return runRandom(hw, rnd, rndQuiet, regOut, regJunit);
             }
             if (regScenes.empty()) {
                 for (const auto& e : fs::directory_iterator(fs::path(sourceDir()) / "scenes"))
