@@ -438,6 +438,28 @@ module pst_noise #(
   end
 
   // ---- 5. lerp tree -----------------------------------------------------------------------
+  // What is known of the corners' derivative lanes (pst_noise_lerp's GradHi, GradLo: values
+  // are multiples of 2^Lo and fit Hi bits signed), exact:
+  //   value_gradient: R at NodeFrac, R in [-1, 1): Hi = NodeFrac + 1; Lo = NodeFrac - VF when
+  //                   VF < NodeFrac (R << (NodeFrac - VF)), else 0 (floored);
+  //   value:          0: Hi = 1, Lo = 0;
+  //   grad12:         -1, 0, +1: Hi = NodeFrac + 2, Lo = NodeFrac.
+  // A lerp on axis a keeps lane k != a between its inputs (Hi unchanged) and leaves
+  // Lo - LF zero bits (floor((y - x) s / 2^LF) with y - x a multiple of 2^Lo); lane a gets
+  // the own-axis term: Q5, nothing known (Hi = GW, Lo = 0). Axes are lerped in the order
+  // x, y, z, so after `done` lerps lanes k < done are full and the others (CornerGHi,
+  // max(0, CornerGLo - done LF)).
+  localparam int CornerGHi = (NoiseCorner == pst_pkg::NoiseCornerValueGradient) ? NodeFrac + 1 :
+                             (NoiseCorner == pst_pkg::NoiseCornerGrad12) ? NodeFrac + 2 : 1;
+  localparam int CornerGLo = (NoiseCorner == pst_pkg::NoiseCornerValueGradient) ?
+                               (NoiseValueFrac < NodeFrac ? NodeFrac - NoiseValueFrac : 0) :
+                             (NoiseCorner == pst_pkg::NoiseCornerGrad12) ? NodeFrac : 0;
+  function automatic int lane_hi(input int k, input int done);
+    lane_hi = (k < done) ? GW : CornerGHi;
+  endfunction
+  function automatic int lane_lo(input int k, input int done);
+    lane_lo = (k < done) ? 0 : (CornerGLo > done * LF) ? CornerGLo - done * LF : 0;
+  endfunction
   for (genvar t = 0; t <= KC; t++) begin : g_level
     // Boundary b2 + t after level t.
     pst_delay #(.Width((CPS >> t)*NodeW), .Depth(2 + t < NoiseRegs ? 1 : 0)) u_reg (
@@ -460,7 +482,13 @@ module pst_noise #(
           .NoiseInterp      (NoiseInterp),
           .NoiseLatticeFrac (NoiseLatticeFrac),
           .NodeFrac         (NodeFrac),
-          .Axis             (t - 1)
+          .Axis             (t - 1),
+          .GradHi0          (lane_hi(0, t - 1)),
+          .GradHi1          (lane_hi(1, t - 1)),
+          .GradHi2          (lane_hi(2, t - 1)),
+          .GradLo0          (lane_lo(0, t - 1)),
+          .GradLo1          (lane_lo(1, t - 1)),
+          .GradLo2          (lane_lo(2, t - 1))
         ) u_lerp (
           .a_i    (tree_q[((t-1)*CPS + 2*k)*NodeW +: NodeW]),
           .b_i    (tree_q[((t-1)*CPS + 2*k + 1)*NodeW +: NodeW]),
@@ -499,7 +527,13 @@ module pst_noise #(
       .NoiseInterp      (NoiseInterp),
       .NoiseLatticeFrac (NoiseLatticeFrac),
       .NodeFrac         (NodeFrac),
-      .Axis             (KC + l)
+      .Axis             (KC + l),
+      .GradHi0          (lane_hi(0, KC + l)),
+      .GradHi1          (lane_hi(1, KC + l)),
+      .GradHi2          (lane_hi(2, KC + l)),
+      .GradLo0          (lane_lo(0, KC + l)),
+      .GradLo1          (lane_lo(1, KC + l)),
+      .GradLo2          (lane_lo(2, KC + l))
     ) u_lerp (
       .a_i    (hold_q),
       .b_i    (chain[l*NodeW +: NodeW]),

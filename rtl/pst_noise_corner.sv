@@ -5,12 +5,13 @@
 // corner_i = bx + 2 by + 4 bz selects the corner of the cell (x fastest, Rayshade's order); a
 // port, not a parameter, so that a serial noise unit (NoiseSteps > 1) can walk the corners.
 // In: R[m], R[m+1], R[m+2], R[m+3] (Q1.VF, VF = NoiseValueFrac) and the fractions u (LF =
-// NoiseLatticeFrac bits per axis). d_k = u_k - b_k in [-1, 1) is LF+1 bits signed: for
-// b_k = 1 its bit pattern is {1, u_k} (u - 1 in two's complement), so no subtractor.
+// NoiseLatticeFrac bits per axis). d_k = u_k - b_k in [-1, 1).
 //   NoiseCorner = 0 (value_gradient, Rayshade):
 //     v = R[m] 2^(LF-1) + R[m+1] d_x + R[m+2] d_y + R[m+3] d_z
 //         exact at VF + LF fraction bits: |R d| <= 1 (VF + LF + 2 bits each), |v| <= 3.5
-//         (ExW = 3 + VF + LF bits); three (VF+1) x (LF+1) multipliers.
+//         (ExW = 3 + VF + LF bits); three unsigned VF x LF multipliers: R d_k =
+//         R_low u_k - r_sign (u_k << VF) - b_k (R << LF) with R = R_low - r_sign 2^VF (Yosys
+//         0.23 builds a signed product over sign-extended operands: 7 % more area here).
 //     gradient (R[m+1], R[m+2], R[m+3]).
 //   NoiseCorner = 1 (value): v = R[m] 2^(LF-1) (0.5 R[m]); gradient 0 (R[m+1..3] unused).
 //   NoiseCorner = 2 (grad12, Perlin 2002's grad(hash, d)): no value table (r_i unused); the
@@ -51,8 +52,6 @@ module pst_noise_corner #(
   localparam int VF = NoiseValueFrac;
   // Exact corner value: 3 integer bits (|v| <= 3.5), VF + LF fraction bits.
   localparam int ExW = 3 + VF + LF;
-  // R d: (VF+1) x (LF+1) signed, |R d| <= 1 needs VF + LF + 2 bits.
-  localparam int PW = VF + LF + 2;
   // Floor of v from VF + LF to NodeFrac fraction bits (< 0: exact left shift).
   localparam int VShift = VF + LF - NodeFrac;
   // R from VF to NodeFrac fraction bits (< 0: exact left shift).
@@ -105,15 +104,21 @@ module pst_noise_corner #(
     logic unused_grad12;
     assign unused_grad12 = ^{r_i, half_r0};
   end else if (NoiseCorner == pst_pkg::NoiseCornerValueGradient) begin : g_value_gradient
-    logic [3*PW-1:0] prod;  // R[m+1+k] * d_k at [k*PW +: PW], exact
+    // R d = R u - b (R << LF) (d = u - b), and with R = R_low - r_sign 2^(RW-1):
+    // R u = R_low u - r_sign (u << (RW-1)): one unsigned (RW-1) x LF product per axis (Yosys
+    // 0.23 builds signed products over sign-extended operands: more cells), the corrections
+    // summed with the products (exact, ExW bits mod 2^ExW; v itself fits, so no wrap).
+    logic [3*ExW-1:0] prod;  // R[m+1+k] u_k - r_sign (u_k << (RW-1)) - b_k (R << LF) at [k*ExW +: ExW]
     for (genvar k = 0; k < 3; k++) begin : g_axis
-      logic                 corner_bit;
-      logic signed [PW-1:0] r_ext, d_ext;
+      logic             corner_bit, r_sign;
+      logic [ExW-1:0]   pu, r_ext, u_corr, b_corr;
       assign corner_bit = corner_i[k];
-      // d_k = u_k - b_k: {b_k, u_k} is its (LF+1)-bit two's complement.
-      assign d_ext = {{(PW-LF-1){corner_bit}}, corner_bit, u_i[k*LF +: LF]};
-      assign r_ext = {{(PW-RW){r_i[(k+2)*RW-1]}}, r_i[(k+1)*RW +: RW]};
-      assign prod[k*PW +: PW] = r_ext * d_ext;
+      assign r_sign = r_i[(k+2)*RW-1];
+      assign pu = {{(ExW-RW+1){1'b0}}, r_i[(k+1)*RW +: RW-1]} * {{(ExW-LF){1'b0}}, u_i[k*LF +: LF]};
+      assign r_ext = {{(ExW-RW){r_sign}}, r_i[(k+1)*RW +: RW]};
+      assign u_corr = r_sign ? ExW'({u_i[k*LF +: LF], {(RW-1){1'b0}}}) : '0;
+      assign b_corr = corner_bit ? ExW'(r_ext << LF) : '0;
+      assign prod[k*ExW +: ExW] = pu - u_corr - b_corr;
 
       // Gradient component k: R[m+1+k] brought to Q5.NodeFrac.
       if (GShift > 0) begin : g_grad_floor
@@ -126,10 +131,7 @@ module pst_noise_corner #(
         assign node_o[VW + k*GW +: GW] = {{4{r_i[(k+2)*RW-1]}}, r_i[(k+1)*RW +: RW]};
       end
     end
-    assign v_exact = half_r0
-                   + {{(ExW-PW){prod[PW-1]}}, prod[0 +: PW]}
-                   + {{(ExW-PW){prod[2*PW-1]}}, prod[PW +: PW]}
-                   + {{(ExW-PW){prod[3*PW-1]}}, prod[2*PW +: PW]};
+    assign v_exact = half_r0 + prod[0 +: ExW] + prod[ExW +: ExW] + prod[2*ExW +: ExW];
   end else begin : g_value
     assign v_exact = half_r0;
     assign node_o[NodeW-1:VW] = '0;

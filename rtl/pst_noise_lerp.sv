@@ -4,14 +4,34 @@
 //
 // Nodes a (lower corner on axis Axis) and b (upper), each (v, g_x, g_y, g_z) at NodeFrac
 // fraction bits; s, ds: the weight of b and its derivative on this axis, LF fraction bits.
-//   L(x, y) = x + floor((y - x) * s / 2^LF)           one (W+1) x (LF+1) multiplier
+//   L(x, y) = x + floor((y - x) * s / 2^LF)           one product per component
 //   v'   = L(a.v, b.v)
 //   g'_j = L(a.g_j, b.g_j)                             for j != Axis
 //   g'_k = floor((b.v - a.v) * ds / 2^LF) + L(a.g_k, b.g_k)   k = Axis: product rule
-//   NoiseInterp = 0 (scurve), 2 (quintic): the own-axis term needs a (VW+1) x (LF+3) multiplier.
+//   NoiseInterp = 0 (scurve), 2 (quintic): the own-axis term needs a (VW+1) x (LF+2) product.
 //   NoiseInterp = 1 (linear): ds = 1, the own-axis term is b.v - a.v exactly (no multiplier).
 // Ranges: L(x, y) lies between x and y (floor of a product of (y - x) and s in [0, 1)), so
 // |v'| <= 3.5 stays Q3; |g'| <= 1.5 * 6 + 1 < 16 stays Q5 (proof in rtl/pst_noise.sv).
+//
+// Narrow derivative lanes (exact; area only). The caller says what it knows of each input
+// derivative lane k (pst_noise derives it from the corner kind and the lerps done before):
+// every value on lane k is a multiple of 2^GradLo<k> and fits GradHi<k> bits signed (bits
+// GradHi<k>-1 .. GW-1 are copies of one sign). The lane's lerp then multiplies only the
+// GradHi - GradLo significant bits of y - x:
+//   floor((y - x) s / 2^LF) = floor(D s / 2^(LF - Lo))   (D = (y - x) / 2^Lo, exact)
+// (Lo >= LF: D s 2^(Lo - LF), no floor), and adds x: the same bits as the full-width lane.
+// Full: the x lerps' derivative lanes are R (Q1.15 at NodeFrac 20: Hi 21, Lo 5), so their
+// products are 17 x 16 instead of 26 x 16; the y and z lerps' not-yet-own lanes Q1 (Hi 21).
+//
+// Products (Yosys 0.23 builds a signed product as an array over the sign-extended operands):
+// a signed D (n bits) times an unsigned s (LF bits) is written as the unsigned product of D's
+// bit pattern Du = D + d_sign 2^n, minus d_sign (s << n): exact (mod 2^(n + LF)), about 6 %
+// fewer cells per product.
+//
+// Parameters:
+//   NoiseInterp, NoiseLatticeFrac, NodeFrac, Axis   as above
+//   GradHi0..2, GradLo0..2   what is known of the input derivative lanes (default: nothing,
+//                            Hi = GW, Lo = 0)
 //
 // Ports:
 //   a_i, b_i, node_o [NodeW-1:0]  v at [0 +: VW], g_k at [VW + k*GW +: GW], signed
@@ -25,6 +45,12 @@ module pst_noise_lerp #(
   parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault,
   parameter int NodeFrac = 20,
   parameter int Axis = 0,
+  parameter int GradHi0 = 5 + NodeFrac,
+  parameter int GradHi1 = 5 + NodeFrac,
+  parameter int GradHi2 = 5 + NodeFrac,
+  parameter int GradLo0 = 0,
+  parameter int GradLo1 = 0,
+  parameter int GradLo2 = 0,
   localparam int LF = NoiseLatticeFrac,     // fraction bits of s, ds
   localparam int VW = 3 + NodeFrac,         // node value Q3.NodeFrac
   localparam int GW = 5 + NodeFrac,         // node derivative Q5.NodeFrac
@@ -48,16 +74,15 @@ module pst_noise_lerp #(
   // The own-axis product term floor((b.v - a.v) ds / 2^LF), sign-extended to OwnW.
   logic signed [OwnW-1:0] own_term;
   if (NoiseInterp != pst_pkg::NoiseInterpLinear) begin : g_scurve
-    // (DW) x (LF+3) signed product: DW + LF + 3 bits, exact.
-    localparam int QW = DW + LF + 3;
-    logic signed [QW-1:0] dv_ext, ds_ext, q;
-    assign dv_ext = {{(LF+3){dv[DW-1]}}, dv};
-    assign ds_ext = {{(DW+1){1'b0}}, ds_i};
-    assign q = dv_ext * ds_ext;
+    // dv ds = dvu ds - dv_sign (ds << DW), dvu = dv's bit pattern: DW + LF + 2 bits, exact.
+    localparam int QW = DW + LF + 2;
+    logic [QW-1:0] qu, q;
+    assign qu = {{(LF+3){1'b0}}, dv[DW-2:0]} * {{DW{1'b0}}, ds_i};
+    assign q  = qu - (dv[DW-1] ? {1'b0, ds_i, {(DW-1){1'b0}}} : '0);
     // floor: drop LF bits; |(b - a) ds| <= 7 * 1.5 fits OwnW (Q6) easily.
     assign own_term = q[LF +: OwnW];
     logic unused_q;
-    assign unused_q = ^{q[LF-1:0], q[QW-1:LF+OwnW]};
+    assign unused_q = ^q[LF-1:0];   // QW = LF + OwnW: every higher bit is own_term
   end else begin : g_linear
     assign own_term = {{(OwnW-DW){dv[DW-1]}}, dv};
     logic unused_ds;
@@ -68,19 +93,37 @@ module pst_noise_lerp #(
   for (genvar j = 0; j < 4; j++) begin : g_comp
     localparam int W = (j == 0) ? VW : GW;               // component width
     localparam int Off = (j == 0) ? 0 : VW + (j-1) * GW; // component offset in the node
-    localparam int PW = W + 1 + LF + 1;                  // (y - x) x s, exact
-    logic signed [W:0]    diff;    // y - x, one bit wider than the component
-    logic signed [PW-1:0] diff_ext, s_ext, p;
-    logic signed [W+1:0]  lerp;    // x + floor(p / 2^LF), W + 2 bits before the range check
+    // The lane's significant bits [Lo, Hi) (header).
+    localparam int Hi = (j == 0) ? VW : (j == 1) ? GradHi0 : (j == 2) ? GradHi1 : GradHi2;
+    localparam int Lo = (j == 0) ? 0 : (j == 1) ? GradLo0 : (j == 2) ? GradLo1 : GradLo2;
+    localparam int N = Hi - Lo + 1;                      // D = (y - x) / 2^Lo, signed
+    localparam int PW = N + LF;                          // D s, exact
+    logic signed [N-1:0]  diff;
+    logic [PW-1:0]        pu, p;
+    logic signed [W+1:0]  term;    // floor((y - x) s / 2^LF), sign-extended
+    logic signed [W+1:0]  lerp;    // x + term, W + 2 bits before the range check
 
-    assign diff = {b_i[Off+W-1], b_i[Off +: W]} - {a_i[Off+W-1], a_i[Off +: W]};
-    assign diff_ext = {{(LF+1){diff[W]}}, diff};
-    assign s_ext = {{(W+2){1'b0}}, s_i};
-    assign p = diff_ext * s_ext;
-    assign lerp = {{2{a_i[Off+W-1]}}, a_i[Off +: W]} + p[LF +: W+2];
-
-    logic unused_p_low;
-    assign unused_p_low = ^p[LF-1:0];
+    assign diff = {b_i[Off+Hi-1], b_i[Off+Lo +: Hi-Lo]} - {a_i[Off+Hi-1], a_i[Off+Lo +: Hi-Lo]};
+    assign pu = {{(LF+1){1'b0}}, diff[N-2:0]} * {{N{1'b0}}, s_i};
+    assign p  = pu - (diff[N-1] ? {1'b0, s_i, {(N-1){1'b0}}} : '0);
+    if (Lo >= LF) begin : g_exact
+      assign term = (W+2)'($signed(p)) <<< (Lo - LF);
+    end else begin : g_floor
+      logic signed [PW-LF+Lo-1:0] pf;
+      assign pf = p[LF-Lo +: PW-LF+Lo];
+      assign term = (W+2)'(pf);
+      logic unused_p_low;
+      assign unused_p_low = ^p[LF-Lo-1:0];
+    end
+    assign lerp = {{(W+2-Hi){a_i[Off+Hi-1]}}, a_i[Off +: Hi]} + term;
+    if (Hi < W) begin : g_unused_high
+      logic unused_hi;   // sign copies (the caller's promise)
+      assign unused_hi = ^{a_i[Off+Hi +: W-Hi], b_i[Off+Hi +: W-Hi]};
+    end
+    if (Lo > 0) begin : g_unused_low
+      logic unused_lo;   // zeros (the caller's promise)
+      assign unused_lo = ^b_i[Off +: Lo];
+    end
 
     if (j == Axis + 1) begin : g_own
       logic signed [OwnW+1:0] sum;  // lerp + own_term, two guard bits for the range check
@@ -99,10 +142,29 @@ module pst_noise_lerp #(
 `ifndef SYNTHESIS
   initial begin
     if (Axis < 0 || Axis > 2) $error("pst_noise_lerp: Axis must be 0..2");
+    if (GradHi0 > GW || GradHi1 > GW || GradHi2 > GW || GradLo0 < 0 || GradLo1 < 0 || GradLo2 < 0 ||
+        GradLo0 >= GradHi0 || GradLo1 >= GradHi1 || GradLo2 >= GradHi2)
+      $error("pst_noise_lerp: GradHi/GradLo out of range");
   end
   // Every component result fits its width (no wrap): the high bits are sign copies.
   for (genvar j = 0; j < 4; j++) begin : g_assert_comp
     localparam int W = (j == 0) ? VW : GW;
+    localparam int Off = (j == 0) ? 0 : VW + (j-1) * GW;
+    localparam int Hi = (j == 0) ? VW : (j == 1) ? GradHi0 : (j == 2) ? GradHi1 : GradHi2;
+    localparam int Lo = (j == 0) ? 0 : (j == 1) ? GradLo0 : (j == 2) ? GradLo1 : GradLo2;
+    // The caller's promise about the input lanes (GradHi, GradLo).
+    always_comb begin
+      assert (a_i[Off+W-1:Off+Hi-1] == '0 || a_i[Off+W-1:Off+Hi-1] == '1)
+        else $error("pst_noise_lerp: lane %0d of a exceeds GradHi", j);
+      assert (b_i[Off+W-1:Off+Hi-1] == '0 || b_i[Off+W-1:Off+Hi-1] == '1)
+        else $error("pst_noise_lerp: lane %0d of b exceeds GradHi", j);
+    end
+    if (Lo > 0) begin : g_assert_lo
+      always_comb begin
+        assert (a_i[Off +: Lo] == '0 && b_i[Off +: Lo] == '0)
+          else $error("pst_noise_lerp: lane %0d has bits below GradLo", j);
+      end
+    end
     if (j == Axis + 1) begin : g_own
       always_comb begin
         assert ((g_comp[j].g_own.sum[OwnW+1:W-1] == '0) || (g_comp[j].g_own.sum[OwnW+1:W-1] == '1))
