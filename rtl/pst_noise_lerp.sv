@@ -8,7 +8,8 @@
 //   v'   = L(a.v, b.v)
 //   g'_j = L(a.g_j, b.g_j)                             for j != Axis
 //   g'_k = floor((b.v - a.v) * ds / 2^LF) + L(a.g_k, b.g_k)   k = Axis: product rule
-//   NoiseInterp = 0 (scurve), 2 (quintic): the own-axis term needs a (VW+1) x (LF+2) product.
+//   NoiseInterp = 0 (scurve), 2 (quintic): the own-axis term needs a (VW+1) x (LF+2) product
+//   (scurve: ds is even and < 2, so (VW+1) x LF and a shift; below).
 //   NoiseInterp = 1 (linear): ds = 1, the own-axis term is b.v - a.v exactly (no multiplier).
 // Ranges: L(x, y) lies between x and y (floor of a product of (y - x) and s in [0, 1)), so
 // |v'| <= 3.5 stays Q3; |g'| <= 1.5 * 6 + 1 < 16 stays Q5 (proof in rtl/pst_noise.sv).
@@ -73,13 +74,28 @@ module pst_noise_lerp #(
 
   // The own-axis product term floor((b.v - a.v) ds / 2^LF), sign-extended to OwnW.
   logic signed [OwnW-1:0] own_term;
-  if (NoiseInterp != pst_pkg::NoiseInterpLinear) begin : g_scurve
-    // dv ds = dvu ds - dv_sign (ds << DW), dvu = dv's bit pattern: DW + LF + 2 bits, exact.
+  if (NoiseInterp == pst_pkg::NoiseInterpScurve && LF >= 2) begin : g_scurve
+    // scurve: ds = 6 (U - u2) is even and <= 1.5 2^LF (pst_noise_weight), so ds = 2 dh with
+    // dh = ds[LF:1] < 2^LF: the product dv dh is DW x LF (not DW x (LF+2)), then doubled.
+    // dv dh = dvl dh - dv_sign (dh << (DW-1)) (dvl: dv's low DW-1 bits, unsigned).
+    localparam int QW = DW + LF;
+    logic [LF-1:0] dh;
+    logic [QW-1:0] qu, q;
+    assign dh = ds_i[LF:1];
+    assign qu = {{(LF+1){1'b0}}, dv[DW-2:0]} * {{DW{1'b0}}, dh};
+    assign q  = qu - (dv[DW-1] ? {1'b0, dh, {(DW-1){1'b0}}} : '0);
+    // floor(dv ds / 2^LF) = floor(dv dh / 2^(LF-1)); |(b - a) ds| <= 7 * 1.5 fits OwnW.
+    assign own_term = OwnW'($signed(q[LF-1 +: QW-LF+1]));
+    logic unused_q;
+    assign unused_q = ^{q[LF-2:0], ds_i[LF+1], ds_i[0]};
+  end else if (NoiseInterp != pst_pkg::NoiseInterpLinear) begin : g_general
+    // dv ds = dvl ds - dv_sign (ds << (DW-1)) (dvl: dv's low DW-1 bits, unsigned):
+    // DW + LF + 2 bits, exact.
     localparam int QW = DW + LF + 2;
     logic [QW-1:0] qu, q;
     assign qu = {{(LF+3){1'b0}}, dv[DW-2:0]} * {{DW{1'b0}}, ds_i};
     assign q  = qu - (dv[DW-1] ? {1'b0, ds_i, {(DW-1){1'b0}}} : '0);
-    // floor: drop LF bits; |(b - a) ds| <= 7 * 1.5 fits OwnW (Q6) easily.
+    // floor: drop LF bits; |(b - a) ds| <= 7 * 1.875 fits OwnW (Q6) easily.
     assign own_term = q[LF +: OwnW];
     logic unused_q;
     assign unused_q = ^q[LF-1:0];   // QW = LF + OwnW: every higher bit is own_term
@@ -145,6 +161,11 @@ module pst_noise_lerp #(
     if (GradHi0 > GW || GradHi1 > GW || GradHi2 > GW || GradLo0 < 0 || GradLo1 < 0 || GradLo2 < 0 ||
         GradLo0 >= GradHi0 || GradLo1 >= GradHi1 || GradLo2 >= GradHi2)
       $error("pst_noise_lerp: GradHi/GradLo out of range");
+  end
+  if (NoiseInterp == pst_pkg::NoiseInterpScurve && LF >= 2) begin : g_assert_ds
+    always_comb begin
+      assert (ds_i[0] == 1'b0 && ds_i[LF+1] == 1'b0) else $error("pst_noise_lerp: scurve ds odd or >= 2");
+    end
   end
   // Every component result fits its width (no wrap): the high bits are sign copies.
   for (genvar j = 0; j < 4; j++) begin : g_assert_comp

@@ -10,7 +10,7 @@
 //   lat   = (floor(p_r) + 576) mod 4096: Rayshade adds 1e6 before truncating and hashes
 //           only the low 12 bits of the lattice index; 1e6 mod 4096 = 576. The wrap is exact
 //           for the noise (period 4096), so the integer bits above bit AccFrac + 11 are
-//           never needed: the sums are kept exact anyway (AccW bits) for clarity.
+//           never needed: the sums are kept modulo 2^(AccFrac + 12).
 //
 // Parameters (names as scripts/profile.py derives them from rtl/configs/NAME.toml):
 //   CoordInt, CoordFrac     s, t, r format Q(CoordInt).(CoordFrac)
@@ -57,53 +57,58 @@ module pst_octave_transform #(
   localparam int AccFrac = MatrixFrac + CoordFrac;
   // Left shift bringing o to AccFrac fraction bits.
   localparam int OffShift = AccFrac - OffsetFrac;
-  // A signed MW x CW product needs MW + CW bits.
-  localparam int ProdW = MW + CW;
-  // Three products (+2 bits) and the shifted offset (OW + OffShift bits), plus one carry bit.
-  localparam int SumW = ((ProdW + 2 > OW + OffShift) ? ProdW + 2 : OW + OffShift) + 1;
-  // The lattice index is bits [AccFrac +: LB]: make sure they exist (sign-extended).
-  localparam int AccW = (SumW > AccFrac + LB) ? SumW : AccFrac + LB;
+  // Only bits [AccFrac - LF, AccFrac + LB) of the sum reach the noise (the fraction and the
+  // lattice index mod 4096): the sum is kept modulo 2^KW, KW = AccFrac + LB (exact for those
+  // bits; the integer bits above the lattice index are never built).
+  localparam int KW = AccFrac + LB;
+  // Each product M s with M = M_low - m_sign 2^(MW-1), s = S_low - s_sign 2^(CW-1):
+  //   M s = M_low S_low - m_sign (S_low << (MW-1)) - s_sign (M_low << (CW-1))
+  //         + m_sign s_sign 2^(MW+CW-2)
+  // one unsigned (MW-1) x (CW-1) product and corrections (Yosys 0.23 builds a signed product
+  // as an array over sign-extended operands: more cells).
+  localparam int MsW = MW + CW - 2;   // position of the m_sign s_sign term
   // Offset of Rayshade's 1e6 lattice shift modulo 4096.
   localparam logic [LB-1:0] LatticeOffset = LB'(pst_pkg::LatticeOffset);
 
   for (genvar r = 0; r < Rows; r++) begin : g_axis
-    logic [3*ProdW-1:0]      prod;  // three exact products, j at [j*ProdW +: ProdW]
-    logic signed [AccW-1:0]  off_ext;
-    logic signed [AccW-1:0]  acc;
+    logic [3*KW-1:0]  prod;  // three products mod 2^KW, j at [j*KW +: KW]
+    logic [KW-1:0]    off_ext;
+    logic [KW-1:0]    acc;
 
     for (genvar j = 0; j < 3; j++) begin : g_term
-      logic signed [ProdW-1:0] m_ext, s_ext;
-      // Operands sign-extended to the product width: the product is exact in ProdW bits.
-      assign m_ext = {{CW{m_i[(3*r+j)*MW + MW-1]}}, m_i[(3*r+j)*MW +: MW]};
-      assign s_ext = {{MW{s_i[j*CW + CW-1]}}, s_i[j*CW +: CW]};
-      assign prod[j*ProdW +: ProdW] = m_ext * s_ext;
+      logic              m_sign, s_sign;
+      logic [MW-2:0]     m_low;
+      logic [CW-2:0]     s_low;
+      logic [KW-1:0]     pu, corr_m, corr_s, corr_ms;
+      assign {m_sign, m_low} = m_i[(3*r+j)*MW +: MW];
+      assign {s_sign, s_low} = s_i[j*CW +: CW];
+      assign pu = KW'({{KW{1'b0}}, m_low} * {{KW{1'b0}}, s_low});
+      assign corr_m = m_sign ? KW'({{KW{1'b0}}, s_low, {(MW-1){1'b0}}}) : '0;
+      assign corr_s = s_sign ? KW'({{KW{1'b0}}, m_low, {(CW-1){1'b0}}}) : '0;
+      if (MsW < KW) begin : g_ms
+        assign corr_ms = (m_sign && s_sign) ? (KW'(1) << MsW) : '0;
+      end else begin : g_no_ms
+        assign corr_ms = '0;  // 2^MsW vanishes modulo 2^KW
+      end
+      assign prod[j*KW +: KW] = pu - corr_m - corr_s + corr_ms;
     end
 
     if (OffShift > 0) begin : g_off_shift
-      assign off_ext = {{(AccW-OW-OffShift){o_i[r*OW + OW-1]}}, o_i[r*OW +: OW], {OffShift{1'b0}}};
+      assign off_ext = KW'({{KW{o_i[r*OW + OW-1]}}, o_i[r*OW +: OW], {OffShift{1'b0}}});
     end else begin : g_off_noshift
-      assign off_ext = {{(AccW-OW){o_i[r*OW + OW-1]}}, o_i[r*OW +: OW]};
+      assign off_ext = KW'({{KW{o_i[r*OW + OW-1]}}, o_i[r*OW +: OW]});
     end
 
-    assign acc = {{(AccW-ProdW){prod[ProdW-1]}}, prod[0 +: ProdW]}
-               + {{(AccW-ProdW){prod[2*ProdW-1]}}, prod[ProdW +: ProdW]}
-               + {{(AccW-ProdW){prod[3*ProdW-1]}}, prod[2*ProdW +: ProdW]}
-               + off_ext;
+    assign acc = prod[0 +: KW] + prod[KW +: KW] + prod[2*KW +: KW] + off_ext;
 
     // floor to LF fraction bits, then split: the low LF bits are u, the next LB the lattice.
     assign frac_o[r*LF +: LF] = acc[AccFrac-LF +: LF];
     assign lat_o[r*LB +: LB]  = acc[AccFrac +: LB] + LatticeOffset;
 
-    // Bits below the LF fraction and above the lattice index do not reach the noise.
-    logic unused_acc;
-    if (AccFrac - LF > 0 && AccW > AccFrac + LB) begin : g_unused_both
-      assign unused_acc = ^{acc[AccFrac-LF-1:0], acc[AccW-1:AccFrac+LB]};
-    end else if (AccFrac - LF > 0) begin : g_unused_low
+    // Bits below the LF fraction do not reach the noise.
+    if (AccFrac - LF > 0) begin : g_unused_low
+      logic unused_acc;
       assign unused_acc = ^acc[AccFrac-LF-1:0];
-    end else if (AccW > AccFrac + LB) begin : g_unused_high
-      assign unused_acc = ^acc[AccW-1:AccFrac+LB];
-    end else begin : g_unused_none
-      assign unused_acc = 1'b0;
     end
   end
 
