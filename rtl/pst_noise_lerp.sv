@@ -24,10 +24,8 @@
 // Full: the x lerps' derivative lanes are R (Q1.15 at NodeFrac 20: Hi 21, Lo 5), so their
 // products are 17 x 16 instead of 26 x 16; the y and z lerps' not-yet-own lanes Q1 (Hi 21).
 //
-// Products (Yosys 0.23 builds a signed product as an array over the sign-extended operands):
-// a signed D (n bits) times an unsigned s (LF bits) is written as the unsigned product of D's
-// bit pattern Du = D + d_sign 2^n, minus d_sign (s << n): exact (mod 2^(n + LF)), about 6 %
-// fewer cells per product.
+// Products: radix-4 Booth (rtl/pst_mul_booth.sv; Yosys 0.23 builds only AND arrays): signed
+// differences times the unsigned weights.
 //
 // Parameters:
 //   NoiseInterp, NoiseLatticeFrac, NodeFrac, Axis   as above
@@ -77,24 +75,24 @@ module pst_noise_lerp #(
   if (NoiseInterp == pst_pkg::NoiseInterpScurve && LF >= 2) begin : g_scurve
     // scurve: ds = 6 (U - u2) is even and <= 1.5 2^LF (pst_noise_weight), so ds = 2 dh with
     // dh = ds[LF:1] < 2^LF: the product dv dh is DW x LF (not DW x (LF+2)), then doubled.
-    // dv dh = dvl dh - dv_sign (dh << (DW-1)) (dvl: dv's low DW-1 bits, unsigned).
     localparam int QW = DW + LF;
     logic [LF-1:0] dh;
-    logic [QW-1:0] qu, q;
+    logic [QW-1:0] q;
     assign dh = ds_i[LF:1];
-    assign qu = {{(LF+1){1'b0}}, dv[DW-2:0]} * {{DW{1'b0}}, dh};
-    assign q  = qu - (dv[DW-1] ? {1'b0, dh, {(DW-1){1'b0}}} : '0);
+    pst_mul_booth #(.AW(DW), .BW(LF), .BSigned(1'b0), .PW(QW)) u_mul (
+      .a_i (dv), .b_i (dh), .p_o (q)
+    );
     // floor(dv ds / 2^LF) = floor(dv dh / 2^(LF-1)); |(b - a) ds| <= 7 * 1.5 fits OwnW.
     assign own_term = OwnW'($signed(q[LF-1 +: QW-LF+1]));
     logic unused_q;
     assign unused_q = ^{q[LF-2:0], ds_i[LF+1], ds_i[0]};
   end else if (NoiseInterp != pst_pkg::NoiseInterpLinear) begin : g_general
-    // dv ds = dvl ds - dv_sign (ds << (DW-1)) (dvl: dv's low DW-1 bits, unsigned):
-    // DW + LF + 2 bits, exact.
+    // dv ds: DW + LF + 2 bits, exact.
     localparam int QW = DW + LF + 2;
-    logic [QW-1:0] qu, q;
-    assign qu = {{(LF+3){1'b0}}, dv[DW-2:0]} * {{DW{1'b0}}, ds_i};
-    assign q  = qu - (dv[DW-1] ? {1'b0, ds_i, {(DW-1){1'b0}}} : '0);
+    logic [QW-1:0] q;
+    pst_mul_booth #(.AW(DW), .BW(LF+2), .BSigned(1'b0), .PW(QW)) u_mul (
+      .a_i (dv), .b_i (ds_i), .p_o (q)
+    );
     // floor: drop LF bits; |(b - a) ds| <= 7 * 1.875 fits OwnW (Q6) easily.
     assign own_term = q[LF +: OwnW];
     logic unused_q;
@@ -115,13 +113,14 @@ module pst_noise_lerp #(
     localparam int N = Hi - Lo + 1;                      // D = (y - x) / 2^Lo, signed
     localparam int PW = N + LF;                          // D s, exact
     logic signed [N-1:0]  diff;
-    logic [PW-1:0]        pu, p;
+    logic [PW-1:0]        p;
     logic signed [W+1:0]  term;    // floor((y - x) s / 2^LF), sign-extended
     logic signed [W+1:0]  lerp;    // x + term, W + 2 bits before the range check
 
     assign diff = {b_i[Off+Hi-1], b_i[Off+Lo +: Hi-Lo]} - {a_i[Off+Hi-1], a_i[Off+Lo +: Hi-Lo]};
-    assign pu = {{(LF+1){1'b0}}, diff[N-2:0]} * {{N{1'b0}}, s_i};
-    assign p  = pu - (diff[N-1] ? {1'b0, s_i, {(N-1){1'b0}}} : '0);
+    pst_mul_booth #(.AW(N), .BW(LF), .BSigned(1'b0), .PW(PW)) u_mul (
+      .a_i (diff), .b_i (s_i), .p_o (p)
+    );
     if (Lo >= LF) begin : g_exact
       assign term = (W+2)'($signed(p)) <<< (Lo - LF);
     end else begin : g_floor

@@ -61,12 +61,8 @@ module pst_octave_transform #(
   // lattice index mod 4096): the sum is kept modulo 2^KW, KW = AccFrac + LB (exact for those
   // bits; the integer bits above the lattice index are never built).
   localparam int KW = AccFrac + LB;
-  // Each product M s with M = M_low - m_sign 2^(MW-1), s = S_low - s_sign 2^(CW-1):
-  //   M s = M_low S_low - m_sign (S_low << (MW-1)) - s_sign (M_low << (CW-1))
-  //         + m_sign s_sign 2^(MW+CW-2)
-  // one unsigned (MW-1) x (CW-1) product and corrections (Yosys 0.23 builds a signed product
-  // as an array over sign-extended operands: more cells).
-  localparam int MsW = MW + CW - 2;   // position of the m_sign s_sign term
+  // Each product M s is a Booth product modulo 2^KW (rtl/pst_mul_booth.sv; Yosys 0.23 builds
+  // only AND arrays).
   // Offset of Rayshade's 1e6 lattice shift modulo 4096.
   localparam logic [LB-1:0] LatticeOffset = LB'(pst_pkg::LatticeOffset);
 
@@ -76,21 +72,11 @@ module pst_octave_transform #(
     logic [KW-1:0]    acc;
 
     for (genvar j = 0; j < 3; j++) begin : g_term
-      logic              m_sign, s_sign;
-      logic [MW-2:0]     m_low;
-      logic [CW-2:0]     s_low;
-      logic [KW-1:0]     pu, corr_m, corr_s, corr_ms;
-      assign {m_sign, m_low} = m_i[(3*r+j)*MW +: MW];
-      assign {s_sign, s_low} = s_i[j*CW +: CW];
-      assign pu = KW'({{KW{1'b0}}, m_low} * {{KW{1'b0}}, s_low});
-      assign corr_m = m_sign ? KW'({{KW{1'b0}}, s_low, {(MW-1){1'b0}}}) : '0;
-      assign corr_s = s_sign ? KW'({{KW{1'b0}}, m_low, {(CW-1){1'b0}}}) : '0;
-      if (MsW < KW) begin : g_ms
-        assign corr_ms = (m_sign && s_sign) ? (KW'(1) << MsW) : '0;
-      end else begin : g_no_ms
-        assign corr_ms = '0;  // 2^MsW vanishes modulo 2^KW
-      end
-      assign prod[j*KW +: KW] = pu - corr_m - corr_s + corr_ms;
+      pst_mul_booth #(.AW(CW), .BW(MW), .BSigned(1'b1), .PW(KW)) u_mul (
+        .a_i (s_i[j*CW +: CW]),
+        .b_i (m_i[(3*r+j)*MW +: MW]),
+        .p_o (prod[j*KW +: KW])
+      );
     end
 
     if (OffShift > 0) begin : g_off_shift

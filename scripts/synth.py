@@ -80,6 +80,7 @@ BLOCKS = {
     "pst_noise_weight": "noise",
     "pst_noise_corner": "noise",
     "pst_noise_lerp": "noise",
+    "pst_mul_booth": "noise",   # used only by the noise unit and the octave transform
     "pst_octave_term": "octave accumulation",
     "pst_filter_width": "gradient and filter width",
     "pst_isqrt": "gradient and filter width",

@@ -10,6 +10,7 @@ set(PST_NOISE_UNIT_SOURCES
     ${PROJECT_SOURCE_DIR}/rtl/pst_noise_weight.sv
     ${PROJECT_SOURCE_DIR}/rtl/pst_noise_corner.sv
     ${PROJECT_SOURCE_DIR}/rtl/pst_noise_lerp.sv
+    ${PROJECT_SOURCE_DIR}/rtl/pst_mul_booth.sv
     ${PROJECT_SOURCE_DIR}/rtl/pst_delay.sv)
 
 foreach(p ${PST_PROFILES})
