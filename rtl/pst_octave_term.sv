@@ -64,7 +64,7 @@ module pst_octave_term #(
 
   // fterm = sat_F(floor(a n to FFrac)).
   logic signed [PW-1:0] an;
-  assign an = PW'($signed(a_i)) * PW'($signed(n_i));
+  pst_mul_booth #(.AW(NW), .BW(AW), .BSigned(1'b1), .PW(PW)) u_an (.a_i(n_i), .b_i(a_i), .p_o(an));
   pst_floor_sat #(
     .InWidth (PW), .InFrac (AmplitudeFrac + NoiseOutFrac), .OutWidth (FW), .OutFrac (FFrac)
   ) u_f_sat (
@@ -74,9 +74,12 @@ module pst_octave_term #(
   // gterm_r = sat_Grad(floor(sum_c GM[r][c] g[c] to GradFrac)).
   for (genvar r = 0; r < Rows; r++) begin : g_row
     logic signed [DW-1:0] dot;
-    assign dot = DW'($signed(gm_i[(3*r+0)*GMW +: GMW])) * DW'($signed(g_i[0*NGW +: NGW])) +
-                 DW'($signed(gm_i[(3*r+1)*GMW +: GMW])) * DW'($signed(g_i[1*NGW +: NGW])) +
-                 DW'($signed(gm_i[(3*r+2)*GMW +: GMW])) * DW'($signed(g_i[2*NGW +: NGW]));
+    logic [3*DW-1:0] pr;
+    for (genvar c = 0; c < 3; c++) begin : g_c
+      pst_mul_booth #(.AW(GMW), .BW(NGW), .BSigned(1'b1), .PW(DW)) u_m (
+        .a_i(gm_i[(3*r+c)*GMW +: GMW]), .b_i(g_i[c*NGW +: NGW]), .p_o(pr[c*DW +: DW]));
+    end
+    assign dot = pr[0 +: DW] + pr[DW +: DW] + pr[2*DW +: DW];
     pst_floor_sat #(
       .InWidth (DW), .InFrac (GradMatrixFrac + NoiseOutFrac), .OutWidth (GW), .OutFrac (GradFrac)
     ) u_g_sat (
