@@ -6,6 +6,7 @@
 //
 //   fterm_o    = sat_F(floor(a n to FFrac))                      a n exact at AmplitudeFrac + NoiseOutFrac
 //   gterm_o[r] = sat_Grad(floor(sum_c GM[r][c] g[c] to GradFrac)) exact at GradMatrixFrac + NoiseOutFrac
+// Every product is a radix-4 Booth product (pst_mul_booth; g_i, n_i and alpha_i recoded).
 // floor = arithmetic shift right (a left shift, exact, if the target has more fraction bits);
 // sat = clamp to the signed output width. With Bandlimit (filter.bandlimit = isotropic) both are
 // then faded by the octave's alpha_i (pst_octave_fade; octaveTermFx + fadeScaleFx):
@@ -87,16 +88,18 @@ module pst_octave_term #(
     );
   end
 
-  // The fade: floor(v alpha / 2^FadeFrac), alpha unsigned (a zero bit above it).
+  // The fade: floor(v alpha / 2^FadeFrac), alpha unsigned (Booth products, alpha recoded).
   if (Bandlimit) begin : g_fade
     localparam int FPW = FW + FB + 1;
     localparam int GPW = GW + FB + 1;
     logic signed [FPW-1:0] fp;
-    assign fp = FPW'($signed(f_sat)) * FPW'($signed({1'b0, alpha_i}));
+    pst_mul_booth #(.AW(FW), .BW(FB), .BSigned(1'b0), .PW(FPW)) u_fp (
+      .a_i(f_sat), .b_i(alpha_i), .p_o(fp));
     assign fterm_o = fp[pst_pkg::FadeFrac +: FW];
     for (genvar r = 0; r < Rows; r++) begin : g_row
       logic signed [GPW-1:0] gp;
-      assign gp = GPW'($signed(g_sat[r*GW +: GW])) * GPW'($signed({1'b0, alpha_i}));
+      pst_mul_booth #(.AW(GW), .BW(FB), .BSigned(1'b0), .PW(GPW)) u_gp (
+        .a_i(g_sat[r*GW +: GW]), .b_i(alpha_i), .p_o(gp));
       assign gterm_o[r*GW +: GW] = gp[pst_pkg::FadeFrac +: GW];
       logic unused_gp;
       assign unused_gp = ^{gp[GPW-1:pst_pkg::FadeFrac+GW], gp[pst_pkg::FadeFrac-1:0]};

@@ -80,7 +80,6 @@ BLOCKS = {
     "pst_noise_weight": "noise",
     "pst_noise_corner": "noise",
     "pst_noise_lerp": "noise",
-    "pst_mul_booth": "noise",   # used only by the noise unit and the octave transform
     "pst_octave_term": "octave accumulation",
     "pst_filter_width": "gradient and filter width",
     "pst_isqrt": "gradient and filter width",
@@ -92,7 +91,8 @@ BLOCKS = {
     "pst_pipe_reg": "control",
     "pst_top": "control",
 }
-# A module not named above (pst_delay: pipeline registers, pst_pipe_flow, pst_floor_sat, ...)
+# A module not named above (pst_delay: pipeline registers, pst_pipe_flow, pst_floor_sat,
+# pst_mul_booth, ...)
 # is counted in the block of the instance that holds it.
 BLOCK_ORDER = ["quadric", "noise", "octave accumulation", "gradient and filter width",
                "colour-table filter", "control"]
