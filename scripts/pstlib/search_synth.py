@@ -117,6 +117,20 @@ def instance_counts(subs: dict, top: str) -> dict:
     return count
 
 
+def block_counts(subs: dict, top: str) -> dict:
+    """(derived module, block) -> instances, as synth.py counts blocks: a module named in its
+    BLOCKS table is in that block, any other (pst_delay, pst_mul_booth, ...) in its holder's."""
+    count = {}
+
+    def walk(name, k, parent):
+        b = syn().BLOCKS.get(syn().base_name(name), parent)
+        count[(name, b)] = count.get((name, b), 0) + k
+        for sub, n in subs[name].items():
+            walk(sub, k * n, b)
+    walk(top, 1, "control")
+    return count
+
+
 def elaborate(profile: pathlib.Path, rom_dir: pathlib.Path, lib: pathlib.Path, tmp: pathlib.Path) -> dict:
     """Derived modules of the profile's pst_top and their instance counts (Yosys `hierarchy`)."""
     script = "\n".join(_read_lines(profile, rom_dir, lib) + [
@@ -223,13 +237,13 @@ class ModuleCache:
         blocks = {}
         modules = {}
         total = 0.0
+        for (m, b), n in block_counts(h["subs"], h["top"]).items():
+            blocks[b] = blocks.get(b, 0.0) + n * have[m]["area_um2"]
         for m, n in h["count"].items():
             rec = have[m]
             a = n * rec["area_um2"]
             total += a
             base = syn().base_name(m)
-            b = syn().BLOCKS.get(base, "control")
-            blocks[b] = blocks.get(b, 0.0) + a
             e = modules.setdefault(base, {"instances": 0, "ge": 0.0})
             e["instances"] += n
             e["ge"] += a / self.ge_um2

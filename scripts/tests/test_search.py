@@ -174,6 +174,19 @@ def test_module_hierarchy_counts_instances():
     assert search_synth.instance_counts(subs, "\\top") == {"\\top": 1, "$paramod\\a": 2, "$paramod\\b": 6}
 
 
+def test_blocks_follow_the_holder_like_synth_py():
+    # pst_mul_booth and pst_delay are not in synth.py's BLOCKS: they count in the block of the
+    # instance holding them (noise under a lerp, octave accumulation under a term), not in control.
+    subs = {"\\pst_top": {"$paramod\\pst_noise_lerp": 2, "$paramod\\pst_octave_term": 1, "$paramod\\pst_delay": 1},
+            "$paramod\\pst_noise_lerp": {"$paramod\\pst_mul_booth": 3},
+            "$paramod\\pst_octave_term": {"$paramod\\pst_mul_booth": 1},
+            "$paramod\\pst_mul_booth": {}, "$paramod\\pst_delay": {}}
+    got = search_synth.block_counts(subs, "\\pst_top")
+    assert got[("$paramod\\pst_mul_booth", "noise")] == 6
+    assert got[("$paramod\\pst_mul_booth", "octave accumulation")] == 1
+    assert got[("$paramod\\pst_delay", "control")] == 1 and got[("\\pst_top", "control")] == 1
+
+
 def test_module_key_changes_with_parameters_source_and_flow():
     k = search_synth.module_key("$paramod$abc\\pst_noise_lerp", "flow1")
     assert k == search_synth.module_key("$paramod$abc\\pst_noise_lerp", "flow1")
