@@ -24,6 +24,8 @@ struct SimOptions {
     uint64_t traceEnd = UINT64_MAX;
     double inputGapRate = 0.0;      // probability that the driver idles a cycle
     double outputStallRate = 0.0;   // probability that the monitor holds out_ready low
+    int outputStallBurst = 0;       // > 1: a stall lasts 1..N cycles (uniform), so the skid
+                                    // buffers fill and back-pressure reaches the serial stages
 };
 
 // What the octave-stage probes showed for one fragment (per active octave), for the

@@ -5,6 +5,7 @@
 // (after Verilator's examples and lowRISC's VerilatorSimCtrl / dv drivers and monitors).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <deque>
 #include <random>
@@ -90,6 +91,8 @@ public:
         const uint64_t limit = opt_.timeoutCycles ? opt_.timeoutCycles
                                                   : 1000 + 64 * uint64_t(frags.size()) * p_.cyclesPerPixel();
         std::bernoulli_distribution gap(opt_.inputGapRate), stall(opt_.outputStallRate);
+        std::uniform_int_distribution<int> burst(1, std::max(1, opt_.outputStallBurst));
+        int stallLeft = 0;   // cycles of the current stall burst still to come
         size_t next = 0;
         bool offering = false;
         while (out.size() < frags.size()) {
@@ -103,8 +106,16 @@ public:
                 offering = true;
             }
             top_->frag_valid_i = offering;
-            // Monitor: random back-pressure.
-            top_->out_ready_i = !stall(rng_);
+            // Monitor: random back-pressure (a burst of 1..outputStallBurst cycles per stall).
+            bool ready = true;
+            if (stallLeft > 0) {
+                --stallLeft;
+                ready = false;
+            } else if (stall(rng_)) {
+                ready = false;
+                if (opt_.outputStallBurst > 1) stallLeft = burst(rng_) - 1;
+            }
+            top_->out_ready_i = ready;
             top_->eval();
             const bool fragTaken = offering && top_->frag_ready_o;
             const bool pixelTaken = top_->out_valid_o && top_->out_ready_i;

@@ -203,6 +203,14 @@ RandomRegressResult runRandomRegress(const Profile& p, const std::string& rtlNam
         so.seed = mix(segSeed, 3);
         so.inputGapRate = r.chance(0.25) ? 0.0 : r.uniform(0.0, o.maxGapRate);
         so.outputStallRate = r.chance(0.25) ? 0.0 : r.uniform(0.0, o.maxStallRate);
+        // One segment in five stalls in bursts (rare stalls of 16..256 cycles) instead, long
+        // enough to fill the output skid buffers and hold the serial stages at their last step
+        // (coverage: back-pressure while full). Its own stream, so the other draws stay as they were.
+        RandomStream rb(mix(segSeed, 4));
+        if (o.maxStallRate > 0.0 && rb.chance(0.2)) {
+            so.outputStallRate = rb.uniform(0.002, 0.02);
+            so.outputStallBurst = int(rb.range(16, 256));
+        }
         auto rtl = makeRtlModel(rtlName, so);
         GoldenPipeline golden(p);
         Scoreboard board(p, o.maxReports);
@@ -257,6 +265,7 @@ RandomRegressResult runRandomRegress(const Profile& p, const std::string& rtlNam
                 res.firstBad = std::min<uint64_t>(res.firstBad, m.stage == Stage::Count ? m.got.tag : m.input.tag);
             std::ostringstream os;
             os << "segment " << g << " (gap rate " << so.inputGapRate << ", stall rate " << so.outputStallRate
+               << (so.outputStallBurst > 1 ? " in bursts of 1.." + std::to_string(so.outputStallBurst) : std::string())
                << "): " << board.summary();
             res.report += os.str();
             break;  // the first failing segment is enough; replay it with --from
