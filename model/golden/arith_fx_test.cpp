@@ -22,11 +22,11 @@ using u128 = unsigned __int128;
 
 Profile load(const char* name) { return loadProfile(profilePath(name, sourceDir())); }
 
-// The two shipped profiles, and a "narrow" variant of each whose F and Grad formats have few
+// The shipped profiles, and a "narrow" variant of each whose F and Grad formats have few
 // integer bits, so that saturation is common in the reference comparisons.
 std::vector<Profile> profiles() {
     std::vector<Profile> out;
-    for (const char* n : {"full", "reduced"}) {
+    for (const char* n : {"full", "reduced", "balanced"}) {
         Profile p = load(n);
         out.push_back(p);
         p.name += "-narrow";

@@ -72,7 +72,7 @@ TEST(NoiseFx, ValueRomIsTheReferenceTable) {
 TEST(NoiseFx, OctaveTransformMatchesLongDouble) {
     // acc is at most ~60 bits: exact in long double (64-bit mantissa on x86-64).
     static_assert(std::numeric_limits<long double>::digits >= 64, "needs x87 long double");
-    for (const char* name : {"full", "reduced"}) {
+    for (const char* name : {"full", "reduced", "balanced"}) {
         const Profile prof = profile(name);
         std::mt19937_64 rng(11);
         auto rnd = [&](const FixedFormat& f) {
@@ -103,7 +103,7 @@ TEST(NoiseFx, OctaveTransformMatchesLongDouble) {
 }
 
 TEST(NoiseFx, HashIsTheReferenceHash) {
-    for (const char* name : {"full", "reduced"}) {
+    for (const char* name : {"full", "reduced", "balanced"}) {
         for (NoiseHash hash : {NoiseHash::Rayshade4096, NoiseHash::Perm256, NoiseHash::Perlin256}) {
             Profile prof = profile(name);
             prof.noise.hash = hash;
