@@ -125,7 +125,7 @@ TEST(ArithFx, QuadricMatchesEq3Exactly) {
             const int64_t row[3][4] = {{c[0], c[1], c[2], c[3]}, {c[1], c[4], c[5], c[6]}, {c[2], c[5], c[7], c[8]}};
             for (int r = 0; r < 3; ++r) {
                 const i128 d = 2 * (i128(row[r][0]) * s[0] + i128(row[r][1]) * s[1] + i128(row[r][2]) * s[2] +
-                                    (i128(row[r][3]) << p.coord.fracBits));
+                                    i128(row[r][3]) * (i128(1) << p.coord.fracBits));
                 const int gsh = p.quadric.fracBits + p.coord.fracBits - p.grad.fracBits;
                 ASSERT_EQ(gq[r], fx::satSigned(fx::floorShift(d, gsh), p.grad.width())) << p.name;
             }

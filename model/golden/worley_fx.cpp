@@ -103,7 +103,7 @@ void worleyFx(const Profile& prof, const int lat[3], const int64_t frac[3], cons
         for (int j = 0; j < M && j < w.count; ++j) {
             int64_t dj[3], s = 0;
             for (int a = 0; a < 3; ++a) {
-                const int64_t p = (int64_t(o[a]) << DF) + ((2 * int64_t(w.b[size_t(3 * j + a)]) + 1) << (DF - PF));
+                const int64_t p = int64_t(o[a]) * (int64_t(1) << DF) + ((2 * int64_t(w.b[size_t(3 * j + a)]) + 1) << (DF - PF));
                 dj[a] = (U[a] << (DF - LF)) - p;
                 s += dj[a] * dj[a];
             }
