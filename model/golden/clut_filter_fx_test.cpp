@@ -27,22 +27,14 @@
 #include "contract.h"
 #include "fixed.h"
 #include "profile.h"
+#include "source_dir.h"
 
 namespace pst {
 namespace {
 
 using fx::i128;
 
-std::string clutSourceDir() {
-    if (const char* env = std::getenv("PST_SOURCE_DIR")) return env;
-#ifdef PST_SOURCE_DIR_DEFAULT
-    return PST_SOURCE_DIR_DEFAULT;
-#else
-    return ".";
-#endif
-}
-
-Profile namedProfile(const std::string& name) { return loadProfile(profilePath(name, clutSourceDir())); }
+Profile namedProfile(const std::string& name) { return loadProfile(profilePath(name, sourceDir())); }
 
 // Synthetic profiles: other table sizes and the case FFrac < Log2Clut.
 Profile synthetic(const std::string& name, int log2N, int cb, int fInt, int fFrac, int wf, int rf) {
