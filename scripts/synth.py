@@ -227,6 +227,23 @@ def run_sta(sta_bin: str, script: str, tmp: pathlib.Path, tag: str) -> tuple:
 
 # ---- hierarchy and blocks ------------------------------------------------------------------
 
+def block_instances(subs: dict, top: str) -> dict:
+    """(derived module, block, holder) -> instances in the flattened design. A module named in
+    BLOCKS is in that block; any other (pst_delay, pst_mul_booth, ...) in its holder's block.
+    holder: the base name of the nearest enclosing module named in BLOCKS (None for the top)."""
+    count = {}
+
+    def walk(name: str, k: int, block: str, holder) -> None:
+        own = base_name(name)
+        b = BLOCKS.get(own, block)
+        count[(name, b, holder)] = count.get((name, b, holder), 0) + k
+        inner = own if own in BLOCKS else holder
+        for sub, n in subs[name].items():
+            walk(sub, k * n, b, inner)
+    walk(top, 1, "control", None)
+    return count
+
+
 def analyse(stat: dict, ltp_text: str, areas: dict, ff_cells: set, mems: list) -> dict:
     modules = stat["modules"]
     own = {}
@@ -241,26 +258,25 @@ def analyse(stat: dict, ltp_text: str, areas: dict, ff_cells: set, mems: list) -
     for m in re.finditer(r"Longest topological path in (\S+) \(length=(\d+)\)", ltp_text):
         depth[m.group(1)] = int(m.group(2))
 
+    subs = {name: v["subs"] for name, v in own.items()}
+    top = next(n for n in modules if base_name(n) == "pst_top")
+    held = block_instances(subs, top)
     count = {}
     count_in = {}   # (module, block) -> instances
-
-    def walk(name: str, k: int, parent: str) -> None:
-        b = BLOCKS.get(base_name(name), parent)
+    for (name, b, _), k in held.items():
         count[name] = count.get(name, 0) + k
         count_in[(name, b)] = count_in.get((name, b), 0) + k
-        for sub, n in own[name]["subs"].items():
-            walk(sub, k * n, b)
-
-    top = next(n for n in modules if base_name(n) == "pst_top")
-    walk(top, 1, "control")
     blocks = {b: {"area": 0.0, "ffs": 0, "cells": 0, "modules": {}} for b in BLOCK_ORDER}
-    for (name, b), k in count_in.items():
+    for (name, b, holder), k in held.items():
         blocks[b]["area"] += k * own[name]["logic"]
         blocks[b]["ffs"] += k * own[name]["ffs"]
         blocks[b]["cells"] += k * own[name]["cells"]
-        entry = blocks[b]["modules"].setdefault(base_name(name), {"instances": 0, "area_each": 0.0, "depth": 0})
+        # A shared leaf (pst_mul_booth, pst_delay, ...) is listed per module holding it: "the
+        # Booth products of the lerps" is the figure a designer acts on.
+        label = base_name(name) if base_name(name) in BLOCKS or holder is None else f"{base_name(name)} in {holder}"
+        entry = blocks[b]["modules"].setdefault(label, {"instances": 0, "area": 0.0, "depth": 0})
         entry["instances"] += k
-        entry["area_each"] = max(entry["area_each"], own[name]["logic"])
+        entry["area"] += k * own[name]["logic"]
         entry["depth"] = max(entry["depth"], depth.get(name.lstrip("\\"), depth.get(name, 0)))
     inst = {}
     for m in mems:
@@ -582,8 +598,9 @@ def assemble(name, profile, prof, a, a_old, ge, old_ge, memories, timing, times,
         blocks[b] = {"area_um2": round(v["area"]), "logic_ge": round(v["area"] / ge), "flip_flops": v["ffs"],
                      "cells": v["cells"],
                      "logic_ge_cells_lib": round(a_old["blocks"][b]["area"] / old_ge) if a_old else None,
-                     "modules": {m: {"instances": e["instances"], "ge_each": round(e["area_each"] / ge),
-                                     "depth": e["depth"]} for m, e in sorted(v["modules"].items())}}
+                     "modules": {m: {"instances": e["instances"], "ge": round(e["area"] / ge),
+                                     "ge_each": round(e["area"] / ge / e["instances"]), "depth": e["depth"]}
+                                 for m, e in sorted(v["modules"].items(), key=lambda kv: -kv[1]["area"])}}
     logic_area = sum(v["area"] for v in a["blocks"].values())
     mem_area = sum(m["area_um2"] for m in memories)
     cpp = clocks_per_pixel(prof)
@@ -664,11 +681,12 @@ def markdown(r: dict) -> str:
                f"| worst path | {w['stage']}: {w['startpoint']} -> {w['endpoint']} through "
                f"{', '.join(w.get('through', []))}, {w['arrival_ns']:.2f} ns ({w['cells']} cells) |"]
     md.append("")
-    md += ["| block | logic GE (OSU018) | area um^2 | flip-flops | GE old basis (cells.lib) | modules (instances x GE each, depth in cells) |",
+    md += ["| block | logic GE (OSU018) | area um^2 | flip-flops | GE old basis (cells.lib) | modules (GE in all instances = instances x mean GE each, depth in cells) |",
            "|---|---:|---:|---:|---:|---|"]
     for b in BLOCK_ORDER:
         v = r["blocks"][b]
-        mods = ", ".join(f"{m} {e['instances']} x {e['ge_each']:,} (depth {e['depth']})" for m, e in v["modules"].items())
+        mods = ", ".join(f"{m} {e['ge']:,} = {e['instances']} x {e['ge_each']:,} (depth {e['depth']})"
+                         for m, e in v["modules"].items())
         old = f"{v['logic_ge_cells_lib']:,}" if v["logic_ge_cells_lib"] is not None else "-"
         md.append(f"| {b} | {v['logic_ge']:,} | {v['area_um2']:,} | {v['flip_flops']:,} | {old} | {mods} |")
     old = f"{r['logic_ge_cells_lib']:,}" if r["logic_ge_cells_lib"] is not None else "-"

@@ -118,16 +118,10 @@ def instance_counts(subs: dict, top: str) -> dict:
 
 
 def block_counts(subs: dict, top: str) -> dict:
-    """(derived module, block) -> instances, as synth.py counts blocks: a module named in its
-    BLOCKS table is in that block, any other (pst_delay, pst_mul_booth, ...) in its holder's."""
+    """(derived module, block) -> instances, as synth.py counts blocks (synth.block_instances)."""
     count = {}
-
-    def walk(name, k, parent):
-        b = syn().BLOCKS.get(syn().base_name(name), parent)
+    for (name, b, _), k in syn().block_instances(subs, top).items():
         count[(name, b)] = count.get((name, b), 0) + k
-        for sub, n in subs[name].items():
-            walk(sub, k * n, b)
-    walk(top, 1, "control")
     return count
 
 

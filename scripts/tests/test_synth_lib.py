@@ -231,3 +231,27 @@ def test_register_names_from_the_netlist():
     assert sta.register_name("u_reg_b/_3_", mods, "pst_top") == "u_reg_b/_3_ (q_o[0])"
     assert sta.register_name("_7_", mods, "pst_top") == "_7_"          # private net: no name
     assert sta.register_name("rst_ni", mods, "pst_top") == "rst_ni"
+
+
+def test_shared_leaves_are_listed_per_holder_with_their_total_area():
+    # Regression: synth.md once listed "pst_delay 168 x 5,368" where 5,368 GE was the LARGEST
+    # derived pst_delay, not the mean (the 168 cost 148k GE, not 0.9M). Each module row now
+    # carries its total area, and a shared leaf (pst_mul_booth, pst_delay) is split by holder.
+    import sys
+    sys.path.insert(0, str(SCRIPTS))
+    import synth
+    cells = {"NAND2X1": 24.0, "DFFPOSX1": 96.0}
+    stat = {"modules": {
+        "\\pst_top": {"num_cells_by_type": {"$paramod$1\\pst_noise_lerp": 2, "$paramod$2\\pst_delay": 1}},
+        "$paramod$1\\pst_noise_lerp": {"num_cells_by_type": {"$paramod$3\\pst_mul_booth": 2,
+                                                             "$paramod$4\\pst_mul_booth": 1, "NAND2X1": 1}},
+        "$paramod$3\\pst_mul_booth": {"num_cells_by_type": {"NAND2X1": 10}},
+        "$paramod$4\\pst_mul_booth": {"num_cells_by_type": {"NAND2X1": 40}},
+        "$paramod$2\\pst_delay": {"num_cells_by_type": {"DFFPOSX1": 3}}}}
+    a = synth.analyse(stat, "", cells, {"DFFPOSX1"}, [])
+    booth = a["blocks"]["noise"]["modules"]["pst_mul_booth in pst_noise_lerp"]
+    assert booth["instances"] == 6 and booth["area"] == 2 * (2 * 10 + 40) * 24.0
+    assert a["blocks"]["noise"]["modules"]["pst_noise_lerp"]["area"] == 2 * 24.0
+    top_delay = a["blocks"]["control"]["modules"]["pst_delay in pst_top"]
+    assert top_delay["area"] == 3 * 96.0 and a["blocks"]["control"]["ffs"] == 3
+    assert a["blocks"]["noise"]["area"] == 2 * 24.0 + 2 * 60 * 24.0
