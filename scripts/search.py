@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """Design-space search: the least logic area at a quality, throughput and clock target.
 
-    scripts/search.py [--classes 1,4,28] [--psnr DB | --psnr 1=50,4=45,28=30] [--fmax MHZ]
-                      [--start 1=full,4=full,28=reduced] [--knobs k1,k2,...] [--budget N]
+    scripts/search.py [--classes 1,4,32] [--psnr DB | --psnr 1=50,4=45,32=30] [--fmax MHZ]
+                      [--start 1=full,4=full,32=reduced] [--knobs k1,k2,...] [--budget N]
                       [--backtracks N] [--size 48] [--train 8] [--valid 8] [--seed 1] [--paper]
                       [--jobs 2] [--backend local|slurm] [--rtl N] [--rtl-size 32] [--out out/search]
     scripts/search.py --big        the big run (below); explicit options override its values
@@ -35,7 +35,7 @@ front point: verilated into build-search/, `pst regress --size --rtl-size`, 0 mi
 or cancelled task is rerun by the next run of the same command.
 
 --big: all knobs, 32 training + 32 validation scenes plus the paper's at 128 x 128, budget 200
-points per class, 4 backtracks, PSNR targets 1=50,4=45,28=30 (hours on a many-core machine or a
+points per class, 4 backtracks, PSNR targets 1=50,4=45,32=30 (hours on a many-core machine or a
 cluster: use --backend slurm).
 Exit status: 0; 1 if a front point fails its RTL check or a point failed; 2 on bad arguments;
 130 when interrupted.
@@ -58,8 +58,8 @@ from pstlib.rtlcheck import regress_summary
 from pstlib.runner import STOP, read_json, run, run_points, say, stop_children
 
 BIG = {"train": 32, "valid": 32, "size": 128, "paper": True, "budget": 200, "backtracks": 4,
-       "psnr": "1=50,4=45,28=30"}
-DEFAULT_START = {1: "full", 4: "full", 28: "reduced"}
+       "psnr": "1=50,4=45,32=30"}
+DEFAULT_START = {1: "full", 4: "full", 32: "reduced"}
 PAPER_SCENES = ["wood_teapot", "marble", "seascape", "fire", "planet", "moonrise", "zoneplate", "wood_torus"]
 
 
@@ -80,10 +80,10 @@ def _per_class(spec: str, classes, conv, what):
 
 def parse_args(argv):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--classes", default="1,4,28")
+    ap.add_argument("--classes", default="1,4,32")
     ap.add_argument("--psnr", help="target worst training PSNR, dB (one value or CLASS=DB,...; default 40)")
     ap.add_argument("--fmax", type=float, default=0.0, help="target Fmax, MHz (0: no constraint)")
-    ap.add_argument("--start", help="start profile per class, CLASS=PROFILE,... (default 1=full,4=full,28=reduced)")
+    ap.add_argument("--start", help="start profile per class, CLASS=PROFILE,... (default 1=full,4=full,32=reduced)")
     ap.add_argument("--knobs", help=f"comma-separated, default all: {','.join(S.KNOB_NAMES)}")
     ap.add_argument("--budget", type=int, help="points per class walk (default 40)")
     ap.add_argument("--backtracks", type=int, help="backtracks per walk (default 2)")

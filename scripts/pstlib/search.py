@@ -2,7 +2,7 @@
 target, clocks per pixel <= a target and Fmax >= a target, over many profile knobs at once.
 
 Algorithm: a greedy walk with backtracking, one walk per clocks-per-pixel class, from a start
-profile that meets the targets (full for 1, full with fewer noise units for 4, reduced for 28).
+profile that meets the targets (full for 1, full with fewer noise units for 4, reduced for 32).
 Each step evaluates every one-step-cheaper neighbour (each knob moved one value towards its
 cheaper end: fewer fraction bits, a cheaper noise variant or |grad| norm, fewer corners per
 cycle), in parallel, and moves to the feasible neighbour that saves the most area per dB of
@@ -35,7 +35,7 @@ import tomllib
 from . import contract, tomledit
 from .sweep import _apply_key, _format_frac, _set_format_frac
 
-CLASSES = (1, 4, 28)
+CLASSES = (1, 4, 32)
 
 
 def _fmt_knob(name, formats, values):
