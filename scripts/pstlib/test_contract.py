@@ -34,7 +34,7 @@ def test_parameter_names_follow_the_rule():
 def test_parameters_of_reduced():
     p = dict(contract.parameters(reduced()))
     # Values as written in rtl/configs/reduced.toml; enums as their index in the description.
-    assert p["Octaves"] == 4 and p["NoiseUnits"] == 1 and p["NoiseSteps"] == 4
+    assert p["Octaves"] == 5 and p["NoiseUnits"] == 1 and p["NoiseSteps"] == 4
     assert p["Datapath"] == 1 and p["NoiseInterp"] == 0 and p["FilterNorm"] == 0 and p["FilterBandlimit"] == 0
     assert (p["CoordInt"], p["CoordFrac"], p["WidthFrac"]) == (10, 12, 4)
     assert (p["NoiseRegs"], p["OctaveRegs"], p["WidthRegs"], p["ColourRegs"]) == (5, 1, 0, 2)
