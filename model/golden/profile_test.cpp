@@ -58,7 +58,7 @@ TEST(Profile, ModelEnumsFollowTheContractOrder) {
 TEST(Profile, ReadsReduced) {
     const Profile p = loadProfile(reducedPath());
     EXPECT_EQ(p.name, "reduced");
-    EXPECT_EQ(p.octaves, 4);
+    EXPECT_EQ(p.octaves, 5);
     EXPECT_EQ(p.noiseUnits, 1);
     EXPECT_EQ(p.noiseSteps, 4);
     EXPECT_EQ(p.datapath, Datapath::Serial);
@@ -90,7 +90,7 @@ TEST(Profile, RejectsWhatTheContractRejects) {
     expectError("noise_units = 1", "noise_units = 3", "pipeline.noise_units: must divide pipeline.octaves");
     expectError("noise_steps = 4", "noise_steps = 2", "pipeline.datapath: serial needs pipeline.noise_steps >= 4");
     expectError("noise_steps = 4", "noise_steps = 3", "pipeline.noise_steps: must be 1, 2, 4 or 8");
-    expectError("octaves = 4", "octaves = 17", "pipeline.octaves: must be in [1, 16]");
+    expectError("octaves = 5", "octaves = 17", "pipeline.octaves: must be in [1, 16]");
     expectError("datapath = \"serial\"", "datapath = \"fast\"", "pipeline.datapath: unknown value 'fast'");
     expectError("offset     = { int = 13, frac = 8 }", "offset     = { int = 2, frac = 21 }",
                 "formats.offset: frac must be at most formats.matrix.frac + formats.coord.frac");
