@@ -245,7 +245,7 @@ def test_a_point_is_evaluated_once_and_resumed(tmp_path):
             return {"logic_ge": 777, "modules_synthesized": 1, "modules_total": 2, "seconds": 0.0}
 
     r = search_eval.evaluate(out, p.name, ("train",), module_cache=Area())
-    assert r["status"] == "ok" and r["train_worst"] == 41.5 and r["logic_ge"] == 777 and r["cpp"] == 28
+    assert r["status"] == "ok" and r["train_worst"] == 41.5 and r["logic_ge"] == 777 and r["cpp"] == 32
     assert search_eval.reusable(json.loads((out / "results" / f"{p.name}.json").read_text()), p.sha, job, ("train",))
     r = search_eval.evaluate(out, p.name, ("train", "valid"), module_cache=Area())
     assert r["valid_worst"] == 41.5 and r["area_new"] is False
