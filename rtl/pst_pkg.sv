@@ -111,7 +111,7 @@ package pst_pkg;
   localparam int AmplitudeIntDefault = 2;
   localparam int AmplitudeFracDefault = 16;
   localparam int GradMatrixIntDefault = 8;
-  localparam int GradMatrixFracDefault = 16;
+  localparam int GradMatrixFracDefault = 11;
   localparam int QuadricIntDefault = 8;
   localparam int QuadricFracDefault = 16;
   localparam int FIntDefault = 12;
