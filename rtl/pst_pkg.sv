@@ -103,7 +103,7 @@ package pst_pkg;
   localparam int CoordIntDefault = 12;
   localparam int CoordFracDefault = 20;
   localparam int JacobianIntDefault = 8;
-  localparam int JacobianFracDefault = 24;
+  localparam int JacobianFracDefault = 18;
   localparam int MatrixIntDefault = 8;
   localparam int MatrixFracDefault = 16;
   localparam int OffsetIntDefault = 13;
@@ -117,7 +117,7 @@ package pst_pkg;
   localparam int FIntDefault = 12;
   localparam int FFracDefault = 20;
   localparam int GradIntDefault = 16;
-  localparam int GradFracDefault = 16;
+  localparam int GradFracDefault = 14;
   localparam int WidthFracDefault = 8;
 
   // Register map (docs/HARDWARE.md).
