@@ -6,7 +6,9 @@
 //
 // Notation: LF = NoiseLatticeFrac, VF = NoiseValueFrac, OF = NoiseOutFrac,
 // NF = NodeFrac = OF + NoiseGuardBits (the profile's noise.guard_bits: internal node fraction
-// bits below the output LSB). Corner c = bx + 2 by + 4 bz (x fastest, Rayshade's order).
+// bits below the output LSB), F = GradFloor = NF - NoiseGradFrac when that is > 0, else 0 (the
+// profile's noise.grad_frac: the derivative lanes keep min(NoiseGradFrac, NF) fraction bits).
+// Corner c = bx + 2 by + 4 bz (x fastest, Rayshade's order).
 //
 // 1. Weights (pst_noise_weight, one per axis): s (weight of the upper corner) and ds = ds/du,
 //    unsigned at LF fraction bits. scurve: u2 = floor(u u), s = floor(u2 (3 - 2u)),
@@ -26,8 +28,12 @@
 //    + R[m+3] d_z exact at VF + LF bits, d = u - b; value v = 0.5 R[m]. Node = (floor(v to NF),
 //    R[m+1..3] to NF) (gradient zero for value corners); grad12 (Perlin 2002) reads no value
 //    ROM: v = +-d_a +-d_b and the gradient +-1 on axes a, b chosen by m's low four bits.
-// 5. Lerps (pst_noise_lerp, seven): L(x, y) = x + floor((y - x) s / 2^LF) on v and the three
-//    derivatives; the derivative on the lerp's own axis adds floor((b.v - a.v) ds / 2^LF).
+//    The derivatives are then floored to multiples of 2^F (their F low bits cleared).
+// 5. Lerps (pst_noise_lerp, seven): L(x, y) = x + floor((y - x) s / 2^LF) on v; on the three
+//    derivatives L_F(x, y) = x + 2^F floor(((y - x) / 2^F) s / 2^LF) (= L when F = 0); the
+//    derivative on the lerp's own axis adds 2^F floor(floor((b.v - a.v) / 2^F) ds / 2^LF).
+//    Every derivative is a multiple of 2^F: its F low bits are constant zeros in every lerp
+//    and register (the products and registers narrow; F = 0 is the exact unit).
 //    x: nodes 0..3 from corners (2j, 2j+1); y: nodes 4, 5 from (0, 1), (2, 3); z: node 6.
 // 6. Out: n = floor(v to OF) (Q4.OF), grad_k = floor(g_k to OF) (Q6.OF).
 //
@@ -75,6 +81,11 @@
 //   NoiseSteps       cycles per evaluation (1, 2, 4, 8): corners and lerps built (above)
 //   NoiseGuardBits   node fraction bits below NoiseOutFrac (1..8): every corner, lerp and
 //                    held node's width
+//   NoiseGradFrac    fraction bits kept on the derivative lanes (the noise gradient, which
+//                    feeds only the filter width): >= NF keeps every node bit (the exact
+//                    unit); below NF the lanes are floored to 2^-NoiseGradFrac (above) and the
+//                    derivative lerps' products, the own-axis products and the node
+//                    registers lose NF - NoiseGradFrac low bits
 //   NoiseRegs        pipeline registers (0..6, above)
 // ROM images: `PST_ROM_DIR/{hash4096,perm256,perlin256,value16}.memh, written by
 // sim/tools/pst_roms.
@@ -103,6 +114,7 @@ module pst_noise #(
   parameter int NoiseOutFrac = pst_pkg::NoiseOutFracDefault,
   parameter int NoiseSteps = pst_pkg::NoiseStepsDefault,
   parameter int NoiseGuardBits = pst_pkg::NoiseGuardBitsDefault,
+  parameter int NoiseGradFrac = pst_pkg::NoiseGradFracDefault,
   parameter int NoiseRegs = pst_pkg::NoiseRegsDefault,
   localparam int LF = NoiseLatticeFrac,  // fraction bits of u
   localparam int OF = NoiseOutFrac,      // fraction bits of the outputs
@@ -127,6 +139,8 @@ module pst_noise #(
   localparam int GuardBits = NoiseGuardBits;
   // Fraction bits of every corner and lerp node.
   localparam int NodeFrac = OF + GuardBits;
+  // The derivative lanes' floor: they are multiples of 2^GradFloor (golden: noiseGradFloor).
+  localparam int GradFloor = (NoiseGradFrac < NodeFrac) ? NodeFrac - NoiseGradFrac : 0;
   // Node value Q3.NodeFrac (|v| <= 3.5), node derivative Q5.NodeFrac (|g| < 16).
   localparam int VW = 3 + NodeFrac;
   localparam int GW = 5 + NodeFrac;
@@ -423,6 +437,7 @@ module pst_noise #(
   // boundary b2 + t.
   logic [(KC+1)*CPS*NodeW-1:0] tree_d, tree_q;
   for (genvar i = 0; i < CPS; i++) begin : g_corner
+    logic [NodeW-1:0] node;
     pst_noise_corner #(
       .NoiseCorner      (NoiseCorner),
       .NoiseValueFrac   (NoiseValueFrac),
@@ -433,8 +448,20 @@ module pst_noise #(
       .r_i      (r_q[4*i*RW +: 4*RW]),
       .hash_i   (hb_q[4*i +: 4]),
       .u_i      (frc2),
-      .node_o   (tree_d[i*NodeW +: NodeW])
+      .node_o   (node)
     );
+    // The derivatives floored to multiples of 2^GradFloor: their low bits cleared.
+    assign tree_d[i*NodeW +: VW] = node[0 +: VW];
+    for (genvar k = 0; k < 3; k++) begin : g_floor
+      if (GradFloor > 0) begin : g_clear
+        assign tree_d[i*NodeW + VW + k*GW +: GW] = {node[VW + k*GW + GradFloor +: GW - GradFloor],
+                                                    {GradFloor{1'b0}}};
+        logic unused_low;
+        assign unused_low = ^node[VW + k*GW +: GradFloor];
+      end else begin : g_keep
+        assign tree_d[i*NodeW + VW + k*GW +: GW] = node[VW + k*GW +: GW];
+      end
+    end
   end
 
   // ---- 5. lerp tree -----------------------------------------------------------------------
@@ -443,29 +470,63 @@ module pst_noise #(
   //   value_gradient: R at NodeFrac, R in [-1, 1): Hi = NodeFrac + 1; Lo = NodeFrac - VF when
   //                   VF < NodeFrac (R << (NodeFrac - VF)), else 0 (floored);
   //   value:          0: Hi = 1, Lo = 0;
-  //   grad12:         -1, 0, +1: Hi = NodeFrac + 2, Lo = NodeFrac.
+  //   grad12:         -1, 0, +1: Hi = NodeFrac + 2, Lo = NodeFrac;
+  //   and every lane is a multiple of 2^GradFloor (Lo >= GradFloor; value corners' zero
+  //   lanes: Hi = GradFloor + 1).
   // A lerp on axis a keeps lane k != a between its inputs (Hi unchanged) and leaves
-  // Lo - LF zero bits (floor((y - x) s / 2^LF) with y - x a multiple of 2^Lo); lane a gets
-  // the own-axis term: Q5, nothing known (Hi = GW, Lo = 0). Axes are lerped in the order
-  // x, y, z, so after `done` lerps lanes k < done are full and the others (CornerGHi,
-  // max(0, CornerGLo - done LF)).
+  // max(GradFloor, Lo - LF) zero bits (2^F floor((y - x) s / 2^(LF + F)) with y - x a
+  // multiple of 2^Lo); lane a gets the own-axis term: Q5, Hi = GW, Lo = GradFloor. Axes are
+  // lerped in the order x, y, z, so after `done` lerps lanes k < done are (GW, GradFloor) and
+  // the others (CornerGHi, max(GradFloor, CornerGLo - done LF)).
+  localparam int CornerGLo0 = (NoiseCorner == pst_pkg::NoiseCornerValueGradient) ?
+                                (NoiseValueFrac < NodeFrac ? NodeFrac - NoiseValueFrac : 0) :
+                              (NoiseCorner == pst_pkg::NoiseCornerGrad12) ? NodeFrac : 0;
+  localparam int CornerGLo = (CornerGLo0 > GradFloor) ? CornerGLo0 : GradFloor;
   localparam int CornerGHi = (NoiseCorner == pst_pkg::NoiseCornerValueGradient) ? NodeFrac + 1 :
-                             (NoiseCorner == pst_pkg::NoiseCornerGrad12) ? NodeFrac + 2 : 1;
-  localparam int CornerGLo = (NoiseCorner == pst_pkg::NoiseCornerValueGradient) ?
-                               (NoiseValueFrac < NodeFrac ? NodeFrac - NoiseValueFrac : 0) :
-                             (NoiseCorner == pst_pkg::NoiseCornerGrad12) ? NodeFrac : 0;
+                             (NoiseCorner == pst_pkg::NoiseCornerGrad12) ? NodeFrac + 2 :
+                             GradFloor + 1;
+  // A node's significant bits (registers, held nodes): v, then each derivative above its
+  // GradFloor zeros (PackW = NodeW when GradFloor = 0).
+  localparam int PGW = GW - GradFloor;
+  localparam int PackW = VW + 3 * PGW;
+  /* verilator lint_off UNUSEDSIGNAL */   // n's GradFloor zeros below each derivative
+  function automatic logic [PackW-1:0] pack_node(input logic [NodeW-1:0] n);
+    pack_node = {n[VW + 2*GW + GradFloor +: PGW], n[VW + GW + GradFloor +: PGW],
+                 n[VW + GradFloor +: PGW], n[0 +: VW]};
+  endfunction
+  /* verilator lint_on UNUSEDSIGNAL */
+  function automatic logic [NodeW-1:0] unpack_node(input logic [PackW-1:0] p);
+    unpack_node = {GW'(p[VW + 2*PGW +: PGW]) << GradFloor, GW'(p[VW + PGW +: PGW]) << GradFloor,
+                   GW'(p[VW +: PGW]) << GradFloor, p[0 +: VW]};
+  endfunction
   function automatic int lane_hi(input int k, input int done);
     lane_hi = (k < done) ? GW : CornerGHi;
   endfunction
   function automatic int lane_lo(input int k, input int done);
-    lane_lo = (k < done) ? 0 : (CornerGLo > done * LF) ? CornerGLo - done * LF : 0;
+    lane_lo = (k < done) ? GradFloor :
+              (CornerGLo - done * LF > GradFloor) ? CornerGLo - done * LF : GradFloor;
   endfunction
   for (genvar t = 0; t <= KC; t++) begin : g_level
-    // Boundary b2 + t after level t.
-    pst_delay #(.Width((CPS >> t)*NodeW), .Depth(2 + t < NoiseRegs ? 1 : 0)) u_reg (
-      .clk_i, .rst_ni, .en_i,
-      .d_i (tree_d[(t*CPS)*NodeW +: (CPS >> t)*NodeW]),
-      .q_o (tree_q[(t*CPS)*NodeW +: (CPS >> t)*NodeW])
+    // Boundary b2 + t after level t: the nodes' significant bits only (PackW each: the
+    // derivatives' GradFloor low zeros are not registered).
+    logic [(CPS >> t)*PackW-1:0] pk_d, pk_q;
+    for (genvar k = 0; k < (CPS >> t); k++) begin : g_pack
+      // (plain slices, no function: Verilator then sees no loop through the flat tree_d/q)
+      localparam int N0 = (t*CPS + k)*NodeW;
+      assign pk_d[k*PackW +: VW] = tree_d[N0 +: VW];
+      assign tree_q[N0 +: VW] = pk_q[k*PackW +: VW];
+      for (genvar m = 0; m < 3; m++) begin : g_lane
+        assign pk_d[k*PackW + VW + m*PGW +: PGW] = tree_d[N0 + VW + m*GW + GradFloor +: PGW];
+        assign tree_q[N0 + VW + m*GW + GradFloor +: PGW] = pk_q[k*PackW + VW + m*PGW +: PGW];
+        if (GradFloor > 0) begin : g_zeros
+          assign tree_q[N0 + VW + m*GW +: GradFloor] = '0;
+          logic unused_zeros;   // the floor's zeros, not registered
+          assign unused_zeros = ^tree_d[N0 + VW + m*GW +: GradFloor];
+        end
+      end
+    end
+    pst_delay #(.Width((CPS >> t)*PackW), .Depth(2 + t < NoiseRegs ? 1 : 0)) u_reg (
+      .clk_i, .rst_ni, .en_i, .d_i (pk_d), .q_o (pk_q)
     );
     if ((CPS >> t) < CPS) begin : g_unused_slots
       // The rest of the level's slots are unused.
@@ -488,7 +549,8 @@ module pst_noise #(
           .GradHi2          (lane_hi(2, t - 1)),
           .GradLo0          (lane_lo(0, t - 1)),
           .GradLo1          (lane_lo(1, t - 1)),
-          .GradLo2          (lane_lo(2, t - 1))
+          .GradLo2          (lane_lo(2, t - 1)),
+          .GradFloor        (GradFloor)
         ) u_lerp (
           .a_i    (tree_q[((t-1)*CPS + 2*k)*NodeW +: NodeW]),
           .b_i    (tree_q[((t-1)*CPS + 2*k + 1)*NodeW +: NodeW]),
@@ -509,7 +571,8 @@ module pst_noise #(
   for (genvar l = 0; l < LS; l++) begin : g_serial
     localparam int B = 3 + KC + l;   // the token and weights of this level: after b(2+KC+l)
     logic [TW-1:0]    tk;
-    logic [NodeW-1:0] hold_q, node_d;
+    logic [NodeW-1:0] hold, node_d, node_q;
+    logic [PackW-1:0] hold_q, pk_q;   // significant bits only (pack_node)
     logic             lower_ones;   // bits 0..l-1 of the step are all 1
     assign tk = tok[B*TW +: TW];
     logic unused_tk;   // the step bits above l
@@ -521,8 +584,9 @@ module pst_noise #(
     end
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) hold_q <= '0;
-      else if (en_i && tk[3] && lower_ones && !tk[l]) hold_q <= chain[l*NodeW +: NodeW];
+      else if (en_i && tk[3] && lower_ones && !tk[l]) hold_q <= pack_node(chain[l*NodeW +: NodeW]);
     end
+    assign hold = unpack_node(hold_q);
     pst_noise_lerp #(
       .NoiseInterp      (NoiseInterp),
       .NoiseLatticeFrac (NoiseLatticeFrac),
@@ -533,17 +597,20 @@ module pst_noise #(
       .GradHi2          (lane_hi(2, KC + l)),
       .GradLo0          (lane_lo(0, KC + l)),
       .GradLo1          (lane_lo(1, KC + l)),
-      .GradLo2          (lane_lo(2, KC + l))
+      .GradLo2          (lane_lo(2, KC + l)),
+      .GradFloor        (GradFloor)
     ) u_lerp (
-      .a_i    (hold_q),
+      .a_i    (hold),
       .b_i    (chain[l*NodeW +: NodeW]),
       .s_i    (wts[B*WTW + (KC+l)*LF +: LF]),
       .ds_i   (wts[B*WTW + 3*LF + (KC+l)*(LF+2) +: LF+2]),
       .node_o (node_d)
     );
-    pst_delay #(.Width(NodeW), .Depth(B < NoiseRegs ? 1 : 0)) u_reg (
-      .clk_i, .rst_ni, .en_i, .d_i (node_d), .q_o (chain[(l+1)*NodeW +: NodeW])
+    pst_delay #(.Width(PackW), .Depth(B < NoiseRegs ? 1 : 0)) u_reg (
+      .clk_i, .rst_ni, .en_i, .d_i (pack_node(node_d)), .q_o (pk_q)
     );
+    assign node_q = unpack_node(pk_q);
+    assign chain[(l+1)*NodeW +: NodeW] = node_q;
   end
 
   // ---- 6. outputs -------------------------------------------------------------------------
@@ -581,6 +648,7 @@ module pst_noise #(
     if (NoiseSteps != 1 && NoiseSteps != 2 && NoiseSteps != 4 && NoiseSteps != 8)
       $error("pst_noise: NoiseSteps must be 1, 2, 4 or 8");
     if (NoiseRegs < 0 || NoiseRegs > NB) $error("pst_noise: NoiseRegs must be 0..%0d", NB);
+    if (NoiseGradFrac < 1) $error("pst_noise: NoiseGradFrac must be >= 1");
   end
   // The node value never exceeds |3.5| (so n_o never saturates) at a valid last step.
   always_comb begin

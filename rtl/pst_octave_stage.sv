@@ -42,6 +42,7 @@ module pst_octave_stage #(
   parameter int NoiseOutFrac     = pst_pkg::NoiseOutFracDefault,
   parameter int NoiseSteps       = pst_pkg::NoiseStepsDefault,
   parameter int NoiseGuardBits   = pst_pkg::NoiseGuardBitsDefault,
+  parameter int NoiseGradFrac    = pst_pkg::NoiseGradFracDefault,  // lattice units only
   parameter int NoiseWorleySearch = pst_pkg::NoiseWorleySearchDefault,  // not none: worley units
   parameter int NoiseWorleyPoints = pst_pkg::NoiseWorleyPointsDefault,
   parameter int NoiseWorleyOrder  = pst_pkg::NoiseWorleyOrderDefault,
@@ -738,7 +739,7 @@ module pst_octave_stage #(
         .NoiseInterp(NoiseInterp), .NoiseCorner(NoiseCorner), .NoiseHash(NoiseHash),
         .NoiseValueFrac(NoiseValueFrac), .NoiseLatticeFrac(NoiseLatticeFrac),
         .NoiseOutFrac(NoiseOutFrac), .NoiseSteps(NoiseSteps), .NoiseGuardBits(NoiseGuardBits),
-        .NoiseRegs(NoiseRegs)
+        .NoiseGradFrac(NoiseGradFrac), .NoiseRegs(NoiseRegs)
       ) u_noise (
         .clk_i, .rst_ni, .en_i (nz_en), .valid_i (nz_valid), .step_i (nz_step),
         .lat_i (nz_lat[u*LTW +: LTW]), .frac_i (nz_frac[u*3*LF +: 3*LF]), .valid_o (nz_valid_o),

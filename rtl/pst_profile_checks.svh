@@ -19,6 +19,7 @@ initial begin
   assert (NoiseLatticeFrac >= 1 && NoiseLatticeFrac <= 20) else $fatal(1, "noise.lattice_frac: must be in [1, 20]");
   assert (NoiseOutFrac >= 1 && NoiseOutFrac <= 24) else $fatal(1, "noise.out_frac: must be in [1, 24]");
   assert (NoiseGuardBits >= 1 && NoiseGuardBits <= 8) else $fatal(1, "noise.guard_bits: must be in [1, 8]");
+  assert (NoiseGradFrac >= 1 && NoiseGradFrac <= 32) else $fatal(1, "noise.grad_frac: must be in [1, 32]");
   assert (NoiseWorleySearch >= 0 && NoiseWorleySearch < 3) else $fatal(1, "noise.worley_search: unknown value");
   assert (NoiseWorleyPoints >= 1 && NoiseWorleyPoints <= 9) else $fatal(1, "noise.worley_points: must be in [1, 9]");
   assert (NoiseWorleyOrder >= 1 && NoiseWorleyOrder <= 4) else $fatal(1, "noise.worley_order: must be in [1, 4]");
@@ -54,6 +55,8 @@ initial begin
     else $fatal(1, "noise.hash: perlin256 comes with interp quintic and corner grad12 (basis perlin2002), and only with them");
   assert (NoiseWorleySearch == pst_pkg::NoiseWorleySearchNone || NoiseHash == pst_pkg::NoiseHashPerm256)
     else $fatal(1, "noise.hash: must be perm256 with a worley unit (noise.worley_search): it hashes the cubes");
+  assert (NoiseWorleySearch == pst_pkg::NoiseWorleySearchNone || NoiseGradFrac >= NoiseOutFrac + NoiseGuardBits)
+    else $fatal(1, "noise.grad_frac: must be at least noise.out_frac + noise.guard_bits with a worley unit (noise.worley_search): it has no derivative lanes to floor");
   assert (NoiseInterp != pst_pkg::NoiseInterpQuintic || NoiseLatticeFrac >= 2)
     else $fatal(1, "noise.lattice_frac: must be at least 2 with interp quintic (its derivative 30 u^2 (1 - u)^2 must stay below 4, pst_noise_weight)");
   assert (MatrixFrac + CoordFrac >= NoiseLatticeFrac)

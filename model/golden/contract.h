@@ -26,6 +26,7 @@ enum Param : int {
     NoiseLatticeFrac,
     NoiseOutFrac,
     NoiseGuardBits,
+    NoiseGradFrac,
     NoiseWorleySearch,
     NoiseWorleyPoints,
     NoiseWorleyOrder,
@@ -90,6 +91,7 @@ inline constexpr int kNoiseValueFracMin = 1, kNoiseValueFracMax = 15;
 inline constexpr int kNoiseLatticeFracMin = 1, kNoiseLatticeFracMax = 20;
 inline constexpr int kNoiseOutFracMin = 1, kNoiseOutFracMax = 24;
 inline constexpr int kNoiseGuardBitsMin = 1, kNoiseGuardBitsMax = 8;
+inline constexpr int kNoiseGradFracMin = 1, kNoiseGradFracMax = 32;
 inline constexpr int kNoiseWorleyPointsMin = 1, kNoiseWorleyPointsMax = 9;
 inline constexpr int kNoiseWorleyOrderMin = 1, kNoiseWorleyOrderMax = 4;
 inline constexpr int kFilterRecipFracMin = 4, kFilterRecipFracMax = 24;
@@ -112,6 +114,7 @@ inline constexpr KeySpec kSchema[] = {
     {"noise", "lattice_frac", KeyKind::Range, NoiseLatticeFrac, 1, 20, {}, 0, nullptr, 0},
     {"noise", "out_frac", KeyKind::Range, NoiseOutFrac, 1, 24, {}, 0, nullptr, 0},
     {"noise", "guard_bits", KeyKind::Range, NoiseGuardBits, 1, 8, {}, 0, nullptr, 0},
+    {"noise", "grad_frac", KeyKind::Range, NoiseGradFrac, 1, 32, {}, 0, nullptr, 0},
     {"noise", "worley_search", KeyKind::Enum, NoiseWorleySearch, 0, 2, {}, 3, kNoiseWorleySearchNames, 0},
     {"noise", "worley_points", KeyKind::Range, NoiseWorleyPoints, 1, 9, {}, 0, nullptr, 0},
     {"noise", "worley_order", KeyKind::Range, NoiseWorleyOrder, 1, 4, {}, 0, nullptr, 0},
@@ -147,6 +150,8 @@ inline constexpr Constraint kConstraints[] = {
      [](const int* v) { return ( v[NoiseCorner] == 2 ) == ( v[NoiseHash] == 2 ); }},
     {"noise.hash", "must be perm256 with a worley unit (noise.worley_search): it hashes the cubes",
      [](const int* v) { return v[NoiseWorleySearch] == 0 || v[NoiseHash] == 1; }},
+    {"noise.grad_frac", "must be at least noise.out_frac + noise.guard_bits with a worley unit (noise.worley_search): it has no derivative lanes to floor",
+     [](const int* v) { return v[NoiseWorleySearch] == 0 || v[NoiseGradFrac] >= v[NoiseOutFrac] + v[NoiseGuardBits]; }},
     {"noise.lattice_frac", "must be at least 2 with interp quintic (its derivative 30 u^2 (1 - u)^2 must stay below 4, pst_noise_weight)",
      [](const int* v) { return v[NoiseInterp] != 2 || v[NoiseLatticeFrac] >= 2; }},
     {"noise.lattice_frac", "must be at most formats.matrix.frac + formats.coord.frac (pst_octave_transform)",

@@ -2,7 +2,8 @@
 // bit for bit as rtl/pst_octave_transform.sv and rtl/pst_noise.sv (same steps, same floors).
 //
 // Notation: LF = NoiseLatticeFrac, VF = NoiseValueFrac, OF = NoiseOutFrac,
-// NF = OF + noise.guard_bits (internal node fraction bits). floor = fx::floorShift.
+// NF = OF + noise.guard_bits (internal node fraction bits), F = noiseGradFloor (NF -
+// noise.grad_frac when that is > 0, else 0: the derivative lanes' floor). floor = fx::floorShift.
 //
 // Stage 1 (octave transform), per axis r:
 //   acc = sum_j M[r][j] s[j] + (o[r] << (MatrixFrac + CoordFrac - OffsetFrac))   exact
@@ -27,16 +28,21 @@
 //   corner    R_k = value16[m + k] >>> (15 - VF) (k = 0..3), d_a = U_a - b_a 2^LF
 //             value_gradient: v = R_0 2^(LF-1) + R_1 d_x + R_2 d_y + R_3 d_z   exact, VF+LF bits
 //             value:          v = R_0 2^(LF-1)
-//             node = (floor(v to NF), floor(R_1 to NF), floor(R_2 to NF), floor(R_3 to NF))
-//             (gradient zero for value corners)
+//             node = (floor(v to NF), floor(R_1 to NF - F), floor(R_2 to NF - F),
+//                     floor(R_3 to NF - F)), the derivatives then held at NF bits (multiples
+//                     of 2^F; gradient zero for value corners)
 //             grad12 (Perlin's grad(m, d)): h = m & 15, axis a = h < 8 ? x : y,
 //                     axis b = h < 4 ? y : (h == 12 || h == 14) ? x : z (never a);
 //                     v = (h & 1 ? -d_a : d_a) + (h & 2 ? -d_b : d_b)   exact, LF bits;
 //                     node = (floor(v to NF), +-2^NF on axes a and b, 0 on the third)
 //   lerp on axis k between nodes a (b_k = 0) and b (b_k = 1), s = s_k, ds = ds_k:
-//             L(x, y) = x + floor((y - x) s / 2^LF)
-//             v' = L(a.v, b.v); g'_j = L(a.g_j, b.g_j) for j != k;
-//             g'_k = floor((b.v - a.v) ds / 2^LF) + L(a.g_k, b.g_k)
+//             L(x, y) = x + floor((y - x) s / 2^LF)                 (value)
+//             L_F(x, y) = x + 2^F floor(((y - x) / 2^F) s / 2^LF)   (derivatives; x, y and
+//                     so y - x are multiples of 2^F: L_0 = L)
+//             v' = L(a.v, b.v); g'_j = L_F(a.g_j, b.g_j) for j != k;
+//             g'_k = 2^F floor(floor((b.v - a.v) / 2^F) ds / 2^LF) + L_F(a.g_k, b.g_k)
+//             (the own-axis product on the value difference floored to 2^F: a narrower
+//             product; every derivative stays a multiple of 2^F)
 //             four x lerps (corners 2j, 2j+1), two y lerps, one z lerp.
 //   out       n = sat(floor(v to OF), Q4.OF), grad_k = sat(floor(g_k to OF), Q6.OF).
 // Ranges (proved in rtl/pst_noise.sv): |v| <= 3.5 (Q3.NF), |g| < 10.1 (Q5.NF) at every node,
@@ -116,6 +122,7 @@ void noiseFx(const Profile& prof, const int lat[3], const int64_t frac[3], int64
     const int VF = prof.noiseValueFrac;
     const int OF = prof.noiseOutFrac;
     const int NF = noiseNodeFrac(prof);
+    const int F = noiseGradFloor(prof);
     const bool scurve = prof.noise.interp == NoiseInterp::SCurve;
     const bool quintic = prof.noise.interp == NoiseInterp::Quintic;
     const bool valueGradient = prof.noise.corner == NoiseCorner::ValueGradient;
@@ -182,6 +189,7 @@ void noiseFx(const Profile& prof, const int lat[3], const int64_t frac[3], int64
             const int64_t v = ((h & 1) ? -d[a] : d[a]) + ((h & 2) ? -d[bb] : d[bb]);
             nd.v[0] = int64_t(floorShift(i128(v), LF - NF));
             for (int k = 0; k < 3; ++k) nd.v[k + 1] = 0;
+            // (+-2^NF: multiples of 2^F, F <= NF - 1)
             nd.v[a + 1] = (h & 1) ? -(int64_t(1) << NF) : (int64_t(1) << NF);
             nd.v[bb + 1] = (h & 2) ? -(int64_t(1) << NF) : (int64_t(1) << NF);
             checkFits(nd.v[0], valueW, "corner value");
@@ -193,17 +201,23 @@ void noiseFx(const Profile& prof, const int lat[3], const int64_t frac[3], int64
         if (valueGradient)
             for (int k = 0; k < 3; ++k) v += i128(R[k + 1]) * (U[k] - (int64_t(b[k]) << LF));
         nd.v[0] = int64_t(floorShift(v, VF + LF - NF));
-        for (int k = 0; k < 3; ++k) nd.v[k + 1] = valueGradient ? int64_t(floorShift(i128(R[k + 1]), VF - NF)) : 0;
+        for (int k = 0; k < 3; ++k)
+            nd.v[k + 1] = valueGradient ? int64_t(floorShift(floorShift(i128(R[k + 1]), VF - (NF - F)), -F)) : 0;
         checkFits(nd.v[0], valueW, "corner value");
     }
 
-    auto lerp1 = [&](int64_t a, int64_t b, int64_t w) { return a + int64_t(floorShift(i128(b - a) * w, LF)); };
+    // L_f(x, y) = x + 2^f floor(((y - x) / 2^f) s / 2^LF); x, y multiples of 2^f (f = 0: the value).
+    auto lerp1 = [&](int64_t a, int64_t b, int64_t w, int f) {
+        if ((a | b) & ((int64_t(1) << f) - 1)) throw std::logic_error("noiseFx: derivative below its floor");
+        return a + int64_t(floorShift(floorShift(i128(b - a) * w, LF + f), -f));  // (x 2^f)
+    };
     auto lerp = [&](const Node& a, const Node& b, int k) {
         Node out;
-        out.v[0] = lerp1(a.v[0], b.v[0], s[k]);
+        out.v[0] = lerp1(a.v[0], b.v[0], s[k], 0);
         for (int j = 0; j < 3; ++j) {
-            out.v[j + 1] = lerp1(a.v[j + 1], b.v[j + 1], s[k]);
-            if (j == k) out.v[j + 1] += int64_t(floorShift(i128(b.v[0] - a.v[0]) * ds[k], LF));
+            out.v[j + 1] = lerp1(a.v[j + 1], b.v[j + 1], s[k], F);
+            if (j == k)
+                out.v[j + 1] += int64_t(floorShift(floorShift(floorShift(i128(b.v[0] - a.v[0]), F) * ds[k], LF), -F));
         }
         checkFits(out.v[0], valueW, "lerp value");
         for (int j = 1; j < 4; ++j) checkFits(out.v[j], gradW, "lerp derivative");
@@ -239,6 +253,8 @@ void noiseFx(const Profile& prof, const int lat[3], const int64_t frac[3], int64
 //  - R: value16 >>> (15 - VF) is exact at VF = 15, else in (R - 2^-VF, R] (call it ER).
 //  - corner: |v| error <= 3.5 ER (value_gradient: 0.5 |e_0| + |d| (|e_1|+|e_2|+|e_3|), |d| <= 1;
 //    value: 0.5 ER) + e (floor to NF). Corner gradient: ER (+ e if VF > NF).
+//  - derivatives floored to 2^F (noise.grad_frac): e becomes eg = 2^F e in every derivative
+//    floor, and the own-axis product on floor((b - a) / 2^F) adds eg ds_fx,max.
 //  - a lerp x + floor((y - x) s_fx) against x + (y - x) s errs by at most
 //    max(err x, err y) + |y - x| |ds_w| + e (s_fx in [0, 1): a convex combination).
 //  - value differences |b - a| < D = 6 (value_gradient: 0.5 |Rb - Ra| < 1, |R u| + |R (u-1)|
@@ -257,6 +273,10 @@ NoiseFxErrorBound noiseFxErrorBound(const Profile& prof) {
     const bool vg = prof.noise.corner == NoiseCorner::ValueGradient;
     const bool g12 = prof.noise.corner == NoiseCorner::Grad12;
     const double q = std::ldexp(1.0, -LF), e = std::ldexp(1.0, -NF), o = std::ldexp(1.0, -OF);
+    // The derivative lanes' floor (noise.grad_frac): eg = 2^F e per derivative floor, and the
+    // own-axis product's value difference floored to 2^F (F > 0) errs by < eg ds_fx more.
+    const int F = noiseGradFloor(prof);
+    const double eg = std::ldexp(1.0, F - NF);
     // Weights. quintic: t3 in (t^3 - 2q, t^3], w in (w - 6q, w], so t^3 w - t3 w_fx <
     // 6q t^3 + w (t + 1) q <= 10q (max at t = 0), plus the floor: s_fx in (s - 11q, s].
     // ds: a_fx in [a, a + q), a <= 1/4, 30 (a_fx^2 - a^2) < 30 q (0.5 + q), then the floor:
@@ -274,16 +294,17 @@ NoiseFxErrorBound noiseFxErrorBound(const Profile& prof) {
     const double ER = g12 || VF >= 15 ? 0.0 : std::ldexp(1.0, -VF);
     // grad12 corners are exact at LF bits (only the floor to NF), their gradients exact.
     const double Ec = g12 ? (LF > NF ? e : 0.0) : (vg ? 3.5 : 0.5) * ER + (VF + LF > NF ? e : 0.0);
-    const double Ecg = vg ? ER + (VF > NF ? e : 0.0) : 0.0;
+    const double Ecg = vg ? ER + (VF > NF - F ? eg : 0.0) : 0.0;
     auto Ev = [&](int levels) { return Ec + levels * (D * dS + e); };
 
     NoiseFxErrorBound b;
     b.value = Ev(3) + o;
     for (int k = 1; k <= 3; ++k) {
-        const double g = Ecg + (k - 1) * (DgOwn * dS + e)            // lerps before its own
-                         + 2 * Ev(k - 1) * dsMaxFx + D * dDs + e     // (b - a) ds
-                         + DgOwn * dS + e                            // its own lerp
-                         + (3 - k) * (DgOther * dS + e)              // lerps after
+        const double g = Ecg + (k - 1) * (DgOwn * dS + eg)           // lerps before its own
+                         + 2 * Ev(k - 1) * dsMaxFx + D * dDs + eg    // (b - a) ds
+                         + (F > 0 ? eg * dsMaxFx : 0.0)              //   on floor((b - a) / 2^F)
+                         + DgOwn * dS + eg                           // its own lerp
+                         + (3 - k) * (DgOther * dS + eg)             // lerps after
                          + o;
         b.grad = std::max(b.grad, g);
     }

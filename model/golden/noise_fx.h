@@ -15,6 +15,14 @@ namespace pst {
 // rtl/pst_noise.sv parameter NoiseGuardBits).
 inline int noiseNodeFrac(const Profile& p) { return p.noiseOutFrac + p.noiseGuardBits; }
 
+// The floor of the noise unit's derivative lanes (noise.grad_frac; rtl/pst_noise.sv parameter
+// NoiseGradFrac): every corner and lerp derivative is a multiple of 2^noiseGradFloor at
+// noiseNodeFrac fraction bits, i.e. it keeps min(grad_frac, node frac) fraction bits. 0 (the
+// default, grad_frac = out_frac + guard_bits) keeps every node bit.
+inline int noiseGradFloor(const Profile& p) {
+    return p.noiseGradFrac < noiseNodeFrac(p) ? noiseNodeFrac(p) - p.noiseGradFrac : 0;
+}
+
 // Stage 1. s: 3 x Coord, M: 9 x Matrix (row-major, M[3 r + c]), o: 3 x Offset, all
 // sign-extended integers of their formats. Out per axis: lat = lattice index after Rayshade's
 // 1e6 offset, mod 4096 (0..4095); frac = the unsigned NoiseLatticeFrac-bit fraction u.

@@ -260,6 +260,58 @@ TEST(NoiseFx, VariantsTrackReference) {
     }
 }
 
+// noise.grad_frac below the node fraction bits (derivative lanes floored to 2^-grad_frac):
+// the value is bit for bit the exact unit's, the gradient within the widened bound, and every
+// derivative node a multiple of 2^noiseGradFloor; grad_frac >= the node bits changes nothing.
+TEST(NoiseFx, GradFracFloorsOnlyTheDerivatives) {
+    std::mt19937_64 rng(77);
+    for (const char* name : {"full", "reduced"}) {
+        for (NoiseInterp interp : {NoiseInterp::SCurve, NoiseInterp::Linear})
+            for (NoiseCorner corner : {NoiseCorner::ValueGradient, NoiseCorner::ValueOnly}) {
+                Profile exact = profile(name);
+                exact.noise = {interp, corner, NoiseHash::Perm256};
+                const int NF = noiseNodeFrac(exact);
+                ASSERT_EQ(exact.noiseGradFrac, NF) << name;   // every profile: exact by default
+                ASSERT_EQ(noiseGradFloor(exact), 0);
+                Profile wide = exact;
+                wide.noiseGradFrac = NF + 5;                     // above NF: the same unit
+                Profile cut = exact;
+                cut.noiseGradFrac = NF - 8;
+                ASSERT_EQ(noiseGradFloor(cut), 8);
+                const std::string label = std::string(name) + " " + toString(interp) + "/" + toString(corner) +
+                                          " grad_frac " + std::to_string(cut.noiseGradFrac);
+                checkAgainstReference(cut, label);
+                std::uniform_int_distribution<int> L(0, 4095);
+                std::uniform_int_distribution<int64_t> U(0, (int64_t(1) << exact.noiseLatticeFrac) - 1);
+                int differ = 0;
+                for (int it = 0; it < 2000; ++it) {
+                    int lat[3];
+                    int64_t frac[3];
+                    for (int k = 0; k < 3; ++k) {
+                        lat[k] = L(rng);
+                        frac[k] = U(rng);
+                    }
+                    int64_t n0, g0[3], n1, g1[3], n2, g2[3];
+                    NoiseFxTrace tr;
+                    noiseFx(exact, lat, frac, &n0, g0);
+                    noiseFx(wide, lat, frac, &n1, g1);
+                    noiseFx(cut, lat, frac, &n2, g2, &tr);
+                    ASSERT_EQ(n0, n1);
+                    ASSERT_EQ(n0, n2) << label;
+                    for (int k = 0; k < 3; ++k) {
+                        ASSERT_EQ(g0[k], g1[k]);
+                        differ += g0[k] != g2[k];
+                    }
+                    for (int c = 0; c < 8; ++c)
+                        for (int k = 1; k < 4; ++k) ASSERT_EQ(tr.corner[c][k] % 256, 0) << label;
+                    for (int i = 0; i < 7; ++i)
+                        for (int k = 1; k < 4; ++k) ASSERT_EQ(tr.node[i][k] % 256, 0) << label;
+                }
+                EXPECT_GT(differ, 0) << label;   // the floor is not a no-op
+            }
+    }
+}
+
 // Perlin's 2002 variant (quintic, grad12, perlin256) against perlin2002() (its reference is
 // ImprovedNoise.java bit for bit) with each profile's formats.
 TEST(NoiseFx, Perlin2002TracksReference) {

@@ -164,6 +164,7 @@ Profile parseProfile(const std::string& text, const std::string& path) {
     p.noiseLatticeFrac = v[c::NoiseLatticeFrac];
     p.noiseOutFrac = v[c::NoiseOutFrac];
     p.noiseGuardBits = v[c::NoiseGuardBits];
+    p.noiseGradFrac = v[c::NoiseGradFrac];
     p.filterNorm = GradNorm(v[c::FilterNorm]);
     p.filterRecipFrac = v[c::FilterRecipFrac];
     p.bandlimit = v[c::FilterBandlimit] == 1;  // kFilterBandlimitNames: off, isotropic

@@ -48,6 +48,7 @@ struct Profile {
     int noiseLatticeFrac = 16;  // fraction bits of T_i s into the noise unit
     int noiseOutFrac = 16;      // noise value and gradient fraction bits
     int noiseGuardBits = 4;     // fraction bits of the noise unit's nodes below noiseOutFrac
+    int noiseGradFrac = 20;     // fraction bits kept on the derivative lanes (noise_fx.h noiseGradFloor)
     // noise.worley_search != none: the noise unit is a worley unit (noise.basis Worley;
     // noise.search, noise.maxPoints, noise.cubes = Rom256 say which variant), F1..F_worleyOrder.
     int worleyOrder = 2;

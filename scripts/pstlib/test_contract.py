@@ -39,7 +39,8 @@ def test_parameters_of_reduced():
     assert (p["CoordInt"], p["CoordFrac"], p["WidthFrac"]) == (10, 12, 4)
     assert (p["NoiseRegs"], p["OctaveRegs"], p["WidthRegs"], p["ColourRegs"]) == (5, 1, 0, 2)
     assert p["NoiseWorleySearch"] == 0 and p["NoiseWorleyPoints"] == 4 and p["NoiseWorleyOrder"] == 2
-    assert len(p) == 42
+    assert p["NoiseGradFrac"] == 10   # out_frac 8 + guard_bits 2: every node bit
+    assert len(p) == 43
 
 
 def test_enum_tables():
@@ -53,6 +54,8 @@ def test_enum_tables():
     (lambda d: d["pipeline"].update(noise_units=3), "pipeline.noise_units"),
     (lambda d: d["pipeline"].update(noise_steps=2), "pipeline.datapath"),   # serial needs >= 4
     (lambda d: d["pipeline"].update(noise_steps=3), "pipeline.noise_steps"),
+    (lambda d: d["noise"].update(grad_frac=0), "noise.grad_frac"),
+    (lambda d: d["noise"].update(grad_frac=4, worley_search="octant", hash="perm256"), "noise.grad_frac"),
     (lambda d: d["pipeline"].update(octaves=17), "pipeline.octaves"),
     (lambda d: d["pipeline"].update(octaves=True), "pipeline.octaves"),
     (lambda d: d["pipeline"].update(datapath="fast"), "pipeline.datapath"),

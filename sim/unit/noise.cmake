@@ -2,7 +2,7 @@
 # the golden model (model/golden/noise_fx.cpp), bit for bit, one verilated top per profile.
 # Seed: PST_SEED=<n> in the environment replays a run (the test prints its seed).
 set(PST_NOISE_UNIT_PARAMS
-    CoordInt,CoordFrac,MatrixInt,MatrixFrac,OffsetInt,OffsetFrac,NoiseLatticeFrac,NoiseInterp,NoiseCorner,NoiseHash,NoiseValueFrac,NoiseOutFrac,NoiseSteps,NoiseGuardBits)
+    CoordInt,CoordFrac,MatrixInt,MatrixFrac,OffsetInt,OffsetFrac,NoiseLatticeFrac,NoiseInterp,NoiseCorner,NoiseHash,NoiseValueFrac,NoiseOutFrac,NoiseSteps,NoiseGuardBits,NoiseGradFrac)
 set(PST_NOISE_UNIT_SOURCES
     ${PROJECT_SOURCE_DIR}/sim/unit/pst_noise_unit_top.sv
     ${PROJECT_SOURCE_DIR}/rtl/pst_octave_transform.sv
@@ -35,13 +35,21 @@ endforeach()
 #   var_d  reduced formats, Perlin 2002 (quintic, grad12, perlin256), the reduced's four steps
 #   var_e  full formats, Perlin 2002, one step, one guard bit, LF 17 > node frac (the corner
 #          value's floor)
+#   var_f  full, derivative lanes floored to 12 fraction bits (noise.grad_frac 12 < node
+#          frac 20: corner and lerp floors, narrow own-axis products)
+#   var_g  reduced formats, linear, value corners, perm256, eight steps, grad_frac 4 (the
+#          linear own-axis term on the floored difference; value corners' zero lanes)
+#   var_h  reduced formats, Perlin 2002, grad_frac 5 (grad12 lanes, quintic ds)
 # The test applies the same overrides to the loaded profile (PST_NOISE_OVERRIDES).
 set(PST_NOISE_VARIANTS
     "var_a|full|NoiseInterp=1,NoiseCorner=1,NoiseHash=1,NoiseOutFrac=11,NoiseSteps=2"
     "var_b|reduced|NoiseInterp=0,NoiseCorner=0,NoiseHash=0,NoiseValueFrac=15"
     "var_c|reduced|NoiseInterp=0,NoiseCorner=0,NoiseHash=1,NoiseValueFrac=3,NoiseLatticeFrac=4,NoiseOutFrac=10,NoiseSteps=8,NoiseGuardBits=1"
     "var_d|reduced|NoiseInterp=2,NoiseCorner=2,NoiseHash=2"
-    "var_e|full|NoiseInterp=2,NoiseCorner=2,NoiseHash=2,NoiseGuardBits=1,NoiseLatticeFrac=17,NoiseOutFrac=14")
+    "var_e|full|NoiseInterp=2,NoiseCorner=2,NoiseHash=2,NoiseGuardBits=1,NoiseLatticeFrac=17,NoiseOutFrac=14"
+    "var_f|full|NoiseGradFrac=12"
+    "var_g|reduced|NoiseInterp=1,NoiseCorner=1,NoiseHash=1,NoiseSteps=8,NoiseGradFrac=4"
+    "var_h|reduced|NoiseInterp=2,NoiseCorner=2,NoiseHash=2,NoiseGradFrac=5")
 foreach(v ${PST_NOISE_VARIANTS})
   string(REPLACE "|" ";" v "${v}")
   list(GET v 0 vname)

@@ -54,6 +54,7 @@ Profile testProfile() {
         else if (key == "NoiseOutFrac") p.noiseOutFrac = v;
         else if (key == "NoiseSteps") p.noiseSteps = v;
         else if (key == "NoiseGuardBits") p.noiseGuardBits = v;
+        else if (key == "NoiseGradFrac") p.noiseGradFrac = v;
         else throw std::runtime_error("unknown override " + key);
     }
     p.noise.basis = hardwareBasis(p.noise);

@@ -19,6 +19,7 @@ module pst_noise_unit_top #(
   parameter int NoiseOutFrac = pst_pkg::NoiseOutFracDefault,
   parameter int NoiseSteps = pst_pkg::NoiseStepsDefault,
   parameter int NoiseGuardBits = pst_pkg::NoiseGuardBitsDefault,
+  parameter int NoiseGradFrac = pst_pkg::NoiseGradFracDefault,
   localparam int CW = CoordInt + CoordFrac,    // s element width
   localparam int MW = MatrixInt + MatrixFrac,  // M element width
   localparam int OW = OffsetInt + OffsetFrac,  // o element width
@@ -67,6 +68,7 @@ module pst_noise_unit_top #(
     .NoiseOutFrac     (NoiseOutFrac),
     .NoiseSteps       (NoiseSteps),
     .NoiseGuardBits   (NoiseGuardBits),
+    .NoiseGradFrac    (NoiseGradFrac),
     .NoiseRegs        (0)   // combinational: the pipelined unit is checked through pst_top
   ) u_noise (
     .clk_i,
