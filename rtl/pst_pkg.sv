@@ -96,7 +96,7 @@ package pst_pkg;
   localparam int NoiseLatticeFracDefault = 16;
   localparam int NoiseOutFracDefault = 16;
   localparam int NoiseGuardBitsDefault = 4;
-  localparam int NoiseGradFracDefault = 20;
+  localparam int NoiseGradFracDefault = 16;
   localparam int NoiseWorleySearchDefault = NoiseWorleySearchNone;
   localparam int NoiseWorleyPointsDefault = 4;
   localparam int NoiseWorleyOrderDefault = 2;
