@@ -63,6 +63,7 @@ KNOBS = [
     _key_knob("lattice_frac", "noise", "lattice_frac", [6, 8, 10, 12, 14, 16]),
     _key_knob("out_frac", "noise", "out_frac", [6, 8, 10, 12, 14, 16]),
     _key_knob("guard_bits", "noise", "guard_bits", [1, 2, 3, 4]),
+    _key_knob("noise_grad_frac", "noise", "grad_frac", [8, 10, 12, 14, 16, 18, 20]),
     _key_knob("recip_frac", "filter", "recip_frac", [10, 12, 14, 16, 18]),
     _key_knob("interp", "noise", "interp", ["linear", "scurve"]),
     _key_knob("corner", "noise", "corner", ["value", "value_gradient"]),

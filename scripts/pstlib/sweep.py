@@ -96,6 +96,9 @@ KNOBS = {
                       "noise", "out_frac"),
     "guard_bits": _knob("noise.guard_bits (noise node fraction bits below out_frac)", [1, 2, 3, 4, 6],
                         "noise", "guard_bits"),
+    "noise_grad_frac": _knob("noise.grad_frac (the noise unit's derivative lanes, the noise gradient only; "
+                             ">= out_frac + guard_bits keeps every node bit)", [8, 10, 12, 14, 16, 20],
+                             "noise", "grad_frac"),
     "amp_frac": ("formats.amplitude.frac = grad_matrix.frac = matrix.frac", [6, 8, 10, 12, 16],
                  _set_format_frac("amplitude", "grad_matrix", "matrix"),
                  lambda d: _format_frac(d, "amplitude", "grad_matrix", "matrix")),

@@ -49,6 +49,18 @@ def test_neighbours_move_one_knob_one_value_cheaper():
     assert [(k, a, b) for k, a, b, _ in only] == [("coord_frac", 20, 18)]
 
 
+def test_noise_grad_frac_moves_the_derivative_lanes_and_is_refused_on_a_worley_unit():
+    full = contract.read_profile(FULL)          # grad_frac 16 of its 20 node bits
+    (move,) = [m for m in S.neighbours(full, ["noise_grad_frac"], []) if m[0] == "noise_grad_frac"]
+    _, a, b, d = move
+    assert (a, b) == (16, 14) and d["noise"]["grad_frac"] == 14
+    assert {k for k in d["noise"] if d["noise"][k] != full["noise"][k]} == {"grad_frac"}
+    worley = contract.read_profile(ROOT / "sim" / "test_profiles" / "reduced_worley.toml")
+    assert worley["noise"]["grad_frac"] == worley["noise"]["out_frac"] + worley["noise"]["guard_bits"]
+    # rtl/contract.toml: a worley unit has no derivative lanes to floor, so no cheaper value is valid
+    assert S.neighbours(worley, ["noise_grad_frac"], []) == []
+
+
 def test_a_point_is_named_by_its_values_and_keeps_the_text():
     text = FULL.read_text()
     doc = contract.read_profile(FULL)

@@ -33,6 +33,16 @@ def test_invalid_points_are_skipped_with_the_reason():
                    "pipeline.noise_units: must be an integer in [1, 16] (is 17)"]
 
 
+def test_noise_grad_frac_knob_sets_only_the_derivative_lanes_and_a_worley_unit_refuses_it():
+    full = load(FULL)
+    doc, bad = sweep.point_profile(full, "noise_grad_frac", 12)
+    assert bad == [] and doc["noise"]["grad_frac"] == 12
+    assert {k for k in doc["noise"] if doc["noise"][k] != full["noise"][k]} == {"grad_frac"}
+    worley = load(ROOT / "sim" / "test_profiles" / "reduced_worley.toml")
+    _, bad = sweep.point_profile(worley, "noise_grad_frac", 8)
+    assert [b.split(":")[0] for b in bad] == ["noise.grad_frac"]
+
+
 def test_point_names_are_c_identifiers():
     assert sweep.point_name("reduced", "coord_frac", 8) == "reduced_coord_frac_8"
     assert sweep.point_name("my-base", "hash", "perm256") == "my_base_hash_perm256"
