@@ -13,6 +13,13 @@ products are exact there). This generator draws, from a fixed seed, scenes with:
 - every filter kind (none, mip, mip_linear, sat, box, trapezoid), on every mesh (sphere, cube, plane,
   torus, teapot) seen from a random camera.
 
+Every fourth training scene (index 3, 7, 11, ...) is a step-sensitive one: a step colour map
+taken mod, unfiltered, nearest-level MIP or summed-area table. There a tiny change of f (or of W,
+for the table) moves whole pixels across a colour step or a wrap, so a precision cut that a smooth
+texture hides shows there; the walks over full's formats found such cuts only on validation
+textures of this kind (valid_004 unfiltered and mod, valid_008 SAT). The validation set stays a
+plain random draw.
+
 The categorical features are stratified (each set walks a shuffled list of each feature), so a
 set of >= 8 scenes holds every octave count 1..8, every filter, wrap, interpolation, matrix kind
 and mesh; the numbers are drawn. A scene is a function of (seed, set name, index) alone:
@@ -34,6 +41,12 @@ MESHES = ["sphere", "cube", "plane", "torus", "teapot"]
 OCTAVE_COUNTS = list(range(1, 9))
 MAX_FREQ = 48.0           # largest |M| entry (reduced's matrix format holds |m| < 64)
 SET_NAMES = ("train", "valid")
+STEP_FILTERS = ["none", "mip", "sat"]     # the filters that keep a step map's steps (see above)
+
+
+def step_sensitive(set_name: str, index: int) -> bool:
+    """Scene INDEX of SET_NAME is one of the training set's step-sensitive scenes."""
+    return set_name == "train" and index % 4 == 3
 
 
 def _rng(seed: int, *parts) -> random.Random:
@@ -187,9 +200,14 @@ def scene(seed: int, set_name: str, index: int) -> tuple:
     pick = lambda feat, vals: _stratum(seed, set_name, feat, vals, index)   # noqa: E731
     count = pick("octaves", OCTAVE_COUNTS)
     mkind = pick("matrix", MATRIX_KINDS)
-    filt = pick("filter", FILTERS)
-    wrap = pick("wrap", WRAPS)
-    interp = pick("interp", INTERPS)
+    if step_sensitive(set_name, index):
+        filt = _stratum(seed, set_name, "step_filter", STEP_FILTERS, index // 4)
+        wrap, interp = "mod", "step"
+    else:       # the other scenes walk the strata without gaps (training: 3 of every 4 scenes)
+        j = index - index // 4 if set_name == "train" else index
+        filt = _stratum(seed, set_name, "filter", FILTERS, j)
+        wrap = _stratum(seed, set_name, "wrap", WRAPS, j)
+        interp = _stratum(seed, set_name, "interp", INTERPS, j)
     qkind = pick("quadric", QUADRIC_KINDS)
     mesh = pick("mesh", MESHES)
     r = _rng(seed, set_name, "scene", index)
@@ -227,7 +245,8 @@ def scene(seed: int, set_name: str, index: int) -> tuple:
             lines.append(f"{k} = {_num(v)}")
     text = "\n".join(lines) + "\n"
     feats = dict(ofeat, name=name, set=set_name, filter=filt, wrap=wrap, interp=interp, quadric=qkind,
-                 cross_terms=qkind == "full", mesh=mesh, ramp_keys=len(cmap["ramp"]))
+                 cross_terms=qkind == "full", mesh=mesh, ramp_keys=len(cmap["ramp"]),
+                 step_sensitive=step_sensitive(set_name, index))
     return f"{name}.toml", text, feats
 
 

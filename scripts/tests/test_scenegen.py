@@ -75,6 +75,22 @@ def test_eight_scenes_a_set_cover_every_listed_feature():
         assert {f["matrix_kind"] for _, f in docs} == set(scenegen.MATRIX_KINDS)
 
 
+def test_every_fourth_training_scene_is_step_sensitive_and_validation_is_a_plain_draw():
+    s = scenegen.generate(4, {"train": 16, "valid": 16})
+    for i, (_, text, feats) in enumerate(s["train"]):
+        (tex,) = tomllib.loads(text)["textures"].values()
+        forced = (tex["colormap"]["wrap"], tex["colormap"]["interp"]) == ("mod", "step") and \
+            tex["filter"] in scenegen.STEP_FILTERS
+        assert feats["step_sensitive"] == (i % 4 == 3)
+        if i % 4 == 3:
+            assert forced, feats["name"]
+    assert {tomllib.loads(t)["textures"]["t"]["filter"] for i, (_, t, _) in enumerate(s["train"])
+            if i % 4 == 3} == set(scenegen.STEP_FILTERS)
+    assert not any(f["step_sensitive"] for _, _, f in s["valid"])
+    # the validation set keeps its independent strata: both wraps and interps with every filter
+    assert {(tomllib.loads(t)["textures"]["t"]["colormap"]["wrap"]) for _, t, _ in s["valid"]} == {"mod", "clamp"}
+
+
 def test_lacunarity_is_never_two():
     for scenes in _all(13, 20).values():
         for _, _, f in scenes:
