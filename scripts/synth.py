@@ -261,11 +261,6 @@ def analyse(stat: dict, ltp_text: str, areas: dict, ff_cells: set, mems: list) -
     subs = {name: v["subs"] for name, v in own.items()}
     top = next(n for n in modules if base_name(n) == "pst_top")
     held = block_instances(subs, top)
-    count = {}
-    count_in = {}   # (module, block) -> instances
-    for (name, b, _), k in held.items():
-        count[name] = count.get(name, 0) + k
-        count_in[(name, b)] = count_in.get((name, b), 0) + k
     blocks = {b: {"area": 0.0, "ffs": 0, "cells": 0, "modules": {}} for b in BLOCK_ORDER}
     for (name, b, holder), k in held.items():
         blocks[b]["area"] += k * own[name]["logic"]
@@ -280,10 +275,9 @@ def analyse(stat: dict, ltp_text: str, areas: dict, ff_cells: set, mems: list) -
         entry["depth"] = max(entry["depth"], depth.get(name.lstrip("\\"), depth.get(name, 0)))
     inst = {}
     for m in mems:
-        inst[(m["module"], m["memory"])] = next(
-            (n for name, n in count.items() if name.lstrip("\\") == m["module"].lstrip("\\")), 0)
-    return {"blocks": blocks, "depth": depth, "count": count, "count_in": count_in, "mem_instances": inst,
-            "top": top}
+        inst[(m["module"], m["memory"])] = sum(k for (name, _, _), k in held.items()
+                                               if name.lstrip("\\") == m["module"].lstrip("\\"))
+    return {"blocks": blocks, "depth": depth, "held": held, "mem_instances": inst, "top": top}
 
 
 # ---- memories ------------------------------------------------------------------------------
@@ -562,7 +556,7 @@ def fanout_summary(per_module: dict, a: dict, cell_area: float, ge: float) -> di
     """Inserted fanout buffers: instances in the flattened design, area, per block."""
     per = {m.lstrip("\\"): k for m, k in per_module.items()}
     blocks = {}
-    for (name, b), k in a["count_in"].items():
+    for (name, b, _), k in a["held"].items():
         n = k * per.get(name.lstrip("\\"), 0)
         if n:
             blocks[b] = blocks.get(b, 0) + n

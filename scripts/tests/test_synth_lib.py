@@ -248,7 +248,10 @@ def test_shared_leaves_are_listed_per_holder_with_their_total_area():
         "$paramod$3\\pst_mul_booth": {"num_cells_by_type": {"NAND2X1": 10}},
         "$paramod$4\\pst_mul_booth": {"num_cells_by_type": {"NAND2X1": 40}},
         "$paramod$2\\pst_delay": {"num_cells_by_type": {"DFFPOSX1": 3}}}}
-    a = synth.analyse(stat, "", cells, {"DFFPOSX1"}, [])
+    a = synth.analyse(stat, "", cells, {"DFFPOSX1"}, [{"module": "$paramod$1\\pst_noise_lerp", "memory": "rom"},
+                                                      {"module": "\\$paramod$4\\pst_mul_booth", "memory": "t"}])
+    assert a["mem_instances"] == {("$paramod$1\\pst_noise_lerp", "rom"): 2,
+                                  ("\\$paramod$4\\pst_mul_booth", "t"): 2}     # memories per instance
     booth = a["blocks"]["noise"]["modules"]["pst_mul_booth in pst_noise_lerp"]
     assert booth["instances"] == 6 and booth["area"] == 2 * (2 * 10 + 40) * 24.0
     assert a["blocks"]["noise"]["modules"]["pst_noise_lerp"]["area"] == 2 * 24.0
