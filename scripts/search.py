@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Design-space search: the least logic area at a quality, throughput and clock target.
 
-    scripts/search.py [--classes 1,4,32] [--psnr DB | --psnr 1=50,4=45,32=30] [--fmax MHZ]
+    scripts/search.py [--classes 1,4,32] [--psnr DB | --psnr 1=50,4=45,32=30] [--max-loss DB] [--fmax MHZ]
                       [--start 1=full,4=full,32=reduced] [--knobs k1,k2,...] [--budget N]
                       [--backtracks N] [--size 48] [--train 8] [--valid 8] [--seed 1] [--paper]
                       [--jobs 2] [--backend local|slurm] [--rtl N] [--rtl-size 32] [--out out/search]
@@ -12,6 +12,11 @@ walk with backtracking (scripts/pstlib/search.py says how and why) starts from a
 meets the targets and moves, one knob at a time but choosing among all knobs at every step, to
 the cheaper neighbour of least logic area that still has worst training PSNR >= the target
 (and Fmax >= --fmax when given: scripts/synth.py with OpenSTA on those candidates only).
+--max-loss DB adds issue 13's texture-by-texture rule: every training scene within DB of the
+class's start profile (the worst scene alone hides a step colour map or a mod wrap that a
+cut spoils); the walk's merit is then GE saved per dB lost on the scene that loses most, the
+starts are scored on the validation set too, and each front point carries its largest loss on
+one scene against the start, training and validation (flagged when validation passes DB).
 Knobs: the fraction bits of every format (coord, jacobian, matrix, amplitude, offset, quadric,
 f, grad, width), the noise unit's value/lattice/out fractions and guard bits, the reciprocal
 bits, interpolation, corner, hash, |grad| norm, and `structure` (octaves, noise units, noise
@@ -64,14 +69,19 @@ PAPER_SCENES = ["wood_teapot", "marble", "seascape", "fire", "planet", "moonrise
 
 
 def _per_class(spec: str, classes, conv, what):
+    def value(v):
+        try:
+            return conv(v)
+        except ValueError:
+            raise ValueError(f"{what}: not a valid value: {v!r}") from None
     out = {}
     if "=" not in spec:
-        return {c: conv(spec) for c in classes}
+        return {c: value(spec) for c in classes}
     for part in spec.split(","):
         k, _, v = part.partition("=")
         if not k.strip().isdigit():
             raise ValueError(f"{what}: expected CLASS=VALUE, got {part!r}")
-        out[int(k)] = conv(v.strip())
+        out[int(k)] = value(v.strip())
     missing = [c for c in classes if c not in out]
     if missing:
         raise ValueError(f"{what}: no value for class {', '.join(map(str, missing))}")
@@ -82,6 +92,8 @@ def parse_args(argv):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--classes", default="1,4,32")
     ap.add_argument("--psnr", help="target worst training PSNR, dB (one value or CLASS=DB,...; default 40)")
+    ap.add_argument("--max-loss", help="texture by texture: every training scene within this many dB of the "
+                    "class's start profile (one value or CLASS=DB,...; default: no such bound)")
     ap.add_argument("--fmax", type=float, default=0.0, help="target Fmax, MHz (0: no constraint)")
     ap.add_argument("--start", help="start profile per class, CLASS=PROFILE,... (default 1=full,4=full,32=reduced)")
     ap.add_argument("--knobs", help=f"comma-separated, default all: {','.join(S.KNOB_NAMES)}")
@@ -125,6 +137,9 @@ def parse_args(argv):
         if not a.class_list or min(a.class_list) < 1:
             raise ValueError("--classes: positive integers")
         a.targets = _per_class(a.psnr, a.class_list, float, "--psnr")
+        a.max_losses = _per_class(a.max_loss, a.class_list, float, "--max-loss") if a.max_loss else {}
+        if any(not 0 <= v < 100 for v in list(a.targets.values()) + list(a.max_losses.values())):
+            raise ValueError("--psnr and --max-loss: dB in [0, 100)")
         starts = dict(DEFAULT_START)
         if a.start:
             starts.update(_per_class(a.start, [], str, "--start"))
@@ -344,8 +359,9 @@ def main(argv=None) -> int:
             structs = S.structures(doc["pipeline"]["octaves"], c, doc)
             start = S.make_point(text, doc, doc, "start")
             start.move = f"start ({path.stem})"
-            targets = S.Targets(a.targets[c], c, a.fmax)
-            say(f"class <= {c} clk/px from {path.stem}, target {targets.psnr:g} dB:")
+            targets = S.Targets(a.targets[c], c, a.fmax, max_loss=a.max_losses.get(c))
+            bound = f", every training scene within {targets.max_loss:g} dB of the start" if targets.max_loss is not None else ""
+            say(f"class <= {c} clk/px from {path.stem}, target {targets.psnr:g} dB{bound}:")
             w = S.walk(start, evaluate, targets, a.knob_list, structs, text, doc, a.budget, a.backtracks,
                        say=say, fmax_of=fmax_of)
             walks[c] = w
@@ -355,12 +371,18 @@ def main(argv=None) -> int:
             rows.append(dict(r, name=n, move=p.move, cpp=p.cpp, profile_sha=p.sha))
         fr = search_report.fronts(rows, a.class_list)
         front_names = sorted({r["name"] for f in fr.values() for r in f})
+        # With --max-loss the starts are scored on the validation set too: each front point's
+        # loss texture by texture is measured against its class's start there as well.
+        starts = {c: w["path"][0] for c, w in walks.items()} if a.max_losses else {}
         say(f"validation of {len(front_names)} front point(s)")
-        vres = evaluate([archive[n][0] for n in front_names], which=("train", "valid"))
+        vnames = sorted(set(front_names) | set(starts.values()))
+        vres = evaluate([archive[n][0] for n in vnames], which=("train", "valid"))
         by = {r["name"]: r for r in rows}
-        for n in front_names:
+        for n in vnames:
             by[n].update({k: vres[n].get(k) for k in ("valid", "valid_worst", "valid_mean")})
         fr = search_report.fronts(rows, a.class_list)
+        fr = {c: [dict(r, **search_report.losses(r, by.get(starts.get(c)), a.max_losses.get(c))) for r in f]
+              for c, f in fr.items()}
         chosen = []
         for c, f in fr.items():
             chosen += [r["name"] for r in f][: (len(f) if a.rtl is None else a.rtl)]
@@ -381,7 +403,7 @@ def main(argv=None) -> int:
                             ["name", "cpp", "logic_ge", "train_worst", "train_mean", "valid_worst", "status", "move"])
     search_report.write_csv(a.out / "front.csv", frows, search_report.COLUMNS)
     title = f"Design-space search ({a.size} x {a.size}, seed {a.seed})"
-    atomic.write_text(a.out / "front.md", search_report.markdown(title, frows, a.targets, best, st))
+    atomic.write_text(a.out / "front.md", search_report.markdown(title, frows, a.targets, best, st, a.max_losses))
     search_report.plot(a.out / "front.png", rows, fr, title)
     atomic.write_text(a.out / "summary.json", json.dumps({"stats": st, "targets": a.targets,
                                                           "best": {c: b and b["name"] for c, b in best.items()},
@@ -393,6 +415,9 @@ def main(argv=None) -> int:
     for c, b in best.items():
         if b:
             say(f"  <= {c} clk/px: {b['name']} {b['logic_ge']:,} GE, worst train {b['train_worst']:.2f} dB")
+    flagged = [f"{r['name']} (class {r['class']})" for r in frows if r.get("valid_loss_flag")]
+    if flagged:
+        say(f"validation loss beyond --max-loss on some texture: {', '.join(flagged)}")
     bad_rtl = [n for n, r in rtl.items() if not r.get("passed")]
     bad = [r["name"] for r in rows if r.get("status") != "ok"]
     if bad_rtl or bad:

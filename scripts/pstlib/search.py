@@ -175,13 +175,23 @@ def _sdesc(s: dict) -> str:
     return f"{s['octaves']}oct/{s['noise_units']}u/{s['noise_steps']}st/{s['datapath']}"
 
 
+def scene_loss(ref: dict, r: dict) -> float:
+    """The largest PSNR loss, dB, of R against REF on any scene REF scored (a scene R lacks counts
+    as lost entirely)."""
+    got = r.get("train") or {}
+    return max((p0 - got[s] if got.get(s) is not None else float("inf") for s, p0 in ref.items()), default=0.0)
+
+
 def feasible(r: dict, t) -> bool:
-    """A result meets the targets (PSNR on the training set, clocks per pixel, Fmax when asked)."""
+    """A result meets the targets (worst PSNR on the training set, clocks per pixel, Fmax when
+    asked, and with t.max_loss every training scene within that many dB of t.ref's PSNR)."""
     if r.get("status") != "ok" or r.get("train_worst") is None:
         return False
     if r["train_worst"] < t.psnr or r["cpp"] > t.cpp:
         return False
     if t.fmax > 0 and (r.get("fmax_mhz") is None or r["fmax_mhz"] < t.fmax):
+        return False
+    if t.max_loss is not None and t.ref is not None and scene_loss(t.ref, r) > t.max_loss:
         return False
     return True
 
@@ -191,13 +201,22 @@ class Targets:
     psnr: float
     cpp: int
     fmax: float = 0.0
+    # Texture by texture (issue 13's rule for the named profiles: a step colour map or a nearest
+    # MIP level turns a tiny f change into whole colour steps, which the worst scene can hide):
+    # every training scene within max_loss dB of ref, the start's PSNR per scene (walk sets it).
+    max_loss: float | None = None
+    ref: dict | None = None
 
 
-def merit(here: dict, there: dict) -> float:
-    """Logic GE saved per dB of worst training PSNR lost by the move HERE -> THERE (a move that
-    loses nothing is worth its saving / 0.05 dB: PSNR is a noisy measure of a small change)."""
+def merit(here: dict, there: dict, per_scene: bool = False) -> float:
+    """Logic GE saved per dB of PSNR lost by the move HERE -> THERE: of the worst training scene,
+    or with PER_SCENE of the scene that loses most (a move that loses nothing is worth its
+    saving / 0.05 dB: PSNR is a noisy measure of a small change)."""
     saved = here["logic_ge"] - there["logic_ge"]
-    lost = max(0.0, here["train_worst"] - there["train_worst"])
+    if per_scene:
+        lost = max(0.0, scene_loss(here.get("train") or {}, there))
+    else:
+        lost = max(0.0, here["train_worst"] - there["train_worst"])
     return saved / max(lost, 0.05)
 
 
@@ -218,6 +237,8 @@ def walk(start: Point, evaluate, targets: Targets, knobs: list, structs: list, b
         return [archive[p.name][1] for p in points]
 
     (r0,) = ev([start])
+    if targets.max_loss is not None and targets.ref is None and r0.get("train"):
+        targets = dataclasses.replace(targets, ref=dict(r0["train"]))
     if targets.fmax > 0 and fmax_of and feasible(r0, dataclasses.replace(targets, fmax=0)):
         r0 = fmax_of(start, r0)
         archive[start.name] = (start, r0)
@@ -243,7 +264,7 @@ def walk(start: Point, evaluate, targets: Targets, knobs: list, structs: list, b
         cand = [(r["logic_ge"], p.name) for p, r in zip(pts, res)
                 if feasible(r, dataclasses.replace(targets, fmax=0)) and r.get("logic_ge") is not None
                 and r["logic_ge"] < here.get("logic_ge", float("inf"))]
-        cand.sort(key=lambda c: -merit(here, archive[c[1]][1]))
+        cand.sort(key=lambda c: -merit(here, archive[c[1]][1], per_scene=targets.max_loss is not None))
         if targets.fmax > 0 and fmax_of:
             ok = []
             for area, n in cand:

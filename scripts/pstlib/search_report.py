@@ -23,8 +23,23 @@ def gap_flag(r: dict):
     return r["valid_worst"] < r["train_worst"] - VALIDATION_GAP_DB
 
 
+def losses(r: dict, start, max_loss) -> dict:
+    """A front point's largest PSNR loss, dB, on any one training / validation scene against its
+    class's START result (--max-loss; none without it), and the flag: the validation loss beyond
+    MAX_LOSS (the training loss is within it by construction)."""
+    if start is None or max_loss is None:
+        return {}
+    out = {}
+    for s in ("train", "valid"):
+        ref, got = start.get(s) or {}, r.get(s) or {}
+        out[f"{s}_loss"] = (max((ref[k] - got[k] for k in ref if got.get(k) is not None), default=None)
+                            if ref and got else None)
+    out["valid_loss_flag"] = None if out["valid_loss"] is None else out["valid_loss"] > max_loss
+    return out
+
+
 COLUMNS = ["class", "name", "cpp", "logic_ge", "train_worst", "train_mean", "valid_worst", "valid_mean",
-           "valid_gap_flag", "rtl", "fmax_mhz", "move"]
+           "valid_gap_flag", "train_loss", "valid_loss", "valid_loss_flag", "rtl", "fmax_mhz", "move"]
 
 
 def _fmt(v):
@@ -40,7 +55,9 @@ def front_rows(fr: dict, rtl: dict) -> list:
             out.append({"class": c, "name": r["name"], "cpp": r["cpp"], "logic_ge": r["logic_ge"],
                         "train_worst": r.get("train_worst"), "train_mean": r.get("train_mean"),
                         "valid_worst": r.get("valid_worst"), "valid_mean": r.get("valid_mean"),
-                        "valid_gap_flag": gap_flag(r), "rtl": (rtl.get(r["name"]) or {}).get("summary"),
+                        "valid_gap_flag": gap_flag(r), "train_loss": r.get("train_loss"),
+                        "valid_loss": r.get("valid_loss"), "valid_loss_flag": r.get("valid_loss_flag"),
+                        "rtl": (rtl.get(r["name"]) or {}).get("summary"),
                         "fmax_mhz": r.get("fmax_mhz"), "move": r.get("move")})
     return out
 
@@ -54,7 +71,7 @@ def write_csv(path: pathlib.Path, rows: list, columns: list) -> None:
     atomic.write_text(path, buf.getvalue())
 
 
-def markdown(title: str, frows: list, targets: dict, best: dict, stats: dict) -> str:
+def markdown(title: str, frows: list, targets: dict, best: dict, stats: dict, max_losses=None) -> str:
     L = [f"# {title}\n", "Least logic area (OSU018 GE, per-module synthesis cache) subject to the worst training-scene "
          "PSNR against the double reference and clocks per pixel; every front point scored on the validation set "
          f"(flag: validation worst more than {VALIDATION_GAP_DB:g} dB under training worst) and checked on the RTL "
@@ -68,12 +85,20 @@ def markdown(title: str, frows: list, targets: dict, best: dict, stats: dict) ->
         else:
             L.append(f"| {c} | {targets[c]:g} | (start misses the target) | | | |")
     L.append("")
-    L.append("| class | point | clk/px | logic GE | train worst / mean dB | valid worst / mean dB | gap flag | RTL | how reached |")
-    L.append("|---:|---|---:|---:|---|---|---|---|---|")
+    if max_losses:
+        L.append("Texture by texture (`--max-loss`): every training scene within " +
+                 ", ".join(f"{v:g} dB (class {c})" for c, v in max_losses.items()) +
+                 " of the class's start profile; loss columns: the largest loss on one scene against the start, "
+                 "flagged when the validation loss passes the bound.\n")
+    L.append("| class | point | clk/px | logic GE | train worst / mean dB | valid worst / mean dB | gap flag | "
+             "max loss train / valid dB | RTL | how reached |")
+    L.append("|---:|---|---:|---:|---|---|---|---|---|---|")
     for r in frows:
         flag = {True: "**FLAG**", False: "ok", None: "-"}[r["valid_gap_flag"]]
+        loss = "-" if r.get("train_loss") is None and r.get("valid_loss") is None else \
+            f"{_fmt(r.get('train_loss'))} / {_fmt(r.get('valid_loss'))}" + (" **FLAG**" if r.get("valid_loss_flag") else "")
         L.append(f"| {r['class']} | `{r['name']}` | {r['cpp']} | {r['logic_ge']:,} | {_fmt(r['train_worst'])} / "
-                 f"{_fmt(r['train_mean'])} | {_fmt(r['valid_worst'])} / {_fmt(r['valid_mean'])} | {flag} | "
+                 f"{_fmt(r['train_mean'])} | {_fmt(r['valid_worst'])} / {_fmt(r['valid_mean'])} | {flag} | {loss} | "
                  f"{r['rtl'] or '-'} | {r['move'] or ''} |")
     L.append("")
     L.append(f"Search: {stats['points']} points evaluated ({stats['synthesized']} synthesized, "

@@ -2,6 +2,7 @@
 import copy
 import json
 import pathlib
+import sys
 
 import pytest
 
@@ -130,6 +131,56 @@ def test_backtracking_finds_a_cheaper_branch():
     assert w1["archive"][w1["best"]][1]["logic_ge"] == 1000 + 110 and w1["backtracks"] == 1
 
 
+def test_max_loss_bounds_every_training_scene_not_only_the_worst():
+    # Scene "paper" is the worst (40 dB) and no knob moves it; out_frac's cut costs scene "wrap"
+    # (60 dB) 3 dB a step, coord_frac's 0.4 dB a step. On the worst scene alone every cut is free;
+    # texture by texture within 1 dB, out_frac may not move and coord_frac only twice.
+    text = FULL.read_text()
+    doc = contract.read_profile(FULL)
+    base = {k["name"]: k["values"].index(k["get"](doc)) for k in S.KNOBS if k["name"] in ("out_frac", "coord_frac")}
+
+    def ev(points):
+        out = {}
+        for p in points:
+            i = {k["name"]: k["values"].index(k["get"](p.doc)) for k in S.KNOBS if k["name"] in base}
+            cut = {k: base[k] - v for k, v in i.items()}
+            wrap = 60.0 - 3.0 * cut["out_frac"] - 0.4 * cut["coord_frac"]
+            out[p.name] = {"status": "ok", "train": {"paper": 40.0, "wrap": wrap}, "train_worst": min(40.0, wrap),
+                           "logic_ge": 1000 + 500 * i["out_frac"] + 100 * i["coord_frac"], "cpp": p.cpp}
+        return out
+
+    start = S.make_point(text, doc, doc, "start")
+    free = S.walk(start, ev, S.Targets(35.0, 1), ["out_frac", "coord_frac"], [], text, doc, 200, 0,
+                  say=lambda *_: None)
+    bound = S.walk(start, ev, S.Targets(35.0, 1, max_loss=1.0), ["out_frac", "coord_frac"], [], text, doc, 200, 0,
+                   say=lambda *_: None)
+    pf, rf = free["archive"][free["best"]]
+    pb, rb = bound["archive"][bound["best"]]
+    assert rf["train"]["wrap"] < 59.0                    # the worst-scene rule lets the wrap texture go
+    assert pb.doc["noise"]["out_frac"] == doc["noise"]["out_frac"]
+    assert pb.doc["formats"]["coord"]["frac"] == doc["formats"]["coord"]["frac"] - 4     # two steps: 0.8 dB
+    assert S.scene_loss({"paper": 40.0, "wrap": 60.0}, rb) == pytest.approx(0.8)
+    assert S.scene_loss({"paper": 40.0, "gone": 50.0}, rb) == float("inf")
+
+
+def test_losses_against_the_start_and_the_validation_flag():
+    start = {"train": {"a": 50.0, "b": 60.0}, "valid": {"c": 55.0, "d": 45.0}}
+    r = {"train": {"a": 49.5, "b": 60.0}, "valid": {"c": 52.5, "d": 46.0}}
+    got = search_report.losses(r, start, 1.0)
+    assert got["train_loss"] == pytest.approx(0.5) and got["valid_loss"] == pytest.approx(2.5)
+    assert got["valid_loss_flag"] is True
+    assert search_report.losses(r, start, 3.0)["valid_loss_flag"] is False
+    assert search_report.losses(r, None, 1.0) == {} and search_report.losses(r, start, None) == {}
+    md = search_report.markdown("t", [dict(**{"class": 1, "name": "p", "cpp": 1, "logic_ge": 5,
+                                                        "train_worst": 49.5, "train_mean": 50.0, "valid_worst": 46.0,
+                                                        "valid_mean": 49.0, "valid_gap_flag": False, "rtl": None,
+                                                        "move": "m"}, **got)],
+                                {1: 40.0}, {1: None}, {"points": 1, "synthesized": 1, "modules_synthesized": 0,
+                                                      "wall_s": 1.0, "points_per_hour": 1.0, "train": 2, "valid": 2,
+                                                      "size": 32}, {1: 1.0})
+    assert "0.50 / 2.50 **FLAG**" in md and "within 1 dB (class 1)" in md
+
+
 def test_pareto_front():
     rows = [{"name": n, "logic_ge": a, "train_worst": q} for n, a, q in
             [("a", 10, 30), ("b", 20, 40), ("c", 25, 35), ("d", 30, 50), ("e", 10, 20), ("f", 40, 50)]]
@@ -160,12 +211,21 @@ def test_stored_results_are_reused_only_when_complete(tmp_path):
                                     dict(job, retry_failed=True), ("train",))
 
 
-def test_per_class_arguments():
+def test_per_class_arguments(tmp_path):
     import search as cli     # scripts/search.py
     assert cli._per_class("40", [1, 22], float, "--psnr") == {1: 40.0, 22: 40.0}
     assert cli._per_class("1=50,22=30", [1, 22], float, "--psnr") == {1: 50.0, 22: 30.0}
     with pytest.raises(ValueError):
         cli._per_class("1=50", [1, 22], float, "--psnr")
+    with pytest.raises(ValueError, match="--max-loss: not a valid value: 'x'"):
+        cli._per_class("1=1,22=x", [1, 22], float, "--max-loss")
+    for bad in (["--max-loss", "nan"], ["--max-loss", "-1"], ["--psnr", "inf"], ["--max-loss", "4=1"]):
+        with pytest.raises(SystemExit) as e:
+            cli.parse_args(bad)
+        assert e.value.code == 2, bad
+    (tmp_path / "hash4096.memh").write_text("0\n")     # stand-ins: parse_args checks they exist
+    ok = cli.parse_args(["--max-loss", "1=1,4=1.5,32=2", "--pst", sys.executable, "--rom-dir", str(tmp_path)])
+    assert ok.max_losses == {1: 1.0, 4: 1.5, 32: 2.0}
 
 
 def test_slurm_job_script_names_the_cluster_options(tmp_path):
