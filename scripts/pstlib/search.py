@@ -302,14 +302,18 @@ def walk(start: Point, evaluate, targets: Targets, knobs: list, structs: list, b
     return {"best": best, "path": path, "archive": archive, "backtracks": used_bt}
 
 
-def pareto(rows: list, area="logic_ge", quality="train_worst") -> list:
+PSNR_EPS = 0.05     # dB: PSNR differences below this are noise (merit's floor too)
+
+
+def pareto(rows: list, area="logic_ge", quality="train_worst", eps=PSNR_EPS) -> list:
     """The rows no other row beats on both (less or equal area and more or equal quality, one
-    strictly), sorted by area."""
+    strictly), sorted by area; a row must beat the cheaper rows' quality by more than EPS dB
+    (a 0.001 dB gain for 50k GE is not a trade-off, and each front point costs an RTL build)."""
     ok = [r for r in rows if r.get(area) is not None and r.get(quality) is not None]
     ok.sort(key=lambda r: (r[area], -r[quality]))
     front, best_q = [], float("-inf")
     for r in ok:
-        if r[quality] > best_q:
+        if r[quality] > best_q + eps:
             front.append(r)
             best_q = r[quality]
     return front

@@ -185,6 +185,10 @@ def test_pareto_front():
     rows = [{"name": n, "logic_ge": a, "train_worst": q} for n, a, q in
             [("a", 10, 30), ("b", 20, 40), ("c", 25, 35), ("d", 30, 50), ("e", 10, 20), ("f", 40, 50)]]
     assert [r["name"] for r in S.pareto(rows)] == ["a", "b", "d"]
+    noisy = [{"name": n, "logic_ge": a, "train_worst": q} for n, a, q in
+             [("a", 10, 44.64), ("b", 12, 44.65), ("c", 13, 44.70), ("d", 14, 44.69)]]
+    assert [r["name"] for r in S.pareto(noisy)] == ["a", "c"]      # b: +0.01 dB is noise
+    assert [r["name"] for r in S.pareto(noisy, eps=0.0)] == ["a", "b", "c"]
     fr = search_report.fronts([dict(r, cpp=1 if r["name"] in "ab" else 4) for r in rows], [1, 4])
     assert [r["name"] for r in fr[1]] == ["a", "b"] and [r["name"] for r in fr[4]] == ["a", "b", "d"]
 
