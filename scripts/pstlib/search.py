@@ -175,11 +175,14 @@ def _sdesc(s: dict) -> str:
     return f"{s['octaves']}oct/{s['noise_units']}u/{s['noise_steps']}st/{s['datapath']}"
 
 
-def scene_loss(ref: dict, r: dict) -> float:
-    """The largest PSNR loss, dB, of R against REF on any scene REF scored (a scene R lacks counts
-    as lost entirely)."""
-    got = r.get("train") or {}
-    return max((p0 - got[s] if got.get(s) is not None else float("inf") for s, p0 in ref.items()), default=0.0)
+def scene_loss(ref: dict, got: dict, missing=float("inf")):
+    """The largest PSNR loss, dB, of GOT (scene -> PSNR) against REF on any scene REF scored; a
+    scene GOT lacks counts as MISSING dB lost (None: left out; None when no scene is left)."""
+    losses = [p0 - got[s] if got.get(s) is not None else missing for s, p0 in ref.items()]
+    losses = [v for v in losses if v is not None]
+    if missing is None:
+        return max(losses) if losses else None
+    return max(losses, default=0.0)
 
 
 def feasible(r: dict, t) -> bool:
@@ -191,7 +194,7 @@ def feasible(r: dict, t) -> bool:
         return False
     if t.fmax > 0 and (r.get("fmax_mhz") is None or r["fmax_mhz"] < t.fmax):
         return False
-    if t.max_loss is not None and t.ref is not None and scene_loss(t.ref, r) > t.max_loss:
+    if t.max_loss is not None and t.ref is not None and scene_loss(t.ref, r.get("train") or {}) > t.max_loss:
         return False
     return True
 
@@ -214,7 +217,7 @@ def merit(here: dict, there: dict, per_scene: bool = False) -> float:
     saving / 0.05 dB: PSNR is a noisy measure of a small change)."""
     saved = here["logic_ge"] - there["logic_ge"]
     if per_scene:
-        lost = max(0.0, scene_loss(here.get("train") or {}, there))
+        lost = max(0.0, scene_loss(here.get("train") or {}, there.get("train") or {}))
     else:
         lost = max(0.0, here["train_worst"] - there["train_worst"])
     return saved / max(lost, 0.05)

@@ -6,7 +6,7 @@ import io
 import pathlib
 
 from . import atomic
-from .search import pareto
+from .search import pareto, scene_loss
 
 VALIDATION_GAP_DB = 3.0     # a front point whose validation PSNR is this far under its training PSNR is flagged
 
@@ -29,11 +29,7 @@ def losses(r: dict, start, max_loss) -> dict:
     MAX_LOSS (the training loss is within it by construction)."""
     if start is None or max_loss is None:
         return {}
-    out = {}
-    for s in ("train", "valid"):
-        ref, got = start.get(s) or {}, r.get(s) or {}
-        out[f"{s}_loss"] = (max((ref[k] - got[k] for k in ref if got.get(k) is not None), default=None)
-                            if ref and got else None)
+    out = {f"{s}_loss": scene_loss(start.get(s) or {}, r.get(s) or {}, missing=None) for s in ("train", "valid")}
     out["valid_loss_flag"] = None if out["valid_loss"] is None else out["valid_loss"] > max_loss
     return out
 

@@ -159,8 +159,8 @@ def test_max_loss_bounds_every_training_scene_not_only_the_worst():
     assert rf["train"]["wrap"] < 59.0                    # the worst-scene rule lets the wrap texture go
     assert pb.doc["noise"]["out_frac"] == doc["noise"]["out_frac"]
     assert pb.doc["formats"]["coord"]["frac"] == doc["formats"]["coord"]["frac"] - 4     # two steps: 0.8 dB
-    assert S.scene_loss({"paper": 40.0, "wrap": 60.0}, rb) == pytest.approx(0.8)
-    assert S.scene_loss({"paper": 40.0, "gone": 50.0}, rb) == float("inf")
+    assert S.scene_loss({"paper": 40.0, "wrap": 60.0}, rb["train"]) == pytest.approx(0.8)
+    assert S.scene_loss({"paper": 40.0, "gone": 50.0}, rb["train"]) == float("inf")
 
 
 def test_losses_against_the_start_and_the_validation_flag():
