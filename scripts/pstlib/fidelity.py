@@ -1,4 +1,4 @@
-"""The ground-truth table of the filter options (issue 11): RMS and PSNR against the N x N ground
+"""The ground-truth table of the filter options: RMS and PSNR against the N x N ground
 truth for the unfiltered image, the paper's filter (the SAT) and each option beyond the paper
 (the trapezoid footprint, bandlimited octaves), per scene and per animated sequence, with the
 flicker of each sequence and the issue's goals, met or missed.
@@ -162,7 +162,7 @@ def markdown(stills, seqs):
         lines.append("")
     gl = goals(stills, seqs)
     if gl:
-        lines += ["Goals (issue 11):", "", "| goal | measured | met |", "|---|---|---|"]
+        lines += ["Goals:", "", "| goal | measured | met |", "|---|---|---|"]
         lines += [f"| {g} | {m} | {'yes' if ok else 'NO'} |" for g, m, ok in gl]
         lines.append("")
     return "\n".join(lines)

@@ -1,4 +1,4 @@
-"""Random textures and scenes (issue 13 item 3): textures the nine paper scenes do not show.
+"""Random textures and scenes: textures the nine paper scenes do not show.
 
 The paper's scenes use axis-aligned octaves at power-of-two frequencies, so a profile tuned on
 them can fail elsewhere (amplitude or matrix bits that give identical images only because the

@@ -1,4 +1,4 @@
-"""Bad input to the `pst` tool, one test per class of issue 10 (found by trying the tool as a
+"""Bad input to the `pst` tool, one test per class of bad input (found by trying the tool as a
 hostile user would): each must give `error: FILE:LINE: FIELD: ...` (or `error: --flag: ...` for
 a flag), exit status 2, and leave no output file behind. Run by ctest (cli_bad_input) with
 PST_BIN set to the built tool; skipped without it."""
