@@ -25,7 +25,7 @@ steps, datapath among those within the class's clocks per pixel).
 A point is evaluated by golden renders (`pst render --model golden`) of the training scenes
 (random scenes of scripts/gen_scenes.py, seed --seed, plus the paper's scenes with --paper) at
 --size: its worst-scene PSNR against the double reference; clocks per pixel from the contract;
-logic GE from a per-module synthesis cache (scripts/pstlib/search_synth.py: a derived module
+logic GE from a per-module synthesis cache (scripts/pstlib/synth/modules.py: a derived module
 is synthesized once per parameter set and source, so a point that changes one format
 re-synthesizes only the modules it reaches; cache in out/search_modules/, shared by searches).
 Points under --synth-floor dB are not synthesized.
@@ -215,8 +215,8 @@ class Job:
 
 def make_evaluator(a, job, stats):
     """evaluate(points, which) -> {name: result}: stored results reused, the rest run on the backend."""
-    from pstlib import liberty, search_synth
-    mc = search_synth.ModuleCache(pathlib.Path(a.module_cache), liberty.osu018_lib(), pathlib.Path(a.rom_dir))
+    from pstlib.synth import liberty, modules
+    mc = modules.ModuleCache(pathlib.Path(a.module_cache), liberty.osu018_lib(), pathlib.Path(a.rom_dir))
 
     def evaluate(points, which=("train",)):
         job.add(points)

@@ -106,15 +106,13 @@ def run_points(todo: list, jobs: int, cached, work, failed, report) -> dict:
 # ----------------------------------------------------------------------------------------------
 # Synthesis cache: out/synth/NAME.json with a sidecar NAME.sweep.json of content keys
 
-SYNTH_MODULES = ("liberty.py", "memarea.py", "sta.py")     # pstlib modules scripts/synth.py uses
-
-
 def synth_inputs(root=ROOT) -> list:
-    """What a gate count depends on besides the profile: the RTL, scripts/synth.py with its pstlib
-    modules and its files in scripts/synth/ (cell libraries, stand-ins, constraints)."""
+    """What a gate count depends on besides the profile: the RTL, the flow (scripts/synth.py and
+    scripts/pstlib/synth/) and its files in scripts/synth/ (cell libraries, stand-ins, constraints)."""
     synth = root / "scripts" / "synth"
+    flow = root / "scripts" / "pstlib" / "synth"
     return [root / "scripts" / "synth.py",
-            *[root / "scripts" / "pstlib" / m for m in SYNTH_MODULES if (root / "scripts" / "pstlib" / m).exists()],
+            *sorted(p for p in flow.glob("*.py") if not p.name.startswith("test_")),
             *sorted(p for p in synth.glob("*") if p.suffix in (".lib", ".v", ".sdc")),
             *sorted((root / "rtl").glob("*.sv"))]
 

@@ -91,11 +91,11 @@ def evaluate(out: pathlib.Path, name: str, which=("train",), module_cache=None, 
     r["render_seconds"] = round(time.time() - t0, 1) + (old or {}).get("render_seconds", 0)
     if _wants_area(r, job) and r.get("logic_ge") is None:
         if module_cache is None:
-            from . import liberty, search_synth
-            module_cache = search_synth.ModuleCache(pathlib.Path(job["module_cache"]), liberty.osu018_lib(),
+            from .synth import liberty, modules
+            module_cache = modules.ModuleCache(pathlib.Path(job["module_cache"]), liberty.osu018_lib(),
                                                     pathlib.Path(job["rom_dir"]))
         try:
-            a = module_cache.area(prof)
+            a = module_cache.area(doc)
         except Exception as e:           # a tool failure: recorded, the search goes on
             r.update(status="failed", error=f"synthesis: {type(e).__name__}: {tail(str(e), 5)}")
             atomic.write_text(path, json.dumps(r, indent=1) + "\n")

@@ -6,7 +6,7 @@ import subprocess
 
 import pytest
 
-from pstlib import fanout
+from pstlib.synth import fanout
 
 NETLIST = r"""module leaf(clk_i, en_i, d_i, q_o);
   input clk_i;

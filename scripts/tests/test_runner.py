@@ -145,6 +145,6 @@ def test_run_points_interrupted_stops_and_raises():
 def test_synth_inputs_cover_the_rtl_and_the_synthesis_scripts():
     from conftest import ROOT
     names = {p.relative_to(ROOT).as_posix() for p in runner.synth_inputs()}
-    assert {"scripts/synth.py", "rtl/pst_top.sv", "scripts/synth/cells.lib"} <= names
+    assert {"scripts/synth.py", "scripts/pstlib/synth/flow.py", "rtl/pst_top.sv", "scripts/synth/cells.lib"} <= names
     assert all((ROOT / n).is_file() for n in names)
     assert "scripts/synth/baseline.json" not in names          # results, not inputs

@@ -6,7 +6,7 @@ import sys
 
 import pytest
 
-from pstlib import contract, search_eval, search_report, search_slurm, search_synth
+from pstlib import contract, search_eval, search_report, search_slurm
 from pstlib import search as S
 from pstlib.paths import ROOT
 
@@ -240,34 +240,6 @@ def test_slurm_job_script_names_the_cluster_options(tmp_path):
     assert {"#SBATCH --partition=gpu", "#SBATCH --account=hw", "#SBATCH --time=00:30:00", "#SBATCH --mem=4G"} <= set(lines)
     assert lines[-1].endswith(f"worker {tmp_path} b1.names train,valid")
     assert "--partition" not in search_slurm.job_script(tmp_path, "b1", 1, ("train",))
-
-
-def test_module_hierarchy_counts_instances():
-    stat = {"modules": {"\\top": {"num_cells_by_type": {"$paramod\\a": 2, "NAND2X1": 5}},
-                        "$paramod\\a": {"num_cells_by_type": {"$paramod\\b": 3}},
-                        "$paramod\\b": {"num_cells_by_type": {"INVX1": 1}}}}
-    subs = search_synth.hierarchy_of(stat)
-    assert search_synth.instance_counts(subs, "\\top") == {"\\top": 1, "$paramod\\a": 2, "$paramod\\b": 6}
-
-
-def test_blocks_follow_the_holder_like_synth_py():
-    # pst_mul_booth and pst_delay are not in synth.py's BLOCKS: they count in the block of the
-    # instance holding them (noise under a lerp, octave accumulation under a term), not in control.
-    subs = {"\\pst_top": {"$paramod\\pst_noise_lerp": 2, "$paramod\\pst_octave_term": 1, "$paramod\\pst_delay": 1},
-            "$paramod\\pst_noise_lerp": {"$paramod\\pst_mul_booth": 3},
-            "$paramod\\pst_octave_term": {"$paramod\\pst_mul_booth": 1},
-            "$paramod\\pst_mul_booth": {}, "$paramod\\pst_delay": {}}
-    got = search_synth.block_counts(subs, "\\pst_top")
-    assert got[("$paramod\\pst_mul_booth", "noise")] == 6
-    assert got[("$paramod\\pst_mul_booth", "octave accumulation")] == 1
-    assert got[("$paramod\\pst_delay", "control")] == 1 and got[("\\pst_top", "control")] == 1
-
-
-def test_module_key_changes_with_parameters_source_and_flow():
-    k = search_synth.module_key("$paramod$abc\\pst_noise_lerp", "flow1")
-    assert k == search_synth.module_key("$paramod$abc\\pst_noise_lerp", "flow1")
-    assert k != search_synth.module_key("$paramod$abd\\pst_noise_lerp", "flow1")
-    assert k != search_synth.module_key("$paramod$abc\\pst_noise_lerp", "flow2")
 
 
 def test_fmax_is_asked_only_of_feasible_candidates_and_enforced():

@@ -8,7 +8,8 @@ import subprocess
 
 import pytest
 
-from pstlib import baseline, liberty, memarea, sta
+from pstlib import baseline
+from pstlib.synth import liberty, memarea, sta
 
 FIX = pathlib.Path(__file__).resolve().parent / "fixtures" / "synth"
 SCRIPTS = pathlib.Path(__file__).resolve().parent.parent
@@ -233,28 +234,13 @@ def test_register_names_from_the_netlist():
     assert sta.register_name("rst_ni", mods, "pst_top") == "rst_ni"
 
 
-def test_shared_leaves_are_listed_per_holder_with_their_total_area():
-    # Regression: synth.md once listed "pst_delay 168 x 5,368" where 5,368 GE was the LARGEST
-    # derived pst_delay, not the mean (the 168 cost 148k GE, not 0.9M). Each module row now
-    # carries its total area, and a shared leaf (pst_mul_booth, pst_delay) is split by holder.
-    import sys
-    sys.path.insert(0, str(SCRIPTS))
-    import synth
-    cells = {"NAND2X1": 24.0, "DFFPOSX1": 96.0}
-    stat = {"modules": {
-        "\\pst_top": {"num_cells_by_type": {"$paramod$1\\pst_noise_lerp": 2, "$paramod$2\\pst_delay": 1}},
-        "$paramod$1\\pst_noise_lerp": {"num_cells_by_type": {"$paramod$3\\pst_mul_booth": 2,
-                                                             "$paramod$4\\pst_mul_booth": 1, "NAND2X1": 1}},
-        "$paramod$3\\pst_mul_booth": {"num_cells_by_type": {"NAND2X1": 10}},
-        "$paramod$4\\pst_mul_booth": {"num_cells_by_type": {"NAND2X1": 40}},
-        "$paramod$2\\pst_delay": {"num_cells_by_type": {"DFFPOSX1": 3}}}}
-    a = synth.analyse(stat, "", cells, {"DFFPOSX1"}, [{"module": "$paramod$1\\pst_noise_lerp", "memory": "rom"},
-                                                      {"module": "\\$paramod$4\\pst_mul_booth", "memory": "t"}])
-    assert a["mem_instances"] == {("$paramod$1\\pst_noise_lerp", "rom"): 2,
-                                  ("\\$paramod$4\\pst_mul_booth", "t"): 2}     # memories per instance
-    booth = a["blocks"]["noise"]["modules"]["pst_mul_booth in pst_noise_lerp"]
-    assert booth["instances"] == 6 and booth["area"] == 2 * (2 * 10 + 40) * 24.0
-    assert a["blocks"]["noise"]["modules"]["pst_noise_lerp"]["area"] == 2 * 24.0
-    top_delay = a["blocks"]["control"]["modules"]["pst_delay in pst_top"]
-    assert top_delay["area"] == 3 * 96.0 and a["blocks"]["control"]["ffs"] == 3
-    assert a["blocks"]["noise"]["area"] == 2 * 24.0 + 2 * 60 * 24.0
+def test_synth_cli_rejects_a_bad_profile_before_any_tool_runs(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text((SCRIPTS.parent / "rtl" / "configs" / "reduced.toml").read_text().replace(
+        "octaves = 5", "octaves = 99"))
+    out = tmp_path / "out"
+    r = subprocess.run(["/usr/bin/python3", str(SCRIPTS / "synth.py"), str(bad), "--out", str(out)],
+                       capture_output=True, text=True)
+    assert r.returncode == 2
+    assert re.fullmatch(rf"error: {re.escape(str(bad))}:\d+: pipeline.octaves: .*\n", r.stderr)
+    assert not out.exists()

@@ -1,49 +1,30 @@
-"""Logic area of a profile from a per-module synthesis cache (issue 13: a search point that
-changes one format re-synthesizes only the modules that format reaches).
+"""Logic area of a profile from a per-module synthesis cache: a profile that changes one format
+re-synthesizes only the modules that format reaches (what the design-space search uses).
 
-scripts/synth.py synthesizes pst_top hierarchically: every module once per parameter set. The
-same flow here is split in two Yosys runs:
+The flow of pstlib.synth.flow split in two Yosys runs:
 1. elaboration only (`hierarchy` after the profile's chparam; seconds): the derived modules,
    each named by Yosys from its parameter values ($paramod$<sha1 of the parameters>\\NAME, or
    the values spelled out), and which module instantiates which, how often;
 2. synthesis of the derived modules not in the cache (the others are turned into black boxes
-   first, so their instances stay cells and cost nothing), with synth.py's own mapping (its
-   ABC script, constraints, flip-flop legalization, memory stand-ins): stat per module.
+   first, so their instances stay cells and cost nothing), with the flow's own mapping
+   (pstlib.synth.tools.map_lines): stat per module.
 A module's cache key is its derived name (its parameter values), the text of its source file,
-rtl/pst_pkg.sv and rtl/*.svh, and the flow (synth.py's ABC line and scripts/synth/ files):
-a change elsewhere in rtl/ keeps it. Area = sum over derived modules of instances x own cells'
-area, as synth.py counts it (memories outside: stand-ins without area). Fmax is not part of
-this (it needs the whole netlist): scripts/synth.py gives it for the points that need it.
+rtl/pst_pkg.sv and rtl/*.svh, and the flow (the ABC line, pstlib/synth/*.py and the
+scripts/synth/ files): a change elsewhere in rtl/ keeps it. Area = sum over derived modules of
+instances x own cells' area, as the flow counts it (memories outside: stand-ins without area).
+Fmax is not part of this (it needs the whole netlist): pstlib.synth.flow gives it.
 """
 import hashlib
 import json
 import pathlib
-import subprocess
 import tempfile
 import time
 
-from . import atomic, liberty
-from .paths import PY, ROOT
-
-
-
-def _synth_module():
-    """scripts/synth.py imported as a module (its flow constants and script pieces)."""
-    import importlib.util
-    spec = importlib.util.spec_from_file_location("pst_synth_script", ROOT / "scripts" / "synth.py")
-    mod = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(mod)
-    return mod
-
-
-_SYN = None
-
-
-def syn():
-    global _SYN
-    if _SYN is None:
-        _SYN = _synth_module()
-    return _SYN
+from .. import atomic
+from ..paths import ROOT, rtl_source
+from . import blocks, liberty
+from .tools import (ABC_CONSTR, ABC_DELAY_PS, ABC_SCRIPT, SYNTH_DIR, base_name, hierarchy_of, map_lines,
+                    parse_stat_json, read_lines, run_yosys)
 
 
 def _sha(*parts) -> str:
@@ -56,54 +37,15 @@ def _sha(*parts) -> str:
 
 def flow_salt(lib: pathlib.Path) -> str:
     """What every module's gates depend on besides its source: the mapping and the cell library."""
-    s = syn()
-    files = [ROOT / "scripts" / "synth.py", lib, *sorted((ROOT / "scripts" / "synth").glob("*.v"))]
-    return _sha(s.ABC_SCRIPT, s.ABC_DELAY_PS, s.ABC_CONSTR, "module-flow-1", *[f.read_bytes() for f in files])
-
-
-def source_of(base: str) -> pathlib.Path:
-    return ROOT / "rtl" / f"{base}.sv"
+    files = [*sorted(pathlib.Path(__file__).parent.glob("*.py")), lib, *sorted(SYNTH_DIR.glob("*.v"))]
+    return _sha(ABC_SCRIPT, ABC_DELAY_PS, ABC_CONSTR, "module-flow-1", *[f.read_bytes() for f in files])
 
 
 def module_key(derived: str, salt: str) -> str:
-    base = syn().base_name(derived)
-    shared = [ROOT / "rtl" / "pst_pkg.sv", *sorted((ROOT / "rtl").glob("*.svh"))]
-    src = source_of(base)
-    texts = [p.read_bytes() for p in ([src] if src.exists() else []) + shared]
+    shared = [rtl_source("pst_pkg"), *sorted((ROOT / "rtl").rglob("*.svh"))]
+    src = rtl_source(base_name(derived))
+    texts = [p.read_bytes() for p in ([src] if src else []) + [p for p in shared if p]]
     return _sha(derived, salt, *texts)
-
-
-def _chparams(profile: pathlib.Path) -> list:
-    out = subprocess.run([PY, str(ROOT / "scripts" / "profile.py"), str(profile), "--yosys"],
-                         check=True, capture_output=True, text=True).stdout.splitlines()
-    return [f"{line} pst_top" for line in out if line.strip()]
-
-
-def _read_lines(profile, rom_dir, lib) -> list:
-    sources = " ".join(str(p) for p in sorted((ROOT / "rtl").glob("*.sv")))
-    s = syn()
-    return [f"read_liberty -lib {lib}", f"read_verilog -lib {s.STANDIN_CELLS}",
-            f'read_verilog -sv -D SYNTHESIS -D PST_ROM_DIR="{rom_dir}" {sources}',
-            *_chparams(profile), "chparam -set DebugProbes 0 pst_top"]
-
-
-def _yosys(script: str, tmp: pathlib.Path, tag: str, yosys="yosys") -> float:
-    path = tmp / f"{tag}.ys"
-    path.write_text(script)
-    t0 = time.time()
-    r = subprocess.run([yosys, "-q", "-e", "implicitly declared|has no driver", "-l", str(tmp / f"{tag}.log"),
-                        "-s", str(path)], capture_output=True, text=True)
-    if r.returncode != 0:
-        log = tmp / f"{tag}.log"
-        tail = "\n".join(log.read_text().splitlines()[-30:]) if log.exists() else ""
-        raise RuntimeError(f"yosys ({tag}) failed:\n{tail}\n{r.stderr}")
-    return time.time() - t0
-
-
-def hierarchy_of(stat: dict) -> dict:
-    """Derived module -> {sub-module: instances} from an elaborated design's `stat -json`."""
-    mods = stat["modules"]
-    return {m: {c: n for c, n in v.get("num_cells_by_type", {}).items() if c in mods} for m, v in mods.items()}
 
 
 def instance_counts(subs: dict, top: str) -> dict:
@@ -120,45 +62,38 @@ def instance_counts(subs: dict, top: str) -> dict:
 def block_counts(subs: dict, top: str) -> dict:
     """(derived module, block) -> instances, as synth.py counts blocks (synth.block_instances)."""
     count = {}
-    for (name, b, _), k in syn().block_instances(subs, top).items():
+    for (name, b, _), k in blocks.block_instances(subs, top).items():
         count[(name, b)] = count.get((name, b), 0) + k
     return count
 
 
-def elaborate(profile: pathlib.Path, rom_dir: pathlib.Path, lib: pathlib.Path, tmp: pathlib.Path) -> dict:
+def elaborate(doc: dict, rom_dir: pathlib.Path, lib: pathlib.Path, tmp: pathlib.Path) -> dict:
     """Derived modules of the profile's pst_top and their instance counts (Yosys `hierarchy`)."""
-    script = "\n".join(_read_lines(profile, rom_dir, lib) + [
+    script = "\n".join(read_lines(doc, rom_dir, lib) + [
         "hierarchy -check -top pst_top", f"tee -q -o {tmp}/hier.json stat -json"]) + "\n"
-    _yosys(script, tmp, "elab")
-    subs = hierarchy_of(syn().parse_stat_json((tmp / "hier.json").read_text()))
-    top = next(m for m in subs if syn().base_name(m) == "pst_top")
+    run_yosys(script, tmp, "elab")
+    subs = hierarchy_of(parse_stat_json((tmp / "hier.json").read_text()))
+    top = next(m for m in subs if base_name(m) == "pst_top")
     return {"subs": subs, "top": top, "count": instance_counts(subs, top)}
 
 
-def synthesize_modules(profile, rom_dir, lib, tmp: pathlib.Path, keep: set, all_mods: list) -> dict:
+def synthesize_modules(doc: dict, rom_dir, lib, tmp: pathlib.Path, keep: set, all_mods: list) -> dict:
     """Synthesizes every derived module except KEEP (black boxes): name -> {area, ffs, cells}."""
-    s = syn()
-    (tmp / "abc.constr").write_text(s.ABC_CONSTR)
-    lines = _read_lines(profile, rom_dir, lib) + ["hierarchy -check -top pst_top"]
+    (tmp / "abc.constr").write_text(ABC_CONSTR)
+    lines = read_lines(doc, rom_dir, lib) + ["hierarchy -check -top pst_top"]
     bb = [m for m in all_mods if m in keep]
     if bb:
         lines.append("blackbox " + " ".join(_yname(m) for m in bb))
     lines += [
         "synth -top pst_top -run :fine",
         "opt -fast -full",
-        f"techmap -map {s.STANDIN_MAP} t:$mem_v2",
-        "techmap", "opt -fast", "async2sync", "dfflegalize -cell $_DFF_P_ 01",
-        s.abc_line(lib, tmp / "abc.constr"),
-        "opt_clean -purge",
-        f"dfflibmap -liberty {lib}",
-        "opt_clean -purge",
-        f"tee -q -o {tmp}/stat.json stat -json",
+        *map_lines(lib, tmp),
     ]
-    secs = _yosys("\n".join(lines) + "\n", tmp, "synth")
+    secs = run_yosys("\n".join(lines) + "\n", tmp, "synth")
     lib_text = lib.read_text()
     areas = liberty.cell_areas(lib_text)
     ffc = liberty.flip_flop_cells(lib_text)
-    stat = s.parse_stat_json((tmp / "stat.json").read_text())
+    stat = parse_stat_json((tmp / "stat.json").read_text())
     out = {}
     for name, m in stat["modules"].items():
         if name in keep or name.lstrip("\\") in {k.lstrip("\\") for k in keep}:
@@ -195,12 +130,12 @@ class ModuleCache:
     def put(self, key, rec):
         atomic.write_text(self.dir / f"{key}.json", json.dumps(rec, indent=1) + "\n")
 
-    def area(self, profile: pathlib.Path) -> dict:
+    def area(self, doc: dict) -> dict:
         """Logic GE of the profile (blocks, per module) and how many modules were synthesized now."""
         t0 = time.time()
         with tempfile.TemporaryDirectory(prefix="pst_modsyn_") as t:
             tmp = pathlib.Path(t)
-            h = elaborate(profile, self.rom_dir, self.lib, tmp)
+            h = elaborate(doc, self.rom_dir, self.lib, tmp)
             keys = {m: module_key(m, self.salt) for m in h["count"]}
             have = {m: self.get(k) for m, k in keys.items()}
             missing = {m for m, r in have.items() if r is None}
@@ -218,31 +153,31 @@ class ModuleCache:
             secs = 0.0
             if todo:
                 keep = set(h["count"]) - todo
-                r = synthesize_modules(profile, self.rom_dir, self.lib, tmp, keep, list(h["count"]))
+                r = synthesize_modules(doc, self.rom_dir, self.lib, tmp, keep, list(h["count"]))
                 secs = r["seconds"]
                 got = {k.lstrip("\\"): v for k, v in r["modules"].items()}
                 for m in todo:
                     rec = got.get(m.lstrip("\\"))
                     if rec is None:
                         raise RuntimeError(f"module {m}: not in the synthesized design's stat")
-                    rec = dict(rec, module=m, base=syn().base_name(m))
+                    rec = dict(rec, module=m, base=base_name(m))
                     self.put(keys[m], rec)
                     have[m] = rec
-        blocks = {}
+        per_block = {}
         modules = {}
         total = 0.0
         for (m, b), n in block_counts(h["subs"], h["top"]).items():
-            blocks[b] = blocks.get(b, 0.0) + n * have[m]["area_um2"]
+            per_block[b] = per_block.get(b, 0.0) + n * have[m]["area_um2"]
         for m, n in h["count"].items():
             rec = have[m]
             a = n * rec["area_um2"]
             total += a
-            base = syn().base_name(m)
+            base = base_name(m)
             e = modules.setdefault(base, {"instances": 0, "ge": 0.0})
             e["instances"] += n
             e["ge"] += a / self.ge_um2
         return {"logic_ge": round(total / self.ge_um2),
-                "blocks": {b: round(v / self.ge_um2) for b, v in blocks.items()},
+                "blocks": {b: round(v / self.ge_um2) for b, v in per_block.items()},
                 "modules": {k: {"instances": v["instances"], "ge": round(v["ge"])} for k, v in sorted(modules.items())},
                 "flip_flops": sum(n * have[m]["flip_flops"] for m, n in h["count"].items()),
                 "modules_synthesized": len(todo), "modules_total": len(h["count"]),

@@ -1,0 +1,222 @@
+"""The silicon report of one profile: the JSON record (blocks, memories, timing, throughput)
+and its Markdown."""
+import json
+import pathlib
+
+from .. import contract
+from . import fanout, liberty, sta
+from .tools import ABC_CONSTR, ABC_DELAY_PS, ABC_SCRIPT, SDC, tool_version
+
+REALTIME_MPIX = 640 * 480 * 60 * 2 / 1e6   # 640 x 480, 60 Hz, depth complexity 2
+PAPER_GATES = {"reduced": 100_000, "full": 1_250_000}
+# Path-group key (top-level block) -> pipeline stage it ends in.
+STAGE_OF = {
+    "u_reg_a": "[A] input register",
+    "(top)": "octave stage [A] -> [B] (sequencer, accumulators)",
+    "pst_quadric": "octave stage [A] -> [B] (quadric)",
+    "pst_quadric_serial": "octave stage [A] -> [B] (quadric)",
+    "pst_octave_transform": "octave stage [A] -> [B] (octave transform)",
+    "pst_noise": "octave stage [A] -> [B] (noise unit)",
+    "pst_octave_term": "octave stage [A] -> [B] (octave term)",
+    "pst_octave_stage": "octave stage [A] -> [B]",
+    "pst_width_stage": "filter width [B] -> [C]",
+    "pst_colour_stage": "colour-table filter [C] -> [D]",
+    "u_reg_b": "octave stage [A] -> [B] (into [B])",
+    "pst_step_counter": "serial step counters",
+    "pst_filter_width": "filter width [B] -> [C]",
+    "u_reg_c": "filter width [B] -> [C] (into [C])",
+    "pst_clut_filter": "colour-table filter [C] -> [D]",
+    "u_reg_d": "colour-table filter [C] -> [D] (into [D])",
+}
+
+
+def clocks_per_pixel(prof: dict) -> int:
+    """The pipeline's clocks per pixel (the slowest stage: pstlib.contract.stage_cycles, the
+    docs' cycle table; model/golden/profile.h cyclesPerPixel for the octave stage)."""
+    return contract.stage_cycles(prof)["pixel"]
+
+
+def regress_cpp(regress: pathlib.Path, name: str):
+    """Measured clocks per pixel of `pst regress` (out/regress.json), max over scenes."""
+    if not regress.exists():
+        return None
+    try:
+        runs = [r for r in json.loads(regress.read_text()) if r.get("profile") == name]
+    except (ValueError, AttributeError):
+        return None
+    return max((r["cycles_per_pixel"] for r in runs), default=None)
+
+
+def fanout_summary(per_module: dict, a: dict, cell_area: float, ge: float) -> dict:
+    """Inserted fanout buffers: instances in the flattened design, area, per block."""
+    per = {m.lstrip("\\"): k for m, k in per_module.items()}
+    blocks = {}
+    for (name, b, _), k in a["held"].items():
+        n = k * per.get(name.lstrip("\\"), 0)
+        if n:
+            blocks[b] = blocks.get(b, 0) + n
+    total = sum(blocks.values())
+    return {"cell": fanout.CELL, "min_instances": fanout.MIN_INSTANCES, "in_netlist": sum(per.values()),
+            "instances": total, "area_um2": round(total * cell_area), "ge": round(total * cell_area / ge),
+            "blocks": blocks}
+
+
+def timing_result(rep: str, sta_out: str, name=lambda p: p) -> dict:
+    period = sta.sdc_period(SDC.read_text())
+    groups = sta.parse_groups(sta_out)
+    paths = sta.parse_checks(rep)
+    if not paths:
+        raise RuntimeError("OpenSTA reported no path")
+    stages = []
+    for p in paths:
+        g = groups.get(p["group"], {"key": p["group"], "instance": "", "module": ""})
+        stages.append({"group": g["key"], "stage": STAGE_OF.get(g["key"], g["key"]),
+                       "startpoint": name(p["startpoint"]), "endpoint": name(p["endpoint"]),
+                       "arrival_ns": p["arrival"], "slack_ns": p["slack"],
+                       "min_period_ns": round(period - p["slack"], 3), "cells": len(p["cells"]),
+                       "through": p["through"]})
+    worst = min(stages, key=lambda s: s["slack_ns"])
+    return {"period_ns": period, "wns_ns": worst["slack_ns"], "fmax_mhz": round(sta.fmax_mhz(period, worst["slack_ns"]), 1),
+            "worst": worst, "stages": stages}
+
+
+def assemble(name, profile, prof, a, a_old, ge, old_ge, memories, timing, times, lib, opts) -> dict:
+    """The JSON record of one synthesis (OPTS: the flow's options, for the tools and the regress file)."""
+    blocks = {}
+    for b in a["blocks"]:
+        v = a["blocks"][b]
+        blocks[b] = {"area_um2": round(v["area"]), "logic_ge": round(v["area"] / ge), "flip_flops": v["ffs"],
+                     "cells": v["cells"],
+                     "logic_ge_cells_lib": round(a_old["blocks"][b]["area"] / old_ge) if a_old and b in a_old["blocks"] else None,
+                     "modules": {m: {"instances": e["instances"], "ge": round(e["area"] / ge),
+                                     "ge_each": round(e["area"] / ge / e["instances"]), "depth": e["depth"]}
+                                 for m, e in sorted(v["modules"].items(), key=lambda kv: -kv[1]["area"])}}
+    logic_area = sum(v["area"] for v in a["blocks"].values())
+    mem_area = sum(m["area_um2"] for m in memories)
+    cpp = clocks_per_pixel(prof)
+    res = {
+        "profile": name, "profile_file": str(profile),
+        "library": {"file": str(lib), "name": "osu018_stdcells (qflow-tech-osu018), typical 1.8 V 25 C",
+                    "ge_cell": liberty.REFERENCE_CELL, "ge_um2": ge},
+        "tools": {"yosys": tool_version([opts.yosys, "-V"]), "opensta": tool_version([opts.sta, "-version"])},
+        "mapping": f"abc -liberty -D {ABC_DELAY_PS} -script {ABC_SCRIPT} (area map, buffered, sized); {ABC_CONSTR!r}",
+        "seconds": {k: round(v, 1) for k, v in times.items()},
+        "yosys_seconds": round(times["yosys"], 1),
+        "logic_area_um2": round(logic_area), "logic_ge": round(logic_area / ge),
+        "logic_ge_cells_lib": round(sum(v["area"] for v in a_old["blocks"].values()) / old_ge) if a_old else None,
+        "flip_flops": sum(v["ffs"] for v in a["blocks"].values()),
+        "blocks": blocks, "memories": memories,
+        "memory_area_um2": round(mem_area), "memory_ge": round(mem_area / ge),
+        "total_area_um2": round(logic_area + mem_area), "total_area_mm2": round((logic_area + mem_area) / 1e6, 3),
+        "total_ge": round((logic_area + mem_area) / ge),
+        "rom_bits": sum(m["instances"] * m["bits_each"] for m in memories if m["kind"] == "ROM"),
+        "ram_bits": sum(m["instances"] * m["bits_each"] for m in memories if m["kind"] == "RAM"),
+        "clocks_per_pixel": cpp,
+        "clocks_per_pixel_regress": regress_cpp(pathlib.Path(opts.regress), name),
+        "paper_gates": PAPER_GATES.get(name),
+        "timing": timing,
+    }
+    if timing:
+        mpix = timing["fmax_mhz"] / cpp
+        res["throughput"] = {"fmax_mhz": timing["fmax_mhz"], "mpixel_s": round(mpix, 2),
+                             "realtime_mpixel_s": round(REALTIME_MPIX, 1), "meets_realtime": mpix >= REALTIME_MPIX,
+                             "area_time_ge_clocks": round(res["logic_ge"] * cpp),
+                             "area_time_total_ge_clocks": round(res["total_ge"] * cpp)}
+        # Headline numbers at the top level too (the report's side-by-side summary reads those).
+        res["fmax_mhz"] = timing["fmax_mhz"]
+        res["mpixel_s"] = res["throughput"]["mpixel_s"]
+        res["area_time_ge_clocks"] = res["throughput"]["area_time_ge_clocks"]
+        res["worst_path_ns"] = round(timing["period_ns"] - timing["wns_ns"], 3)
+        stage_ns = {}
+        for s in timing["stages"]:
+            stage_ns[s["stage"]] = max(stage_ns.get(s["stage"], 0.0), s["min_period_ns"])
+        res["critical_path_ns"] = dict(sorted(stage_ns.items(), key=lambda kv: -kv[1]))
+    return res
+
+
+def markdown(r: dict) -> str:
+    ge = r["library"]["ge_um2"]
+    md = [f"## Silicon: profile `{r['profile']}`\n",
+          f"OSU 0.18 um standard cells (qflow-tech-osu018, typical), Yosys hierarchical synthesis "
+          f"({r['seconds'].get('yosys', 0):.0f} s), memories synthesized alone ({r['seconds'].get('memories', 0):.0f} s)"
+          + (f", OpenSTA on the flat netlist ({r['seconds'].get('sta', 0):.0f} s)" if r["timing"] else ", no timing run")
+          + f". GE = area / NAND2X1 ({ge:g} um^2). Tools: {r['tools']['yosys']}; OpenSTA {r['tools']['opensta']}.\n"]
+    t = r.get("throughput")
+    md += ["| figure | value |", "|---|---:|",
+           f"| logic | {r['logic_ge']:,} GE ({r['logic_area_um2'] / 1e6:.3f} mm^2) |",
+           f"| memories (see below) | {r['memory_ge']:,} GE ({r['memory_area_um2'] / 1e6:.3f} mm^2) |",
+           f"| **total area** | **{r['total_ge']:,} GE ({r['total_area_mm2']:.3f} mm^2)** |",
+           f"| flip-flops | {r['flip_flops']:,} |",
+           f"| ROM / RAM bits | {r['rom_bits']:,} / {r['ram_bits']:,} |"]
+    fob = r.get("fanout_buffers")
+    if fob:
+        md.append(f"| fanout buffers (in the logic above, in the blocks holding them) | {fob['instances']:,} {fob['cell']} "
+                  f"({fob['ge']:,} GE; {fob['in_netlist']:,} in the hierarchical netlist; nets into >= "
+                  f"{fob['min_instances']} sub-module instances; "
+                  + ", ".join(f"{b} {n:,}" for b, n in fob["blocks"].items()) + ") |")
+    if r.get("paper_gates"):
+        md.append(f"| paper's gate count | {r['paper_gates']:,} |")
+    if r["logic_ge_cells_lib"] is not None:
+        md.append(f"| logic, old basis (cells.lib, generic, not comparable) | {r['logic_ge_cells_lib']:,} GE |")
+    cpp_m = r.get("clocks_per_pixel_regress")
+    md.append(f"| clocks per pixel | {r['clocks_per_pixel']}"
+              + (f" (pst regress: {cpp_m:.3f})" if cpp_m is not None else "") + " |")
+    if t:
+        w = r["timing"]["worst"]
+        md += [f"| Fmax (OpenSTA) | {t['fmax_mhz']:.1f} MHz (worst slack {r['timing']['wns_ns']:+.2f} ns at "
+               f"{r['timing']['period_ns']:g} ns) |",
+               f"| throughput | {t['mpixel_s']:.2f} Mpixel/s ({'meets' if t['meets_realtime'] else 'misses'} "
+               f"640x480 60 Hz depth 2: {t['realtime_mpixel_s']} Mpixel/s) |",
+               f"| area-time (logic GE x clocks/pixel) | {t['area_time_ge_clocks']:,} |",
+               f"| worst path | {w['stage']}: {w['startpoint']} -> {w['endpoint']} through "
+               f"{', '.join(w.get('through', []))}, {w['arrival_ns']:.2f} ns ({w['cells']} cells) |"]
+    md.append("")
+    md += ["| block | logic GE (OSU018) | area um^2 | flip-flops | GE old basis (cells.lib) | modules (GE in all instances = instances x mean GE each, depth in cells) |",
+           "|---|---:|---:|---:|---:|---|"]
+    for b, v in r["blocks"].items():
+        mods = ", ".join(f"{m} {e['ge']:,} = {e['instances']} x {e['ge_each']:,} (depth {e['depth']})"
+                         for m, e in v["modules"].items())
+        old = f"{v['logic_ge_cells_lib']:,}" if v["logic_ge_cells_lib"] is not None else "-"
+        md.append(f"| {b} | {v['logic_ge']:,} | {v['area_um2']:,} | {v['flip_flops']:,} | {old} | {mods} |")
+    old = f"{r['logic_ge_cells_lib']:,}" if r["logic_ge_cells_lib"] is not None else "-"
+    md.append(f"| **total** | **{r['logic_ge']:,}** | **{r['logic_area_um2']:,}** | **{r['flip_flops']:,}** | {old} | |")
+    md.append("")
+    md += ["Memories (scripts/pstlib/memarea.py): each distinct ROM synthesized alone to OSU018 cells with "
+           "one read port and counted once per read port (replication; a 1999 mask ROM would be denser: an "
+           "upper bound); delay address to data by OpenSTA (BUFX2-driven address, 0.02 pF load). RAMs: one "
+           "SRAM macro per read port, 13.5 um^2 per bit (the 6T cell of GlobalFoundries' published 180 nm "
+           "SRAM macros) over an assumed 0.5 array efficiency; built from OSU018 flip-flops instead they "
+           "cost the last column (fit to a 256 x 32 RAM synthesized here). The delays are the stand-in "
+           "cells' in the design's timing.\n",
+           "| memory | kind | instances | words x bits | read / write ports | bits | GE each (all ports) | GE | delay ns | flip-flop RAM GE |",
+           "|---|---|---:|---|---|---:|---:|---:|---:|---:|"]
+    for m in r["memories"]:
+        flop = f"{m['flop_ram_ge']:,}" if m.get("flop_ram_ge") is not None else "-"
+        md.append(f"| {m['module']}.{m['memory']} | {m['kind']} | {m['instances']} | {m['size']} x {m['width']} | "
+                  f"{m['read_ports']} / {m['write_ports']} | {m['instances'] * m['bits_each']:,} | {m['ge_each']:,} | "
+                  f"{m['ge']:,} | {m['delay_ns']:.2f} | {flop} |")
+    md.append(f"| **total** | | | | | ROM {r['rom_bits']:,}, RAM {r['ram_bits']:,} | | **{r['memory_ge']:,}** | |")
+    md.append("")
+    opts = [m for m in r["memories"] if m.get("port_options")]
+    if opts:
+        md += ["Port options of the many-ported ROMs (the RTL banks the noise unit's hash table "
+               "even/odd and its value table by address mod 4: the rows above are the banks; the options "
+               "left on a bank are one copy per read port, as built and counted, or its lookups "
+               "scheduled over fewer ports):\n",
+               "| memory | option | copies | GE per instance | GE all instances | cycles factor | note |",
+               "|---|---|---:|---:|---:|---:|---|"]
+        for m in opts:
+            for o in m["port_options"]:
+                md.append(f"| {m['module']}.{m['memory']} | {o['option']} | {o['copies']} | {o['ge']:,} | "
+                          f"{o['total_ge']:,} | {o['cycles_factor']} | {o['note']} |")
+        md.append("")
+    if r["timing"]:
+        md += [f"Critical path per stage (OpenSTA, scripts/synth/pst.sdc: {r['timing']['period_ns']:g} ns target; "
+               "worst path into each block's registers):\n",
+               "| stage (block) | start point | end point | through | arrival ns | slack ns | min period ns | cells |",
+               "|---|---|---|---|---:|---:|---:|---:|"]
+        for s in sorted(r["timing"]["stages"], key=lambda s: s["slack_ns"]):
+            md.append(f"| {s['stage']} | `{s['startpoint']}` | `{s['endpoint']}` | {', '.join(s.get('through', []))} | "
+                      f"{s['arrival_ns']:.2f} | {s['slack_ns']:+.2f} | {s['min_period_ns']:.2f} | {s['cells']} |")
+        md.append("")
+    return "\n".join(md) + "\n"
