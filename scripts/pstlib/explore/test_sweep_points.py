@@ -4,8 +4,9 @@ import tomllib
 
 import pytest
 
-from conftest import ROOT
-from pstlib import contract, sweep
+from pstlib import contract
+from pstlib.explore import sweep
+from pstlib.paths import ROOT
 
 REDUCED = ROOT / "rtl" / "configs" / "reduced.toml"
 FULL = ROOT / "rtl" / "configs" / "full.toml"
@@ -116,10 +117,10 @@ def test_make_points_writes_one_change_per_point(tmp_path):
     mip = points[2]
     assert mip.profile == REDUCED and mip.synth_name == "reduced"       # the same hardware
     assert tomllib.loads(mip.scene_files["marble"].read_text())["textures"]["marble"]["filter"] == "mip"
-    assert len({base.profile_sha, *(p.profile_sha for p in points)}) == 4
+    assert len({base.sha, *(p.sha for p in points)}) == 4
     # again: same files, same content hashes
     base2, points2, _, _ = sweep.make_points(a, tmp_path)
-    assert [p.profile_sha for p in points2] == [p.profile_sha for p in points]
+    assert [p.sha for p in points2] == [p.sha for p in points]
 
 
 def test_basis_knob_sets_the_triple_and_the_scene_copies(tmp_path):

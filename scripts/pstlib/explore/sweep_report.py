@@ -4,9 +4,9 @@ import csv
 import io
 import os
 
-from . import atomic
-from .fmt import cnt, fnum
-from .paths import ROOT
+from .. import atomic
+from ..fmt import cnt, fnum
+from ..paths import ROOT
 from .results import PSNR_CAP, cheapest_within
 
 
@@ -37,6 +37,7 @@ def csv_text(base: dict, rows: list, scenes: list, rtl: dict) -> str:
 
 
 def write_reports(a, out, base, rows, knobs, skipped, rtl, title, elapsed):
+    """sweep.csv and sweep.md; A: the sweep's settings (scene_names, size, truth, match_variant)."""
     scenes = a.scene_names
     allrows = [base] + rows
     atomic.write_text(out / "sweep.csv", csv_text(base, rows, scenes, rtl))

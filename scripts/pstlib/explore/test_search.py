@@ -6,8 +6,10 @@ import sys
 
 import pytest
 
-from pstlib import contract, search_eval, search_report, search_slurm
-from pstlib import search as S
+from pstlib import contract
+from pstlib.explore import evaluate, search_report, search_run
+from pstlib.explore import search as S
+from pstlib.explore import slurm
 from pstlib.paths import ROOT
 
 FULL = ROOT / "rtl" / "configs" / "full.toml"
@@ -203,26 +205,26 @@ def test_stored_results_are_reused_only_when_complete(tmp_path):
     job = {"size": 32, "synth_floor": 30, "scenes": {"train": ["x/a.toml", "x/b.toml"], "valid": ["y/c.toml"]}}
     r = {"status": "ok", "profile_sha": "s1", "size": 32, "train": {"a": 40.0, "b": 41.0}, "train_worst": 40.0,
          "logic_ge": 1234}
-    assert search_eval.reusable(r, "s1", job, ("train",))
-    assert not search_eval.reusable(r, "s2", job, ("train",))
-    assert not search_eval.reusable(dict(r, size=64), "s1", job, ("train",))
-    assert not search_eval.reusable(r, "s1", dict(job, pst_sha="another build"), ("train",))
-    assert not search_eval.reusable(r, "s1", job, ("train", "valid"))
-    assert not search_eval.reusable(dict(r, logic_ge=None), "s1", job, ("train",))         # area missing
-    assert search_eval.reusable(dict(r, logic_ge=None, train_worst=20.0), "s1", job, ("train",))   # under the floor
-    assert search_eval.reusable({"status": "failed", "profile_sha": "s1", "size": 32}, "s1", job, ("train",))
-    assert not search_eval.reusable({"status": "failed", "profile_sha": "s1", "size": 32}, "s1",
+    assert evaluate.search_reusable(r, "s1", job, ("train",))
+    assert not evaluate.search_reusable(r, "s2", job, ("train",))
+    assert not evaluate.search_reusable(dict(r, size=64), "s1", job, ("train",))
+    assert not evaluate.search_reusable(r, "s1", dict(job, pst_sha="another build"), ("train",))
+    assert not evaluate.search_reusable(r, "s1", job, ("train", "valid"))
+    assert not evaluate.search_reusable(dict(r, logic_ge=None), "s1", job, ("train",))         # area missing
+    assert evaluate.search_reusable(dict(r, logic_ge=None, train_worst=20.0), "s1", job, ("train",))   # under the floor
+    assert evaluate.search_reusable({"status": "failed", "profile_sha": "s1", "size": 32}, "s1", job, ("train",))
+    assert not evaluate.search_reusable({"status": "failed", "profile_sha": "s1", "size": 32}, "s1",
                                     dict(job, retry_failed=True), ("train",))
 
 
 def test_per_class_arguments(tmp_path):
     import search as cli     # scripts/search.py
-    assert cli._per_class("40", [1, 22], float, "--psnr") == {1: 40.0, 22: 40.0}
-    assert cli._per_class("1=50,22=30", [1, 22], float, "--psnr") == {1: 50.0, 22: 30.0}
+    assert search_run.per_class("40", [1, 22], float, "--psnr") == {1: 40.0, 22: 40.0}
+    assert search_run.per_class("1=50,22=30", [1, 22], float, "--psnr") == {1: 50.0, 22: 30.0}
     with pytest.raises(ValueError):
-        cli._per_class("1=50", [1, 22], float, "--psnr")
+        search_run.per_class("1=50", [1, 22], float, "--psnr")
     with pytest.raises(ValueError, match="--max-loss: not a valid value: 'x'"):
-        cli._per_class("1=1,22=x", [1, 22], float, "--max-loss")
+        search_run.per_class("1=1,22=x", [1, 22], float, "--max-loss")
     for bad in (["--max-loss", "nan"], ["--max-loss", "-1"], ["--psnr", "inf"], ["--max-loss", "4=1"]):
         with pytest.raises(SystemExit) as e:
             cli.parse_args(bad)
@@ -233,13 +235,13 @@ def test_per_class_arguments(tmp_path):
 
 
 def test_slurm_job_script_names_the_cluster_options(tmp_path):
-    s = search_slurm.job_script(tmp_path, "b1", 5, ("train", "valid"), partition="gpu", account="hw",
+    s = slurm.job_script(tmp_path, "b1", 5, ("train", "valid"), partition="gpu", account="hw",
                                 time_limit="00:30:00", extra=["--mem=4G"])
     lines = s.splitlines()
     assert lines[0] == "#!/bin/sh" and "#SBATCH --array=0-4" in lines
     assert {"#SBATCH --partition=gpu", "#SBATCH --account=hw", "#SBATCH --time=00:30:00", "#SBATCH --mem=4G"} <= set(lines)
     assert lines[-1].endswith(f"worker {tmp_path} b1.names train,valid")
-    assert "--partition" not in search_slurm.job_script(tmp_path, "b1", 1, ("train",))
+    assert "--partition" not in slurm.job_script(tmp_path, "b1", 1, ("train",))
 
 
 def test_fmax_is_asked_only_of_feasible_candidates_and_enforced():
@@ -292,9 +294,9 @@ def test_a_point_is_evaluated_once_and_resumed(tmp_path):
             Area.n += 1
             return {"logic_ge": 777, "modules_synthesized": 1, "modules_total": 2, "seconds": 0.0}
 
-    r = search_eval.evaluate(out, p.name, ("train",), module_cache=Area())
+    r = evaluate.search_point(out, p.name, ("train",), module_cache=Area())
     assert r["status"] == "ok" and r["train_worst"] == 41.5 and r["logic_ge"] == 777 and r["cpp"] == 32
-    assert search_eval.reusable(json.loads((out / "results" / f"{p.name}.json").read_text()), p.sha, job, ("train",))
-    r = search_eval.evaluate(out, p.name, ("train", "valid"), module_cache=Area())
+    assert evaluate.search_reusable(json.loads((out / "results" / f"{p.name}.json").read_text()), p.sha, job, ("train",))
+    r = evaluate.search_point(out, p.name, ("train", "valid"), module_cache=Area())
     assert r["valid_worst"] == 41.5 and r["area_new"] is False
     assert calls.read_text().split() == scenes and Area.n == 1     # a, then b only

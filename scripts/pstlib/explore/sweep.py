@@ -1,12 +1,13 @@
-"""Sweep points: the knobs (one profile change each), the points' profiles and scene copies."""
+"""The sweep strategy: one knob at a time around a base profile. The knobs (one profile change
+each), the points' profiles and the scene copies they render."""
 import copy
-import hashlib
 import pathlib
 import re
 import tomllib
 
-from . import atomic, tomledit
-from .contract import ENUMS, RANGES, validate
+from .. import atomic, tomledit
+from ..contract import ENUMS, RANGES, validate
+from .point import Point, text_key
 
 DEFAULT_SCENES = ["wood_teapot", "marble", "seascape", "fire", "planet", "zoneplate"]
 QUICK = {"base": "reduced", "knobs": "coord_frac,octaves,hash", "scenes": "marble,zoneplate", "size": 64,
@@ -145,10 +146,6 @@ def parse_values(spec: str):
 # ----------------------------------------------------------------------------------------------
 # Points
 
-def sha(text: str) -> str:
-    return hashlib.sha256(text.encode()).hexdigest()[:16]
-
-
 def ident(s: str) -> str:
     """S as a C identifier (the name of a point, a profile, a verilated model)."""
     s = re.sub(r"[^A-Za-z0-9_]", "_", s)
@@ -157,18 +154,6 @@ def ident(s: str) -> str:
 
 def point_name(base: str, knob: str, value) -> str:
     return ident(f"{base}_{knob}_{value}")
-
-
-class Point:
-    def __init__(self, name, knob, value, profile_path, profile_text, scene_files, synth_name, is_base=False):
-        self.name = name
-        self.knob = knob            # "base" for the base profile itself
-        self.value = value
-        self.profile = profile_path
-        self.profile_sha = sha(profile_text)
-        self.scene_files = scene_files   # scene name -> file rendered
-        self.synth_name = synth_name     # out/synth/<synth_name>.json: its gate count
-        self.is_base = is_base
 
 
 def point_profile(base_doc: dict, knob: str, value):
@@ -231,7 +216,9 @@ def base_values(base_doc: dict, scene_files: dict) -> dict:
 
 def make_points(a, out: pathlib.Path):
     """The base point, the knob points, the skipped values (knob, value, why) and the base's
-    knob values. Writes points/<name>.toml (and the scene copies) where they changed."""
+    knob values. A: the sweep's settings (base_path, base_doc, base_name, knob_list,
+    value_lists, scene_files, match_variant). Writes points/<name>.toml (and the scene copies)
+    where they changed."""
     points, skipped = [], []
     pdir = out / "points"
     base_text = a.base_path.read_text()
@@ -240,7 +227,8 @@ def make_points(a, out: pathlib.Path):
         files, extra = point_scenes(a.scene_files, pdir, a.base_name, base_keys)
     except (ValueError, KeyError, tomllib.TOMLDecodeError) as e:
         raise SystemExit(f"error: --match-variant: {e}")
-    base = Point(a.base_name, "base", "-", a.base_path, base_text + extra, files, a.base_name, True)
+    base = Point(a.base_name, a.base_doc, base_text, text_key(base_text + extra), a.base_path, "base", "base", "-",
+                 files, a.base_name, True)
     bvalues = base_values(a.base_doc, a.scene_files)
     for k in a.knob_list:
         desc = KNOBS[k][0]
@@ -249,7 +237,7 @@ def make_points(a, out: pathlib.Path):
             if v == bvalues[k]:
                 continue
             if k == "filter":
-                path, text, synth_name = a.base_path, base_text, a.base_name
+                path, text, synth_name, doc = a.base_path, base_text, a.base_name, a.base_doc
                 keys = dict(base_keys, filter=v)
             else:
                 doc, bad = point_profile(a.base_doc, k, v)
@@ -275,5 +263,5 @@ def make_points(a, out: pathlib.Path):
             except (ValueError, KeyError, tomllib.TOMLDecodeError) as e:
                 skipped.append((k, v, f"scene copies: {e}"))
                 continue
-            points.append(Point(name, k, v, path, text + extra, files, synth_name))
+            points.append(Point(name, doc, text, text_key(text + extra), path, f"{k} = {v}", k, v, files, synth_name))
     return base, points, skipped, bvalues

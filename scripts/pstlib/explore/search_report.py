@@ -5,7 +5,7 @@ import csv
 import io
 import pathlib
 
-from . import atomic
+from .. import atomic
 from .search import pareto, scene_loss
 
 VALIDATION_GAP_DB = 3.0     # a front point whose validation PSNR is this far under its training PSNR is flagged

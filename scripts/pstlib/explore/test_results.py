@@ -5,7 +5,7 @@ import json
 import numpy as np
 import pytest
 
-from pstlib import plots, results, rtlcheck, runner, sweep_report
+from pstlib.explore import evaluate, plots, results, rtlcheck, sweep_report
 
 
 def summary(ref_psnr, truth_psnr, ref_rms=1.0):
@@ -26,15 +26,15 @@ def test_psnr_of_a_summary_entry():
 
 
 def test_scene_record_keeps_the_comparisons():
-    rec = runner.scene_record(summary(30.0, 25.0))
+    rec = evaluate.scene_record(summary(30.0, 25.0))
     assert set(rec) == {"vs_reference", "vs_truth", "reference_vs_truth", "notes", "fragments"}
     assert rec["vs_reference"]["psnr"] == 30.0
 
 
 def result(name, knob, value, ref, truth, ge=None, rom=0, status="ok"):
     return {"name": name, "knob": knob, "value": value, "status": status, "profile": f"/p/{name}.toml",
-            "profile_sha": name, "scenes": {"a": runner.scene_record(summary(ref[0], truth[0])),
-                                              "b": runner.scene_record(summary(ref[1], truth[1]))},
+            "profile_sha": name, "scenes": {"a": evaluate.scene_record(summary(ref[0], truth[0])),
+                                              "b": evaluate.scene_record(summary(ref[1], truth[1]))},
             "synth": None if ge is None else {"logic_ge": ge, "rom_bits": rom, "ram_bits": 0, "flip_flops": 1}}
 
 

@@ -1,4 +1,4 @@
-"""Search points as a SLURM job array: the driver writes the array job, submits it with sbatch,
+"""The SLURM backend: search points as a job array: the driver writes the array job, submits it with sbatch,
 follows it with squeue until no task is left, then reads the per-point results the tasks wrote
 (OUT/results/NAME.json, atomic). A task that failed or was cancelled leaves no complete result;
 the driver records the point as failed and the next run of the same command resubmits it.
@@ -14,9 +14,9 @@ import re
 import subprocess
 import time
 
-from . import atomic
-from .paths import PY, ROOT
-from .runner import STOP, say
+from .. import atomic
+from ..paths import PY, ROOT
+from .local import STOP, say
 
 POLL_S = 2.0
 
@@ -69,15 +69,15 @@ def wait(job_id: str, timeout_s=None) -> None:
         time.sleep(POLL_S)
 
 
-def run_array(a, names: list, which) -> str:
-    """Evaluates NAMES as one array job; returns its job id."""
-    sdir = a.out / "slurm"
+def run_array(out: pathlib.Path, names: list, which, partition=None, account=None, time_limit=None,
+              extra=()) -> str:
+    """Evaluates NAMES as one array job (job_script's cluster options); returns its job id."""
+    sdir = out / "slurm"
     sdir.mkdir(parents=True, exist_ok=True)
     batch = f"b{int(time.time() * 1000) % 10**10}"
     atomic.write_text(sdir / f"{batch}.names", "\n".join(names) + "\n")
     script = sdir / f"{batch}.sh"
-    atomic.write_text(script, job_script(a.out, batch, len(names), which, a.partition, a.account, a.time_limit,
-                                         a.slurm_arg))
+    atomic.write_text(script, job_script(out, batch, len(names), which, partition, account, time_limit, extra))
     job = submit(script)
     say(f"    sbatch: job {job}, array of {len(names)} point(s) ({script.name})")
     wait(job)

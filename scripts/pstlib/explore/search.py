@@ -1,5 +1,5 @@
-"""Design-space search (issue 13 item 2): the least logic area subject to worst-scene PSNR >= a
-target, clocks per pixel <= a target and Fmax >= a target, over many profile knobs at once.
+"""The search strategy: the least logic area subject to worst-scene PSNR >= a target, clocks per
+pixel <= a target and Fmax >= a target, over many profile knobs at once.
 
 Algorithm: a greedy walk with backtracking, one walk per clocks-per-pixel class, from a start
 profile that meets the targets (full for 1, full with fewer noise units for 4, reduced for 32).
@@ -24,15 +24,14 @@ early. A population (NSGA-II) search would map the whole front but needs thousan
 evaluations; synthesis makes ours minutes each (full, uncached), so the budget is tens to
 hundreds of points.
 
-Points and their results: see the CLI (scripts/search.py).
+Points and their results: see the command line (scripts/search.py) and search_run.py.
 """
 import copy
 import dataclasses
-import hashlib
-import json
 import tomllib
 
-from . import contract, tomledit
+from .. import contract, tomledit
+from .point import Point, values_key
 from .sweep import _apply_key, _format_frac, _set_format_frac
 
 CLASSES = (1, 4, 32)
@@ -109,31 +108,14 @@ def structure_of(doc: dict) -> dict:
     return {k: p[k] for k in ("octaves", "noise_units", "noise_steps", "datapath")}
 
 
-def values_key(doc: dict) -> str:
-    return hashlib.sha256(json.dumps(doc, sort_keys=True).encode()).hexdigest()[:12]
-
-
-@dataclasses.dataclass
-class Point:
-    name: str
-    doc: dict
-    text: str
-    move: str          # how it was reached ("start", "coord_frac 16->14", ...)
-    cpp: int
-
-    @property
-    def sha(self):
-        return values_key(self.doc)
-
-
 def make_point(base_text: str, base_doc: dict, doc: dict, move: str, prefix="s") -> Point:
     """A point: the base's text with the changed values (comments kept), named by its values."""
     body = tomledit.without_leading_comment(base_text)
     text = tomledit.with_comment("\n" + tomledit.set_values(body, tomledit.changes_between(base_doc, doc)),
                                  f"Search point: {move}.\nWritten by scripts/search.py.\n")
     assert tomllib.loads(text) == doc, "tomledit lost a change"
-    name = f"{prefix}_{values_key(doc)}"
-    return Point(name, doc, text, move, cycles_per_pixel(doc))
+    key = values_key(doc)
+    return Point(f"{prefix}_{key}", doc, text, key, move=move)
 
 
 def neighbours(doc: dict, knobs: list, structs: list) -> list:
@@ -204,7 +186,7 @@ class Targets:
     psnr: float
     cpp: int
     fmax: float = 0.0
-    # Texture by texture (issue 13's rule for the named profiles: a step colour map or a nearest
+    # Texture by texture (the rule the named profiles were cut by: a step colour map or a nearest
     # MIP level turns a tiny f change into whole colour steps, which the worst scene can hide):
     # every training scene within max_loss dB of ref, the start's PSNR per scene (walk sets it).
     max_loss: float | None = None
