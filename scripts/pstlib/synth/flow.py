@@ -46,7 +46,7 @@ def yosys_script(doc: dict, rom_dir, lib, tmp: pathlib.Path, old_basis: bool) ->
         "opt -fast -full",
         # Depth before the flops become library cells: ltp -noff skips the internal $_DFF_P_
         # cells, so a path ends at a register (a library DFF would be walked through).
-        *map_lines(lib, tmp, before_ffs=[f"tee -q -o {tmp}/ltp.txt ltp -noff"]),
+        *map_lines(lib, tmp, save_generic=True, before_ffs=[f"tee -q -o {tmp}/ltp.txt ltp -noff"]),
         "rename -enumerate",
         f"write_verilog -noattr -simple-lhs {tmp}/netlist.v",
     ]

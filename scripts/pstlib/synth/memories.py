@@ -6,7 +6,7 @@ import pathlib
 import tempfile
 
 from . import liberty, memarea, sta
-from .tools import ABC_CONSTR, ABC_DELAY_PS, ABC_SCRIPT, abc_line, base_name, parse_stat_json, run_sta, run_yosys
+from .tools import ABC_CONSTR, ABC_DELAY_PS, ABC_SCRIPT, base_name, cell_lines, parse_stat_json, run_sta, run_yosys
 
 MEM_LOAD_PF = 0.02        # stand-alone memory: output load; stand-in: address-pin load
 MEM_SETUP_NS = 0.2        # stand-in write capture: setup (about DFFPOSX1's)
@@ -37,12 +37,7 @@ def synth_memory(mem: dict, lib: pathlib.Path, cache: pathlib.Path, yosys: str, 
         script = "\n".join([
             f"read_verilog {tmp}/mem.v",
             "synth -top pst_mem -flatten",
-            "dfflegalize -cell $_DFF_P_ 01",
-            abc_line(lib, tmp / "abc.constr"),
-            "opt_clean -purge",
-            f"dfflibmap -liberty {lib}",
-            "opt_clean -purge",
-            f"tee -q -o {tmp}/stat.json stat -json",
+            *cell_lines(lib, tmp),
             f"write_verilog -noattr -simple-lhs {tmp}/net.v",
         ]) + "\n"
         secs = run_yosys(script, tmp, "mem", yosys)

@@ -55,22 +55,28 @@ def read_lines(doc: dict, rom_dir, lib) -> list:
             "chparam -set DebugProbes 0 pst_top"]
 
 
-def map_lines(lib, tmp: pathlib.Path, before_ffs=()) -> list:
-    """Generic cells -> the library: memories become timing stand-ins, asynchronous resets
-    logic, ABC maps for area and sizes, every flop a library flop; the generic design is saved
-    as `generic` before ABC, BEFORE_FFS runs between ABC and the flop mapping."""
-    return [f"techmap -map {STANDIN_MAP} t:$mem_v2",
-            "techmap",
-            "opt -fast",
-            "async2sync",
-            "dfflegalize -cell $_DFF_P_ 01",
-            "design -save generic",
+def cell_lines(lib, tmp: pathlib.Path, save_generic: bool = False, before_ffs=()) -> list:
+    """Generic logic -> the library: every flop a positive-edge DFF, ABC maps for area and sizes,
+    then the library's flops; the statistics into TMP/stat.json. SAVE_GENERIC keeps the generic
+    design as `generic` before ABC; BEFORE_FFS runs between ABC and the flop mapping."""
+    return ["dfflegalize -cell $_DFF_P_ 01",
+            *(["design -save generic"] if save_generic else []),
             abc_line(lib, tmp / "abc.constr"),
             "opt_clean -purge",
             *before_ffs,
             f"dfflibmap -liberty {lib}",
             "opt_clean -purge",
             f"tee -q -o {tmp}/stat.json stat -json"]
+
+
+def map_lines(lib, tmp: pathlib.Path, save_generic: bool = False, before_ffs=()) -> list:
+    """A coarse design -> the library: memories become timing stand-ins, asynchronous resets
+    logic, then cell_lines."""
+    return [f"techmap -map {STANDIN_MAP} t:$mem_v2",
+            "techmap",
+            "opt -fast",
+            "async2sync",
+            *cell_lines(lib, tmp, save_generic, before_ffs)]
 
 
 def parse_stat_json(text: str) -> dict:
