@@ -15,9 +15,8 @@ import json
 import pathlib
 import sys
 
-ROOT = pathlib.Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(ROOT / "scripts"))
-from pstlib import baseline  # noqa: E402
+from pstlib import baseline
+from pstlib.paths import ROOT
 
 PROFILES = ("reduced", "full")
 

@@ -9,10 +9,8 @@ Prints the Markdown tables and the goals. Bad input: 'error: FILE: what', exit 2
 import argparse
 import json
 import sys
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from pstlib import atomic, fidelity, flicker  # noqa: E402
+from pstlib import atomic, fidelity, flicker
 
 
 def main(argv=None):

@@ -9,8 +9,7 @@ import argparse
 import sys
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from pstlib import atomic, flicker  # noqa: E402
+from pstlib import atomic, flicker
 
 
 def main(argv=None):

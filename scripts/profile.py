@@ -12,10 +12,8 @@ before anything is printed. Enumerations become their index (pst_pkg's localpara
                                          top that declares only some of them)
 """
 import sys
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-from pstlib import contract  # noqa: E402
+from pstlib import contract
 
 FORMATS = {"--verilator": "-G{}={}", "--yosys": "chparam -set {} {}", "--list": "{} {}"}
 

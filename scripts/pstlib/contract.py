@@ -35,7 +35,10 @@ import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[2]
+try:
+    from .paths import ROOT
+except ImportError:        # run as a script (rtl/CMakeLists.txt): scripts/pstlib/ is sys.path[0]
+    from paths import ROOT
 DESCRIPTION = ROOT / "rtl" / "contract.toml"
 SECTION_PREFIX = {"pipeline": "", "noise": "Noise", "filter": "Filter", "formats": ""}
 

@@ -1,15 +1,12 @@
 """Tests of pstlib.contract: the profile schema and the generators (run by ctest through pytest)."""
 import copy
-import sys
 import tomllib
-from pathlib import Path
 
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from pstlib import contract  # noqa: E402
+from pstlib import contract
+from pstlib.paths import ROOT
 
-ROOT = Path(__file__).resolve().parents[2]
 PROFILES = sorted((ROOT / "rtl" / "configs").glob("*.toml")) + sorted((ROOT / "sim" / "test_profiles").glob("*.toml"))
 
 

@@ -4,4 +4,4 @@ import sys
 
 SCRIPTS = pathlib.Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(SCRIPTS))
-ROOT = SCRIPTS.parent
+from pstlib.paths import ROOT  # noqa: E402,F401  (the tests' `from conftest import ROOT`)

@@ -6,9 +6,7 @@ import pathlib
 import re
 import sys
 
-sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent.parent))
-
-from pstlib import report_data, report_html, report_md  # noqa: E402
+from pstlib import report_data, report_html, report_md
 
 # A 1x1 PNG (a real file: the page embeds it as a data: URI).
 PNG = base64.b64decode("iVBORw0KGgoAAAANSUhEUgAAAAEAAAABCAIAAACQd1PeAAAADElEQVR4nGP4z8AAAAMBAQDJ/pLvAAAAAElFTkSuQmCC")
