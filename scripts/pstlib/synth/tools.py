@@ -6,7 +6,7 @@ import re
 import subprocess
 import time
 
-from .. import contract
+from .. import contract, procs
 from ..paths import ROOT, rtl_sources
 
 SYNTH_DIR = ROOT / "scripts" / "synth"
@@ -98,12 +98,11 @@ def run_yosys(script: str, tmp: pathlib.Path, tag: str, yosys: str = "yosys") ->
     path = tmp / f"{tag}.ys"
     path.write_text(script)
     t0 = time.time()
-    run = subprocess.run([yosys, "-q", "-e", YOSYS_ERRORS, "-l", str(tmp / f"{tag}.log"), "-s", str(path)],
-                         capture_output=True, text=True)
-    if run.returncode != 0:
+    rc, _, err = procs.run([yosys, "-q", "-e", YOSYS_ERRORS, "-l", tmp / f"{tag}.log", "-s", path], cwd=None)
+    if rc != 0:
         log = tmp / f"{tag}.log"
         tail = "\n".join(log.read_text().splitlines()[-30:]) if log.exists() else ""
-        raise RuntimeError(f"yosys ({tag}) failed:\n{tail}\n{run.stderr}")
+        raise RuntimeError(f"yosys ({tag}) failed:\n{tail}\n{err}")
     return time.time() - t0
 
 
@@ -112,7 +111,7 @@ def run_sta(script: str, tmp: pathlib.Path, tag: str, sta_bin: str = "sta") -> t
     path = tmp / f"{tag}.tcl"
     path.write_text(script)
     t0 = time.time()
-    run = subprocess.run([sta_bin, "-no_init", "-no_splash", "-exit", str(path)], capture_output=True, text=True)
-    if run.returncode != 0 or "Error" in run.stdout or "Error" in run.stderr:
-        raise RuntimeError(f"OpenSTA ({tag}) failed:\n{run.stdout[-3000:]}\n{run.stderr[-3000:]}")
-    return time.time() - t0, run.stdout
+    rc, out, err = procs.run([sta_bin, "-no_init", "-no_splash", "-exit", path], cwd=None)
+    if rc != 0 or "Error" in out or "Error" in err:
+        raise RuntimeError(f"OpenSTA ({tag}) failed:\n{out[-3000:]}\n{err[-3000:]}")
+    return time.time() - t0, out
