@@ -214,33 +214,33 @@ def base_values(base_doc: dict, scene_files: dict) -> dict:
     return values
 
 
-def make_points(a, out: pathlib.Path):
+def make_points(s, out: pathlib.Path):
     """The base point, the knob points, the skipped values (knob, value, why) and the base's
-    knob values. A: the sweep's settings (base_path, base_doc, base_name, knob_list,
+    knob values. S: the sweep's settings (sweep_run.SweepSettings: base_path, base_doc, base_name, knob_list,
     value_lists, scene_files, match_variant). Writes points/<name>.toml (and the scene copies)
     where they changed."""
     points, skipped = [], []
     pdir = out / "points"
-    base_text = a.base_path.read_text()
-    base_keys = variant_keys(a.base_doc) if a.match_variant else basis_keys(a.base_doc)
+    base_text = s.base_path.read_text()
+    base_keys = variant_keys(s.base_doc) if s.match_variant else basis_keys(s.base_doc)
     try:
-        files, extra = point_scenes(a.scene_files, pdir, a.base_name, base_keys)
+        files, extra = point_scenes(s.scene_files, pdir, s.base_name, base_keys)
     except (ValueError, KeyError, tomllib.TOMLDecodeError) as e:
         raise SystemExit(f"error: --match-variant: {e}")
-    base = Point(a.base_name, a.base_doc, base_text, text_key(base_text + extra), a.base_path, "base", "base", "-",
-                 files, a.base_name, True)
-    bvalues = base_values(a.base_doc, a.scene_files)
-    for k in a.knob_list:
+    base = Point(s.base_name, s.base_doc, base_text, text_key(base_text + extra), s.base_path, "base", "base", "-",
+                 files, s.base_name, True)
+    bvalues = base_values(s.base_doc, s.scene_files)
+    for k in s.knob_list:
         desc = KNOBS[k][0]
-        for v in a.value_lists[k]:
-            name = point_name(a.base_name, k, v)
+        for v in s.value_lists[k]:
+            name = point_name(s.base_name, k, v)
             if v == bvalues[k]:
                 continue
             if k == "filter":
-                path, text, synth_name, doc = a.base_path, base_text, a.base_name, a.base_doc
+                path, text, synth_name, doc = s.base_path, base_text, s.base_name, s.base_doc
                 keys = dict(base_keys, filter=v)
             else:
-                doc, bad = point_profile(a.base_doc, k, v)
+                doc, bad = point_profile(s.base_doc, k, v)
                 if bad:
                     skipped.append((k, v, "; ".join(bad)))
                     continue
@@ -249,17 +249,17 @@ def make_points(a, out: pathlib.Path):
                     change += f"; noise_units = {doc['pipeline']['noise_units']}"
                 body = tomledit.without_leading_comment(base_text)
                 text = tomledit.with_comment(
-                    "\n" + tomledit.set_values(body, tomledit.changes_between(a.base_doc, doc)),
-                    f"Sweep point {name}: profile {a.base_name} ({a.base_path.name}) with\n{change}.\n"
-                    f"Written by scripts/sweep.py; see {a.base_path.name} for the keys.")
+                    "\n" + tomledit.set_values(body, tomledit.changes_between(s.base_doc, doc)),
+                    f"Sweep point {name}: profile {s.base_name} ({s.base_path.name}) with\n{change}.\n"
+                    f"Written by scripts/sweep.py; see {s.base_path.name} for the keys.")
                 path = pdir / f"{name}.toml"
                 atomic.write_if_changed(path, text)
                 synth_name = name
-                keys = variant_keys(doc) if a.match_variant else basis_keys(doc)
+                keys = variant_keys(doc) if s.match_variant else basis_keys(doc)
                 if k == "basis" and not keys:
                     keys = {"noise": {"basis": v}}
             try:
-                files, extra = point_scenes(a.scene_files, pdir, name, keys)
+                files, extra = point_scenes(s.scene_files, pdir, name, keys)
             except (ValueError, KeyError, tomllib.TOMLDecodeError) as e:
                 skipped.append((k, v, f"scene copies: {e}"))
                 continue

@@ -36,16 +36,16 @@ def csv_text(base: dict, rows: list, scenes: list, rtl: dict) -> str:
     return buf.getvalue()
 
 
-def write_reports(a, out, base, rows, knobs, skipped, rtl, title, elapsed):
-    """sweep.csv and sweep.md; A: the sweep's settings (scene_names, size, truth, match_variant)."""
-    scenes = a.scene_names
+def write_reports(s, out, base, rows, knobs, skipped, rtl, title, elapsed):
+    """sweep.csv and sweep.md; S: the sweep's settings (sweep_run.SweepSettings)."""
+    scenes = s.scene_names
     allrows = [base] + rows
     atomic.write_text(out / "sweep.csv", csv_text(base, rows, scenes, rtl))
 
     md = [f"# Precision sweep: base `{base['name']}`", "",
           f"One knob at a time around `{os.path.relpath(base['profile'], ROOT)}`. Golden-model renders of "
-          f"{', '.join(scenes)} at {a.size} x {a.size}"
-          + (f", ground truth {a.truth} x {a.truth} jittered samples per pixel" if a.truth else "")
+          f"{', '.join(scenes)} at {s.size} x {s.size}"
+          + (f", ground truth {s.truth} x {s.truth} jittered samples per pixel" if s.truth else "")
           + ". PSNR over RGB in dB (means over the scenes; `min` = the worst scene). Logic in NAND2 gate "
           "equivalents (scripts/synth.py, Yosys; ROM/RAM bits outside the logic). "
           f"This invocation: {elapsed:.0f} s (points with a result are not recomputed); summed over the "
@@ -54,7 +54,7 @@ def write_reports(a, out, base, rows, knobs, skipped, rtl, title, elapsed):
           ("References: scene copies whose textures ask for each point's own noise variant and |grad| norm "
            "(--match-variant), so PSNR vs reference measures the fixed-point precision alone; for the "
            "interp / hash / corner / norm knobs it then says how exact that variant's hardware is, not how "
-           "close the variant is to the scenes' texture." if a.match_variant else
+           "close the variant is to the scenes' texture." if s.match_variant else
            "References: the scenes' own textures (the noise variant and norm they ask for, Rayshade's by "
            "default): a profile with another variant is measured against that texture too."), "",
           f"Base: {cnt(base['logic_ge'])} GE, ROM {cnt(base['rom_bits'])} bits, RAM {cnt(base['ram_bits'])} bits, "
