@@ -1,7 +1,6 @@
 """scripts/pstlib/search*.py: the space, the walk, the fronts, the stored results, the SLURM job."""
 import copy
 import json
-import pathlib
 import sys
 
 import pytest

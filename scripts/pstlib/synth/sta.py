@@ -151,11 +151,6 @@ def parse_checks(text: str) -> list:
     return paths
 
 
-def parse_wns(text: str):
-    m = re.search(r"^wns\s+(-?[0-9.]+)", text, flags=re.M)
-    return float(m.group(1)) if m else None
-
-
 def fmax_mhz(period_ns: float, worst_slack_ns: float) -> float:
     """The clock the design reaches: the target period less the worst slack."""
     need = period_ns - worst_slack_ns
