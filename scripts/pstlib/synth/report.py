@@ -9,23 +9,16 @@ from .tools import ABC_CONSTR, ABC_DELAY_PS, ABC_SCRIPT, SDC, tool_version
 
 REALTIME_MPIX = 640 * 480 * 60 * 2 / 1e6   # 640 x 480, 60 Hz, depth complexity 2
 PAPER_GATES = {"reduced": 100_000, "full": 1_250_000}
-# Path-group key (top-level block) -> pipeline stage it ends in.
+# Path-group key -> pipeline stage it ends in. A group is a top-level instance's registers, keyed
+# by its module (sta.stage_groups_tcl), or by instance for the pipeline registers and the top.
 STAGE_OF = {
     "u_reg_a": "[A] input register",
     "(top)": "octave stage [A] -> [B] (sequencer, accumulators)",
-    "pst_quadric": "octave stage [A] -> [B] (quadric)",
-    "pst_quadric_serial": "octave stage [A] -> [B] (quadric)",
-    "pst_octave_transform": "octave stage [A] -> [B] (octave transform)",
-    "pst_noise": "octave stage [A] -> [B] (noise unit)",
-    "pst_octave_term": "octave stage [A] -> [B] (octave term)",
     "pst_octave_stage": "octave stage [A] -> [B]",
-    "pst_width_stage": "filter width [B] -> [C]",
-    "pst_colour_stage": "colour-table filter [C] -> [D]",
     "u_reg_b": "octave stage [A] -> [B] (into [B])",
-    "pst_step_counter": "serial step counters",
-    "pst_filter_width": "filter width [B] -> [C]",
+    "pst_width_stage": "filter width [B] -> [C]",
     "u_reg_c": "filter width [B] -> [C] (into [C])",
-    "pst_clut_filter": "colour-table filter [C] -> [D]",
+    "pst_colour_stage": "colour-table filter [C] -> [D]",
     "u_reg_d": "colour-table filter [C] -> [D] (into [D])",
 }
 
