@@ -93,7 +93,8 @@ def settings(o: dict) -> SearchSettings:
     losses = per_class(o["max_loss"], classes, float, "--max-loss") if o.get("max_loss") else {}
     if any(not 0 <= v < 100 for v in list(targets.values()) + list(losses.values())):
         raise ValueError("--psnr and --max-loss: dB in [0, 100)")
-    starts = dict(DEFAULT_START, **(per_class(o["start"], [], str, "--start") if o.get("start") else {}))
+    starts = dict(DEFAULT_START)
+    starts.update(per_class(o["start"], [], str, "--start") if o.get("start") else {})
     start_docs = {}
     for c in classes:
         p = profile_path(starts.get(c, "full"))

@@ -224,7 +224,8 @@ def test_per_class_arguments(tmp_path):
         search_run.per_class("1=50", [1, 22], float, "--psnr")
     with pytest.raises(ValueError, match="--max-loss: not a valid value: 'x'"):
         search_run.per_class("1=1,22=x", [1, 22], float, "--max-loss")
-    for bad in (["--max-loss", "nan"], ["--max-loss", "-1"], ["--psnr", "inf"], ["--max-loss", "4=1"]):
+    for bad in (["--max-loss", "nan"], ["--max-loss", "-1"], ["--psnr", "inf"], ["--max-loss", "4=1"],
+                ["--start", "1=nosuch"], ["--classes", "x"]):
         with pytest.raises(SystemExit) as e:
             cli.parse_args(bad)
         assert e.value.code == 2, bad
