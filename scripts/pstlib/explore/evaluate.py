@@ -138,9 +138,7 @@ def sweep_point(pt, out: pathlib.Path, pst, size: int, truth: int, synth_dir: pa
             continue
         summary, err = render(pst, scene_file, pt.profile, size, out / "renders" / pt.name / scene, truth)
         if err:
-            res["status"] = "failed"
-            res["error"] = err
-            return res
+            return dict(res, status="failed", error=err)
         res["scenes"][scene] = scene_record(summary)
         did.append("render")
     res["render_seconds"] = round(time.time() - t0, 1) if did else res.get("render_seconds")
@@ -155,9 +153,7 @@ def sweep_point(pt, out: pathlib.Path, pst, size: int, truth: int, synth_dir: pa
         else:
             err = synthesize(pt, synth_dir, out / "tmp" / pt.name, res)
             if err:
-                res["status"] = "failed"
-                res["error"] = err
-                return res
+                return dict(res, status="failed", error=err)
         res["synth"] = synth_record(pt.sha, sj, key)
     elif have:
         res["synth_note"] = "synth cached"
