@@ -1,21 +1,18 @@
-"""Pure parts of scripts/synth.py: liberty parsing, OpenSTA report parsing, the memory model,
-the baseline comparison. Fixtures are real tool output (scripts/tests/fixtures/synth/):
-an excerpt of osu018_stdcells.lib, Yosys 0.23's dump of two $mem_v2 cells, OpenSTA 2.0.17's
-report_checks of a two-register design with a stand-in memory."""
-import pathlib
+"""Pure parts of the synthesis flow: liberty parsing, OpenSTA report parsing, the memory model,
+the stand-ins, the command line's refusal of a bad profile. Fixtures are real tool output
+(scripts/tests/fixtures/synth/): an excerpt of osu018_stdcells.lib, Yosys 0.23's dump of two
+$mem_v2 cells, OpenSTA 2.0.17's report_checks of a two-register design with a stand-in memory."""
 import re
 import subprocess
 
 import pytest
 
-from pstlib import baseline
+from pstlib.paths import ROOT
 from pstlib.synth import liberty, memarea, sta
 
-FIX = pathlib.Path(__file__).resolve().parent / "fixtures" / "synth"
-SCRIPTS = pathlib.Path(__file__).resolve().parent.parent
+SCRIPTS = ROOT / "scripts"
+FIX = SCRIPTS / "tests" / "fixtures" / "synth"
 
-
-# ---- liberty -------------------------------------------------------------------------------
 
 def test_osu018_excerpt_areas():
     text = (FIX / "osu018_excerpt.lib").read_text()
@@ -51,6 +48,7 @@ def test_standin_liberty_has_one_cell_per_memory_and_the_delay():
 
 
 # ---- memories ------------------------------------------------------------------------------
+
 
 def test_parse_yosys_memory_dump():
     mems = memarea.parse_memories((FIX / "yosys_mem_dump.txt").read_text())
@@ -100,6 +98,7 @@ def test_memory_key_follows_content():
 
 # ---- OpenSTA -------------------------------------------------------------------------------
 
+
 def test_parse_opensta_report():
     paths = sta.parse_checks((FIX / "opensta_report_checks.txt").read_text())
     assert [p["group"] for p in paths] == ["pst_g0", "pst_g1", "pst_g2", "clk"]
@@ -131,66 +130,8 @@ def test_sdc_period_of_the_checked_in_sdc():
     assert sta.sdc_period((SCRIPTS / "synth" / "pst.sdc").read_text()) == 10.0
 
 
-# ---- baseline ------------------------------------------------------------------------------
-
-BASE = {"reduced": {"logic_ge": 100000, "fmax_mhz": 40.0, "psnr_db": {"marble": 40.0}, "rom_bits": 70849}}
-
-
-def test_compare_within_tolerance():
-    cur = {"reduced": {"logic_ge": 101900, "fmax_mhz": 39.3, "psnr_db": {"marble": 40.7}, "rom_bits": 70849}}
-    assert baseline.compare(BASE, cur) == []
-
-
-def test_compare_flags_moves_and_missing():
-    cur = {"reduced": {"logic_ge": 102100, "fmax_mhz": 40.0, "psnr_db": {"marble": 40.0, "wood": 30.0}}}
-    moved = {k: (a, b) for k, a, b, _ in baseline.compare(BASE, cur)}
-    assert set(moved) == {"reduced.logic_ge", "reduced.psnr_db.wood", "reduced.rom_bits"}
-    assert moved["reduced.rom_bits"] == (70849, None)
-
-
-def test_compare_flags_a_decrease_too():
-    cur = {"reduced": dict(BASE["reduced"], fmax_mhz=39.0)}
-    assert [k for k, *_ in baseline.compare(BASE, cur)] == ["reduced.fmax_mhz"]
-
-
-def test_collect_from_synth_and_regress():
-    synth = {"reduced": {"logic_ge": 5, "blocks": {"noise": {"logic_ge": 3}}, "flip_flops": 1, "memory_ge": 2,
-                         "total_ge": 7, "rom_bits": 8, "ram_bits": 9, "clocks_per_pixel": 22,
-                         "timing": {"fmax_mhz": 33.3}}}
-    regress = [{"scene": "scenes/marble.toml", "profile": "reduced", "vs_reference": {"psnr": 41.23456}},
-               {"scene": "scenes/marble.toml", "profile": "full", "vs_reference": {"psnr": 60.0}}]
-    c = baseline.collect(synth, regress)
-    assert c["reduced"]["psnr_db"] == {"marble": 41.235}
-    assert c["reduced"]["block_ge"] == {"noise": 3} and c["reduced"]["fmax_mhz"] == 33.3
-    assert "full" not in c
-
-
-def test_check_baseline_cli_fails_on_a_move(tmp_path):
-    import json
-    out = tmp_path / "out"
-    (out / "synth").mkdir(parents=True)
-    s = {"logic_ge": 100, "blocks": {}, "flip_flops": 1, "memory_ge": 2, "total_ge": 102, "rom_bits": 8,
-         "ram_bits": 9, "clocks_per_pixel": 1, "timing": {"fmax_mhz": 50.0}, "tools": {"yosys": "y"}}
-    (out / "synth" / "reduced.json").write_text(json.dumps(s))
-    (out / "regress.json").write_text(json.dumps(
-        [{"scene": "scenes/a.toml", "profile": "reduced", "vs_reference": {"psnr": 40.0}}]))
-    base = {"tolerance": 0.02, "tools": {"yosys": "y"},
-            "profiles": baseline.collect({"reduced": s}, json.loads((out / "regress.json").read_text()))}
-    bfile = tmp_path / "baseline.json"
-    bfile.write_text(json.dumps(base))
-    cmd = ["/usr/bin/python3", str(SCRIPTS / "check_baseline.py"), "--out", str(out), "--baseline", str(bfile)]
-    ok = subprocess.run(cmd, capture_output=True, text=True)
-    assert ok.returncode == 0, ok.stdout + ok.stderr
-    s["logic_ge"] = 103
-    (out / "synth" / "reduced.json").write_text(json.dumps(s))
-    bad = subprocess.run(cmd, capture_output=True, text=True)
-    assert bad.returncode == 1 and "reduced.logic_ge: 100 -> 103" in bad.stdout
-    (out / "regress.json").unlink()
-    assert subprocess.run(cmd, capture_output=True, text=True).returncode == 2
-
-
 def test_standin_techmap_names_match_the_rename():
-    """The techmap's read-port instance names are what scripts/synth.py's rename expects."""
+    """The techmap's read-port instance names are what flow.rename_standins expects."""
     text = (SCRIPTS / "synth" / "mem_standin_map.v").read_text()
     assert re.search(r"begin : rd\b", text) and "PST_MEMRD cell" in text
 

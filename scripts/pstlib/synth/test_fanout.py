@@ -1,4 +1,4 @@
-"""scripts/pstlib/fanout.py: fanout buffers across the module hierarchy, on a hand-made
+"""scripts/pstlib/synth/fanout.py: fanout buffers across the module hierarchy, on a hand-made
 netlist in Yosys' write_verilog form (escaped names, concatenations, assign aliases)."""
 import re
 import shutil
