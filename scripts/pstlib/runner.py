@@ -27,8 +27,9 @@ def say(msg: str) -> None:
         print(msg, flush=True)
 
 
-def run(cmd, cwd=ROOT, timeout=None):
-    """Runs a command in its own process group (so an interrupt can stop its children too)."""
+def run(cmd, cwd=ROOT, timeout=None, on_start=None):
+    """Runs a command in its own process group (so an interrupt can stop its children too);
+    on_start(pid) is called once it runs."""
     if STOP.is_set():
         raise KeyboardInterrupt
     p = subprocess.Popen([str(c) for c in cmd], cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
@@ -36,6 +37,8 @@ def run(cmd, cwd=ROOT, timeout=None):
     with _procs_lock:
         _procs.add(p)
     try:
+        if on_start:
+            on_start(p.pid)
         out, err = p.communicate(timeout=timeout)
     except subprocess.TimeoutExpired:
         os.killpg(p.pid, signal.SIGKILL)

@@ -689,8 +689,9 @@ int main(int argc, char** argv) {
                         "must fire and fail the run")
         ->check(CLI::Range(uint64_t(0), (uint64_t(1) << 32) - 1));
     bool regList = false;
-    regress->add_flag("--list", regList, "Print the runs, one per line (scene file TAB profile, or the profile with "
-                      "--random), and exit: what scripts/regress.py splits into shards");
+    regress->add_flag("--list", regList, "Print the runs and exit (what scripts/regress.py splits into shards): "
+                      "scene file TAB profile per line; with --random 'profile NAME' lines, then 'segment I' per "
+                      "segment the run simulates (I: its first fragment)");
 
     std::string fragScene, fragOut;
     int fragSize = 0, fragLayer = 0;
@@ -768,7 +769,8 @@ int main(int argc, char** argv) {
                 rnd.fragments = rndCount;
                 rnd.injectAssert = injectAssert;
                 if (regList) {
-                    for (const auto& n : hw.profiles) std::cout << n << "\n";
+                    for (const auto& n : hw.profiles) std::cout << "profile " << profileByName(n, true).name << "\n";
+                    for (uint64_t s : segmentStarts(rnd)) std::cout << "segment " << s << "\n";
                     return 0;
                 }
                 return runRandom(hw, rnd, rndQuiet, regOut, regJunit);
@@ -780,8 +782,10 @@ int main(int argc, char** argv) {
             }
             if (injectAssert != UINT64_MAX) hw.sim.busyWriteAfter = injectAssert + 1;
             if (regList) {
+                std::vector<std::string> names;
+                for (const auto& n : hw.profiles) names.push_back(profileByName(n, true).name);
                 for (const auto& sc : regScenes)
-                    for (const auto& n : hw.profiles) std::cout << sc << "\t" << n << "\n";
+                    for (const auto& n : names) std::cout << sc << "\t" << n << "\n";
                 return 0;
             }
             if (regHtml.empty()) return runRegress(regScenes, regSize, hw, regOut, regImages, regJunit);

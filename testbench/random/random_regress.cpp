@@ -187,6 +187,19 @@ uint64_t segmentStart(const RandomRegressOptions& o, uint64_t index, uint64_t* s
     }
 }
 
+std::vector<uint64_t> segmentStarts(const RandomRegressOptions& o) {
+    std::vector<uint64_t> out;
+    const uint64_t end = o.from + o.fragments;
+    uint64_t start = 0;
+    for (uint64_t g = 0; start < end; ++g) {
+        uint64_t len = 0;
+        for (int n : batchSizes(o, g)) len += uint64_t(n);
+        if (start + len > o.from) out.push_back(start);
+        start += len;
+    }
+    return out;
+}
+
 RandomRegressResult runRandomRegress(const Profile& p, const std::string& rtlName, const RandomRegressOptions& o) {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();

@@ -85,6 +85,9 @@ struct RandomRegressResult {
 
 // The global index of the first fragment of the segment that holds fragment `index`.
 uint64_t segmentStart(const RandomRegressOptions& o, uint64_t index, uint64_t* segment = nullptr);
+// The first fragment of every segment a run of `o` simulates (from segmentStart(o.from) up to
+// o.from + o.fragments): where a run can be split with no fragment simulated twice.
+std::vector<uint64_t> segmentStarts(const RandomRegressOptions& o);
 
 // Runs the regression on the verilated model `rtlName` (one of rtlProfiles()).
 RandomRegressResult runRandomRegress(const Profile& p, const std::string& rtlName,

@@ -123,6 +123,18 @@ TEST(RandomRegress, SegmentStartsAreConsistent) {
     // The segment before ends where this one starts.
     EXPECT_LT(segmentStart(o, s - 1), s);
     EXPECT_EQ(segmentStart(o, s), s);
+    // segmentStarts lists the same boundaries, from the segment holding `from` on.
+    o.from = 100000;
+    o.fragments = 50000;
+    const std::vector<uint64_t> starts = segmentStarts(o);
+    ASSERT_GE(starts.size(), 2u);
+    EXPECT_EQ(starts.front(), s);
+    for (size_t i = 1; i < starts.size(); ++i) {
+        EXPECT_EQ(segmentStart(o, starts[i]), starts[i]);
+        EXPECT_EQ(segmentStart(o, starts[i] - 1), starts[i - 1]);
+    }
+    EXPECT_LT(starts.back(), 150000u);
+    EXPECT_GE(segmentStart(o, 149999), starts.back());
 }
 
 // The regression can fail: a perturbed golden stage from fragment X on is reported at X, and
