@@ -32,6 +32,7 @@ import json
 import os
 import pathlib
 import shutil
+import signal
 import subprocess
 import sys
 import time
@@ -39,7 +40,7 @@ import time
 from pstlib import atomic
 from pstlib import regress_shards as R
 from pstlib.paths import ROOT
-from pstlib.runner import STOP, run_points, say, stop_children
+from pstlib.runner import run_points, say, stop_children
 
 
 class ArgError(Exception):
@@ -162,6 +163,7 @@ def main(argv=None) -> int:
         print(f"error: {e}", file=sys.stderr)
         return 2
     out = pathlib.Path(a.out).resolve()
+    a.pst = os.path.abspath(a.pst)       # the SLURM tasks and the replay command run it from elsewhere
     out.mkdir(parents=True, exist_ok=True)
     state_file = out / "state.json"
     state = R.read_state(state_file, plan)
@@ -198,6 +200,8 @@ def main(argv=None) -> int:
 
 def worker(out: pathlib.Path, names_file: str) -> int:
     """A SLURM array task: the shard on line SLURM_ARRAY_TASK_ID of OUT/slurm/NAMES_FILE."""
+    # scancel (or a time limit) sends SIGTERM: stop pst too (it runs in its own process group).
+    signal.signal(signal.SIGTERM, lambda *_: (stop_children(), sys.exit(143)))
     names = (out / "slurm" / names_file).read_text().split()
     name = names[int(os.environ.get("SLURM_ARRAY_TASK_ID", "0"))]
     plan = json.loads((out / "plan.json").read_text())
