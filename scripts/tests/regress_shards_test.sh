@@ -103,4 +103,16 @@ rc=0; $replay > "$work/replay.log" 2>&1 || rc=$?
 "$py" "$root/scripts/regress.py" "$root/scenes/fire.toml" "$root/scenes/marble.toml" --size 16 --profile "$profile" \
   --jobs 2 --pst "$pst" --out "$work/scenes" | tee "$work/scenes.log"
 grep -q "PASSED: 2 shards, 0 failed, 0 without a result, 2 runs" "$work/scenes.log"
+rc=0
+"$py" "$root/scripts/regress.py" "$root/scenes/fire.toml" "$root/scenes/marble.toml" --size 16 --profile "$profile" \
+  --jobs 2 --pst-arg=--inject-assert=40 --pst "$pst" --out "$work/scenes_assert" > "$work/scenes_assert.log" 2>&1 || rc=$?
+[ $rc -eq 1 ] || { cat "$work/scenes_assert.log"; echo "expected exit 1, got $rc"; exit 1; }
+"$py" - "$work/scenes_assert/merged.json" <<'PY'
+import json, sys
+m = json.load(open(sys.argv[1]))
+f = m["first_failure"]
+assert m["complete"] and f["kind"] == "assertion" and f["scene"].endswith("fire.toml"), f
+assert "RegWriteOnlyWhenIdle" in f["assertion"] and f["replay"].endswith("--inject-assert 40"), f
+assert [r["assertion"] is not None for r in m["runs"]] == [True, True]
+PY
 echo "regress_shards (local): all $(($(date +%s) - t0)) s"
