@@ -155,6 +155,8 @@ def main(argv=None) -> int:
     try:
         check(a)
         plan = make_plan(a)
+        if not plan:
+            raise ArgError("--profile: no runs to shard (pst regress --list printed none)")
         names = {s.name for s in plan}
         for n in a.shard:
             if n not in names:
