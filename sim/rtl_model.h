@@ -7,6 +7,7 @@
 #include <array>
 #include <map>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,6 +27,20 @@ struct SimOptions {
     double outputStallRate = 0.0;   // probability that the monitor holds out_ready low
     int outputStallBurst = 0;       // > 1: a stall lasts 1..N cycles (uniform), so the skid
                                     // buffers fill and back-pressure reaches the serial stages
+    uint64_t busyWriteAfter = 0;    // self-test: once this many fragments are in, the driver writes
+                                    // a register while the pipeline is busy (a protocol violation
+                                    // the RTL's RegWriteOnlyWhenIdle assertion catches); 0 = never
+};
+
+// An assertion of the RTL failed ($error or $fatal of a checker in rtl/sva/ or an inline one):
+// the simulator printed its "%Error: ... Assertion failed in <module path>: ..." line on stdout
+// and the model is not usable any more. A failed run like a mismatch, not a crash.
+class RtlAssertionError : public std::runtime_error {
+public:
+    RtlAssertionError(const std::string& what, uint64_t cycle) : std::runtime_error(what), cycle(cycle) {}
+    uint64_t cycle;              // the model's cycle at which it fired
+    size_t pixelsOut = 0;        // pixels of the current run() already out when it fired
+    size_t fragmentsIn = 0;      // fragments of the current run() taken by then
 };
 
 // What the octave-stage probes showed for one fragment (per active octave), for the
@@ -46,7 +61,8 @@ public:
     // Waits until the pipeline is idle, then writes one register per cycle.
     virtual void write(const std::vector<std::pair<uint16_t, uint32_t>>& writes) = 0;
     // Streams `frags` through the pipeline and returns the pixels in the order they came out.
-    // Throws std::runtime_error on timeout. Probes are recorded by tag when `probes` is given.
+    // Throws std::runtime_error on timeout, RtlAssertionError when an assertion fires (write()
+    // too). Probes are recorded by tag when `probes` is given.
     virtual std::vector<PixelFx> run(const std::vector<FragmentFx>& frags, int activeOctaves,
                                      std::map<uint32_t, ProbeFx>* probes = nullptr) = 0;
     virtual uint64_t cycles() const = 0;       // since construction

@@ -34,6 +34,9 @@ public:
     RtlModelImpl(std::string profileName, const Profile& prof, const SimOptions& opt)
         : name_(std::move(profileName)), p_(prof), opt_(opt), rng_(opt.seed) {
         ctx_.randReset(0);
+        // A failed assertion ($error, $fatal) sets gotError instead of aborting the process;
+        // check() turns it into an RtlAssertionError, so the caller records a failed run.
+        ctx_.fatalOnError(false);
         ctx_.traceEverOn(!opt_.traceFile.empty());
         top_ = std::make_unique<Top>(&ctx_, "pst_top");
         if (!opt_.traceFile.empty()) {
@@ -62,6 +65,7 @@ public:
     uint64_t busyCycles() const override { return busy_; }
 
     void reset() override {
+        current();
         top_->clk_i = 0;
         top_->rst_ni = 0;
         top_->reg_we_i = 0;
@@ -73,6 +77,7 @@ public:
     }
 
     void write(const std::vector<std::pair<uint16_t, uint32_t>>& writes) override {
+        current();
         waitIdle();
         for (const auto& [addr, data] : writes) {
             top_->reg_we_i = 1;
@@ -85,15 +90,30 @@ public:
 
     std::vector<PixelFx> run(const std::vector<FragmentFx>& frags, int activeOctaves,
                              std::map<uint32_t, ProbeFx>* probes) override {
+        current();
         std::vector<PixelFx> out;
         out.reserve(frags.size());
+        size_t next = 0;
+        try {
+            stream(frags, activeOctaves, probes, out, next);
+        } catch (RtlAssertionError& e) {
+            e.pixelsOut = out.size();
+            e.fragmentsIn = next;
+            throw;
+        }
+        return out;
+    }
+
+private:
+    // Fragments in, pixels out (`next`: fragments taken so far).
+    void stream(const std::vector<FragmentFx>& frags, int activeOctaves, std::map<uint32_t, ProbeFx>* probes,
+                std::vector<PixelFx>& out, size_t& next) {
         const uint64_t start = cycle_;
         const uint64_t limit = opt_.timeoutCycles ? opt_.timeoutCycles
                                                   : 1000 + 64 * uint64_t(frags.size()) * p_.cyclesPerPixel();
         std::bernoulli_distribution gap(opt_.inputGapRate), stall(opt_.outputStallRate);
         std::uniform_int_distribution<int> burst(1, std::max(1, opt_.outputStallBurst));
         int stallLeft = 0;   // cycles of the current stall burst still to come
-        size_t next = 0;
         bool offering = false;
         while (out.size() < frags.size()) {
             if (cycle_ - start > limit)
@@ -117,32 +137,51 @@ public:
             }
             top_->out_ready_i = ready;
             top_->eval();
+            check();
             const bool fragTaken = offering && top_->frag_ready_o;
             const bool pixelTaken = top_->out_valid_o && top_->out_ready_i;
             if (pixelTaken) out.push_back(sample());
             if (probes && top_->probe_valid_o) sampleProbes(*probes, activeOctaves);
             if (probes && top_->probe_q_valid_o)
                 (*probes)[top_->probe_q_tag_o].q = port::getSigned(top_->probe_q_o, 0, p_.f.width());
-            tick();
+            // Self-test (SimOptions::busyWriteAfter): one register write while fragments are in flight.
+            const bool violate = opt_.busyWriteAfter && !violated_ && taken_ >= opt_.busyWriteAfter && !top_->idle_o;
+            if (violate) {
+                top_->reg_we_i = 1;
+                top_->reg_addr_i = 0;
+                top_->reg_wdata_i = 0;
+                violated_ = true;
+            }
             if (fragTaken) {
                 offering = false;
                 ++next;
+                ++taken_;
             }
+            tick();
+            if (violate) top_->reg_we_i = 0;
         }
         top_->frag_valid_i = 0;
         top_->out_ready_i = 0;
         busy_ += cycle_ - start;
-        return out;
     }
 
-private:
+    // Verilator reports a failed assertion to the thread's current context: this model's.
+    void current() { Verilated::threadContextp(&ctx_); }
+    void check() {
+        if (VL_UNLIKELY(ctx_.gotError()))
+            throw RtlAssertionError("rtl " + name_ + ": an RTL assertion failed at cycle " + std::to_string(cycle_) +
+                                        " (the simulator's %Error line names the checker and the assertion)",
+                                    cycle_);
+    }
     void tick() {
         top_->clk_i = 0;
         top_->eval();
         dump(2 * cycle_);
+        check();
         top_->clk_i = 1;
         top_->eval();
-        dump(2 * cycle_ + 1);
+        dump(2 * cycle_ + 1);   // a failing edge is in the waves
+        check();
         ++cycle_;
         ctx_.timeInc(1);
     }
@@ -217,6 +256,8 @@ private:
     bool traceOpen_ = false;
     uint64_t cycle_ = 0;
     uint64_t busy_ = 0;
+    uint64_t taken_ = 0;          // fragments taken since construction
+    bool violated_ = false;       // the busyWriteAfter self-test has written
 };
 
 }  // namespace pst

@@ -11,9 +11,10 @@ from .paths import ROOT
 STOP = threading.Event()
 _procs = set()
 _procs_lock = threading.Lock()
-def run(cmd, cwd=ROOT, timeout=None):
+def run(cmd, cwd=ROOT, timeout=None, on_start=None):
     """Runs a command in its own process group (so an interrupt can stop its children too):
-    (exit status, stdout, stderr); KeyboardInterrupt once STOP is set."""
+    (exit status, stdout, stderr); KeyboardInterrupt once STOP is set. on_start(pid) is called
+    once it runs."""
     if STOP.is_set():
         raise KeyboardInterrupt
     p = subprocess.Popen([str(c) for c in cmd], cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
@@ -21,6 +22,8 @@ def run(cmd, cwd=ROOT, timeout=None):
     with _procs_lock:
         _procs.add(p)
     try:
+        if on_start:
+            on_start(p.pid)
         out, err = p.communicate(timeout=timeout)
     except subprocess.TimeoutExpired:
         os.killpg(p.pid, signal.SIGKILL)

@@ -257,6 +257,18 @@ int runHardwareRender(const RenderArgs& a, const HwArgs& hw) {
     return rc;
 }
 
+// The command that runs one scene x profile of a regression again, with the same inputs, gaps and stalls.
+std::string regressReplay(const std::string& scene, int size, const std::string& profile, const SimOptions& so) {
+    std::ostringstream os;
+    os << "pst regress " << scene << " --size " << size << " --profile " << profile;
+    if (so.seed != SimOptions{}.seed) os << " --sim-seed " << so.seed;
+    if (so.inputGapRate > 0) os << " --gap-rate " << so.inputGapRate;
+    if (so.outputStallRate > 0) os << " --stall-rate " << so.outputStallRate;
+    if (so.timeoutCycles) os << " --timeout " << so.timeoutCycles;
+    if (so.busyWriteAfter) os << " --inject-assert " << so.busyWriteAfter - 1;
+    return os.str();
+}
+
 int runRegress(const std::vector<std::string>& scenes, int size, const HwArgs& hw, const std::string& outPath,
                const std::string& imageDir, const std::string& junitPath) {
     nlohmann::json all = nlohmann::json::array();
@@ -293,7 +305,27 @@ int runRegress(const std::vector<std::string>& scenes, int size, const HwArgs& h
                 for (Texture& t : faded.textures)
                     if (t.bandlimit == Bandlimit::Off) t.bandlimit = Bandlimit::Isotropic;
             }
-            HwRenderResult r = renderHardware(p.bandlimit ? faded : scene, p, rtl.get(), ho);
+            HwRenderResult r;
+            try {
+                r = renderHardware(p.bandlimit ? faded : scene, p, rtl.get(), ho);
+            } catch (const RtlAssertionError& e) {
+                // A failed run like a mismatch: recorded, the next run goes on.
+                const std::string replay = regressReplay(path, size, p.name, hw.sim);
+                std::printf("%-14s %-8s ASSERTION at cycle %llu\n", stem.c_str(), p.name.c_str(),
+                            (unsigned long long)e.cycle);
+                std::cout << e.what() << "\nreplay alone: " << replay << "\n";
+                std::fflush(stdout);
+                ++failures;
+                cases.push_back({"regress." + p.name, stem, 0, true, "RTL assertion at cycle " + std::to_string(e.cycle),
+                                 std::string(e.what()) + "\nreplay alone: " + replay + "\n"});
+                HwRenderResult none;   // the same keys as a finished run's, zero
+                none.passed = false;
+                nlohmann::json j = hwJson(path, p, "rtl", none, scene.camera.width, scene.camera.height);
+                j["assertion"] = {{"cycle", e.cycle}, {"pixels_out", e.pixelsOut}};
+                j["replay"] = replay;
+                all.push_back(j);
+                continue;
+            }
             std::printf("%-14s %-8s %9lld %10zu %8.2f %9.2f %10.3f %12.0f\n", stem.c_str(), p.name.c_str(),
                         r.fragments, r.mismatches, r.vsReference.psnr, r.vsReference.within1Lsb, r.cyclesPerPixel,
                         r.rtlSeconds > 0 ? double(r.fragments) / r.rtlSeconds : 0.0);
@@ -305,6 +337,7 @@ int runRegress(const std::vector<std::string>& scenes, int size, const HwArgs& h
             cases.push_back({"regress." + p.name, stem, r.rtlSeconds + r.goldenSeconds + r.referenceSeconds, !r.passed,
                              std::to_string(r.mismatches) + " mismatches", r.scoreboard});
             all.push_back(hwJson(path, p, "rtl", r, scene.camera.width, scene.camera.height));
+            if (!r.passed) all.back()["replay"] = regressReplay(path, size, p.name, hw.sim);
             if (!imageDir.empty()) {
                 const fs::path dir = fs::path(imageDir) / stem / p.name;
                 fs::create_directories(dir);
@@ -349,6 +382,14 @@ int runRandom(const HwArgs& hw, RandomRegressOptions o, bool quiet, const std::s
         JunitCase jc{"regress.random." + p.name, "seed " + std::to_string(o.seed) + " fragments " +
                      std::to_string(r.firstFragment) + ".." + std::to_string(r.firstFragment + r.fragments),
                      r.seconds, !r.passed, "", ""};
+        // The command that replays the first failure alone (the segment holding it, same inputs).
+        std::string replay;
+        if (r.firstBad != UINT64_MAX) {
+            replay = "pst regress --random " + std::to_string(r.replayFragments) + " --seed " + std::to_string(o.seed) +
+                     " --from " + std::to_string(r.firstBad) + " --batch " + std::to_string(o.maxBatch) +
+                     " --profile " + name + " --probes";
+            if (o.injectAssert != UINT64_MAX) replay += " --inject-assert " + std::to_string(o.injectAssert);
+        }
         all.push_back({{"profile", p.name},
                        {"seed", o.seed},
                        {"first_fragment", r.firstFragment},
@@ -356,20 +397,23 @@ int runRandom(const HwArgs& hw, RandomRegressOptions o, bool quiet, const std::s
                        {"textures", r.textures},
                        {"mismatches", r.mismatches},
                        {"first_bad", r.firstBad == UINT64_MAX ? nlohmann::json(nullptr) : nlohmann::json(r.firstBad)},
+                       {"assertion", r.assertion ? nlohmann::json({{"cycle", r.assertionCycle}}) : nlohmann::json(nullptr)},
+                       {"replay", replay.empty() ? nlohmann::json(nullptr) : nlohmann::json(replay)},
                        {"cycles_per_pixel", r.fragments ? double(r.cycles) / double(r.fragments) : 0.0},
                        {"seconds", r.seconds},
                        {"passed", r.passed}});
         if (!r.passed) {
             ++failures;
-            jc.message = std::to_string(r.mismatches) + " mismatches, first at fragment " +
-                         (r.firstBad == UINT64_MAX ? std::string("?") : std::to_string(r.firstBad));
-            jc.output = r.report;
+            const std::string what = r.assertion ? "RTL assertion" : "mismatch";
+            const std::string at = r.firstBad == UINT64_MAX ? std::string("?") : std::to_string(r.firstBad);
+            jc.message = r.assertion ? "RTL assertion at cycle " + std::to_string(r.assertionCycle) + ", fragment " + at
+                                     : std::to_string(r.mismatches) + " mismatches, first at fragment " + at;
+            jc.output = r.report + (replay.empty() ? "" : "replay alone: " + replay + "\n");
             cases.push_back(jc);
             std::cout << r.report;
-            if (r.firstBad != UINT64_MAX)
-                std::cout << "first mismatch: seed " << o.seed << ", fragment " << r.firstBad << "; replay alone: pst regress --random 1 --seed "
-                          << o.seed << " --from " << r.firstBad << " --batch " << o.maxBatch << " --profile " << name
-                          << " --probes\n";
+            if (!replay.empty())
+                std::cout << "first " << what << ": seed " << o.seed << ", fragment " << r.firstBad
+                          << "; replay alone: " << replay << "\n";
         } else {
             cases.push_back(jc);
         }
@@ -639,6 +683,15 @@ int main(int argc, char** argv) {
     regress->add_option("--batch", rnd.maxBatch, "Most fragments per random texture")->check(CLI::Range(1, 1 << 20))->needs(rndOpt);
     regress->add_flag("--probes", rnd.probes, "Sample the octave-stage probes in --random (names the first bad stage)")->needs(rndOpt);
     regress->add_flag("-q,--quiet", rndQuiet, "No progress on stderr");
+    uint64_t injectAssert = UINT64_MAX;
+    regress->add_option("--inject-assert", injectAssert, "Self-test: once fragment I (of --random, or of each scene run) is in "
+                        "the RTL, write a register while the pipeline is busy; the RTL's RegWriteOnlyWhenIdle assertion "
+                        "must fire and fail the run")
+        ->check(CLI::Range(uint64_t(0), (uint64_t(1) << 32) - 1));
+    bool regList = false;
+    regress->add_flag("--list", regList, "Print the runs and exit (what scripts/regress.py splits into shards): "
+                      "scene file TAB profile per line; with --random 'profile NAME' lines, then 'segment I' per "
+                      "segment the run simulates (I: its first fragment)");
 
     std::string fragScene, fragOut;
     int fragSize = 0, fragLayer = 0;
@@ -714,12 +767,26 @@ int main(int argc, char** argv) {
                 if (rnd.from + rndCount > (uint64_t(1) << 32))
                     throw InputError("--from: fragment indices are 32-bit tags (from + N <= 2^32)");
                 rnd.fragments = rndCount;
+                rnd.injectAssert = injectAssert;
+                if (regList) {
+                    for (const auto& n : hw.profiles) std::cout << "profile " << profileByName(n, true).name << "\n";
+                    for (uint64_t s : segmentStarts(rnd)) std::cout << "segment " << s << "\n";
+                    return 0;
+                }
                 return runRandom(hw, rnd, rndQuiet, regOut, regJunit);
             }
             if (regScenes.empty()) {
                 for (const auto& e : fs::directory_iterator(fs::path(sourceDir()) / "scenes"))
                     if (e.path().extension() == ".toml") regScenes.push_back(e.path().string());
                 std::sort(regScenes.begin(), regScenes.end());
+            }
+            if (injectAssert != UINT64_MAX) hw.sim.busyWriteAfter = injectAssert + 1;
+            if (regList) {
+                std::vector<std::string> names;
+                for (const auto& n : hw.profiles) names.push_back(profileByName(n, true).name);
+                for (const auto& sc : regScenes)
+                    for (const auto& n : names) std::cout << sc << "\t" << n << "\n";
+                return 0;
             }
             if (regHtml.empty()) return runRegress(regScenes, regSize, hw, regOut, regImages, regJunit);
             const fs::path page(regHtml), dir = page.parent_path().empty() ? fs::path(".") : page.parent_path();

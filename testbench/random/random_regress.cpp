@@ -187,6 +187,19 @@ uint64_t segmentStart(const RandomRegressOptions& o, uint64_t index, uint64_t* s
     }
 }
 
+std::vector<uint64_t> segmentStarts(const RandomRegressOptions& o) {
+    std::vector<uint64_t> out;
+    const uint64_t end = o.from + o.fragments;
+    uint64_t start = 0;
+    for (uint64_t g = 0; start < end; ++g) {
+        uint64_t len = 0;
+        for (int n : batchSizes(o, g)) len += uint64_t(n);
+        if (start + len > o.from) out.push_back(start);
+        start += len;
+    }
+    return out;
+}
+
 RandomRegressResult runRandomRegress(const Profile& p, const std::string& rtlName, const RandomRegressOptions& o) {
     using Clock = std::chrono::steady_clock;
     const auto t0 = Clock::now();
@@ -211,12 +224,24 @@ RandomRegressResult runRandomRegress(const Profile& p, const std::string& rtlNam
             so.outputStallRate = rb.uniform(0.002, 0.02);
             so.outputStallBurst = int(rb.range(16, 256));
         }
+        uint64_t segEnd = idx;
+        for (int n : sizes) segEnd += uint64_t(n);
+        segEnd = std::min(segEnd, end);
+        if (o.injectAssert >= idx && o.injectAssert < segEnd) so.busyWriteAfter = o.injectAssert - idx + 1;
+        auto segmentName = [&] {
+            std::ostringstream os;
+            os << "segment " << g << " (gap rate " << so.inputGapRate << ", stall rate " << so.outputStallRate
+               << (so.outputStallBurst > 1 ? " in bursts of 1.." + std::to_string(so.outputStallBurst) : std::string())
+               << "): ";
+            return os.str();
+        };
         auto rtl = makeRtlModel(rtlName, so);
         GoldenPipeline golden(p);
         Scoreboard board(p, o.maxReports);
         Texture tex;
         TextureProgram prog;
         bool programmed = false;
+        std::string assertion;         // what the RtlAssertionError said, if one fired
         for (size_t b = 0; b < sizes.size() && idx < end; ++b) {
             // A new texture, or (as for an unfiltered image) only a new control word.
             RegWrites writes;
@@ -239,7 +264,6 @@ RandomRegressResult runRandomRegress(const Profile& p, const std::string& rtlNam
             if (frags.size() > end - idx) frags.resize(size_t(end - idx));
 
             for (const auto& [a, d] : writes) golden.write(a, d);
-            rtl->write(writes);
             for (const FragmentFx& f : frags) {
                 if (o.fault != Stage::Count) golden.injectFault(f.tag >= o.faultFrom ? o.fault : Stage::Count);
                 StageTrace trace;
@@ -247,7 +271,22 @@ RandomRegressResult runRandomRegress(const Profile& p, const std::string& rtlNam
                 board.expect(f, px, trace);
             }
             std::map<uint32_t, ProbeFx> probes;
-            const std::vector<PixelFx> got = rtl->run(frags, prog.activeOctaves, o.probes ? &probes : nullptr);
+            std::vector<PixelFx> got;
+            try {
+                rtl->write(writes);
+                got = rtl->run(frags, prog.activeOctaves, o.probes ? &probes : nullptr);
+            } catch (const RtlAssertionError& e) {
+                // A failed run like a mismatch: named by the oldest fragment in flight, replayed
+                // from there to the segment's end.
+                res.assertion = true;
+                res.assertionCycle = e.cycle;
+                res.firstBad = idx + e.pixelsOut;
+                res.fragments += e.pixelsOut;
+                assertion = "RTL assertion at cycle " + std::to_string(e.cycle) + ", fragment " +
+                            std::to_string(idx + e.pixelsOut) + " the oldest not yet out, " +
+                            std::to_string(e.fragmentsIn) + " of the batch taken: " + e.what() + "\n";
+                break;
+            }
             for (const PixelFx& px : got) {
                 auto it = probes.find(px.tag);
                 board.observe(px, it == probes.end() ? nullptr : &it->second);
@@ -255,19 +294,24 @@ RandomRegressResult runRandomRegress(const Profile& p, const std::string& rtlNam
             idx += frags.size();
             res.fragments += frags.size();
         }
-        board.finish();
+        if (assertion.empty()) board.finish();
         res.cycles += rtl->busyCycles();
         ++res.segments;
+        if (!assertion.empty()) {
+            res.passed = false;
+            res.mismatches += board.mismatches();
+            for (const Mismatch& m : board.reports())   // pixels out before it that differed
+                res.firstBad = std::min<uint64_t>(res.firstBad, m.stage == Stage::Count ? m.got.tag : m.input.tag);
+            res.replayFragments = segEnd - res.firstBad;
+            res.report += segmentName() + assertion;
+            break;
+        }
         if (!board.passed()) {
             res.passed = false;
             res.mismatches += board.mismatches() + board.lost() + board.unexpected();
             for (const Mismatch& m : board.reports())
                 res.firstBad = std::min<uint64_t>(res.firstBad, m.stage == Stage::Count ? m.got.tag : m.input.tag);
-            std::ostringstream os;
-            os << "segment " << g << " (gap rate " << so.inputGapRate << ", stall rate " << so.outputStallRate
-               << (so.outputStallBurst > 1 ? " in bursts of 1.." + std::to_string(so.outputStallBurst) : std::string())
-               << "): " << board.summary();
-            res.report += os.str();
+            res.report += segmentName() + board.summary();
             break;  // the first failing segment is enough; replay it with --from
         }
         if (o.progress) o.progress(idx - res.firstFragment, end - res.firstFragment);

@@ -58,6 +58,8 @@ struct RandomRegressOptions {
     bool probes = false;           // sample the octave-stage probes (names the first bad stage)
     Stage fault = Stage::Count;    // self-test: perturb this golden stage ...
     uint64_t faultFrom = 0;        // ... from this fragment index on
+    uint64_t injectAssert = UINT64_MAX;  // self-test: once this fragment is in the RTL, the driver
+                                   // writes a register while the pipeline is busy (an assertion fires)
     size_t maxReports = 4;
     std::function<void(uint64_t done, uint64_t total)> progress;
 };
@@ -69,7 +71,13 @@ struct RandomRegressResult {
     uint64_t textures = 0;         // texture programs (full or control only)
     uint64_t segments = 0;
     uint64_t mismatches = 0;       // includes lost and out-of-order pixels
-    uint64_t firstBad = UINT64_MAX;  // global index of the first mismatching fragment
+    uint64_t firstBad = UINT64_MAX;  // global index of the first mismatching fragment (for an
+                                   // assertion: the oldest fragment in the pipeline when it fired)
+    uint64_t replayFragments = 1;  // fragments from firstBad a replay runs (`--random N --from
+                                   // firstBad`): 1 for a mismatch; for an assertion to the end of
+                                   // its segment, as a younger fragment in flight may have caused it
+    bool assertion = false;        // an RTL assertion fired (the simulator printed which)
+    uint64_t assertionCycle = 0;   // the segment model's cycle at which it fired
     uint64_t cycles = 0;           // RTL cycles streaming
     double seconds = 0;            // wall clock of the whole run
     std::string report;            // the scoreboard's first failures
@@ -77,6 +85,9 @@ struct RandomRegressResult {
 
 // The global index of the first fragment of the segment that holds fragment `index`.
 uint64_t segmentStart(const RandomRegressOptions& o, uint64_t index, uint64_t* segment = nullptr);
+// The first fragment of every segment a run of `o` simulates (from segmentStart(o.from) up to
+// o.from + o.fragments): where a run can be split with no fragment simulated twice.
+std::vector<uint64_t> segmentStarts(const RandomRegressOptions& o);
 
 // Runs the regression on the verilated model `rtlName` (one of rtlProfiles()).
 RandomRegressResult runRandomRegress(const Profile& p, const std::string& rtlName,

@@ -123,6 +123,18 @@ TEST(RandomRegress, SegmentStartsAreConsistent) {
     // The segment before ends where this one starts.
     EXPECT_LT(segmentStart(o, s - 1), s);
     EXPECT_EQ(segmentStart(o, s), s);
+    // segmentStarts lists the same boundaries, from the segment holding `from` on.
+    o.from = 100000;
+    o.fragments = 50000;
+    const std::vector<uint64_t> starts = segmentStarts(o);
+    ASSERT_GE(starts.size(), 2u);
+    EXPECT_EQ(starts.front(), s);
+    for (size_t i = 1; i < starts.size(); ++i) {
+        EXPECT_EQ(segmentStart(o, starts[i]), starts[i]);
+        EXPECT_EQ(segmentStart(o, starts[i] - 1), starts[i - 1]);
+    }
+    EXPECT_LT(starts.back(), 150000u);
+    EXPECT_GE(segmentStart(o, 149999), starts.back());
 }
 
 // The regression can fail: a perturbed golden stage from fragment X on is reported at X, and
@@ -152,6 +164,47 @@ TEST(RandomRegress, PerturbedGoldenIsCaughtAtItsFragmentAndReplays) {
     EXPECT_EQ(replay.firstBad, 4321u);
     EXPECT_LE(replay.firstFragment, 4321u);
     EXPECT_LE(replay.fragments, 4321u - replay.firstFragment + 1);
+}
+
+// A failed RTL assertion is a failed run, not a crash: the testbench writes a register while
+// the pipeline is busy (a protocol violation), Verilator's $error fires in pst_top's checker,
+// the run stops at that segment with the fragment named, and the replay fires it again.
+TEST(RandomRegress, FailedAssertionIsAFailedRunThatReplays) {
+    const std::string name = rtlProfiles().back();
+    const Profile p = profile(name);
+    RandomRegressOptions o;
+    o.seed = 3;
+    o.maxBatch = 300;
+    o.fragments = 6000;
+    o.injectAssert = 4321;
+    testing::internal::CaptureStdout();
+    const RandomRegressResult bad = runRandomRegress(p, name, o);
+    const std::string printed = testing::internal::GetCapturedStdout();
+    EXPECT_FALSE(bad.passed);
+    EXPECT_TRUE(bad.assertion);
+    EXPECT_NE(printed.find("RegWriteOnlyWhenIdle"), std::string::npos) << printed;
+    // Named by the oldest fragment in flight: at or before 4321, in its segment; the run stopped there.
+    EXPECT_LE(bad.firstBad, 4321u);
+    EXPECT_GE(bad.firstBad, segmentStart(o, 4321));
+    EXPECT_LT(bad.fragments, 6000u);
+    EXPECT_GT(bad.replayFragments, 4321u - bad.firstBad);
+    EXPECT_NE(bad.report.find("RTL assertion at cycle " + std::to_string(bad.assertionCycle)), std::string::npos)
+        << bad.report;
+
+    o.from = bad.firstBad;
+    o.fragments = bad.replayFragments;
+    testing::internal::CaptureStdout();
+    const RandomRegressResult replay = runRandomRegress(p, name, o);
+    testing::internal::GetCapturedStdout();
+    EXPECT_TRUE(replay.assertion);
+    EXPECT_EQ(replay.firstBad, bad.firstBad);
+    EXPECT_EQ(replay.assertionCycle, bad.assertionCycle);
+
+    // The same segment without the protocol violation passes.
+    o.injectAssert = UINT64_MAX;
+    const RandomRegressResult clean = runRandomRegress(p, name, o);
+    EXPECT_TRUE(clean.passed) << clean.report;
+    EXPECT_FALSE(clean.assertion);
 }
 
 }  // namespace

@@ -9,3 +9,21 @@ foreach(p ${PST_ALL_PROFILES})
   set_tests_properties(random_regress_${p} PROPERTIES LABELS random
                        ENVIRONMENT "PST_SOURCE_DIR=${PROJECT_SOURCE_DIR}")
 endforeach()
+
+# scripts/regress.py, the sharded regression: 40k random fragments in shards on two local workers
+# with one shard killed while it runs (re-run alone; merged = one process's run), an RTL
+# assertion in one shard (merged as the first failure, its replay fails alone), scene shards.
+# The same on a one-node SLURM cluster (scripts/slurm_local.sh) under label slurm.
+if("reduced" IN_LIST PST_ALL_PROFILES)
+  set(PST_SHARD_PROFILE reduced)
+else()
+  list(GET PST_ALL_PROFILES 0 PST_SHARD_PROFILE)
+endif()
+add_test(NAME regress_shards_local
+         COMMAND ${PROJECT_SOURCE_DIR}/scripts/tests/regress_shards_test.sh ${PROJECT_BINARY_DIR}/regress_shards_local
+                 $<TARGET_FILE:pst> ${PST_SHARD_PROFILE} local)
+set_tests_properties(regress_shards_local PROPERTIES LABELS python TIMEOUT 300)
+add_test(NAME regress_shards_slurm
+         COMMAND ${PROJECT_SOURCE_DIR}/scripts/tests/regress_shards_test.sh ${PROJECT_BINARY_DIR}/regress_shards_slurm
+                 $<TARGET_FILE:pst> ${PST_SHARD_PROFILE} slurm)
+set_tests_properties(regress_shards_slurm PROPERTIES LABELS slurm TIMEOUT 900 RUN_SERIAL TRUE)
