@@ -1,0 +1,108 @@
+"""`pst atlas` (texture-atlas mode): bad input is refused (`error: --flag: ...` or
+`error: FILE:LINE: FIELD: ...`, exit 2, nothing written), and a tiny run through the verilated
+RTL of a profile with input gaps and output stalls is bit-exact with 0 seams. Run by ctest
+(cli_atlas) with PST_BIN set to the built tool; skipped without it."""
+import json
+import os
+import pathlib
+import re
+import subprocess
+
+import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+PST = os.environ.get("PST_BIN", "")
+RTL = os.environ.get("PST_ATLAS_RTL", "")  # a verilated profile of the build, "" = skip the RTL run
+pytestmark = pytest.mark.skipif(not PST or not os.path.exists(PST), reason="PST_BIN not set")
+
+SCENE = """title = "atlas"
+[image]
+width = 16
+height = 16
+[camera]
+eye = [2.0, 2.5, 3.0]
+target = [0.0, 0.0, 0.0]
+fovy = 40.0
+[textures.t]
+quadric = {{ A = 1.0, E = 1.0 }}
+filter = "sat"
+colormap = {{ size = 256, wrap = "mod", ramp = [[0.0, 0.0, 0.0, 0.0], [1.0, 1.0, 1.0, 1.0]] }}
+[[textures.t.octaves]]
+amplitude = 0.5
+scale = 4.0
+
+[[objects]]
+mesh = "cube"
+texture = "t"
+scale = {scale}
+"""
+
+
+def scene(tmp, scale="[1.0, 1.0, 1.0]"):
+    p = tmp / "cube.toml"
+    p.write_text(SCENE.format(scale=scale))
+    return p
+
+
+def pst(*args):
+    r = subprocess.run([PST, *map(str, args)], capture_output=True, text=True, timeout=300,
+                       env=dict(os.environ, PST_SOURCE_DIR=str(ROOT)))
+    return r.returncode, r.stdout, r.stderr
+
+
+def refused(args, pattern, out):
+    rc, _, err = pst(*args)
+    assert rc == 2, f"exit {rc}, stderr:\n{err}"
+    assert re.search(r"^error: " + pattern, err, re.M), f"stderr does not match {pattern!r}:\n{err}"
+    assert not pathlib.Path(out).exists(), f"{out} was left behind"
+
+
+def test_unknown_atlas_kind(tmp_path):
+    out = tmp_path / "out"
+    refused(["atlas", scene(tmp_path), "--atlas", "rhino", "-o", out, "-q"], r"--atlas: 'rhino' is not uniform", out)
+
+
+def test_unknown_magnification(tmp_path):
+    out = tmp_path / "out"
+    refused(["atlas", scene(tmp_path), "--magnification", "cubic", "-o", out, "-q"], r"--magnification: 'cubic'", out)
+
+
+# The cube's 12 triangles need 6 pair cells; bilinear cells are at least 6 x 2 texels, so an
+# 8 x 8 atlas holds 1 x 4 cells = 8 triangles (nearest: 3 x 2 cells, 2 x 4 = 16 triangles).
+def test_more_triangles_than_the_size_holds(tmp_path):
+    out = tmp_path / "out"
+    refused(["atlas", scene(tmp_path), "--size", 8, "-o", out, "-q"],
+            r"--size: 12 triangles do not fit a 8 x 8 atlas \(it holds 8 ", out)
+    rc, _, err = pst("atlas", scene(tmp_path), "--size", 8, "--magnification", "nearest", "--truth", 1, "-o", out, "-q")
+    assert rc == 0, err
+
+
+# A scale that flattens the cube to 1e-20 of its height leaves its side triangles without area.
+def test_degenerate_triangle(tmp_path):
+    out = tmp_path / "out"
+    s = scene(tmp_path, "[1.0, 1e-20, 1.0]")
+    refused(["atlas", s, "-o", out, "-q"],
+            re.escape(str(s)) + r":17: objects\[0\]\.mesh: triangle \d+ of '[^']*' has zero area", out)
+
+
+def test_two_profiles(tmp_path):
+    out = tmp_path / "out"
+    refused(["atlas", scene(tmp_path), "--profile", "full", "--profile", "reduced", "--model", "golden", "-o", out, "-q"],
+            r"--profile: atlas takes one profile", out)
+
+
+@pytest.mark.skipif(not RTL, reason="PST_ATLAS_RTL not set")
+@pytest.mark.parametrize("kind", ["uniform", "length"])
+def test_rtl_fill_bit_exact_with_gaps_and_stalls(tmp_path, kind):
+    out = tmp_path / kind
+    rc, stdout, err = pst("atlas", scene(tmp_path), "--atlas", kind, "--size", 64, "--truth", 2, "--profile", RTL,
+                          "--gap-rate", 0.3, "--stall-rate", 0.4, "-o", out, "-q")
+    assert rc == 0, stdout + err
+    j = json.loads((out / "atlas.json").read_text())
+    hw = j["hardware"]
+    assert hw["passed"] and hw["mismatches"] == 0
+    assert hw["texels"] > 0 and hw["cycles"] >= hw["texels"]
+    assert j["seams"]["nearest"] == 0 and j["seams"]["bilinear"] == 0
+    assert j["seams"]["standard_bilinear"] > 0
+    for f in ["atlas.png", "atlas_rtl.png", "render_nearest.png", "render_bilinear.png", "scale.png", "atlas.md"]:
+        assert (out / f).exists(), f
