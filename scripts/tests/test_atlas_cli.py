@@ -106,3 +106,31 @@ def test_rtl_fill_bit_exact_with_gaps_and_stalls(tmp_path, kind):
     assert j["seams"]["standard_bilinear"] > 0
     for f in ["atlas.png", "atlas_rtl.png", "render_nearest.png", "render_bilinear.png", "scale.png", "atlas.md"]:
         assert (out / f).exists(), f
+
+
+OBJ_SCENE = SCENE.format(scale="1.0").replace('mesh = "cube"', 'mesh = "obj"\nfile = "m.obj"')
+
+
+@pytest.mark.parametrize("name,obj,pattern", [
+    ("index", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", r"shape '': face 1: vertex index out of range \(3 vertices\)"),
+    ("junk", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 x\n", r"[Ff]ail.*line 4"),
+    ("empty", "v 0 0 0\n", r"no faces"),
+    ("missing", None, r"[Cc]annot open"),
+])
+def test_broken_obj_file(tmp_path, name, obj, pattern):
+    s = tmp_path / "obj.toml"
+    s.write_text(OBJ_SCENE)
+    if obj is not None:
+        (tmp_path / "m.obj").write_text(obj)
+    out = tmp_path / "out"
+    refused(["atlas", s, "-o", out, "-q"], re.escape(str(s)) + r":19: objects\[0\]\.file: " +
+            re.escape(str(tmp_path / "m.obj")) + ": " + pattern, out)
+
+
+# A face whose three vertices are collinear has no chart.
+def test_degenerate_obj_face(tmp_path):
+    s = tmp_path / "obj.toml"
+    s.write_text(OBJ_SCENE)
+    (tmp_path / "m.obj").write_text("v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 4\nf 1 2 3\n")
+    out = tmp_path / "out"
+    refused(["atlas", s, "-o", out, "-q"], re.escape(str(s)) + r":17: objects\[0\]\.mesh: triangle 1 of 'obj' has zero area", out)
