@@ -165,7 +165,12 @@ void placeVertices(const Atlas& a, Chart& c) {
 
 }  // namespace
 
+void Atlas::placeCharts() {
+    for (Chart& c : charts) placeVertices(*this, c);
+}
+
 glm::ivec2 Atlas::cellSize(int legs) const {
+    if (mipCell > 0) return {mipCell, mipCell};
     if (!options.seamFree) return {legs, legs};
     return {legs + 2 + 2 * margin(options), legs + 1};
 }
@@ -196,19 +201,23 @@ std::vector<int> Atlas::owners() const {
     return own;
 }
 
+void prepareTriangles(std::vector<AtlasTriangle>& tris) {
+    for (AtlasTriangle& t : tris) {
+        const double e = t.longestEdge();
+        if (!(t.area() > 1e-12 * e * e))
+            throw InputError("triangle " + std::to_string(t.index) + " of object " + std::to_string(t.object) +
+                             ": degenerate (zero area)");
+        rightAngleOppositeLongest(t);
+    }
+}
+
 Atlas buildAtlas(std::vector<AtlasTriangle> tris, const AtlasOptions& opt) {
     Atlas a;
     a.options = opt;
     const size_t M = tris.size();
     if (opt.size < 1) throw InputError("--size: must be at least 1 (got " + std::to_string(opt.size) + ")");
     if (M == 0) throw InputError("--size: no triangles to place");
-    for (size_t t = 0; t < M; ++t) {
-        const double e = tris[t].longestEdge();
-        if (!(tris[t].area() > 1e-12 * e * e))
-            throw InputError("triangle " + std::to_string(tris[t].index) + " of object " +
-                             std::to_string(tris[t].object) + ": degenerate (zero area)");
-        rightAngleOppositeLongest(tris[t]);
-    }
+    prepareTriangles(tris);
     a.triangles = std::move(tris);
     a.charts.assign(M, Chart{});
     // Eq. (3): pairs of triangles in a square grid of ceil(sqrt(M/2)) cells a side.
@@ -246,7 +255,7 @@ Atlas buildAtlas(std::vector<AtlasTriangle> tris, const AtlasOptions& opt) {
     }
     if (!packStrips(a, strips, order)) throw tooMany();
     a.stripCount = int(strips.size());
-    for (Chart& c : a.charts) placeVertices(a, c);
+    a.placeCharts();
     return a;
 }
 

@@ -74,6 +74,7 @@ struct Atlas {
     std::vector<Chart> charts;      // one per triangle, same order
     double eq3Edge = 0;             // eq. (3): the pair edge a = H / ceil(sqrt(M / 2)) texels, no overscan
     int stripCount = 0;
+    int mipCell = 0;                // multiresolution atlas (multires.h): the a x a pair cell; 0 = strips
 
     int size() const { return options.size; }
     glm::ivec2 cellSize(int legs) const;  // a pair cell with legs L (width, height)
@@ -81,10 +82,16 @@ struct Atlas {
     std::vector<glm::ivec2> footprint(int t) const;
     // Owner of each texel (row-major, size x size): the triangle, or -1 for background.
     std::vector<int> owners() const;
+    // Sets every chart's vertices from its cell, legs and side (after packing).
+    void placeCharts();
 };
 
 // Smallest/largest legs the packer gives a chart.
 constexpr int kMinLegs = 1;
+
+// Refuses a degenerate triangle (InputError "triangle N of object K: ...") and rotates each
+// triangle's vertices so that x[0], the chart's right angle, is opposite the longest edge.
+void prepareTriangles(std::vector<AtlasTriangle>& triangles);
 
 // Builds the atlas of `kind` over the triangles (section 4.1 uniform, 4.2 area and length
 // weighted). Throws InputError ("--size: ...") when the triangles do not fit at kMinLegs, and

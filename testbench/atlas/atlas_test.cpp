@@ -1,6 +1,7 @@
 #include "atlas.h"
 
 #include <cmath>
+#include <map>
 #include <random>
 #include <set>
 
@@ -10,6 +11,7 @@
 #include "atlas_render.h"
 #include "input_error.h"
 #include "mesh.h"
+#include "multires.h"
 
 namespace pst {
 namespace {
@@ -263,6 +265,86 @@ TEST(Atlas, RefusesDegenerateTrianglesAndOverfullSizes) {
         EXPECT_NO_THROW(buildAtlas(many, opts(k, 8, Magnification::Nearest)));
         many.push_back(rightTriangle(1, 18, 16));
     }
+}
+
+// The multiresolution atlas (section 4.3) on a plane of 4 x 4 quads (32 triangles, each quad's
+// two triangles sharing its diagonal): 16 pairs in a 32 x 32 atlas; the largest power of two a
+// with (32 / a)^2 >= 16 cells is a = 8, so 4 x 4 cells of 8 x 8 texels, legs 8 - 2 = 6.
+TEST(Multires, PairsShareAnEdgeAndCellsArePowersOfTwo) {
+    const std::vector<AtlasTriangle> tris = meshTriangles(makePlane(1.0, 4));
+    ASSERT_EQ(tris.size(), 32u);
+    const Atlas a = buildMultiresAtlas(tris, opts(AtlasKind::Uniform, 32, Magnification::Nearest));
+    EXPECT_EQ(a.mipCell, 8);
+    expectPacked(a);
+    // Each cell holds two triangles with two common vertices (an edge of the plane's mesh).
+    std::map<std::pair<int, int>, std::vector<int>> cells;
+    for (size_t t = 0; t < a.charts.size(); ++t) {
+        EXPECT_EQ(a.charts[t].legs, 6);  // nearest: a - 2
+        EXPECT_EQ(a.charts[t].cell.x % 8, 0);
+        EXPECT_EQ(a.charts[t].cell.y % 8, 0);
+        cells[{a.charts[t].cell.x, a.charts[t].cell.y}].push_back(int(t));
+    }
+    EXPECT_EQ(cells.size(), 16u);
+    for (const auto& [c, ts] : cells) {
+        ASSERT_EQ(ts.size(), 2u);
+        int common = 0;
+        for (const glm::dvec3& p : a.triangles[size_t(ts[0])].x)
+            for (const glm::dvec3& q : a.triangles[size_t(ts[1])].x) common += p == q;
+        EXPECT_EQ(common, 2);
+    }
+}
+
+TEST(Multires, RefusesNonPowerOfTwoNonUniformAndNonManifold) {
+    const std::vector<AtlasTriangle> tris = meshTriangles(makePlane(1.0, 2));
+    EXPECT_THROW(buildMultiresAtlas(tris, opts(AtlasKind::Uniform, 48, Magnification::Nearest)), InputError);
+    EXPECT_THROW(buildMultiresAtlas(tris, opts(AtlasKind::Area, 64, Magnification::Nearest)), InputError);
+    // Three triangles on one edge (0,0,0)-(1,0,0).
+    std::vector<AtlasTriangle> fin = {rightTriangle(1, 1, 0), rightTriangle(1, 1, 1), rightTriangle(1, 1, 2)};
+    fin[1].x[2] = glm::dvec3(0, -1, 0);
+    fin[2].x[2] = glm::dvec3(0, 0, 1);
+    try {
+        buildMultiresAtlas(fin, opts(AtlasKind::Uniform, 64, Magnification::Nearest));
+        FAIL() << "non-manifold mesh accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("shared by 3 triangles (non-manifold)"), std::string::npos) << e.what();
+    }
+}
+
+// Balanced quadtree: every triangle placed once in a 2^k grid of cells, seam-free lookups, and
+// MIP texels of the multiresolution atlas average only connected patches of the torus (a
+// closed, connected surface) at every level, while the strip atlas mixes non-neighbours.
+TEST(Multires, MipTexelsAverageOnlyNeighbours) {
+    const std::vector<AtlasTriangle> tris = meshTriangles(makeTorus(1.0, 0.4, 16, 8));
+    const Atlas m = buildMultiresAtlas(tris, opts(AtlasKind::Uniform, 256, Magnification::Bilinear));
+    expectPacked(m);
+    EXPECT_EQ(seamLookups(m, Magnification::Bilinear), 0u);
+    const std::vector<std::vector<int>> dual = dualGraph(m.triangles);
+    for (const auto& nb : dual) EXPECT_EQ(nb.size(), 3u);  // a closed triangle mesh
+    const std::vector<long long> mixM = mipMixing(m, dual);
+    ASSERT_EQ(mixM.size(), 9u);  // 256 .. 1
+    for (size_t l = 0; l < mixM.size(); ++l) EXPECT_EQ(mixM[l], 0) << "level " << l;
+    const Atlas s = buildAtlas(tris, opts(AtlasKind::Uniform, 256, Magnification::Bilinear));
+    const std::vector<long long> mixS = mipMixing(s, dualGraph(s.triangles));
+    EXPECT_GT(mixS[6], 0);
+}
+
+// MIP levels average the written texels only; the trilinear lookup at one texel per pixel is
+// the bilinear lookup of level 0, at two texels per pixel that of level 1.
+TEST(Multires, MipLevelsAndTrilinear) {
+    Image img(2, 2, 4);
+    const float c[4][4] = {{1, 0, 0, 1}, {9, 9, 9, 9}, {0, 1, 0, 1}, {0, 0, 1, 1}};
+    for (int k = 0; k < 4; ++k)
+        for (int ch = 0; ch < 4; ++ch) img.pixel(k % 2, k / 2)[ch] = c[k][ch];
+    const std::vector<Image> lv = mipLevels(img, {0, -1, 1, 2});  // texel 1 is background
+    ASSERT_EQ(lv.size(), 2u);
+    EXPECT_FLOAT_EQ(lv[1].pixel(0, 0)[0], 1.f / 3);
+    EXPECT_FLOAT_EQ(lv[1].pixel(0, 0)[1], 1.f / 3);
+    EXPECT_FLOAT_EQ(lv[1].pixel(0, 0)[2], 1.f / 3);
+    EXPECT_FLOAT_EQ(lv[1].pixel(0, 0)[3], 1.f);
+    const glm::dvec4 t0 = lookupTrilinear(lv, {0.75, 0.5}, {1, 0}, {0, 1});
+    EXPECT_NEAR(t0.r, 0.75 * 1 + 0.25 * 9, 1e-6);  // between texels 0 and 1 of level 0
+    const glm::dvec4 t1 = lookupTrilinear(lv, {0.75, 0.5}, {2, 0}, {0, 2});
+    EXPECT_NEAR(t1.r, 1.0 / 3, 1e-6);
 }
 
 }  // namespace
