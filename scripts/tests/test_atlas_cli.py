@@ -134,3 +134,31 @@ def test_degenerate_obj_face(tmp_path):
     (tmp_path / "m.obj").write_text("v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 4\nf 1 2 3\n")
     out = tmp_path / "out"
     refused(["atlas", s, "-o", out, "-q"], re.escape(str(s)) + r":17: objects\[0\]\.mesh: triangle 1 of 'obj' has zero area", out)
+
+
+# The multiresolution atlas (--mip): MIP levels halve the size, the partition is of a uniform
+# atlas, and its dual graph needs every edge on at most two triangles.
+def test_mip_size_not_a_power_of_two(tmp_path):
+    out = tmp_path / "out"
+    refused(["atlas", scene(tmp_path), "--mip", "--size", 48, "-o", out, "-q"],
+            r"--size: 48 is not a power of two \(the MIP levels halve it\)", out)
+    rc, _, err = pst("atlas", scene(tmp_path), "--mip", "--size", 64, "--truth", 1, "-o", out, "-q")
+    assert rc == 0 and (out / "render_trilinear.png").exists(), err
+
+
+def test_mip_not_uniform(tmp_path):
+    out = tmp_path / "out"
+    refused(["atlas", scene(tmp_path), "--mip", "--atlas", "length", "--size", 64, "-o", out, "-q"],
+            r"--atlas: the multiresolution atlas \(--mip\) is uniform", out)
+
+
+def test_mip_non_manifold_mesh(tmp_path):
+    s = tmp_path / "obj.toml"
+    s.write_text(OBJ_SCENE)
+    # Three triangles on the edge (0,0,0)-(1,0,0).
+    (tmp_path / "m.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n")
+    out = tmp_path / "out"
+    refused(["atlas", s, "--mip", "--size", 64, "-o", out, "-q"],
+            r"--mip: triangle \d+ of object 0: an edge shared by 3 triangles \(non-manifold\)", out)
+    rc, _, err = pst("atlas", s, "--size", 64, "--truth", 1, "-o", out, "-q")  # the strip atlas takes it
+    assert rc == 0, err

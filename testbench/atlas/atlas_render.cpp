@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "multires.h"
+
 namespace pst {
 namespace {
 
@@ -85,6 +87,21 @@ AtlasRender renderWithAtlas(const Scene& scene, const Atlas& atlas, const Image&
             over(r.image.pixel(x, y), l.rgba);
             ++r.pixels;
             r.seamPixels += l.touchedForeign;
+        }
+    return r;
+}
+
+AtlasRender renderWithAtlasTrilinear(const Scene& scene, const Atlas& atlas, const std::vector<Image>& levels) {
+    const FragmentBuffer fb = rasterizeCharts(scene, atlas);
+    AtlasRender r;
+    r.image = Image(fb.width(), fb.height(), 4);
+    fill(r.image, scene.background);
+    for (int y = 0; y < fb.height(); ++y)
+        for (int x = 0; x < fb.width(); ++x) {
+            const Fragment& f = fb.at(x, y);
+            if (f.object < 0) continue;
+            over(r.image.pixel(x, y), lookupTrilinear(levels, glm::dvec2(f.s), glm::dvec2(f.dsdx), glm::dvec2(f.dsdy)));
+            ++r.pixels;
         }
     return r;
 }

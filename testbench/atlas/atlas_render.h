@@ -31,6 +31,10 @@ struct AtlasRender {
 AtlasRender renderWithAtlas(const Scene& scene, const Atlas& atlas, const Image& texels,
                             const std::vector<int>& owners, Magnification filter);
 
+// The same with trilinear lookups in the MIP levels of the filled atlas (multires.h: mipLevels),
+// the level from the screen derivatives of the chart point.
+AtlasRender renderWithAtlasTrilinear(const Scene& scene, const Atlas& atlas, const std::vector<Image>& levels);
+
 // Fig. 7: the scene's view with each triangle coloured by its relative scale r: green at r = 1,
 // toward blue for r < 1 (too few samples) and red for r > 1 (too many), saturating at a factor 4.
 Image relativeScalePicture(const Scene& scene, const Atlas& atlas);

@@ -329,7 +329,8 @@ TEST(Multires, MipTexelsAverageOnlyNeighbours) {
 }
 
 // MIP levels average the written texels only; the trilinear lookup at one texel per pixel is
-// the bilinear lookup of level 0, at two texels per pixel that of level 1.
+// the bilinear lookup of level 0, at two texels per pixel that of level 1; background texels
+// carry no weight.
 TEST(Multires, MipLevelsAndTrilinear) {
     Image img(2, 2, 4);
     const float c[4][4] = {{1, 0, 0, 1}, {9, 9, 9, 9}, {0, 1, 0, 1}, {0, 0, 1, 1}};
@@ -341,8 +342,11 @@ TEST(Multires, MipLevelsAndTrilinear) {
     EXPECT_FLOAT_EQ(lv[1].pixel(0, 0)[1], 1.f / 3);
     EXPECT_FLOAT_EQ(lv[1].pixel(0, 0)[2], 1.f / 3);
     EXPECT_FLOAT_EQ(lv[1].pixel(0, 0)[3], 1.f);
+    EXPECT_FLOAT_EQ(lv[1].pixel(0, 0)[4], 0.75f);  // 3 of 4 texels written
     const glm::dvec4 t0 = lookupTrilinear(lv, {0.75, 0.5}, {1, 0}, {0, 1});
-    EXPECT_NEAR(t0.r, 0.75 * 1 + 0.25 * 9, 1e-6);  // between texels 0 and 1 of level 0
+    EXPECT_NEAR(t0.r, 1.0, 1e-6);  // texels 0 and 1 of level 0 at 3:1, but texel 1 is background
+    const glm::dvec4 t2 = lookupTrilinear(lv, {0.5, 0.75}, {1, 0}, {0, 1});
+    EXPECT_NEAR(t2.g, 0.75 * 0 + 0.25 * 1, 1e-6);  // texels 0 and 2 at 3:1
     const glm::dvec4 t1 = lookupTrilinear(lv, {0.75, 0.5}, {2, 0}, {0, 2});
     EXPECT_NEAR(t1.r, 1.0 / 3, 1e-6);
 }

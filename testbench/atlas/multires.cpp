@@ -71,17 +71,27 @@ std::array<std::vector<int>, 4> split4(const std::vector<int>& items, const std:
         idx_t ncon = 1, nparts = 4, objval = 0, nv = n;
         idx_t options[METIS_NOPTIONS];
         METIS_SetDefaultOptions(options);
-        options[METIS_OPTION_CONTIG] = 1;
+        // Contiguous parts when the subgraph is connected (METIS refuses, loudly, otherwise).
+        std::vector<char> seen(items.size(), 0);
+        std::vector<idx_t> stack{0};
+        seen[0] = 1;
+        idx_t reached = 1;
+        while (!stack.empty()) {
+            const idx_t v = stack.back();
+            stack.pop_back();
+            for (idx_t e = xadj[size_t(v)]; e < xadj[size_t(v) + 1]; ++e)
+                if (!seen[size_t(adj[size_t(e)])]) {
+                    seen[size_t(adj[size_t(e)])] = 1;
+                    ++reached;
+                    stack.push_back(adj[size_t(e)]);
+                }
+        }
+        options[METIS_OPTION_CONTIG] = reached == n ? 1 : 0;
         options[METIS_OPTION_UFACTOR] = 1;  // 0.1 % imbalance
         options[METIS_OPTION_SEED] = 1;
         int rc = adj.empty() ? METIS_ERROR
                              : METIS_PartGraphKway(&nv, &ncon, xadj.data(), adj.data(), nullptr, nullptr, nullptr, &nparts,
                                                    nullptr, nullptr, options, &objval, part.data());
-        if (rc != METIS_OK && !adj.empty()) {  // a disconnected subgraph cannot have contiguous parts
-            options[METIS_OPTION_CONTIG] = 0;
-            rc = METIS_PartGraphKway(&nv, &ncon, xadj.data(), adj.data(), nullptr, nullptr, nullptr, &nparts, nullptr,
-                                     nullptr, options, &objval, part.data());
-        }
         if (rc != METIS_OK)
             for (idx_t i = 0; i < n; ++i) part[size_t(i)] = idx_t(size_t(i) * 4 / size_t(n));
         // Balance: the quadrants hold `cap` pairs each.
@@ -171,6 +181,28 @@ Atlas buildMultiresAtlas(std::vector<AtlasTriangle> tris, const AtlasOptions& op
     const std::vector<std::vector<int>> dual = dualGraph(a.triangles);
     const std::vector<std::array<int, 2>> pairs = pairTriangles(dual);
     const int P = int(pairs.size());
+    // A pair's shared edge becomes both charts' hypotenuse, end to end: the first triangle's
+    // x[1], x[2] are the second's x[2], x[1], so the texels either side of the cell's diagonal
+    // (which MIP levels up to lg a average) are neighbours on the surface.
+    for (const auto& pr : pairs) {
+        if (pr[1] < 0) continue;
+        AtlasTriangle& A = a.triangles[size_t(pr[0])];
+        AtlasTriangle& B = a.triangles[size_t(pr[1])];
+        auto onB = [&](const glm::dvec3& p) { return p == B.x[0] || p == B.x[1] || p == B.x[2]; };
+        int k = 0;
+        while (k < 3 && onB(A.x[size_t(k)])) ++k;
+        std::rotate(A.x.begin(), A.x.begin() + k, A.x.end());
+        std::rotate(A.s.begin(), A.s.begin() + k, A.s.end());
+        const AtlasTriangle old = B;
+        int j = 0;
+        while (j < 3 && (old.x[size_t(j)] == A.x[1] || old.x[size_t(j)] == A.x[2])) ++j;
+        B.x[0] = old.x[size_t(j)];
+        B.s[0] = old.s[size_t(j)];
+        for (int i = 0; i < 3; ++i) {
+            if (old.x[size_t(i)] == A.x[2]) B.x[1] = old.x[size_t(i)], B.s[1] = old.s[size_t(i)];
+            if (old.x[size_t(i)] == A.x[1]) B.x[2] = old.x[size_t(i)], B.s[2] = old.s[size_t(i)];
+        }
+    }
     // The pair cell a: the largest power of two with (H / a)^2 >= P cells and legs >= kMinLegs.
     const int m = opt.magnification == Magnification::Bilinear ? 1 : 0;
     int cell = opt.size;
@@ -214,28 +246,31 @@ Atlas buildMultiresAtlas(std::vector<AtlasTriangle> tris, const AtlasOptions& op
 }
 
 std::vector<Image> mipLevels(const Image& texels, const std::vector<int>& owners) {
-    std::vector<Image> levels{texels};
-    std::vector<float> weight(owners.size());
-    for (size_t i = 0; i < owners.size(); ++i) weight[i] = owners[i] >= 0 ? 1.f : 0.f;
+    // Channel 4: the written texels' share of the texel (0 = background), the lookup's weight.
+    Image base(texels.width, texels.height, 5);
+    for (int y = 0; y < texels.height; ++y)
+        for (int x = 0; x < texels.width; ++x) {
+            const bool written = owners[size_t(y) * texels.width + x] >= 0;
+            for (int c = 0; c < 4; ++c) base.pixel(x, y)[c] = written ? texels.pixel(x, y)[c] : 0.f;
+            base.pixel(x, y)[4] = written ? 1.f : 0.f;
+        }
+    std::vector<Image> levels{base};
     while (levels.back().width > 1) {
         const Image& lo = levels.back();
         const int W = lo.width / 2;
-        Image hi(W, W, 4);
-        std::vector<float> hw(size_t(W) * W, 0.f);
+        Image hi(W, W, 5);
         for (int y = 0; y < W; ++y)
             for (int x = 0; x < W; ++x) {
                 double acc[4] = {0, 0, 0, 0}, w = 0;
                 for (int k = 0; k < 4; ++k) {
-                    const int xx = 2 * x + (k & 1), yy = 2 * y + (k >> 1);
-                    const double wk = weight[size_t(yy) * lo.width + xx];
-                    for (int c = 0; c < 4; ++c) acc[c] += wk * lo.pixel(xx, yy)[c];
-                    w += wk;
+                    const float* p = lo.pixel(2 * x + (k & 1), 2 * y + (k >> 1));
+                    for (int c = 0; c < 4; ++c) acc[c] += double(p[4]) * p[c];
+                    w += p[4];
                 }
-                hw[size_t(y) * W + x] = float(w);
-                if (w > 0)
-                    for (int c = 0; c < 4; ++c) hi.pixel(x, y)[c] = float(acc[c] / w);
+                float* q = hi.pixel(x, y);
+                for (int c = 0; c < 4; ++c) q[c] = w > 0 ? float(acc[c] / w) : 0.f;
+                q[4] = float(w / 4);
             }
-        weight = std::move(hw);
         levels.push_back(std::move(hi));
     }
     return levels;
@@ -287,18 +322,21 @@ glm::dvec4 lookupTrilinear(const std::vector<Image>& levels, const glm::dvec2& u
         const double x = p.x - 0.5, y = p.y - 0.5;
         const int i = int(std::floor(x)), j = int(std::floor(y));
         const double fx = x - i, fy = y - j;
+        // Weighted by the texels' written share, so background never darkens a chart's edge.
         glm::dvec4 c(0.0);
+        double wsum = 0;
         auto tap = [&](int ii, int jj, double w) {
             ii = std::clamp(ii, 0, im.width - 1);
             jj = std::clamp(jj, 0, im.height - 1);
             const float* px = im.pixel(ii, jj);
-            c += w * glm::dvec4(px[0], px[1], px[2], px[3]);
+            c += w * px[4] * glm::dvec4(px[0], px[1], px[2], px[3]);
+            wsum += w * px[4];
         };
         tap(i, j, (1 - fx) * (1 - fy));
         tap(i + 1, j, fx * (1 - fy));
         tap(i, j + 1, (1 - fx) * fy);
         tap(i + 1, j + 1, fx * fy);
-        return c;
+        return wsum > 0 ? c / wsum : c;
     };
     // Level of detail: lg of the longer screen-pixel step in texels (the usual MIP rule).
     const double rho = std::max(std::hypot(dudx.x, dudx.y), std::hypot(dudy.x, dudy.y));

@@ -21,15 +21,17 @@ std::vector<std::vector<int>> dualGraph(const std::vector<AtlasTriangle>& triang
 // two; charts are seam-free for options.magnification inside them (legs a - 2 - 2m).
 Atlas buildMultiresAtlas(std::vector<AtlasTriangle> triangles, const AtlasOptions& options);
 
-// MIP levels of a filled atlas: level 0 is `texels`; each level averages the written texels of
-// 2 x 2 blocks of the one below (background texels carry no weight), down to 1 x 1.
+// MIP levels of a filled atlas, 5 channels: RGBA and the written share w of the texel. Level 0
+// is `texels` (w = 1 where a chart wrote, else 0 and RGBA 0); each level averages the 2 x 2
+// blocks of the one below weighted by w (background carries no weight), down to 1 x 1.
 std::vector<Image> mipLevels(const Image& texels, const std::vector<int>& owners);
 
 // For each MIP level, the number of its texels whose block holds triangles that do not form one
 // connected patch of the dual graph (a texel averaging non-neighbours).
 std::vector<long long> mipMixing(const Atlas& atlas, const std::vector<std::vector<int>>& dual);
 
-// Trilinear lookup at chart point u with screen derivatives du/dx, du/dy (texel units).
+// Trilinear lookup at chart point u with screen derivatives du/dx, du/dy (texel units): level
+// lg max(|du/dx|, |du/dy|), each level's four texels weighted by bilinear weight times w.
 glm::dvec4 lookupTrilinear(const std::vector<Image>& levels, const glm::dvec2& u, const glm::dvec2& dudx,
                            const glm::dvec2& dudy);
 

@@ -28,6 +28,7 @@
 #include "animate.h"
 #include "atlas_fill.h"
 #include "atlas_render.h"
+#include "multires.h"
 #include "driver.h"
 #include "fixed.h"
 #include "fragments.h"
@@ -558,7 +559,7 @@ int runCompare(const std::string& a, const std::string& b) {
 struct AtlasArgs {
     std::string scene, outDir, kind = "uniform", magnification = "bilinear";
     int size = 512, image = 0, truth = 4, threads = 0;
-    bool quiet = false;
+    bool quiet = false, mip = false;
 };
 
 // "FILE:LINE" of the k-th [[objects]] table of a scene file ("FILE" if not found).
@@ -604,10 +605,10 @@ int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
                              "].mesh: triangle " + std::to_string(t.index) + " of '" + scene.objects[size_t(t.object)].name +
                              "' has zero area (degenerate; check the object's scale)");
     }
-    const Atlas atlas = buildAtlas(tris, ao);
+    const Atlas atlas = a.mip ? buildMultiresAtlas(tris, ao) : buildAtlas(tris, ao);
     AtlasOptions std0 = ao;
     std0.seamFree = false;
-    const Atlas standard = buildAtlas(tris, std0);
+    const Atlas standard = a.mip ? buildMultiresAtlas(tris, std0) : buildAtlas(tris, std0);
     std::optional<Profile> prof;
     if (!hw.profiles.empty()) {
         prof = profileByName(hw.profiles[0], hw.model == "rtl");
@@ -642,8 +643,13 @@ int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
     const RenderResult pp = render(scene, ro);
     const ImageDiff dN = compareRgb(near.image, pp.truth), dB = compareRgb(bil.image, pp.truth),
                     dP = compareRgb(pp.filtered, pp.truth), dBP = compareRgb(bil.image, pp.filtered);
-    AtlasRender hwBil;
+    AtlasRender hwBil, tri;
     if (prof) hwBil = renderWithAtlas(scene, atlas, fill.hardware, owners, Magnification::Bilinear);
+    std::vector<long long> mixing;
+    if (a.mip) {
+        tri = renderWithAtlasTrilinear(scene, atlas, mipLevels(fill.reference, owners));
+        mixing = mipMixing(atlas, dualGraph(atlas.triangles));
+    }
 
     int minLegs = 1 << 30, maxLegs = 0;
     for (const Chart& c : atlas.charts) minLegs = std::min(minLegs, c.legs), maxLegs = std::max(maxLegs, c.legs);
@@ -667,12 +673,19 @@ int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
                   {"standard_nearest", stdNear.seamPixels}, {"standard_bilinear", stdBil.seamPixels}};
     j["rms_vs_truth"] = {{"atlas_nearest", dN.rmsError}, {"atlas_bilinear", dB.rmsError}, {"per_pixel", dP.rmsError}};
     j["rms_atlas_bilinear_vs_per_pixel"] = dBP.rmsError;
+    if (a.mip) {
+        const double dT = compareRgb(tri.image, pp.truth).rmsError;
+        j["rms_vs_truth"]["atlas_trilinear"] = dT;
+        j["mip"] = {{"cell", atlas.mipCell}, {"levels", mixing.size()}, {"mixing_texels", mixing}};
+    }
     j["fill"] = {{"texels", fill.texels}, {"reference_seconds", fill.referenceSeconds}};
     std::ostringstream line;
     line << stem << " " << a.kind << " " << atlas.size() << ": C " << coverage(atlas) << ", S " << relativeScale(atlas)
          << ", seams nearest " << near.seamPixels << " bilinear " << bil.seamPixels << " (standard layout "
          << stdNear.seamPixels << " / " << stdBil.seamPixels << "), RMS vs truth: atlas " << dN.rmsError << " / "
-         << dB.rmsError << ", per pixel " << dP.rmsError;
+         << dB.rmsError;
+    if (a.mip) line << " / trilinear " << j["rms_vs_truth"]["atlas_trilinear"].get<double>();
+    line << ", per pixel " << dP.rmsError;
     int rc = 0;
     if (prof) {
         const double fmax = baselineFmax(prof->name);
@@ -712,6 +725,10 @@ int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
        << "| RMS vs " << a.truth << "x" << a.truth << " truth | value |\n|---|---|\n"
        << "| atlas, nearest | " << dN.rmsError << " |\n| atlas, bilinear | " << dB.rmsError << " |\n"
        << "| per-pixel render | " << dP.rmsError << " |\n";
+    if (a.mip) {
+        md << "| atlas, trilinear (MIP) | " << j["rms_vs_truth"]["atlas_trilinear"].get<double>() << " |\n\n"
+           << "MIP texels averaging non-neighbours, level 0 up: " << j["mip"]["mixing_texels"].dump() << "\n";
+    }
     if (j.contains("hardware") && j["hardware"].contains("cycles"))
         md << "\nFill through " << prof->name << " RTL: " << fill.texels << " texels, " << fill.cycles << " cycles, "
            << fill.mismatches << " mismatches" << (j["hardware"]["fill_ms_at_fmax"].is_null() ? std::string()
@@ -723,6 +740,7 @@ int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
     if (prof) writeImage(fill.hardware, out("atlas_" + hw.model + ".png"));
     writeImage(near.image, out("render_nearest.png"));
     writeImage(bil.image, out("render_bilinear.png"));
+    if (a.mip) writeImage(tri.image, out("render_trilinear.png"));
     writeImage(pp.filtered, out("per_pixel.png"));
     writeImage(pp.truth, out("truth.png"));
     writeImage(relativeScalePicture(scene, atlas), out("scale.png"));
@@ -870,6 +888,8 @@ int main(int argc, char** argv) {
     atlasCmd->add_option("scene", at.scene, "Scene file (its layer-0 objects)")->required()->check(CLI::ExistingFile);
     atlasCmd->add_option("--atlas", at.kind, "Atlas kind: uniform, area or length (Carr and Hart section 4)");
     atlasCmd->add_option("--size", at.size, "Atlas resolution H (H x H texels)")->check(CLI::Range(2, 4096));
+    atlasCmd->add_flag("--mip", at.mip, "Multiresolution uniform atlas (section 4.3, METIS quadtree; --size a power of two) "
+                       "and a trilinear render");
     atlasCmd->add_option("--magnification", at.magnification, "Seam-free for: nearest or bilinear (default bilinear)");
     atlasCmd->add_option("--image", at.image, "Square view size, overrides the scene's")->check(CLI::Range(1, 4096));
     atlasCmd->add_option("--truth", at.truth, "N x N jittered samples per pixel of the ground truth")->check(CLI::Range(1, 64));
