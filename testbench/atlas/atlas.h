@@ -86,7 +86,7 @@ struct Atlas {
     void placeCharts();
 };
 
-// Smallest/largest legs the packer gives a chart.
+// The smallest legs the packer gives a chart (texels).
 constexpr int kMinLegs = 1;
 
 // Refuses a degenerate triangle (InputError "triangle N of object K: ...") and rotates each
@@ -95,7 +95,7 @@ void prepareTriangles(std::vector<AtlasTriangle>& triangles);
 
 // Builds the atlas of `kind` over the triangles (section 4.1 uniform, 4.2 area and length
 // weighted). Throws InputError ("--size: ...") when the triangles do not fit at kMinLegs, and
-// ("triangle N: ...") for a degenerate (zero-area) triangle.
+// ("triangle N of object K: ...") for a degenerate (zero-area) triangle.
 Atlas buildAtlas(std::vector<AtlasTriangle> triangles, const AtlasOptions& options);
 
 // Eq. (1): coverage C, the summed area of the chart images in a unit-square texture map.

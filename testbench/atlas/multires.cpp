@@ -208,11 +208,14 @@ Atlas buildMultiresAtlas(std::vector<AtlasTriangle> tris, const AtlasOptions& op
     int cell = opt.size;
     while (cell > 1 && (long long)(opt.size / cell) * (opt.size / cell) < P) cell /= 2;
     const int legs = opt.seamFree ? cell - 2 - 2 * m : cell;
+    int minCell = 1;
+    while (minCell < kMinLegs + 2 + 2 * m) minCell *= 2;
+    const long long minCellPairs = minCell > opt.size ? 0 : (long long)(opt.size / minCell) * (opt.size / minCell);
     if ((long long)(opt.size / cell) * (opt.size / cell) < P || legs < kMinLegs)
         throw InputError("--size: " + std::to_string(a.triangles.size()) + " triangles (" + std::to_string(P) +
                          " pairs) do not fit a " + std::to_string(opt.size) + " x " + std::to_string(opt.size) +
-                         " multiresolution atlas (pair cells of at least " + std::to_string(kMinLegs + 2 + 2 * m) +
-                         " texels, a power of two)");
+                         " multiresolution atlas (it holds " + std::to_string(minCellPairs) + " pairs in " +
+                         std::to_string(minCell) + " x " + std::to_string(minCell) + " cells)");
     a.mipCell = cell;
     // The pairs' graph: adjacent when any of their triangles are.
     std::vector<int> pairOf(a.triangles.size());
