@@ -67,7 +67,7 @@ def test_unknown_magnification(tmp_path):
     refused(["atlas", scene(tmp_path), "--magnification", "cubic", "-o", out, "-q"], r"--magnification: 'cubic'", out)
 
 
-# The cube's 12 triangles need 6 pair cells; bilinear cells are at least 6 x 2 texels, so an
+# The cube's 12 triangles need 6 pair cells; bilinear cells are at least 5 x 2 texels, so an
 # 8 x 8 atlas holds 1 x 4 cells = 8 triangles (nearest: 3 x 2 cells, 2 x 4 = 16 triangles).
 def test_more_triangles_than_the_size_holds(tmp_path):
     out = tmp_path / "out"
