@@ -142,8 +142,12 @@ def test_mip_size_not_a_power_of_two(tmp_path):
     out = tmp_path / "out"
     refused(["atlas", scene(tmp_path), "--mip", "--size", 48, "-o", out, "-q"],
             r"--size: 48 is not a power of two \(the MIP levels halve it\)", out)
-    rc, _, err = pst("atlas", scene(tmp_path), "--mip", "--size", 64, "--truth", 1, "-o", out, "-q")
+    rc, _, err = pst("atlas", scene(tmp_path), "--mip", "--size", 64, "--truth", 2, "--turntable", 3, "-o", out, "-q")
     assert rc == 0 and (out / "render_trilinear.png").exists(), err
+    # The turntable: 3 views, each stream's frames, flicker over the 2 steps of each stream.
+    t = json.loads((out / "atlas.json").read_text())["turntable"]
+    assert t["frames"] == 3 and len(list((out / "turntable").glob("atlas_frame_*.png"))) == 3
+    assert all(t["flicker"][k] > 0 for k in ("atlas_bilinear", "atlas_trilinear", "per_pixel"))
 
 
 def test_mip_not_uniform(tmp_path):

@@ -20,6 +20,7 @@
 #include <sstream>
 
 #include <CLI/CLI.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 #include <spawn.h>
 #include <sys/wait.h>
@@ -560,6 +561,7 @@ struct AtlasArgs {
     std::string scene, outDir, kind = "uniform", magnification = "bilinear";
     int size = 512, image = 0, truth = 4, threads = 0;
     bool quiet = false, mip = false;
+    int turntable = 0;   // frames of a turn of the camera about the target (0 = none)
 };
 
 // "FILE:LINE" of the k-th [[objects]] table of a scene file ("FILE" if not found).
@@ -709,6 +711,54 @@ int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
         }
         j["hardware"] = f;
     }
+    // The turntable: the camera turned about its up axis through the target, the atlas (filled
+    // once: it is view-independent) against the per-pixel render, both against the truth;
+    // flicker = mean temporal RMS against the truth's own change (animate.h temporalRms).
+    std::vector<std::pair<std::string, Image>> turnFrames;
+    if (a.turntable > 1) {
+        std::vector<Image> prevA, prevP, prevT, prevM;
+        double flA = 0, flP = 0, rmsA = 0, rmsP = 0, flM = 0, rmsM = 0;
+        const std::vector<Image> levels = a.mip ? mipLevels(fill.reference, owners) : std::vector<Image>();
+        for (int k = 0; k < a.turntable; ++k) {
+            say("turntable frame " + std::to_string(k + 1) + "/" + std::to_string(a.turntable));
+            Scene v = scene;
+            const glm::dmat4 turn = glm::rotate(glm::dmat4(1.0), 2.0 * M_PI * k / a.turntable, scene.camera.up);
+            v.camera.eye = scene.camera.target + glm::dvec3(turn * glm::dvec4(scene.camera.eye - scene.camera.target, 0.0));
+            const AtlasRender ar = renderWithAtlas(v, atlas, fill.reference, owners, Magnification::Bilinear);
+            const RenderResult pr = render(v, ro);
+            rmsA += compareRgb(ar.image, pr.truth).rmsError / a.turntable;
+            rmsP += compareRgb(pr.filtered, pr.truth).rmsError / a.turntable;
+            Image mr;
+            if (a.mip) {
+                mr = renderWithAtlasTrilinear(v, atlas, levels).image;
+                rmsM += compareRgb(mr, pr.truth).rmsError / a.turntable;
+                if (k > 0) flM += temporalRms(prevM[0], mr, prevT[0], pr.truth) / (a.turntable - 1);
+                prevM = {mr};
+            }
+            if (k > 0) {
+                flA += temporalRms(prevA[0], ar.image, prevT[0], pr.truth) / (a.turntable - 1);
+                flP += temporalRms(prevP[0], pr.filtered, prevT[0], pr.truth) / (a.turntable - 1);
+            }
+            char name[64];
+            std::snprintf(name, sizeof name, "frame_%04d.png", k);
+            turnFrames.push_back({std::string("turntable/atlas_") + name, ar.image});
+            turnFrames.push_back({std::string("turntable/per_pixel_") + name, pr.filtered});
+            prevA = {ar.image};
+            prevP = {pr.filtered};
+            prevT = {pr.truth};
+        }
+        j["turntable"] = {{"frames", a.turntable},
+                          {"flicker", {{"atlas_bilinear", flA}, {"per_pixel", flP}}},
+                          {"rms_vs_truth_mean", {{"atlas_bilinear", rmsA}, {"per_pixel", rmsP}}}};
+        if (a.mip) {
+            j["turntable"]["flicker"]["atlas_trilinear"] = flM;
+            j["turntable"]["rms_vs_truth_mean"]["atlas_trilinear"] = rmsM;
+        }
+        line << "; turntable " << a.turntable << " frames: flicker atlas " << flA;
+        if (a.mip) line << " / trilinear " << flM;
+        line << ", per pixel " << flP;
+    }
+
     std::ostringstream md;
     md << "# Atlas: " << stem << " (" << a.kind << ", " << atlas.size() << " x " << atlas.size() << ", seam-free for "
        << a.magnification << ")\n\n"
@@ -729,6 +779,12 @@ int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
         md << "| atlas, trilinear (MIP) | " << j["rms_vs_truth"]["atlas_trilinear"].get<double>() << " |\n\n"
            << "MIP texels averaging non-neighbours, level 0 up: " << j["mip"]["mixing_texels"].dump() << "\n";
     }
+    if (j.contains("turntable"))
+        md << "\nTurntable, " << a.turntable << " frames: flicker (temporal RMS vs the truth) atlas bilinear "
+           << j["turntable"]["flicker"]["atlas_bilinear"].get<double>() << ", per-pixel "
+           << j["turntable"]["flicker"]["per_pixel"].get<double>() << "; mean RMS vs truth atlas "
+           << j["turntable"]["rms_vs_truth_mean"]["atlas_bilinear"].get<double>() << ", per-pixel "
+           << j["turntable"]["rms_vs_truth_mean"]["per_pixel"].get<double>() << ".\n";
     if (j.contains("hardware") && j["hardware"].contains("cycles"))
         md << "\nFill through " << prof->name << " RTL: " << fill.texels << " texels, " << fill.cycles << " cycles, "
            << fill.mismatches << " mismatches" << (j["hardware"]["fill_ms_at_fmax"].is_null() ? std::string()
@@ -744,6 +800,8 @@ int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
     writeImage(pp.filtered, out("per_pixel.png"));
     writeImage(pp.truth, out("truth.png"));
     writeImage(relativeScalePicture(scene, atlas), out("scale.png"));
+    if (!turnFrames.empty()) fs::create_directories(dir / "turntable");
+    for (const auto& [name, img] : turnFrames) writeImage(img, out(name));
     writeTextFile(out("atlas.json"), j.dump(2) + "\n");
     writeTextFile(out("atlas.md"), md.str());
     out.keep();
@@ -890,6 +948,8 @@ int main(int argc, char** argv) {
     atlasCmd->add_option("--size", at.size, "Atlas resolution H (H x H texels)")->check(CLI::Range(2, 4096));
     atlasCmd->add_flag("--mip", at.mip, "Multiresolution uniform atlas (section 4.3, METIS quadtree; --size a power of two) "
                        "and a trilinear render");
+    atlasCmd->add_option("--turntable", at.turntable, "Also N views turning about the target: the atlas render's "
+                         "flicker against the per-pixel render's (temporal RMS vs the truth)")->check(CLI::Range(2, 720));
     atlasCmd->add_option("--magnification", at.magnification, "Seam-free for: nearest or bilinear (default bilinear)");
     atlasCmd->add_option("--image", at.image, "Square view size, overrides the scene's")->check(CLI::Range(1, 4096));
     atlasCmd->add_option("--truth", at.truth, "N x N jittered samples per pixel of the ground truth")->check(CLI::Range(1, 64));
