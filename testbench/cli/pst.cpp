@@ -17,6 +17,7 @@
 #include <fstream>
 #include <optional>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
@@ -705,6 +706,12 @@ int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
             f["stall_rate"] = hw.sim.outputStallRate;
             f["fmax_mhz"] = fmax > 0 ? nlohmann::json(fmax) : nlohmann::json(nullptr);
             f["fill_ms_at_fmax"] = fmax > 0 ? nlohmann::json(double(fill.cycles) / (fmax * 1e3)) : nlohmann::json(nullptr);
+            // Carr and Hart's Table 3: host synthesis rates (Hz) of 1 and 4 octaves at this size.
+            const std::map<int, std::pair<double, double>> table3 = {{256, {9.09, 6.25}}, {512, {2.56, 1.82}},
+                                                                     {1024, {0.72, 0.40}}};
+            if (auto it = table3.find(atlas.size()); it != table3.end())
+                f["paper_table3_host_hz"] = {{"octaves_1", it->second.first}, {"octaves_4", it->second.second}};
+            if (fmax > 0 && fill.cycles > 0) f["fill_hz_at_fmax"] = fmax * 1e6 / double(fill.cycles);
             line << "; " << prof->name << " RTL " << fill.mismatches << " mismatches, " << fill.cycles << " cycles";
             if (fmax > 0) line << " = " << double(fill.cycles) / (fmax * 1e3) << " ms at " << fmax << " MHz";
             if (!fill.passed) rc = 1;
@@ -790,6 +797,10 @@ int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
            << fill.mismatches << " mismatches" << (j["hardware"]["fill_ms_at_fmax"].is_null() ? std::string()
                : ", " + j["hardware"]["fill_ms_at_fmax"].dump() + " ms at " + j["hardware"]["fmax_mhz"].dump() + " MHz")
            << ".\n";
+    if (j.contains("hardware") && j["hardware"].contains("paper_table3_host_hz") && j["hardware"].contains("fill_hz_at_fmax"))
+        md << "Fill rate " << j["hardware"]["fill_hz_at_fmax"].get<double>() << " Hz; the paper's host (Table 3) at "
+           << atlas.size() << "^2: " << j["hardware"]["paper_table3_host_hz"]["octaves_1"].get<double>() << " Hz (1 octave), "
+           << j["hardware"]["paper_table3_host_hz"]["octaves_4"].get<double>() << " Hz (4 octaves).\n";
 
     OutputFiles out(dir);
     writeImage(fill.reference, out("atlas.png"));
