@@ -134,6 +134,8 @@ def test_degenerate_obj_face(tmp_path):
     (tmp_path / "m.obj").write_text("v 0 0 0\nv 1 0 0\nv 2 0 0\nv 0 1 0\nf 1 2 4\nf 1 2 3\n")
     out = tmp_path / "out"
     refused(["atlas", s, "-o", out, "-q"], re.escape(str(s)) + r":17: objects\[0\]\.mesh: triangle 1 of 'obj' has zero area", out)
+    (tmp_path / "m.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 1 2\n")  # a repeated vertex
+    refused(["atlas", s, "-o", out, "-q"], re.escape(str(s)) + r":17: objects\[0\]\.mesh: triangle 1 of 'obj' has zero area", out)
 
 
 # The multiresolution atlas (--mip): MIP levels halve the size, the partition is of a uniform

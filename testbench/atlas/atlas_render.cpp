@@ -50,7 +50,8 @@ std::vector<AtlasTriangle> sceneTriangles(const Scene& scene) {
         if (obj.layer != 0) continue;
         for (size_t i = 0; i < obj.mesh.triangles.size(); ++i) {
             const auto& tr = obj.mesh.triangles[i];
-            if (tr[0] == tr[1] || tr[1] == tr[2] || tr[2] == tr[0]) continue;
+            // A built-in tessellation's collapsed quad is skipped; a user's mesh file gets no such pass.
+            if (obj.name != "obj" && (tr[0] == tr[1] || tr[1] == tr[2] || tr[2] == tr[0])) continue;
             AtlasTriangle t;
             t.object = int(o);
             t.index = int(i);

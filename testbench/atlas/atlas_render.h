@@ -12,8 +12,9 @@
 namespace pst {
 
 // The triangles of the scene's layer-0 objects (world positions, texture-space s). Triangles
-// with a repeated vertex index (a tessellation's collapsed quad at a pole) have no surface and
-// are skipped; any other zero-area triangle is left for buildAtlas to refuse.
+// with a repeated vertex index in a built-in mesh (a tessellation's collapsed quad at a pole)
+// have no surface and are skipped; any other zero-area triangle, and every one of an OBJ mesh,
+// is left for buildAtlas to refuse.
 std::vector<AtlasTriangle> sceneTriangles(const Scene& scene);
 
 // The scene with its layer-0 objects only (what the atlas covers).
