@@ -776,6 +776,8 @@ int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
        << (ao.kind == AtlasKind::Uniform ? "1.75" : ao.kind == AtlasKind::Area ? "0.66" : "0.86") << " |\n"
        << "| triangles | " << atlas.triangles.size() << " | |\n| legs (texels) | " << minLegs << " .. " << maxLegs
        << " | |\n| eq. 3 pair edge | " << atlas.eq3Edge << " | |\n\n"
+       << "![atlas](atlas.png) ![textured, bilinear](render_bilinear.png) ![per-pixel](per_pixel.png) "
+       << "![truth](truth.png) ![relative scale (Fig. 7)](scale.png)\n\n"
        << "| seams (screen pixels reading a background or foreign texel) | nearest | bilinear |\n|---|---|---|\n"
        << "| seam-free layout | " << near.seamPixels << " | " << bil.seamPixels << " |\n"
        << "| standard layout (Fig. 2) | " << stdNear.seamPixels << " | " << stdBil.seamPixels << " |\n\n"
