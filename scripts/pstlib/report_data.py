@@ -252,6 +252,10 @@ def collect(out_dir) -> Report:
         for md in sorted((root / kind).glob("*.md")):
             title = "Filter options against the ground truth" if kind == "fidelity" else f"{kind.capitalize()}: {md.stem}"
             rep.extras.append(read_included(title, f"{kind}-{md.stem}", md, root, ""))
+    # `pst atlas SCENE` runs (default folder out/atlas/<scene>): their atlas.md with its images.
+    for md in sorted((root / "atlas").glob("*/atlas.md")):
+        rep.extras.append(read_included(f"Texture atlas: {md.parent.name}", f"atlas-{md.parent.name}", md, root, "",
+                                        md.parent / "atlas.json"))
     rep.references = reference_table(root)
     return rep
 

@@ -96,6 +96,18 @@ def test_fidelity_table_is_a_section(tmp_path):
     assert "| scene | unfiltered | sat | trapezoid |" in report_md.render(rep, lambda r: [])
 
 
+def test_atlas_runs_are_sections(tmp_path):
+    out = make_out(tmp_path)
+    d = out / "atlas" / "wood_teapot"
+    d.mkdir(parents=True)
+    (d / "atlas.md").write_text("# Atlas: wood_teapot\n\n![atlas](atlas.png)\n")
+    (d / "atlas.json").write_text('{"coverage": 0.9}')
+    rep = report_data.collect(out)
+    ex = next(e for e in rep.extras if e.anchor == "atlas-wood_teapot")
+    assert ex.title == "Texture atlas: wood_teapot" and ex.data == {"coverage": 0.9}
+    assert "](atlas/wood_teapot/atlas.png)" in ex.text   # links from the report's folder
+
+
 def test_html_page_self_contained(tmp_path):
     out = make_out(tmp_path)
     rep = report_data.collect(out)

@@ -6,6 +6,7 @@
 //   pst render SCENE --profile P   the same scene through the RTL (and golden) model of profile P
 //   pst regress           every scene x every profile through the RTL; non-zero exit on any mismatch
 //   pst animate SCENE     the scene's time track: frames, videos, flicker against the ground truth
+//   pst atlas SCENE       texture-atlas mode: the atlas filled by the models, the object texture-mapped
 // Exit status: 0 success, 1 failure (including RTL mismatches), 2 bad input or usage.
 #include <algorithm>
 #include <chrono>
@@ -13,16 +14,23 @@
 #include <cstdlib>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <optional>
 #include <iostream>
+#include <map>
 #include <sstream>
 
 #include <CLI/CLI.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <nlohmann/json.hpp>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include "animate.h"
+#include "atlas_fill.h"
+#include "atlas_render.h"
+#include "multires.h"
 #include "driver.h"
 #include "fixed.h"
 #include "fragments.h"
@@ -590,6 +598,275 @@ int runCompare(const std::string& a, const std::string& b) {
     return 0;
 }
 
+
+// pst atlas: the scene's layer-0 triangles in a meshed atlas (Carr and Hart section 4), filled
+// through the reference (and a profile's golden model and RTL, scoreboarded), the view drawn by
+// texture mapping the atlas, compared with the per-pixel render and the ground truth.
+struct AtlasArgs {
+    std::string scene, outDir, kind = "uniform", magnification = "bilinear";
+    int size = 512, image = 0, truth = 4, threads = 0;
+    bool quiet = false, mip = false;
+    int turntable = 0;   // frames of a turn of the camera about the target (0 = none)
+};
+
+// "FILE:LINE" of the k-th [[objects]] table of a scene file ("FILE" if not found).
+std::string objectWhere(const std::string& path, int k) {
+    std::ifstream in(path);
+    std::string line;
+    int n = -1;
+    for (int no = 1; std::getline(in, line); ++no) {
+        const size_t a = line.find_first_not_of(" \t");
+        if (a != std::string::npos && line.compare(a, 11, "[[objects]]") == 0 && ++n == k)
+            return path + ":" + std::to_string(no);
+    }
+    return path;
+}
+
+// The profile's Fmax (MHz) from scripts/synth/baseline.json, 0 if it has none.
+double baselineFmax(const std::string& profile) {
+    std::ifstream in(sourceDir() + "/scripts/synth/baseline.json");
+    if (!in) return 0;
+    const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+    if (j.is_discarded() || !j.contains("profiles") || !j["profiles"].contains(profile)) return 0;
+    const auto& p = j["profiles"][profile];
+    return p.contains("fmax_mhz") && p["fmax_mhz"].is_number() ? p["fmax_mhz"].get<double>() : 0;
+}
+
+int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
+    AtlasOptions ao;
+    if (!parseAtlasKind(a.kind, &ao.kind)) throw InputError("--atlas: '" + a.kind + "' is not uniform, area or length");
+    if (!parseMagnification(a.magnification, &ao.magnification))
+        throw InputError("--magnification: '" + a.magnification + "' is not nearest or bilinear");
+    ao.size = a.size;
+    if (hw.profiles.size() > 1) throw InputError("--profile: atlas takes one profile");
+    const Scene scene = opaqueLayer(loadScene(a.scene, a.image, a.image));
+    const std::string stem = fs::path(a.scene).stem().string();
+    const fs::path dir = a.outDir.empty() ? fs::path("out") / "atlas" / stem : fs::path(a.outDir);
+
+    // Step 1: the triangles (a zero-area one has no chart) and the atlas (section 4).
+    const std::vector<AtlasTriangle> tris = sceneTriangles(scene);
+    for (const AtlasTriangle& t : tris) {
+        const double e = t.longestEdge();
+        if (!(t.area() > 1e-12 * e * e))
+            throw InputError(objectWhere(a.scene, t.object) + ": objects[" + std::to_string(t.object) +
+                             "].mesh: triangle " + std::to_string(t.index) + " of '" + scene.objects[size_t(t.object)].name +
+                             "' has zero area (degenerate; check the object's scale)");
+    }
+    const Atlas atlas = a.mip ? buildMultiresAtlas(tris, ao) : buildAtlas(tris, ao);
+    AtlasOptions std0 = ao;
+    std0.seamFree = false;
+    const Atlas standard = a.mip ? buildMultiresAtlas(tris, std0) : buildAtlas(tris, std0);
+    std::optional<Profile> prof;
+    if (!hw.profiles.empty()) {
+        prof = profileByName(hw.profiles[0], hw.model == "rtl");
+        if (std::string why = unsupportedTexture(scene, *prof); !why.empty()) throw InputError(why);
+    }
+
+    // Step 2: the fill (one fragment per texel).
+    auto say = [&](const std::string& s) {
+        if (!a.quiet) std::fprintf(stderr, "%s: %s\n", stem.c_str(), s.c_str());
+    };
+    say("filling " + std::to_string(atlas.size()) + "^2 atlas");
+    AtlasFill fill;
+    if (prof) {
+        std::unique_ptr<RtlModel> rtl;
+        if (hw.model == "rtl") rtl = makeRtlModel(prof->name, hw.sim);
+        fill = fillAtlas(scene, atlas, *prof, rtl.get());
+    } else {
+        fill = fillAtlasReference(scene, atlas, a.threads);
+    }
+
+    // Step 3: the view texture-mapped with the atlas; seams; the per-pixel render and the truth.
+    say("rendering");
+    const std::vector<int> owners = atlas.owners(), stdOwners = standard.owners();
+    const AtlasRender near = renderWithAtlas(scene, atlas, fill.reference, owners, Magnification::Nearest);
+    const AtlasRender bil = renderWithAtlas(scene, atlas, fill.reference, owners, Magnification::Bilinear);
+    const Image blank(standard.size(), standard.size(), 4);
+    const AtlasRender stdNear = renderWithAtlas(scene, standard, blank, stdOwners, Magnification::Nearest);
+    const AtlasRender stdBil = renderWithAtlas(scene, standard, blank, stdOwners, Magnification::Bilinear);
+    RenderOptions ro;
+    ro.truthSamples = a.truth;
+    ro.threads = a.threads;
+    const RenderResult pp = render(scene, ro);
+    const ImageDiff dN = compareRgb(near.image, pp.truth), dB = compareRgb(bil.image, pp.truth),
+                    dP = compareRgb(pp.filtered, pp.truth), dBP = compareRgb(bil.image, pp.filtered);
+    AtlasRender hwBil, tri;
+    if (prof) hwBil = renderWithAtlas(scene, atlas, fill.hardware, owners, Magnification::Bilinear);
+    std::vector<long long> mixing;
+    if (a.mip) {
+        tri = renderWithAtlasTrilinear(scene, atlas, mipLevels(fill.reference, owners));
+        mixing = mipMixing(atlas, dualGraph(atlas.triangles));
+    }
+
+    int minLegs = 1 << 30, maxLegs = 0;
+    for (const Chart& c : atlas.charts) minLegs = std::min(minLegs, c.legs), maxLegs = std::max(maxLegs, c.legs);
+    nlohmann::json j;
+    j["scene"] = a.scene;
+    j["atlas"] = a.kind;
+    j["size"] = atlas.size();
+    j["magnification"] = a.magnification;
+    j["triangles"] = atlas.triangles.size();
+    j["eq3_edge"] = atlas.eq3Edge;
+    j["legs"] = {{"min", minLegs}, {"max", maxLegs}};
+    j["strips"] = atlas.stripCount;
+    j["coverage"] = coverage(atlas);
+    j["relative_scale"] = relativeScale(atlas);
+    j["texel_use"] = texelUse(atlas);
+    j["standard_layout"] = {{"coverage", coverage(standard)}, {"relative_scale", relativeScale(standard)}};
+    j["paper_table1_rhino"] = {{"uniform", {0.91, 1.75}}, {"area", {0.93, 0.66}}, {"length", {0.93, 0.86}}};
+    j["image"] = {{"width", scene.camera.width}, {"height", scene.camera.height}, {"truth_samples", a.truth * a.truth}};
+    j["seams"] = {{"pixels", bil.pixels},
+                  {"nearest", near.seamPixels}, {"bilinear", bil.seamPixels},
+                  {"standard_nearest", stdNear.seamPixels}, {"standard_bilinear", stdBil.seamPixels}};
+    j["rms_vs_truth"] = {{"atlas_nearest", dN.rmsError}, {"atlas_bilinear", dB.rmsError}, {"per_pixel", dP.rmsError}};
+    j["rms_atlas_bilinear_vs_per_pixel"] = dBP.rmsError;
+    if (a.mip) {
+        const double dT = compareRgb(tri.image, pp.truth).rmsError;
+        j["rms_vs_truth"]["atlas_trilinear"] = dT;
+        j["mip"] = {{"cell", atlas.mipCell}, {"levels", mixing.size()}, {"mixing_texels", mixing}};
+    }
+    j["fill"] = {{"texels", fill.texels}, {"reference_seconds", fill.referenceSeconds}};
+    std::ostringstream line;
+    line << stem << " " << a.kind << " " << atlas.size() << ": C " << coverage(atlas) << ", S " << relativeScale(atlas)
+         << ", seams nearest " << near.seamPixels << " bilinear " << bil.seamPixels << " (standard layout "
+         << stdNear.seamPixels << " / " << stdBil.seamPixels << "), RMS vs truth: atlas " << dN.rmsError << " / "
+         << dB.rmsError;
+    if (a.mip) line << " / trilinear " << j["rms_vs_truth"]["atlas_trilinear"].get<double>();
+    line << ", per pixel " << dP.rmsError;
+    int rc = 0;
+    if (prof) {
+        const double fmax = baselineFmax(prof->name);
+        nlohmann::json f = {{"profile", prof->name}, {"model", hw.model}, {"texels", fill.texels},
+                            {"golden_seconds", fill.goldenSeconds}, {"notes", fill.notes},
+                            {"vs_reference", {{"rms", compareRgb(fill.hardware, fill.reference).rmsError}}},
+                            {"render_bilinear_rms_vs_truth", compareRgb(hwBil.image, pp.truth).rmsError}};
+        if (hw.model == "rtl") {
+            f["passed"] = fill.passed;
+            f["mismatches"] = fill.mismatches;
+            f["cycles"] = fill.cycles;
+            f["cycles_per_texel"] = fill.texels ? double(fill.cycles) / double(fill.texels) : 0.0;
+            f["rtl_seconds"] = fill.rtlSeconds;
+            f["gap_rate"] = hw.sim.inputGapRate;
+            f["stall_rate"] = hw.sim.outputStallRate;
+            f["fmax_mhz"] = fmax > 0 ? nlohmann::json(fmax) : nlohmann::json(nullptr);
+            f["fill_ms_at_fmax"] = fmax > 0 ? nlohmann::json(double(fill.cycles) / (fmax * 1e3)) : nlohmann::json(nullptr);
+            // Carr and Hart's Table 3: host synthesis rates (Hz) of 1 and 4 octaves at this size.
+            const std::map<int, std::pair<double, double>> table3 = {{256, {9.09, 6.25}}, {512, {2.56, 1.82}},
+                                                                     {1024, {0.72, 0.40}}};
+            if (auto it = table3.find(atlas.size()); it != table3.end())
+                f["paper_table3_host_hz"] = {{"octaves_1", it->second.first}, {"octaves_4", it->second.second}};
+            if (fmax > 0 && fill.cycles > 0) f["fill_hz_at_fmax"] = fmax * 1e6 / double(fill.cycles);
+            line << "; " << prof->name << " RTL " << fill.mismatches << " mismatches, " << fill.cycles << " cycles";
+            if (fmax > 0) line << " = " << double(fill.cycles) / (fmax * 1e3) << " ms at " << fmax << " MHz";
+            if (!fill.passed) rc = 1;
+        }
+        j["hardware"] = f;
+    }
+    // The turntable: the camera turned about its up axis through the target, the atlas (filled
+    // once: it is view-independent) against the per-pixel render, both against the truth;
+    // flicker = mean temporal RMS against the truth's own change (animate.h temporalRms).
+    std::vector<std::pair<std::string, Image>> turnFrames;
+    if (a.turntable > 1) {
+        std::vector<Image> prevA, prevP, prevT, prevM;
+        double flA = 0, flP = 0, rmsA = 0, rmsP = 0, flM = 0, rmsM = 0;
+        const std::vector<Image> levels = a.mip ? mipLevels(fill.reference, owners) : std::vector<Image>();
+        for (int k = 0; k < a.turntable; ++k) {
+            say("turntable frame " + std::to_string(k + 1) + "/" + std::to_string(a.turntable));
+            Scene v = scene;
+            const glm::dmat4 turn = glm::rotate(glm::dmat4(1.0), 2.0 * M_PI * k / a.turntable, scene.camera.up);
+            v.camera.eye = scene.camera.target + glm::dvec3(turn * glm::dvec4(scene.camera.eye - scene.camera.target, 0.0));
+            const AtlasRender ar = renderWithAtlas(v, atlas, fill.reference, owners, Magnification::Bilinear);
+            const RenderResult pr = render(v, ro);
+            rmsA += compareRgb(ar.image, pr.truth).rmsError / a.turntable;
+            rmsP += compareRgb(pr.filtered, pr.truth).rmsError / a.turntable;
+            Image mr;
+            if (a.mip) {
+                mr = renderWithAtlasTrilinear(v, atlas, levels).image;
+                rmsM += compareRgb(mr, pr.truth).rmsError / a.turntable;
+                if (k > 0) flM += temporalRms(prevM[0], mr, prevT[0], pr.truth) / (a.turntable - 1);
+                prevM = {mr};
+            }
+            if (k > 0) {
+                flA += temporalRms(prevA[0], ar.image, prevT[0], pr.truth) / (a.turntable - 1);
+                flP += temporalRms(prevP[0], pr.filtered, prevT[0], pr.truth) / (a.turntable - 1);
+            }
+            char name[64];
+            std::snprintf(name, sizeof name, "frame_%04d.png", k);
+            turnFrames.push_back({std::string("turntable/atlas_") + name, ar.image});
+            turnFrames.push_back({std::string("turntable/per_pixel_") + name, pr.filtered});
+            prevA = {ar.image};
+            prevP = {pr.filtered};
+            prevT = {pr.truth};
+        }
+        j["turntable"] = {{"frames", a.turntable},
+                          {"flicker", {{"atlas_bilinear", flA}, {"per_pixel", flP}}},
+                          {"rms_vs_truth_mean", {{"atlas_bilinear", rmsA}, {"per_pixel", rmsP}}}};
+        if (a.mip) {
+            j["turntable"]["flicker"]["atlas_trilinear"] = flM;
+            j["turntable"]["rms_vs_truth_mean"]["atlas_trilinear"] = rmsM;
+        }
+        line << "; turntable " << a.turntable << " frames: flicker atlas " << flA;
+        if (a.mip) line << " / trilinear " << flM;
+        line << ", per pixel " << flP;
+    }
+
+    std::ostringstream md;
+    md << "# Atlas: " << stem << " (" << a.kind << ", " << atlas.size() << " x " << atlas.size() << ", seam-free for "
+       << a.magnification << ")\n\n"
+       << "| measure | ours | paper Table 1 (rhino, " << a.kind << ") |\n|---|---|---|\n"
+       << "| coverage C (eq. 1) | " << coverage(atlas) << " | "
+       << (ao.kind == AtlasKind::Uniform ? "0.91" : "0.93") << " |\n"
+       << "| relative scale S (eq. 2) | " << relativeScale(atlas) << " | "
+       << (ao.kind == AtlasKind::Uniform ? "1.75" : ao.kind == AtlasKind::Area ? "0.66" : "0.86") << " |\n"
+       << "| triangles | " << atlas.triangles.size() << " | |\n| legs (texels) | " << minLegs << " .. " << maxLegs
+       << " | |\n| eq. 3 pair edge | " << atlas.eq3Edge << " | |\n\n"
+       << "![atlas](atlas.png) ![textured, bilinear](render_bilinear.png) ![per-pixel](per_pixel.png) "
+       << "![truth](truth.png) ![relative scale (Fig. 7)](scale.png)\n\n"
+       << "| seams (screen pixels reading a background or foreign texel) | nearest | bilinear |\n|---|---|---|\n"
+       << "| seam-free layout | " << near.seamPixels << " | " << bil.seamPixels << " |\n"
+       << "| standard layout (Fig. 2) | " << stdNear.seamPixels << " | " << stdBil.seamPixels << " |\n\n"
+       << "| RMS vs " << a.truth << "x" << a.truth << " truth | value |\n|---|---|\n"
+       << "| atlas, nearest | " << dN.rmsError << " |\n| atlas, bilinear | " << dB.rmsError << " |\n"
+       << "| per-pixel render | " << dP.rmsError << " |\n";
+    if (a.mip) {
+        md << "| atlas, trilinear (MIP) | " << j["rms_vs_truth"]["atlas_trilinear"].get<double>() << " |\n\n"
+           << "MIP texels averaging non-neighbours, level 0 up: " << j["mip"]["mixing_texels"].dump() << "\n";
+    }
+    if (j.contains("turntable"))
+        md << "\nTurntable, " << a.turntable << " frames: flicker (temporal RMS vs the truth) atlas bilinear "
+           << j["turntable"]["flicker"]["atlas_bilinear"].get<double>() << ", per-pixel "
+           << j["turntable"]["flicker"]["per_pixel"].get<double>() << "; mean RMS vs truth atlas "
+           << j["turntable"]["rms_vs_truth_mean"]["atlas_bilinear"].get<double>() << ", per-pixel "
+           << j["turntable"]["rms_vs_truth_mean"]["per_pixel"].get<double>() << ".\n";
+    if (j.contains("hardware") && j["hardware"].contains("cycles"))
+        md << "\nFill through " << prof->name << " RTL: " << fill.texels << " texels, " << fill.cycles << " cycles, "
+           << fill.mismatches << " mismatches" << (j["hardware"]["fill_ms_at_fmax"].is_null() ? std::string()
+               : ", " + j["hardware"]["fill_ms_at_fmax"].dump() + " ms at " + j["hardware"]["fmax_mhz"].dump() + " MHz")
+           << ".\n";
+    if (j.contains("hardware") && j["hardware"].contains("paper_table3_host_hz") && j["hardware"].contains("fill_hz_at_fmax"))
+        md << "Fill rate " << j["hardware"]["fill_hz_at_fmax"].get<double>() << " Hz; the paper's host (Table 3) at "
+           << atlas.size() << "^2: " << j["hardware"]["paper_table3_host_hz"]["octaves_1"].get<double>() << " Hz (1 octave), "
+           << j["hardware"]["paper_table3_host_hz"]["octaves_4"].get<double>() << " Hz (4 octaves).\n";
+
+    OutputFiles out(dir);
+    writeImage(fill.reference, out("atlas.png"));
+    if (prof) writeImage(fill.hardware, out("atlas_" + hw.model + ".png"));
+    writeImage(near.image, out("render_nearest.png"));
+    writeImage(bil.image, out("render_bilinear.png"));
+    if (a.mip) writeImage(tri.image, out("render_trilinear.png"));
+    writeImage(pp.filtered, out("per_pixel.png"));
+    writeImage(pp.truth, out("truth.png"));
+    writeImage(relativeScalePicture(scene, atlas), out("scale.png"));
+    if (!turnFrames.empty()) fs::create_directories(dir / "turntable");
+    for (const auto& [name, img] : turnFrames) writeImage(img, out(name));
+    writeTextFile(out("atlas.json"), j.dump(2) + "\n");
+    writeTextFile(out("atlas.md"), md.str());
+    out.keep();
+    std::cout << line.str() << " -> " << dir.string() << "\n";
+    if (rc) std::cout << fill.scoreboard;
+    return rc;
+}
+
 }  // namespace
 
 // CLI11's Range lets NaN through (every comparison with NaN is false).
@@ -730,6 +1007,26 @@ int main(int argc, char** argv) {
         ->delimiter(',');
     animate->add_flag("-q,--quiet", animQuiet, "No progress on stderr");
 
+    AtlasArgs at;
+    auto* atlasCmd = app.add_subcommand("atlas", "Texture-atlas mode: fill a meshed atlas of the scene through the models, render with it");
+    atlasCmd->add_option("scene", at.scene, "Scene file (its layer-0 objects)")->required()->check(CLI::ExistingFile);
+    atlasCmd->add_option("--atlas", at.kind, "Atlas kind: uniform, area or length (Carr and Hart section 4)");
+    atlasCmd->add_option("--size", at.size, "Atlas resolution H (H x H texels)")->check(CLI::Range(2, 4096));
+    atlasCmd->add_flag("--mip", at.mip, "Multiresolution uniform atlas (section 4.3, METIS quadtree; --size a power of two) "
+                       "and a trilinear render");
+    atlasCmd->add_option("--turntable", at.turntable, "Also N views turning about the target: the atlas render's "
+                         "flicker against the per-pixel render's (temporal RMS vs the truth)")->check(CLI::Range(2, 720));
+    atlasCmd->add_option("--magnification", at.magnification, "Seam-free for: nearest or bilinear (default bilinear)");
+    atlasCmd->add_option("--image", at.image, "Square view size, overrides the scene's")->check(CLI::Range(1, 4096));
+    atlasCmd->add_option("--truth", at.truth, "N x N jittered samples per pixel of the ground truth")->check(CLI::Range(1, 64));
+    atlasCmd->add_option("--profile", hw.profiles, "Also fill through this profile's golden model and RTL (scoreboarded)")
+        ->allow_extra_args(false);
+    atlasCmd->add_option("--model", hw.model, "Hardware model for --profile: rtl or golden")->check(CLI::IsMember({"rtl", "golden"}));
+    atlasCmd->add_option("-o,--out", at.outDir, "Output folder (default out/atlas/<scene name>)");
+    atlasCmd->add_option("-j,--threads", at.threads, "Threads (default: all cores)")->check(CLI::Range(0, 256));
+    atlasCmd->add_flag("-q,--quiet", at.quiet, "No progress on stderr");
+    addSimOptions(atlasCmd);
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -814,6 +1111,11 @@ int main(int argc, char** argv) {
             return runFragments(fragScene, fragSize, fragLayer, fragOut);
         }
         if (*cmp) return runCompare(cmpA, cmpB);
+        if (*atlasCmd) {
+            if (!at.outDir.empty() && fs::exists(at.outDir) && !fs::is_directory(at.outDir))
+                throw InputError("-o: '" + at.outDir + "' is a file; give a folder");
+            return runAtlas(at, hw);
+        }
     } catch (const InputError& e) {
         std::cerr << "error: " << e.what() << "\n";
         return 2;

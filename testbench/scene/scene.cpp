@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -11,6 +12,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <toml++/toml.h>
+
+#include "objmesh.h"
 
 namespace pst {
 namespace {
@@ -327,13 +330,14 @@ SceneObject parseObject(const Ctx& c, const toml::table& t, const std::string& p
                         const std::map<std::string, int>& textureIndex) {
     checkKeys(c, t, path, {"mesh", "texture", "layer", "subdiv", "slices", "stacks", "major_radius",
                            "minor_radius", "segments", "half_size", "divisions", "scale", "rotate",
-                           "translate", "tex_scale", "tex_rotate", "tex_offset"});
+                           "translate", "tex_scale", "tex_rotate", "tex_offset", "file"});
     SceneObject o;
     const std::string kind = getString(c, t, path, "mesh", "");
     // Tessellation keys belong to one mesh kind each.
     const std::pair<const char*, const char*> owner[] = {
         {"subdiv", "teapot"}, {"slices", "sphere"}, {"stacks", "sphere"}, {"major_radius", "torus"},
-        {"minor_radius", "torus"}, {"segments", "torus"}, {"half_size", "plane"}, {"divisions", "plane"}};
+        {"minor_radius", "torus"}, {"segments", "torus"}, {"half_size", "plane"}, {"divisions", "plane"},
+        {"file", "obj"}};
     for (const auto& [key, mk] : owner)
         if (find(t, key) && kind != mk)
             c.fail(find(t, key), join(path, key), std::string("belongs to mesh = \"") + mk + "\", not \"" + kind + "\"");
@@ -359,9 +363,22 @@ SceneObject parseObject(const Ctx& c, const toml::table& t, const std::string& p
         if (hs <= 0) c.fail(find(t, "half_size"), join(path, "half_size"), "must be positive");
         const int div = getInt(c, t, path, "divisions", 1, 1, 1024);
         make = [=] { return makePlane(hs, div); };
+    } else if (kind == "obj") {
+        // A Wavefront OBJ file, relative to the scene file's folder.
+        const toml::node* fn = find(t, "file") ? find(t, "file") : &t;
+        const std::string file = getString(c, t, path, "file", "");
+        if (file.empty()) c.fail(fn, join(path, "file"), "mesh = \"obj\" needs file = \"NAME.obj\"");
+        const std::string full = file[0] == '/' ? file : (std::filesystem::path(c.file).parent_path() / file).string();
+        make = [&c, fn, full, field = join(path, "file")] {
+            try {
+                return loadObjMesh(full, kMaxSceneNumber, kMaxSceneTriangles);
+            } catch (const std::runtime_error& e) {
+                c.fail(fn, field, full + ": " + e.what());
+            }
+        };
     } else {
         c.fail(find(t, "mesh") ? find(t, "mesh") : &t, join(path, "mesh"),
-               "unknown mesh '" + kind + "' (expected teapot, cube, sphere, torus or plane)");
+               "unknown mesh '" + kind + "' (expected teapot, cube, sphere, torus, plane or obj)");
     }
     o.name = kind;
     const std::string texName = getString(c, t, path, "texture", "");

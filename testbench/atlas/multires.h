@@ -1,0 +1,38 @@
+// The multiresolution uniform mesh atlas (section 4.3): triangles paired across shared edges,
+// the pairs' dual graph partitioned hierarchically into a balanced quadtree with METIS (the
+// multiconstraint partitioner the paper cites), and each quadtree node placed in its quadrant
+// of the atlas, so that a MIP texel at level l (a 2^l x 2^l block) averages only triangles that
+// are neighbours on the surface, up to the level the partition keeps contiguous.
+#pragma once
+
+#include <vector>
+
+#include "atlas.h"
+#include "render.h"
+
+namespace pst {
+
+// The mesh's dual graph: triangles adjacent across an edge (vertices welded by position).
+// Throws InputError ("--mip: ...") for an edge shared by more than two triangles.
+std::vector<std::vector<int>> dualGraph(const std::vector<AtlasTriangle>& triangles);
+
+// Builds the multiresolution atlas (options.kind must be Uniform, options.size a power of two;
+// InputError "--size: ..." / "--atlas: ..." otherwise). Pair cells are a x a texels, a a power of
+// two; charts are seam-free for options.magnification inside them (legs a - 2 - 2m).
+Atlas buildMultiresAtlas(std::vector<AtlasTriangle> triangles, const AtlasOptions& options);
+
+// MIP levels of a filled atlas, 5 channels: RGBA and the written share w of the texel. Level 0
+// is `texels` (w = 1 where a chart wrote, else 0 and RGBA 0); each level averages the 2 x 2
+// blocks of the one below weighted by w (background carries no weight), down to 1 x 1.
+std::vector<Image> mipLevels(const Image& texels, const std::vector<int>& owners);
+
+// For each MIP level, the number of its texels whose block holds triangles that do not form one
+// connected patch of the dual graph (a texel averaging non-neighbours).
+std::vector<long long> mipMixing(const Atlas& atlas, const std::vector<std::vector<int>>& dual);
+
+// Trilinear lookup at chart point u with screen derivatives du/dx, du/dy (texel units): level
+// lg max(|du/dx|, |du/dy|), each level's four texels weighted by bilinear weight times w.
+glm::dvec4 lookupTrilinear(const std::vector<Image>& levels, const glm::dvec2& u, const glm::dvec2& dudx,
+                           const glm::dvec2& dudy);
+
+}  // namespace pst
