@@ -15,6 +15,7 @@ PACKAGES=(
   ffmpeg                            # pst animate: frames -> video (VP9 webm)
   slurm-wlm slurm-client munge      # scripts/search.py --backend slurm; ctest -L slurm (scripts/slurm_local.sh)
   lcov                            # scripts/coverage.sh: genhtml
+  libfftw3-dev libeigen3-dev       # model/subband: spectral noise tiles (FFT), least-squares weights
 )
 # Node.js for the report's browser test (playwright-core): Debian's nodejs/npm unless a node
 # (and npm) is already on the PATH (e.g. another distribution's nodejs package, which has npm).
