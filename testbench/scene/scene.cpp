@@ -1,5 +1,6 @@
 // Scene and texture files: TOML parsed by toml++, checked field by field.
 #include "scene.h"
+#include "subband.h"
 
 #include <algorithm>
 #include <cmath>
@@ -247,9 +248,10 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
         const std::string np = join(path, "noise");
         auto nt = nn->as_table();
         if (!nt) c.fail(nn, np, "expected a table");
-        checkKeys(c, *nt, np, {"basis", "interp", "corner", "hash", "metric", "coef", "cell", "search", "max_points", "cubes"});
+        checkKeys(c, *nt, np, {"basis", "interp", "corner", "hash", "metric", "coef", "cell", "search", "max_points", "cubes",
+                               "orientations", "tile_size", "seed", "param", "weights"});
         NoiseOptions& no = tex.noise;
-        no.basis = getEnum(c, *nt, np, "basis", no.basis, parseNoiseBasis, "rayshade, perlin2002 or worley");
+        no.basis = getEnum(c, *nt, np, "basis", no.basis, parseNoiseBasis, "rayshade, perlin2002, worley or subband");
         if (const toml::node* bn = find(*nt, "basis")) {
             std::ostringstream os;
             os << c.file;
@@ -266,6 +268,23 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
             if (no.basis != NoiseBasis::Worley && find(*nt, k))
                 c.fail(find(*nt, k), join(np, k), std::string("applies to basis worley only (basis is ") +
                                                       toString(no.basis) + ")");
+        for (const char* k : {"orientations", "tile_size", "seed", "param", "weights"})
+            if (no.basis != NoiseBasis::Subband && find(*nt, k))
+                c.fail(find(*nt, k), join(np, k), std::string("applies to basis subband only (basis is ") +
+                                                      toString(no.basis) + ")");
+        // The subband basis (model/subband.h): K orientations of eq. 1, the tiles' size.
+        no.orientations = getInt(c, *nt, np, "orientations", no.orientations, 1, 64);
+        if (no.orientations != 4 && no.orientations != 8)
+            c.fail(find(*nt, "orientations"), join(np, "orientations"),
+                   "must be 4 or 8 (got " + std::to_string(no.orientations) + ")");
+        no.tileSize = getInt(c, *nt, np, "tile_size", no.tileSize, 1, 1 << 20);
+        if (!subbandValidSize(no.tileSize))
+            c.fail(find(*nt, "tile_size"), join(np, "tile_size"),
+                   "must be a power of two in [" + std::to_string(kSubbandMinTile) + ", " +
+                       std::to_string(kSubbandMaxTile) + "] (got " + std::to_string(no.tileSize) + ")");
+        no.seed = uint32_t(getInt(c, *nt, np, "seed", int(no.seed), 0, 2147483647));
+        no.param = getEnum(c, *nt, np, "param", no.param, parseSubbandParam, "xy, xz, yz or sphere");
+        no.weights = getEnum(c, *nt, np, "weights", no.weights, parseSubbandWeights, "heuristic or least_squares");
         no.interp = getEnum(c, *nt, np, "interp", no.interp, parseNoiseInterp, "scurve or linear");
         no.corner = getEnum(c, *nt, np, "corner", no.corner, parseNoiseCorner, "value_gradient or value");
         no.hash = getEnum(c, *nt, np, "hash", no.hash, parseNoiseHash, "rayshade or perm256");
@@ -291,7 +310,10 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
             c.fail(find(*nt, "coef") ? find(*nt, "coef") : nn, join(np, "coef"),
                    "every coefficient and cell are 0: the basis would be constant");
     }
-    tex.bandlimit = getEnum(c, t, path, "bandlimit", tex.bandlimit, parseBandlimit, "off, fade, widen, match, footprint or isotropic");
+    tex.bandlimit = getEnum(c, t, path, "bandlimit", tex.bandlimit, parseBandlimit,
+                            "off, fade, widen, match, footprint, isotropic or anisotropic");
+    if (std::string why = bandlimitUnsupported(tex, tex.bandlimit); !why.empty())
+        c.fail(find(t, "bandlimit"), join(path, "bandlimit"), why);
     tex.filter = getEnum(c, t, path, "filter", tex.filter, parseFilterKind, "none, mip, mip_linear, sat, box or trapezoid");
     tex.norm = getEnum(c, t, path, "norm", tex.norm, parseGradNorm, "euclid, max_half_min or l1");
     tex.clut = parseColorMap(c, requireTable(c, t, path, "colormap"), join(path, "colormap"));

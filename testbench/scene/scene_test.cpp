@@ -170,7 +170,37 @@ TEST(Scene, NoiseBasis) {
     expectError(withNoise("{ basis = \"worley\", coef = [0.0, 0.0] }"),
                 {"bad.toml:9:", "textures.t.noise.coef", "constant"});
     expectError(withNoise("{ basis = \"worley\", cell = inf }"), {"bad.toml:9:", "textures.t.noise.cell", "infinite"});
-    expectError(withNoise("{ basis = \"worley\", seed = 1 }"), {"bad.toml:9:", "textures.t.noise.seed", "unknown key"});
+    expectError(withNoise("{ basis = \"worley\", seed = 1 }"), {"bad.toml:9:", "textures.t.noise.seed", "subband only"});
+}
+
+TEST(Scene, SubbandBasis) {
+    Scene s = parseScene(withNoise("{ basis = \"subband\", orientations = 4, tile_size = 512, seed = 7, "
+                                   "param = \"sphere\", weights = \"least_squares\" }"),
+                         "ok.toml");
+    const NoiseOptions& n = s.textures[0].noise;
+    EXPECT_EQ(n.basis, NoiseBasis::Subband);
+    EXPECT_EQ(n.orientations, 4);
+    EXPECT_EQ(n.tileSize, 512);
+    EXPECT_EQ(n.seed, 7u);
+    EXPECT_EQ(n.param, SubbandParam::Sphere);
+    EXPECT_EQ(n.weights, SubbandWeights::LeastSquares);
+    s = parseScene(withNoise("{ basis = \"subband\" }"), "ok.toml");
+    EXPECT_EQ(s.textures[0].noise.orientations, 8);
+    EXPECT_EQ(s.textures[0].noise.tileSize, 256);
+    EXPECT_EQ(s.textures[0].noise.param, SubbandParam::XZ);
+    expectError(withNoise("{ basis = \"subband\", orientations = 6 }"),
+                {"bad.toml:9:", "textures.t.noise.orientations", "must be 4 or 8"});
+    expectError(withNoise("{ basis = \"subband\", tile_size = 384 }"),
+                {"bad.toml:9:", "textures.t.noise.tile_size", "power of two"});
+    expectError(withNoise("{ basis = \"subband\", tile_size = 2048 }"),
+                {"bad.toml:9:", "textures.t.noise.tile_size", "power of two in [256, 1024]"});
+    expectError(withNoise("{ basis = \"subband\", weights = \"exact\" }"),
+                {"bad.toml:9:", "textures.t.noise.weights", "heuristic or least_squares"});
+    expectError(withNoise("{ basis = \"perlin2002\", param = \"xy\" }"),
+                {"bad.toml:9:", "textures.t.noise.param", "subband only"});
+    std::string bad = withNoise("{ basis = \"worley\" }");
+    bad.replace(bad.find("noise = "), 0, "bandlimit = \"anisotropic\"\n");
+    expectError(bad, {"bad.toml:9:", "textures.t.bandlimit", "needs basis subband"});
 }
 
 TEST(Scene, Bandlimit) {
