@@ -102,6 +102,7 @@ struct NoiseOptions {
     uint32_t seed = 1;
     SubbandParam param = SubbandParam::XZ;
     SubbandWeights weights = SubbandWeights::Heuristic;
+    double sigma = 1.0;  // the filter's Gaussian in screen pixels (eq. 4; the paper's 1)
 };
 
 // Parse/print the enum names used in scene files ("scurve", "linear", "value_gradient",

@@ -327,18 +327,34 @@ double subbandNoise(const glm::dvec3& p, const NoiseOptions& opt, SubbandFilterK
     if (grad) *grad = glm::dvec3(0.0);
     if (keptVar) *keptVar = 1.0;
     if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) return 0.0;
-    const SubbandTiles& t = subbandTiles(opt.orientations, opt.tileSize, opt.seed);
+    // The last tiles this thread used (the cache's lock is not taken per sample).
+    thread_local const SubbandTiles* last = nullptr;
+    if (!last || last->K != opt.orientations || last->size != opt.tileSize || last->seed != opt.seed)
+        last = &subbandTiles(opt.orientations, opt.tileSize, opt.seed);
+    const SubbandTiles& t = *last;
     const int K = t.K, count = t.count(), jc = kSubbandCentreScale;
     const Param pr = parameterize(p, opt);
     const glm::dvec2 q = kSubbandUnitPx * pr.uv;  // tile pixels
     const bool undistorted = pr.T == glm::dmat2(1.0);
 
-    // Section 3.1: gamma, normalised so that the octave's variance is Rayshade's: sd / sqrt(g^T C g).
+    // Section 3.1: gamma (undistorted: 1 on the centre scale, 0 elsewhere), normalised so that the
+    // octave's variance is Rayshade's: sd / sqrt(gamma^T C gamma). Only the nonzero gammas count.
     double gamma[8 * kSubbandScales], lambda[8 * kSubbandScales];
-    subbandCompensation(K, pr.T, gamma);
-    double var = 0;
-    for (int a = 0; a < count; ++a)
-        for (int b = 0; b < count; ++b) var += gamma[a] * gamma[b] * t.gram[size_t(a) * count + b];
+    int active[8 * kSubbandScales], na = 0;
+    if (undistorted) {
+        for (int k = 0; k < count; ++k) gamma[k] = k / K == jc ? 1.0 : 0.0;
+    } else {
+        subbandCompensation(K, pr.T, gamma);
+    }
+    for (int k = 0; k < count; ++k)
+        if (gamma[k] != 0.0) active[na++] = k;
+    auto quadratic = [&](const double* w) {
+        double v = 0;
+        for (int a = 0; a < na; ++a)
+            for (int b = 0; b < na; ++b) v += w[active[a]] * w[active[b]] * t.gram[size_t(active[a]) * count + active[b]];
+        return v;
+    };
+    const double var = quadratic(gamma);
     const double scale = var > 0 ? rayshadeSd() / std::sqrt(var) : 0.0;
 
     auto toP = [&](const glm::dvec2& g) { return kSubbandUnitPx * (g.x * pr.du + g.y * pr.dv); };
@@ -354,36 +370,35 @@ double subbandNoise(const glm::dvec3& p, const NoiseOptions& opt, SubbandFilterK
         // J: tile pixels per screen pixel, columns d(u,v)/dx, d(u,v)/dy.
         const glm::dmat2 J(kSubbandUnitPx * glm::dvec2(glm::dot(pr.du, dpdx), glm::dot(pr.dv, dpdx)),
                            kSubbandUnitPx * glm::dvec2(glm::dot(pr.du, dpdy), glm::dot(pr.dv, dpdy)));
+        glm::dmat2 Jf = J;
         if (kind == SubbandFilterKind::Isotropic) {
             // The isotropic Gaussian as wide as the footprint's major axis (J's largest singular value).
             const glm::dmat2 A = J * glm::transpose(J);
             const double tr = A[0][0] + A[1][1], det = A[0][0] * A[1][1] - A[0][1] * A[1][0];
-            const double smax = std::sqrt(std::max(0.0, 0.5 * tr + std::sqrt(std::max(0.0, 0.25 * tr * tr - det))));
-            const glm::dmat2 Jiso(smax);
-            if (opt.weights == SubbandWeights::LeastSquares) subbandFilterLeastSquares(K, Jiso, lambda);
-            else subbandFilterHeuristic(K, Jiso, lambda);
-        } else if (opt.weights == SubbandWeights::LeastSquares) {
-            subbandFilterLeastSquares(K, J, lambda);
+            Jf = glm::dmat2(std::sqrt(std::max(0.0, 0.5 * tr + std::sqrt(std::max(0.0, 0.25 * tr * tr - det)))));
+        }
+        if (opt.weights == SubbandWeights::LeastSquares) {
+            subbandFilterLeastSquares(K, Jf, lambda, opt.sigma);
         } else {
-            subbandFilterHeuristic(K, J, lambda);
+            for (int a = 0; a < na; ++a) {
+                const int k = active[a];
+                lambda[k] = subbandLowPass(Jf, subbandCentre(K, k % K, k / K), opt.sigma);
+            }
         }
     }
     // Eq. 7: sum lambda_ij gamma_ij n_ij, skipping the weights too small to matter.
-    double v = 0, wmax = 0, kept = 0;
-    double w[8 * kSubbandScales];
-    for (int k = 0; k < count; ++k) wmax = std::max(wmax, std::abs(w[k] = lambda[k] * gamma[k]));
+    double w[8 * kSubbandScales], wmax = 0;
+    for (int a = 0; a < na; ++a) wmax = std::max(wmax, std::abs(w[active[a]] = lambda[active[a]] * gamma[active[a]]));
+    double v = 0;
     glm::dvec2 g(0.0);
-    for (int k = 0; k < count; ++k) {
+    for (int a = 0; a < na; ++a) {
+        const int k = active[a];
         if (std::abs(w[k]) <= 1e-6 * wmax) continue;
         glm::dvec2 gk;
         v += w[k] * t.lookup(k, q, grad ? &gk : nullptr);
         if (grad) g += w[k] * gk;
     }
-    if (keptVar && var > 0) {
-        for (int a = 0; a < count; ++a)
-            for (int b = 0; b < count; ++b) kept += w[a] * w[b] * t.gram[size_t(a) * count + b];
-        *keptVar = kept / var;
-    }
+    if (keptVar && var > 0) *keptVar = quadratic(w) / var;
     if (grad) *grad = scale * toP(g);
     return scale * v;
 }

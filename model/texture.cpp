@@ -274,9 +274,12 @@ double evalFBandlimited(const Texture& tex, const glm::dvec3& s, const glm::dvec
             const SubbandFilterKind kind = tex.bandlimit == Bandlimit::Anisotropic ? SubbandFilterKind::Anisotropic
                                                                                    : SubbandFilterKind::Isotropic;
             glm::dvec3 gn;
+            double kept = 1;
             f += o.amplitude * subbandNoise(o.M * s + o.offset, tex.noise, kind, o.M * dsdx, o.M * dsdy,
-                                            gradS ? &gn : nullptr);
+                                            gradS ? &gn : nullptr, &kept);
             if (gradS) g += o.amplitude * (glm::transpose(o.M) * gn);
+            // What the filter removed widens the colour-table filter, as for match.
+            var += std::pow(o.amplitude * m.sd, 2) * std::max(0.0, 1.0 - kept);
             continue;
         }
         if (tex.bandlimit == Bandlimit::Footprint) {
@@ -312,11 +315,16 @@ double evalFBandlimited(const Texture& tex, const glm::dvec3& s, const glm::dvec
     return f;
 }
 
+bool bandlimitWidens(const Texture& tex) {
+    return tex.bandlimit == Bandlimit::Widen || tex.bandlimit == Bandlimit::Match ||
+           tex.bandlimit == Bandlimit::Footprint || tex.bandlimit == Bandlimit::Anisotropic ||
+           (tex.bandlimit == Bandlimit::Isotropic && tex.noise.basis == NoiseBasis::Subband);
+}
+
 double bandlimitedWidth(const Texture& tex, const glm::dvec3& gradS, const glm::dvec3& dsdx,
                         const glm::dvec3& dsdy, double fadedSd) {
     const double w = filterWidth(gradS, dsdx, dsdy, tex.norm);
-    const bool widen = tex.bandlimit == Bandlimit::Widen || tex.bandlimit == Bandlimit::Match ||
-                       tex.bandlimit == Bandlimit::Footprint;
+    const bool widen = bandlimitWidens(tex);
     return widen ? std::sqrt(w * w + 12.0 * fadedSd * fadedSd) : w;
 }
 
@@ -343,8 +351,7 @@ glm::dvec4 filterColour(const ColorMap& clut, double f, double w, const glm::dve
 }
 
 glm::dvec2 bandlimitedFootprint(const Texture& tex, const glm::dvec2& wxy, double fadedSd) {
-    const bool widen = tex.bandlimit == Bandlimit::Widen || tex.bandlimit == Bandlimit::Match ||
-                       tex.bandlimit == Bandlimit::Footprint;
+    const bool widen = bandlimitWidens(tex);
     if (!widen || !(fadedSd > 0.0)) return wxy;
     const double e2 = glm::dot(wxy, wxy), add = 12.0 * fadedSd * fadedSd;
     if (!(e2 > 0.0)) return glm::dvec2(std::sqrt(add), 0.0);

@@ -148,8 +148,11 @@ double octaveFootprint(const Octave& o, const NoiseOptions& opt, const glm::dvec
 // sqrt(sum ((1 - alpha) a_i sd)^2).
 double evalFBandlimited(const Texture& tex, const glm::dvec3& s, const glm::dvec3& dsdx,
                         const glm::dvec3& dsdy, glm::dvec3* gradS = nullptr, double* fadedSd = nullptr);
+// Whether the bandlimit widens the colour-table filter by the removed spread: widen, match,
+// footprint, and the subband basis's filters (isotropic, anisotropic).
+bool bandlimitWidens(const Texture& tex);
 // The filter width of the bandlimited texture: filterWidth of its gradient, widened by fadedSd
-// for Bandlimit::Widen.
+// when bandlimitWidens.
 double bandlimitedWidth(const Texture& tex, const glm::dvec3& gradS, const glm::dvec3& dsdx,
                         const glm::dvec3& dsdy, double fadedSd);
 

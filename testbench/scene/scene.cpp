@@ -249,7 +249,7 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
         auto nt = nn->as_table();
         if (!nt) c.fail(nn, np, "expected a table");
         checkKeys(c, *nt, np, {"basis", "interp", "corner", "hash", "metric", "coef", "cell", "search", "max_points", "cubes",
-                               "orientations", "tile_size", "seed", "param", "weights"});
+                               "orientations", "tile_size", "seed", "param", "weights", "sigma"});
         NoiseOptions& no = tex.noise;
         no.basis = getEnum(c, *nt, np, "basis", no.basis, parseNoiseBasis, "rayshade, perlin2002, worley or subband");
         if (const toml::node* bn = find(*nt, "basis")) {
@@ -268,7 +268,7 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
             if (no.basis != NoiseBasis::Worley && find(*nt, k))
                 c.fail(find(*nt, k), join(np, k), std::string("applies to basis worley only (basis is ") +
                                                       toString(no.basis) + ")");
-        for (const char* k : {"orientations", "tile_size", "seed", "param", "weights"})
+        for (const char* k : {"orientations", "tile_size", "seed", "param", "weights", "sigma"})
             if (no.basis != NoiseBasis::Subband && find(*nt, k))
                 c.fail(find(*nt, k), join(np, k), std::string("applies to basis subband only (basis is ") +
                                                       toString(no.basis) + ")");
@@ -285,6 +285,9 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
         no.seed = uint32_t(getInt(c, *nt, np, "seed", int(no.seed), 0, 2147483647));
         no.param = getEnum(c, *nt, np, "param", no.param, parseSubbandParam, "xy, xz, yz or sphere");
         no.weights = getEnum(c, *nt, np, "weights", no.weights, parseSubbandWeights, "heuristic or least_squares");
+        no.sigma = getNumber(c, *nt, np, "sigma", no.sigma);
+        if (!(no.sigma > 0.0 && no.sigma <= 16.0))
+            c.fail(find(*nt, "sigma"), join(np, "sigma"), "must be in (0, 16] pixels");
         no.interp = getEnum(c, *nt, np, "interp", no.interp, parseNoiseInterp, "scurve or linear");
         no.corner = getEnum(c, *nt, np, "corner", no.corner, parseNoiseCorner, "value_gradient or value");
         no.hash = getEnum(c, *nt, np, "hash", no.hash, parseNoiseHash, "rayshade or perm256");

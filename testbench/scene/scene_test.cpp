@@ -194,6 +194,8 @@ TEST(Scene, SubbandBasis) {
                 {"bad.toml:9:", "textures.t.noise.tile_size", "power of two"});
     expectError(withNoise("{ basis = \"subband\", tile_size = 2048 }"),
                 {"bad.toml:9:", "textures.t.noise.tile_size", "power of two in [256, 1024]"});
+    expectError(withNoise("{ basis = \"subband\", sigma = 0.0 }"), {"bad.toml:9:", "textures.t.noise.sigma", "(0, 16]"});
+    EXPECT_EQ(parseScene(withNoise("{ basis = \"subband\", sigma = 0.5 }"), "ok.toml").textures[0].noise.sigma, 0.5);
     expectError(withNoise("{ basis = \"subband\", weights = \"exact\" }"),
                 {"bad.toml:9:", "textures.t.noise.weights", "heuristic or least_squares"});
     expectError(withNoise("{ basis = \"perlin2002\", param = \"xy\" }"),
@@ -210,7 +212,7 @@ TEST(Scene, Bandlimit) {
     EXPECT_EQ(parseScene(text, "min.toml").textures[0].bandlimit, Bandlimit::Widen);
     std::string bad = kMinimal;
     bad.insert(bad.find("colormap ="), "bandlimit = \"on\"\n");
-    expectError(bad, {"bad.toml:9: textures.t.bandlimit: unknown value 'on' (expected off, fade, widen, match, footprint or isotropic)"});
+    expectError(bad, {"bad.toml:9: textures.t.bandlimit: unknown value 'on' (expected off, fade, widen, match, footprint, isotropic or anisotropic)"});
 }
 
 TEST(Scene, TextureBlockFile) {
