@@ -82,6 +82,11 @@ glm::dvec2 subbandCentre(int K, int i, int j) {
     return r * glm::dvec2(std::cos(a), std::sin(a));
 }
 
+size_t subbandTileBytes(int K, int size) {
+    const size_t px = size_t(size) * size, count = size_t(K) * kSubbandScales;
+    return 3 * (count + kSubbandScales) * px * sizeof(float) + px * sizeof(double) + count * count * sizeof(double);
+}
+
 bool subbandValidSize(long long size) {
     return size >= kSubbandMinTile && size <= kSubbandMaxTile && (size & (size - 1)) == 0;
 }

@@ -66,6 +66,10 @@ struct SubbandTiles {
 // [kSubbandMinTile, kSubbandMaxTile] (std::invalid_argument otherwise).
 const SubbandTiles& subbandTiles(int K, int size, uint64_t seed);
 bool subbandValidSize(long long size);
+// The memory one (seed, K, size) set takes once built (float tiles, the white noise, the Gram
+// matrix), and the bound on a scene's distinct sets (checked by the scene parser).
+size_t subbandTileBytes(int K, int size);
+constexpr size_t kSubbandMaxSceneBytes = size_t(1) << 30;
 
 // The isotropic target of one octave in the undistorted parameterization: E(xi) = B(2^jc |xi|).
 double subbandTarget(const glm::dvec2& xi);

@@ -9,6 +9,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <toml++/toml.h>
@@ -625,10 +626,21 @@ Scene buildScene(const Ctx& c, const toml::table& root, const std::string& path,
 
     std::map<std::string, int> textureIndex;
     const toml::table& texs = requireTable(c, root, "", "textures");
+    std::set<std::tuple<int, int, uint32_t>> tileSets;  // the subband tiles the scene builds
+    size_t tileBytes = 0;
     for (auto&& [k, v] : texs) {
         std::string tp = "textures." + std::string(k.str());
         if (!v.is_table()) c.fail(&v, tp, "expected a table");
         Texture tex = parseTextureTable(c, *v.as_table(), tp);
+        const NoiseOptions& no = tex.noise;
+        if (no.basis == NoiseBasis::Subband && tileSets.insert({no.orientations, no.tileSize, no.seed}).second) {
+            tileBytes += subbandTileBytes(no.orientations, no.tileSize);
+            if (tileBytes > kSubbandMaxSceneBytes)
+                c.fail(find(*v.as_table(), "noise"), join(tp, "noise"),
+                       "the scene's subband tiles (one set per seed, orientations, tile_size) would take " +
+                           std::to_string(tileBytes >> 20) + " MiB (at most " +
+                           std::to_string(kSubbandMaxSceneBytes >> 20) + ")");
+        }
         tex.name = std::string(k.str());
         textureIndex[tex.name] = static_cast<int>(sc.textures.size());
         sc.textures.push_back(std::move(tex));

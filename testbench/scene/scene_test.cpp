@@ -200,6 +200,14 @@ TEST(Scene, SubbandBasis) {
                 {"bad.toml:9:", "textures.t.noise.weights", "heuristic or least_squares"});
     expectError(withNoise("{ basis = \"perlin2002\", param = \"xy\" }"),
                 {"bad.toml:9:", "textures.t.noise.param", "subband only"});
+    // Tiles: 1024 x 1024 with 8 orientations is (3 x 45 floats + 1 double) x 1 Mi pixels = 548 MiB
+    // a set (40 tiles, 5 isotropic sums, value and two derivatives; the white noise): one seed
+    // fits in the bound, a second does not.
+    std::string three = kMinimal;
+    for (int k = 1; k <= 2; ++k)
+        three += "[textures.u" + std::to_string(k) + "]\nnoise = { basis = \"subband\", tile_size = 1024, seed = " +
+                 std::to_string(k) + " }\ncolormap = { size = 4, ramp = [[0.0, 0, 0, 0], [1.0, 1, 1, 1]] }\n";
+    expectError(three, {"bad.toml:", "textures.u2.noise", "would take 1096 MiB (at most 1024)"});
     std::string bad = withNoise("{ basis = \"worley\" }");
     bad.replace(bad.find("noise = "), 0, "bandlimit = \"anisotropic\"\n");
     expectError(bad, {"bad.toml:9:", "textures.t.bandlimit", "needs basis subband"});
