@@ -2,6 +2,7 @@
 #include "subband.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <complex>
 #include <map>
@@ -81,6 +82,23 @@ glm::dvec2 subbandCentre(int K, int i, int j) {
     const double r = kPi / 4 * std::exp2(-j), a = kPi * i / K;
     return r * glm::dvec2(std::cos(a), std::sin(a));
 }
+
+namespace {
+// subbandCentre's values for K = 4 and 8, [j K + i], computed once (the per-sample loops).
+const glm::dvec2* centres(int K) {
+    if (K != 4 && K != 8) throw std::invalid_argument("subband: orientations must be 4 or 8");
+    static const auto table = [] {
+        std::array<std::array<glm::dvec2, 8 * kSubbandScales>, 2> t{};
+        for (int n = 0; n < 2; ++n) {
+            const int k = n == 0 ? 4 : 8;
+            for (int j = 0; j < kSubbandScales; ++j)
+                for (int i = 0; i < k; ++i) t[n][j * k + i] = subbandCentre(k, i, j);
+        }
+        return t;
+    }();
+    return table[K == 4 ? 0 : 1].data();
+}
+}  // namespace
 
 size_t subbandTileBytes(int K, int size) {
     const size_t px = size_t(size) * size, count = size_t(K) * kSubbandScales;
@@ -213,8 +231,9 @@ const SubbandTiles& subbandTiles(int K, int size, uint64_t seed) {
 double subbandTarget(const glm::dvec2& xi) { return subbandRadial(kSubbandCentreScale, glm::length(xi)); }
 
 void subbandCompensation(int K, const glm::dmat2& T, double* gamma) {
-    for (int j = 0; j < kSubbandScales; ++j)
-        for (int i = 0; i < K; ++i) gamma[j * K + i] = subbandTarget(glm::transpose(T) * subbandCentre(K, i, j));
+    const glm::dvec2* c = centres(K);
+    const glm::dmat2 Tt = glm::transpose(T);
+    for (int k = 0; k < K * kSubbandScales; ++k) gamma[k] = subbandTarget(Tt * c[k]);
 }
 
 double subbandLowPass(const glm::dmat2& J, const glm::dvec2& w, double sigma) {
@@ -224,8 +243,8 @@ double subbandLowPass(const glm::dmat2& J, const glm::dvec2& w, double sigma) {
 }
 
 void subbandFilterHeuristic(int K, const glm::dmat2& J, double* lambda, double sigma) {
-    for (int j = 0; j < kSubbandScales; ++j)
-        for (int i = 0; i < K; ++i) lambda[j * K + i] = subbandLowPass(J, subbandCentre(K, i, j), sigma);
+    const glm::dvec2* c = centres(K);
+    for (int k = 0; k < K * kSubbandScales; ++k) lambda[k] = subbandLowPass(J, c[k], sigma);
 }
 
 namespace {
@@ -387,7 +406,7 @@ double subbandNoise(const glm::dvec3& p, const NoiseOptions& opt, SubbandFilterK
         } else {
             for (int a = 0; a < na; ++a) {
                 const int k = active[a];
-                lambda[k] = subbandLowPass(Jf, subbandCentre(K, k % K, k / K), opt.sigma);
+                lambda[k] = subbandLowPass(Jf, centres(K)[k], opt.sigma);
             }
         }
     }

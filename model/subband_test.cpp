@@ -250,6 +250,8 @@ TEST(Subband, RejectsBadOrientationsAndSizes) {
     EXPECT_THROW(subbandTiles(6, 256, 1), std::invalid_argument);
     EXPECT_THROW(subbandTiles(8, 300, 1), std::invalid_argument);
     EXPECT_THROW(subbandTiles(8, 128, 1), std::invalid_argument);
+    double w[8 * kSubbandScales];
+    EXPECT_THROW(subbandCompensation(6, glm::dmat2(1.0), w), std::invalid_argument);
     EXPECT_TRUE(subbandValidSize(512));
     EXPECT_FALSE(subbandValidSize(768));
 }
