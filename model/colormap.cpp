@@ -312,7 +312,7 @@ glm::dvec4 ColorMap::filterTrapezoid(double f, double wx, double wy) const {
     if (wrap_ == WrapMode::Mod) u -= n * std::floor(u / n);  // exact f mod 1
     const double al = u - 0.5 * b;
     const glm::dvec4 box = filterBox(al / n, a / n);
-    if (b <= 0.0) return box;
+    if (!(a * b > 0.0)) return box;  // b = 0, or a b below the smallest double (0/0 below)
 
     // J over a span of length b: in mod mode whole periods in closed form, the rest walked.
     auto J = [&](double s) -> glm::dvec4 {

@@ -289,6 +289,20 @@ TEST(ColorMap, TrapezoidMatchesBruteForce) {
 
 // Mod, many periods wide (the closed form for whole periods): the brute force over a 64-entry
 // table with widths up to 9 periods.
+// Widths so small that their product underflows (a filtered-away noise's gradient): the point
+// sample's box, not 0/0.
+TEST(ColorMap, TrapezoidOfVanishingWidthsIsFinite) {
+    std::mt19937_64 rng(5);
+    for (WrapMode wrap : {WrapMode::Mod, WrapMode::Clamp}) {
+        const ColorMap m(randomEntries(16, rng), wrap);
+        const glm::dvec4 c = m.filterTrapezoid(0.37, 1e-170, 1e-200), box = m.filterBox(0.37, 1e-170);
+        for (int k = 0; k < 4; ++k) {
+            EXPECT_TRUE(std::isfinite(c[k]));
+            EXPECT_NEAR(c[k], box[k], 1e-12);
+        }
+    }
+}
+
 TEST(ColorMap, TrapezoidManyPeriods) {
     std::mt19937_64 rng(78);
     std::uniform_real_distribution<double> unit(0.0, 1.0);

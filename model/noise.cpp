@@ -3,6 +3,7 @@
 #include "noise.h"
 
 #include "perlin2002.h"
+#include "subband.h"
 #include "worley.h"
 
 #include <cmath>
@@ -43,9 +44,37 @@ bool parseNoiseBasis(const std::string& name, NoiseBasis* out) {
     if (name == "rayshade") *out = NoiseBasis::Rayshade;
     else if (name == "perlin2002") *out = NoiseBasis::Perlin2002;
     else if (name == "worley") *out = NoiseBasis::Worley;
+    else if (name == "subband") *out = NoiseBasis::Subband;
     else return false;
     return true;
 }
+
+bool parseSubbandParam(const std::string& name, SubbandParam* out) {
+    if (name == "xy") *out = SubbandParam::XY;
+    else if (name == "xz") *out = SubbandParam::XZ;
+    else if (name == "yz") *out = SubbandParam::YZ;
+    else if (name == "sphere") *out = SubbandParam::Sphere;
+    else return false;
+    return true;
+}
+
+bool parseSubbandWeights(const std::string& name, SubbandWeights* out) {
+    if (name == "heuristic") *out = SubbandWeights::Heuristic;
+    else if (name == "least_squares") *out = SubbandWeights::LeastSquares;
+    else return false;
+    return true;
+}
+
+const char* toString(SubbandParam v) {
+    switch (v) {
+    case SubbandParam::XY: return "xy";
+    case SubbandParam::XZ: return "xz";
+    case SubbandParam::YZ: return "yz";
+    case SubbandParam::Sphere: return "sphere";
+    }
+    return "?";
+}
+const char* toString(SubbandWeights v) { return v == SubbandWeights::Heuristic ? "heuristic" : "least_squares"; }
 
 bool parseWorleyMetric(const std::string& name, WorleyMetric* out) {
     if (name == "euclid") *out = WorleyMetric::Euclid;
@@ -59,6 +88,7 @@ const char* toString(NoiseBasis v) {
     case NoiseBasis::Rayshade: return "rayshade";
     case NoiseBasis::Perlin2002: return "perlin2002";
     case NoiseBasis::Worley: return "worley";
+    case NoiseBasis::Subband: return "subband";
     }
     return "?";
 }
@@ -197,6 +227,7 @@ int noiseHash(int ix, int iy, int iz, NoiseHash hash) {
 double noise(const glm::dvec3& p, const NoiseOptions& opt, glm::dvec3* grad) {
     if (opt.basis == NoiseBasis::Perlin2002) return perlin2002(p, grad);
     if (opt.basis == NoiseBasis::Worley) return worleyBasis(p, opt, grad);
+    if (opt.basis == NoiseBasis::Subband) return subbandNoise(p, opt, SubbandFilterKind::None, {}, {}, grad);
     if (opt.interp == NoiseInterp::Quintic || opt.corner == NoiseCorner::Grad12 || opt.hash == NoiseHash::Perlin256)
         throw std::invalid_argument("noise: quintic / grad12 / perlin256 are basis perlin2002's (NoiseBasis::Perlin2002)");
     if (grad) *grad = glm::dvec3(0.0);

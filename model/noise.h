@@ -57,7 +57,13 @@ enum class NoiseBasis {
     Rayshade,    // the paper's: Rayshade's value-gradient noise (interp, corner, hash apply)
     Perlin2002,  // Perlin's improved noise, bit for bit his ImprovedNoise.java (perlin2002.h)
     Worley,      // Worley's cellular basis sum_k C_k F_k + C_cell cell(ID_1) (worley.h)
+    Subband,     // Goldberg et al. 2008: oriented subband tiles on a 2-D parameterization (subband.h)
 };
+
+// The subband basis's 2-D parameterization of the octave's point p (subband.h subbandNoise).
+enum class SubbandParam { XY, XZ, YZ, Sphere };
+// Its filter weights: the paper's heuristic or the least-squares fit (eq. 5).
+enum class SubbandWeights { Heuristic, LeastSquares };
 
 // The distance of Worley's basis.
 enum class WorleyMetric {
@@ -89,6 +95,14 @@ struct NoiseOptions {
     WorleySearchKind search = WorleySearchKind::Exact;
     int maxPoints = 9;
     WorleyCubes cubes = WorleyCubes::Lcg;
+    // Subband only: orientations K (4 or 8), tile size (a power of two), the white noise's
+    // seed, the parameterization and the filter weights.
+    int orientations = 8;
+    int tileSize = 256;
+    uint32_t seed = 1;
+    SubbandParam param = SubbandParam::XZ;
+    SubbandWeights weights = SubbandWeights::Heuristic;
+    double sigma = 1.0;  // the filter's Gaussian in screen pixels (eq. 4; the paper's 1)
 };
 
 // Parse/print the enum names used in scene files ("scurve", "linear", "value_gradient",
@@ -97,7 +111,9 @@ struct NoiseOptions {
 bool parseNoiseInterp(const std::string& name, NoiseInterp* out);
 bool parseNoiseCorner(const std::string& name, NoiseCorner* out);
 bool parseNoiseHash(const std::string& name, NoiseHash* out);
-bool parseNoiseBasis(const std::string& name, NoiseBasis* out);  // rayshade|perlin2002|worley
+bool parseNoiseBasis(const std::string& name, NoiseBasis* out);  // rayshade|perlin2002|worley|subband
+bool parseSubbandParam(const std::string& name, SubbandParam* out);      // xy | xz | yz | sphere
+bool parseSubbandWeights(const std::string& name, SubbandWeights* out);  // heuristic | least_squares
 bool parseWorleyMetric(const std::string& name, WorleyMetric* out);  // euclid | manhattan
 bool parseWorleySearch(const std::string& name, WorleySearchKind* out);  // exact | cube27 | octant
 bool parseWorleyCubes(const std::string& name, WorleyCubes* out);        // lcg | rom256
@@ -108,6 +124,8 @@ const char* toString(NoiseBasis v);
 const char* toString(WorleyMetric v);
 const char* toString(WorleySearchKind v);
 const char* toString(WorleyCubes v);
+const char* toString(SubbandParam v);
+const char* toString(SubbandWeights v);
 
 // The tables of Rayshade's NoiseInit(), built once on first use (thread-safe). The
 // srand48(1)/drand48() stream is reproduced with erand48 on a private state, so building
@@ -143,7 +161,8 @@ int noiseHash(int ix, int iy, int iz, NoiseHash hash);
 // p > -1e6, see "Domain" above). |n| <= 3.5 always (ValueGradient; 0.5 for ValueOnly).
 // The gradient is exact inside a cell; on a lattice plane it is the one-sided derivative
 // from the cell above (SCURVE noise is C1 there, Linear noise only C0).
-// opt.basis Perlin2002 / Worley hand p to perlin2002() / worleyBasis() (their headers).
+// opt.basis Perlin2002 / Worley hand p to perlin2002() / worleyBasis() (their headers);
+// Subband to subbandNoise() unfiltered (a point sample).
 double noise(const glm::dvec3& p, const NoiseOptions& opt = {}, glm::dvec3* grad = nullptr);
 
 }  // namespace pst

@@ -6,9 +6,12 @@
 #include <map>
 #include <mutex>
 #include <sstream>
+#include <stdexcept>
 
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
+
+#include "subband.h"
 
 namespace pst {
 
@@ -77,8 +80,16 @@ bool parseBandlimit(const std::string& name, Bandlimit* out) {
     else if (name == "match") *out = Bandlimit::Match;
     else if (name == "footprint") *out = Bandlimit::Footprint;
     else if (name == "isotropic") *out = Bandlimit::Isotropic;
+    else if (name == "anisotropic") *out = Bandlimit::Anisotropic;
     else return false;
     return true;
+}
+
+std::string bandlimitUnsupported(const Texture& tex, Bandlimit b) {
+    if (b == Bandlimit::Anisotropic && tex.noise.basis != NoiseBasis::Subband)
+        return std::string("anisotropic filtering needs basis subband (the texture's basis is ") +
+               toString(tex.noise.basis) + ")";
+    return "";
 }
 
 const char* toString(Bandlimit v) {
@@ -89,6 +100,7 @@ const char* toString(Bandlimit v) {
     case Bandlimit::Match: return "match";
     case Bandlimit::Footprint: return "footprint";
     case Bandlimit::Isotropic: return "isotropic";
+    case Bandlimit::Anisotropic: return "anisotropic";
     }
     return "?";
 }
@@ -100,6 +112,8 @@ NoiseMoments noiseMoments(const NoiseOptions& opt) {
     key << toString(opt.basis) << ' ' << toString(opt.interp) << ' ' << toString(opt.corner) << ' '
         << toString(opt.hash) << ' ' << toString(opt.metric) << ' ' << opt.coef[0] << ' ' << opt.coef[1] << ' '
         << opt.coef[2] << ' ' << opt.coef[3] << ' ' << opt.cell;
+    if (opt.basis == NoiseBasis::Subband)
+        key << ' ' << opt.orientations << ' ' << opt.tileSize << ' ' << opt.seed << ' ' << toString(opt.param);
     std::lock_guard<std::mutex> lock(mu);
     auto it = cache.find(key.str());
     if (it != cache.end()) return it->second;
@@ -126,6 +140,8 @@ std::string basisKey(const NoiseOptions& opt) {
     key << toString(opt.basis) << ' ' << toString(opt.interp) << ' ' << toString(opt.corner) << ' '
         << toString(opt.hash) << ' ' << toString(opt.metric) << ' ' << opt.coef[0] << ' ' << opt.coef[1] << ' '
         << opt.coef[2] << ' ' << opt.coef[3] << ' ' << opt.cell;
+    if (opt.basis == NoiseBasis::Subband)
+        key << ' ' << opt.orientations << ' ' << opt.tileSize << ' ' << opt.seed << ' ' << toString(opt.param);
     return key.str();
 }
 constexpr int kGainSteps = 4;                     // per octave of nu
@@ -248,7 +264,24 @@ double evalFBandlimited(const Texture& tex, const glm::dvec3& s, const glm::dvec
     const NoiseMoments m = noiseMoments(tex.noise);
     double f = tex.quadric.value(s), var = 0;
     glm::dvec3 g = gradS ? tex.quadric.gradient(s) : glm::dvec3(0.0);
+    const bool subband = tex.noise.basis == NoiseBasis::Subband &&
+                         (tex.bandlimit == Bandlimit::Isotropic || tex.bandlimit == Bandlimit::Anisotropic);
+    if (tex.bandlimit == Bandlimit::Anisotropic && !subband)
+        throw std::invalid_argument("evalFBandlimited: " + bandlimitUnsupported(tex, tex.bandlimit));
     for (const Octave& o : tex.octaves) {
+        if (subband) {
+            // Eq. 7 per octave: the subband weights from the footprint in the octave's space.
+            const SubbandFilterKind kind = tex.bandlimit == Bandlimit::Anisotropic ? SubbandFilterKind::Anisotropic
+                                                                                   : SubbandFilterKind::Isotropic;
+            glm::dvec3 gn;
+            double kept = 1;
+            f += o.amplitude * subbandNoise(o.M * s + o.offset, tex.noise, kind, o.M * dsdx, o.M * dsdy,
+                                            gradS ? &gn : nullptr, &kept);
+            if (gradS) g += o.amplitude * (glm::transpose(o.M) * gn);
+            // What the filter removed widens the colour-table filter, as for match.
+            var += std::pow(o.amplitude * m.sd, 2) * std::max(0.0, 1.0 - kept);
+            continue;
+        }
         if (tex.bandlimit == Bandlimit::Footprint) {
             glm::dvec3 gt;
             double kept = 1;
@@ -282,11 +315,16 @@ double evalFBandlimited(const Texture& tex, const glm::dvec3& s, const glm::dvec
     return f;
 }
 
+bool bandlimitWidens(const Texture& tex) {
+    return tex.bandlimit == Bandlimit::Widen || tex.bandlimit == Bandlimit::Match ||
+           tex.bandlimit == Bandlimit::Footprint || tex.bandlimit == Bandlimit::Anisotropic ||
+           (tex.bandlimit == Bandlimit::Isotropic && tex.noise.basis == NoiseBasis::Subband);
+}
+
 double bandlimitedWidth(const Texture& tex, const glm::dvec3& gradS, const glm::dvec3& dsdx,
                         const glm::dvec3& dsdy, double fadedSd) {
     const double w = filterWidth(gradS, dsdx, dsdy, tex.norm);
-    const bool widen = tex.bandlimit == Bandlimit::Widen || tex.bandlimit == Bandlimit::Match ||
-                       tex.bandlimit == Bandlimit::Footprint;
+    const bool widen = bandlimitWidens(tex);
     return widen ? std::sqrt(w * w + 12.0 * fadedSd * fadedSd) : w;
 }
 
@@ -313,8 +351,7 @@ glm::dvec4 filterColour(const ColorMap& clut, double f, double w, const glm::dve
 }
 
 glm::dvec2 bandlimitedFootprint(const Texture& tex, const glm::dvec2& wxy, double fadedSd) {
-    const bool widen = tex.bandlimit == Bandlimit::Widen || tex.bandlimit == Bandlimit::Match ||
-                       tex.bandlimit == Bandlimit::Footprint;
+    const bool widen = bandlimitWidens(tex);
     if (!widen || !(fadedSd > 0.0)) return wxy;
     const double e2 = glm::dot(wxy, wxy), add = 12.0 * fadedSd * fadedSd;
     if (!(e2 > 0.0)) return glm::dvec2(std::sqrt(add), 0.0);

@@ -50,11 +50,16 @@ const char* toString(GradNorm v);
 // footprint (match across the footprint's minor edge; along its major edge the term is the mean of
 // up to kFootprintSamples point samples spread over the edge, so it follows the pixel's own average
 // from frame to frame; octaveFootprint), isotropic (the hardware's variant, octaveIsotropic: the
-// term and its gradient scaled by alpha toward 0, no widening).
-enum class Bandlimit { Off, Fade, Widen, Match, Footprint, Isotropic };
-// "off", "fade", "widen", "match", "footprint", "isotropic"
+// term and its gradient scaled by alpha toward 0, no widening). With basis subband, isotropic is
+// the subband filter's isotropic Gaussian (as wide as the footprint's major axis) and anisotropic
+// its eq. 4-7 Gaussian from the footprint's Jacobian (subband.h; anisotropic needs that basis).
+struct Texture;
+enum class Bandlimit { Off, Fade, Widen, Match, Footprint, Isotropic, Anisotropic };
+// "off", "fade", "widen", "match", "footprint", "isotropic", "anisotropic"
 bool parseBandlimit(const std::string& name, Bandlimit* out);
 const char* toString(Bandlimit v);
+// Why texture tex cannot take bandlimit b ("" if it can): anisotropic needs basis subband.
+std::string bandlimitUnsupported(const Texture& tex, Bandlimit b);
 
 // Mean and standard deviation of a noise basis over space (sampled once per variant).
 struct NoiseMoments {
@@ -143,8 +148,11 @@ double octaveFootprint(const Octave& o, const NoiseOptions& opt, const glm::dvec
 // sqrt(sum ((1 - alpha) a_i sd)^2).
 double evalFBandlimited(const Texture& tex, const glm::dvec3& s, const glm::dvec3& dsdx,
                         const glm::dvec3& dsdy, glm::dvec3* gradS = nullptr, double* fadedSd = nullptr);
+// Whether the bandlimit widens the colour-table filter by the removed spread: widen, match,
+// footprint, and the subband basis's filters (isotropic, anisotropic).
+bool bandlimitWidens(const Texture& tex);
 // The filter width of the bandlimited texture: filterWidth of its gradient, widened by fadedSd
-// for Bandlimit::Widen.
+// when bandlimitWidens.
 double bandlimitedWidth(const Texture& tex, const glm::dvec3& gradS, const glm::dvec3& dsdx,
                         const glm::dvec3& dsdy, double fadedSd);
 

@@ -16,6 +16,7 @@ PACKAGES=(
   slurm-wlm slurm-client munge      # scripts/search.py --backend slurm; ctest -L slurm (scripts/slurm_local.sh)
   lcov                            # scripts/coverage.sh: genhtml
   libtinyobjloader-dev libmetis-dev # pst atlas: OBJ meshes (mesh = "obj"), the multiresolution atlas's partition
+  libfftw3-dev libeigen3-dev       # model/subband: spectral noise tiles (FFT), least-squares weights
 )
 # Node.js for the report's browser test (playwright-core): Debian's nodejs/npm unless a node
 # (and npm) is already on the PATH (e.g. another distribution's nodejs package, which has npm).

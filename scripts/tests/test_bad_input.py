@@ -290,3 +290,42 @@ def test_7_random_writes_its_summary(tmp_path):
     # --from starts at the segment holding fragment 1000; at least the 300 fragments asked for are checked.
     assert run["first_fragment"] <= 1000 and run["first_fragment"] + run["fragments"] >= 1300
     assert run["textures"] >= 1 and run["cycles_per_pixel"] > 0
+
+
+# 11. The subband basis (anisotropic noise, model/subband.h): its keys' values, its bandlimit,
+# and a hardware profile (no unit for it) refuse with the scene's line and field.
+def subband_scene(tmp, noise, bandlimit=None):
+    p = scene(tmp)
+    extra = f"noise = {noise}\n" + (f'bandlimit = "{bandlimit}"\n' if bandlimit else "")
+    p.write_text(p.read_text().replace('filter = "sat"\n', 'filter = "sat"\n' + extra))
+    return p
+
+
+@pytest.mark.parametrize("noise,bandlimit,pattern", [
+    ('{ basis = "subband", orientations = 6 }', None, r"textures\.t\.noise\.orientations: must be 4 or 8"),
+    ('{ basis = "subband", tile_size = 300 }', None, r"textures\.t\.noise\.tile_size: must be a power of two"),
+    ('{ basis = "subband", tile_size = 128 }', None, r"textures\.t\.noise\.tile_size: must be a power of two in \[256"),
+    ('{ basis = "rayshade", orientations = 4 }', None, r"textures\.t\.noise\.orientations: applies to basis subband only"),
+    ('{ basis = "subband", param = "uv" }', None, r"textures\.t\.noise\.param: unknown value 'uv'"),
+    ('{ basis = "rayshade" }', "anisotropic", r"textures\.t\.bandlimit: anisotropic filtering needs basis subband"),
+])
+def test_11_subband_keys(tmp_path, noise, bandlimit, pattern):
+    s = subband_scene(tmp_path, noise, bandlimit)
+    out = tmp_path / "out"
+    refused(["render", s, "--size", 8, "-o", out, "-q"], re.escape(str(s)) + r":\d+: " + pattern, [out])
+
+
+def test_11_subband_on_a_profile(tmp_path):
+    s = subband_scene(tmp_path, '{ basis = "subband", orientations = 8 }')
+    out = tmp_path / "out"
+    refused(["render", s, "--profile", "full", "--model", "golden", "--size", 8, "-o", out, "-q"],
+            re.escape(str(s)) + r":\d+: textures\.t\.noise\.basis: basis 'subband' has no hardware unit in profile 'full'",
+            [out])
+
+
+def test_11_anisotropic_flag_needs_subband(tmp_path):
+    out = tmp_path / "out"
+    refused(["render", scene(tmp_path), "--bandlimit", "anisotropic", "--size", 8, "-o", out, "-q"],
+            r"--bandlimit: anisotropic: texture 't': anisotropic filtering needs basis subband", [out])
+    refused(["render", scene(tmp_path), "--variants", "sat+anisotropic", "--size", 8, "-o", out, "-q"],
+            r"--variants: sat\+anisotropic: texture 't': anisotropic filtering needs basis subband", [out])

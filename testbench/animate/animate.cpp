@@ -93,12 +93,20 @@ int runAnimate(const AnimateArgs& a) {
     // --bandlimit and --filter: every texture of every frame.
     auto overrideTextures = [&a](Scene& sc) {
         for (auto& t : sc.textures) {
-            if (!a.bandlimit.empty()) parseBandlimit(a.bandlimit, &t.bandlimit);
+            if (!a.bandlimit.empty()) {
+                parseBandlimit(a.bandlimit, &t.bandlimit);
+                if (std::string why = bandlimitUnsupported(t, t.bandlimit); !why.empty())
+                    throw InputError("--bandlimit: " + a.bandlimit + ": texture '" + t.name + "': " + why);
+            }
             if (!a.filter.empty()) parseFilterKind(a.filter, &t.filter);
         }
     };
     Scene still = loadScene(a.scene, a.size, a.size);
     overrideTextures(still);
+    for (const auto& v : a.variants)
+        for (const auto& t : still.textures)
+            if (std::string why = bandlimitUnsupported(t, v.bandlimit); !why.empty())
+                throw InputError("--variants: " + v.name + ": texture '" + t.name + "': " + why);
     const std::string stem = fs::path(a.scene).stem().string();
     if (still.animation.empty())
         throw InputError(a.scene + ": animation: the scene has no [animation] time track (scenes/README.md)");

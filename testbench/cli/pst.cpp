@@ -70,12 +70,25 @@ std::vector<FilterVariant> parseVariants(const std::vector<std::string>& specs) 
     return out;
 }
 
-// --bandlimit and --filter: every texture of the scene gets them.
+// --bandlimit and --filter: every texture of the scene gets them (a bandlimit a texture cannot
+// take is refused).
 void overrideTextures(Scene& scene, const std::string& bandlimit, const std::string& filter) {
     for (auto& t : scene.textures) {
-        if (!bandlimit.empty()) parseBandlimit(bandlimit, &t.bandlimit);
+        if (!bandlimit.empty()) {
+            parseBandlimit(bandlimit, &t.bandlimit);
+            if (std::string why = bandlimitUnsupported(t, t.bandlimit); !why.empty())
+                throw InputError("--bandlimit: " + bandlimit + ": texture '" + t.name + "': " + why);
+        }
         if (!filter.empty()) parseFilterKind(filter, &t.filter);
     }
+}
+
+// Every variant's bandlimit must suit every texture of the scene.
+void checkVariants(const Scene& scene, const std::vector<FilterVariant>& variants) {
+    for (const auto& v : variants)
+        for (const auto& t : scene.textures)
+            if (std::string why = bandlimitUnsupported(t, v.bandlimit); !why.empty())
+                throw InputError("--variants: " + v.name + ": texture '" + t.name + "': " + why);
 }
 
 // Progress on stderr: one rewritten line on a terminal, a line per stage otherwise.
@@ -446,6 +459,7 @@ int runRender(const RenderArgs& a) {
     opt.threads = a.threads;
     opt.progress = progressPrinter(stem, a.quiet);
     opt.variants = parseVariants(a.variants);
+    checkVariants(scene, opt.variants);
     const auto t0 = std::chrono::steady_clock::now();
     RenderResult r = render(scene, opt);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -900,7 +914,7 @@ int main(int argc, char** argv) {
     render->add_option("-j,--threads", ra.threads, "Threads (default: all cores)")->check(CLI::Range(0, 256));
     render->add_flag("-q,--quiet", ra.quiet, "No progress on stderr");
     render->add_option("--bandlimit", ra.bandlimit, "Every texture's bandlimited octaves: off, fade, widen, match or footprint (reference model only)")
-        ->check(CLI::IsMember({"off", "fade", "widen", "match", "footprint", "isotropic"}));
+        ->check(CLI::IsMember({"off", "fade", "widen", "match", "footprint", "isotropic", "anisotropic"}));
     const std::vector<std::string> filterNames{"none", "mip", "mip_linear", "sat", "box", "trapezoid"};
     render->add_option("--filter", ra.filter, "Every texture's filter kind: none, mip, mip_linear, sat, box or trapezoid")
         ->check(CLI::IsMember(filterNames));
@@ -998,7 +1012,7 @@ int main(int argc, char** argv) {
     bool noVideo = false, animQuiet = false;
     animate->add_flag("--no-video", noVideo, "PNG frames and flicker.json only");
     animate->add_option("--bandlimit", an.bandlimit, "Every texture's bandlimited octaves: off, fade, widen, match or footprint (reference model only)")
-        ->check(CLI::IsMember({"off", "fade", "widen", "match", "footprint", "isotropic"}));
+        ->check(CLI::IsMember({"off", "fade", "widen", "match", "footprint", "isotropic", "anisotropic"}));
     animate->add_option("--filter", an.filter, "Every texture's filter kind: none, mip, mip_linear, sat, box or trapezoid")
         ->check(CLI::IsMember(filterNames));
     std::vector<std::string> animVariants;

@@ -69,7 +69,7 @@ std::string hardwareUnsupported(const Profile& p, const Texture& tex) {
     if (tex.noise.basis != p.noise.basis) {
         const std::string where =
             tex.basisSource.empty() ? "texture '" + tex.name + "': noise.basis" : tex.basisSource;
-        const std::string how = tex.noise.basis == NoiseBasis::Worley
+        const std::string how = tex.noise.basis == NoiseBasis::Worley || tex.noise.basis == NoiseBasis::Subband
                                     ? "render it with the reference model (no --profile)"
                                     : std::string("render it with a profile of basis ") + toString(tex.noise.basis) +
                                           " or with the reference model (no --profile)";

@@ -75,7 +75,7 @@ bool parseVariant(const std::string& spec, FilterVariant* out, std::string* why)
         return false;
     }
     if (plus != std::string::npos && !parseBandlimit(spec.substr(plus + 1), &v.bandlimit)) {
-        *why = "'" + spec.substr(plus + 1) + "' is not a bandlimit (off, fade, widen, match, footprint)";
+        *why = "'" + spec.substr(plus + 1) + "' is not a bandlimit (off, fade, widen, match, footprint, isotropic, anisotropic)";
         return false;
     }
     *out = v;

@@ -1,5 +1,6 @@
 // Scene and texture files: TOML parsed by toml++, checked field by field.
 #include "scene.h"
+#include "subband.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,6 +10,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <toml++/toml.h>
@@ -250,9 +252,10 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
         const std::string np = join(path, "noise");
         auto nt = nn->as_table();
         if (!nt) c.fail(nn, np, "expected a table");
-        checkKeys(c, *nt, np, {"basis", "interp", "corner", "hash", "metric", "coef", "cell", "search", "max_points", "cubes"});
+        checkKeys(c, *nt, np, {"basis", "interp", "corner", "hash", "metric", "coef", "cell", "search", "max_points", "cubes",
+                               "orientations", "tile_size", "seed", "param", "weights", "sigma"});
         NoiseOptions& no = tex.noise;
-        no.basis = getEnum(c, *nt, np, "basis", no.basis, parseNoiseBasis, "rayshade, perlin2002 or worley");
+        no.basis = getEnum(c, *nt, np, "basis", no.basis, parseNoiseBasis, "rayshade, perlin2002, worley or subband");
         if (const toml::node* bn = find(*nt, "basis")) {
             std::ostringstream os;
             os << c.file;
@@ -269,6 +272,26 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
             if (no.basis != NoiseBasis::Worley && find(*nt, k))
                 c.fail(find(*nt, k), join(np, k), std::string("applies to basis worley only (basis is ") +
                                                       toString(no.basis) + ")");
+        for (const char* k : {"orientations", "tile_size", "seed", "param", "weights", "sigma"})
+            if (no.basis != NoiseBasis::Subband && find(*nt, k))
+                c.fail(find(*nt, k), join(np, k), std::string("applies to basis subband only (basis is ") +
+                                                      toString(no.basis) + ")");
+        // The subband basis (model/subband.h): K orientations of eq. 1, the tiles' size.
+        no.orientations = getInt(c, *nt, np, "orientations", no.orientations, 1, 64);
+        if (no.orientations != 4 && no.orientations != 8)
+            c.fail(find(*nt, "orientations"), join(np, "orientations"),
+                   "must be 4 or 8 (got " + std::to_string(no.orientations) + ")");
+        no.tileSize = getInt(c, *nt, np, "tile_size", no.tileSize, 1, 1 << 20);
+        if (!subbandValidSize(no.tileSize))
+            c.fail(find(*nt, "tile_size"), join(np, "tile_size"),
+                   "must be a power of two in [" + std::to_string(kSubbandMinTile) + ", " +
+                       std::to_string(kSubbandMaxTile) + "] (got " + std::to_string(no.tileSize) + ")");
+        no.seed = uint32_t(getInt(c, *nt, np, "seed", int(no.seed), 0, 2147483647));
+        no.param = getEnum(c, *nt, np, "param", no.param, parseSubbandParam, "xy, xz, yz or sphere");
+        no.weights = getEnum(c, *nt, np, "weights", no.weights, parseSubbandWeights, "heuristic or least_squares");
+        no.sigma = getNumber(c, *nt, np, "sigma", no.sigma);
+        if (!(no.sigma > 0.0 && no.sigma <= 16.0))
+            c.fail(find(*nt, "sigma"), join(np, "sigma"), "must be in (0, 16] pixels");
         no.interp = getEnum(c, *nt, np, "interp", no.interp, parseNoiseInterp, "scurve or linear");
         no.corner = getEnum(c, *nt, np, "corner", no.corner, parseNoiseCorner, "value_gradient or value");
         no.hash = getEnum(c, *nt, np, "hash", no.hash, parseNoiseHash, "rayshade or perm256");
@@ -294,7 +317,10 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
             c.fail(find(*nt, "coef") ? find(*nt, "coef") : nn, join(np, "coef"),
                    "every coefficient and cell are 0: the basis would be constant");
     }
-    tex.bandlimit = getEnum(c, t, path, "bandlimit", tex.bandlimit, parseBandlimit, "off, fade, widen, match, footprint or isotropic");
+    tex.bandlimit = getEnum(c, t, path, "bandlimit", tex.bandlimit, parseBandlimit,
+                            "off, fade, widen, match, footprint, isotropic or anisotropic");
+    if (std::string why = bandlimitUnsupported(tex, tex.bandlimit); !why.empty())
+        c.fail(find(t, "bandlimit"), join(path, "bandlimit"), why);
     tex.filter = getEnum(c, t, path, "filter", tex.filter, parseFilterKind, "none, mip, mip_linear, sat, box or trapezoid");
     tex.norm = getEnum(c, t, path, "norm", tex.norm, parseGradNorm, "euclid, max_half_min or l1");
     tex.clut = parseColorMap(c, requireTable(c, t, path, "colormap"), join(path, "colormap"));
@@ -617,10 +643,21 @@ Scene buildScene(const Ctx& c, const toml::table& root, const std::string& path,
 
     std::map<std::string, int> textureIndex;
     const toml::table& texs = requireTable(c, root, "", "textures");
+    std::set<std::tuple<int, int, uint32_t>> tileSets;  // the subband tiles the scene builds
+    size_t tileBytes = 0;
     for (auto&& [k, v] : texs) {
         std::string tp = "textures." + std::string(k.str());
         if (!v.is_table()) c.fail(&v, tp, "expected a table");
         Texture tex = parseTextureTable(c, *v.as_table(), tp);
+        const NoiseOptions& no = tex.noise;
+        if (no.basis == NoiseBasis::Subband && tileSets.insert({no.orientations, no.tileSize, no.seed}).second) {
+            tileBytes += subbandTileBytes(no.orientations, no.tileSize);
+            if (tileBytes > kSubbandMaxSceneBytes)
+                c.fail(find(*v.as_table(), "noise"), join(tp, "noise"),
+                       "the scene's subband tiles (one set per seed, orientations, tile_size) would take " +
+                           std::to_string(tileBytes >> 20) + " MiB (at most " +
+                           std::to_string(kSubbandMaxSceneBytes >> 20) + ")");
+        }
         tex.name = std::string(k.str());
         textureIndex[tex.name] = static_cast<int>(sc.textures.size());
         sc.textures.push_back(std::move(tex));

@@ -170,7 +170,47 @@ TEST(Scene, NoiseBasis) {
     expectError(withNoise("{ basis = \"worley\", coef = [0.0, 0.0] }"),
                 {"bad.toml:9:", "textures.t.noise.coef", "constant"});
     expectError(withNoise("{ basis = \"worley\", cell = inf }"), {"bad.toml:9:", "textures.t.noise.cell", "infinite"});
-    expectError(withNoise("{ basis = \"worley\", seed = 1 }"), {"bad.toml:9:", "textures.t.noise.seed", "unknown key"});
+    expectError(withNoise("{ basis = \"worley\", seed = 1 }"), {"bad.toml:9:", "textures.t.noise.seed", "subband only"});
+}
+
+TEST(Scene, SubbandBasis) {
+    Scene s = parseScene(withNoise("{ basis = \"subband\", orientations = 4, tile_size = 512, seed = 7, "
+                                   "param = \"sphere\", weights = \"least_squares\" }"),
+                         "ok.toml");
+    const NoiseOptions& n = s.textures[0].noise;
+    EXPECT_EQ(n.basis, NoiseBasis::Subband);
+    EXPECT_EQ(n.orientations, 4);
+    EXPECT_EQ(n.tileSize, 512);
+    EXPECT_EQ(n.seed, 7u);
+    EXPECT_EQ(n.param, SubbandParam::Sphere);
+    EXPECT_EQ(n.weights, SubbandWeights::LeastSquares);
+    s = parseScene(withNoise("{ basis = \"subband\" }"), "ok.toml");
+    EXPECT_EQ(s.textures[0].noise.orientations, 8);
+    EXPECT_EQ(s.textures[0].noise.tileSize, 256);
+    EXPECT_EQ(s.textures[0].noise.param, SubbandParam::XZ);
+    expectError(withNoise("{ basis = \"subband\", orientations = 6 }"),
+                {"bad.toml:9:", "textures.t.noise.orientations", "must be 4 or 8"});
+    expectError(withNoise("{ basis = \"subband\", tile_size = 384 }"),
+                {"bad.toml:9:", "textures.t.noise.tile_size", "power of two"});
+    expectError(withNoise("{ basis = \"subband\", tile_size = 2048 }"),
+                {"bad.toml:9:", "textures.t.noise.tile_size", "power of two in [256, 1024]"});
+    expectError(withNoise("{ basis = \"subband\", sigma = 0.0 }"), {"bad.toml:9:", "textures.t.noise.sigma", "(0, 16]"});
+    EXPECT_EQ(parseScene(withNoise("{ basis = \"subband\", sigma = 0.5 }"), "ok.toml").textures[0].noise.sigma, 0.5);
+    expectError(withNoise("{ basis = \"subband\", weights = \"exact\" }"),
+                {"bad.toml:9:", "textures.t.noise.weights", "heuristic or least_squares"});
+    expectError(withNoise("{ basis = \"perlin2002\", param = \"xy\" }"),
+                {"bad.toml:9:", "textures.t.noise.param", "subband only"});
+    // Tiles: 1024 x 1024 with 8 orientations is (3 x 45 floats + 1 double) x 1 Mi pixels = 548 MiB
+    // a set (40 tiles, 5 isotropic sums, value and two derivatives; the white noise): one seed
+    // fits in the bound, a second does not.
+    std::string three = kMinimal;
+    for (int k = 1; k <= 2; ++k)
+        three += "[textures.u" + std::to_string(k) + "]\nnoise = { basis = \"subband\", tile_size = 1024, seed = " +
+                 std::to_string(k) + " }\ncolormap = { size = 4, ramp = [[0.0, 0, 0, 0], [1.0, 1, 1, 1]] }\n";
+    expectError(three, {"bad.toml:", "textures.u2.noise", "would take 1096 MiB (at most 1024)"});
+    std::string bad = withNoise("{ basis = \"worley\" }");
+    bad.replace(bad.find("noise = "), 0, "bandlimit = \"anisotropic\"\n");
+    expectError(bad, {"bad.toml:9:", "textures.t.bandlimit", "needs basis subband"});
 }
 
 TEST(Scene, Bandlimit) {
@@ -180,7 +220,7 @@ TEST(Scene, Bandlimit) {
     EXPECT_EQ(parseScene(text, "min.toml").textures[0].bandlimit, Bandlimit::Widen);
     std::string bad = kMinimal;
     bad.insert(bad.find("colormap ="), "bandlimit = \"on\"\n");
-    expectError(bad, {"bad.toml:9: textures.t.bandlimit: unknown value 'on' (expected off, fade, widen, match, footprint or isotropic)"});
+    expectError(bad, {"bad.toml:9: textures.t.bandlimit: unknown value 'on' (expected off, fade, widen, match, footprint, isotropic or anisotropic)"});
 }
 
 TEST(Scene, TextureBlockFile) {
