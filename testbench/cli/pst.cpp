@@ -421,7 +421,10 @@ int runRandom(const HwArgs& hw, RandomRegressOptions o, bool quiet, const std::s
                        {"assertion", r.assertion ? nlohmann::json({{"cycle", r.assertionCycle}}) : nlohmann::json(nullptr)},
                        {"replay", replay.empty() ? nlohmann::json(nullptr) : nlohmann::json(replay)},
                        {"cycles_per_pixel", r.fragments ? double(r.cycles) / double(r.fragments) : 0.0},
+                       {"cycles", r.cycles},
                        {"seconds", r.seconds},
+                       {"rtl_seconds", r.rtlSeconds},
+                       {"golden_seconds", r.goldenSeconds},
                        {"passed", r.passed}});
         if (!r.passed) {
             ++failures;

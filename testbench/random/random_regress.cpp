@@ -263,6 +263,7 @@ RandomRegressResult runRandomRegress(const Profile& p, const std::string& rtlNam
             std::vector<FragmentFx> frags = randomFragments(r, p, uint32_t(idx), size_t(sizes[b]));
             if (frags.size() > end - idx) frags.resize(size_t(end - idx));
 
+            const auto tg = Clock::now();
             for (const auto& [a, d] : writes) golden.write(a, d);
             for (const FragmentFx& f : frags) {
                 if (o.fault != Stage::Count) golden.injectFault(f.tag >= o.faultFrom ? o.fault : Stage::Count);
@@ -270,9 +271,18 @@ RandomRegressResult runRandomRegress(const Profile& p, const std::string& rtlNam
                 const PixelFx px = golden.eval(f, &trace);
                 board.expect(f, px, trace);
             }
+            const auto tr = Clock::now();
+            res.goldenSeconds += std::chrono::duration<double>(tr - tg).count();
             std::map<uint32_t, ProbeFx> probes;
             std::vector<PixelFx> got;
+            // The verilated model's share of the time (the benchmark's RTL rate), however the run ends.
+            struct RtlTimer {
+                double& acc;
+                Clock::time_point t;
+                ~RtlTimer() { acc += std::chrono::duration<double>(Clock::now() - t).count(); }
+            };
             try {
+                RtlTimer timer{res.rtlSeconds, tr};
                 rtl->write(writes);
                 got = rtl->run(frags, prog.activeOctaves, o.probes ? &probes : nullptr);
             } catch (const RtlAssertionError& e) {

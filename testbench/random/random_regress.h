@@ -80,6 +80,8 @@ struct RandomRegressResult {
     uint64_t assertionCycle = 0;   // the segment model's cycle at which it fired
     uint64_t cycles = 0;           // RTL cycles streaming
     double seconds = 0;            // wall clock of the whole run
+    double rtlSeconds = 0;         // of which in the verilated model (register writes and streaming)
+    double goldenSeconds = 0;      // of which in the golden model (evaluating the same fragments)
     std::string report;            // the scoreboard's first failures
 };
 
