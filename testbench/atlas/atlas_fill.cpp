@@ -5,6 +5,7 @@
 #include <set>
 
 #include "driver.h"
+#include "hwrender.h"
 #include "scoreboard.h"
 
 namespace pst {
@@ -60,28 +61,9 @@ AtlasFill fillAtlas(const Scene& scene, const Atlas& atlas, const Profile& p, Rt
         in.reserve(texels.size());
         for (const AtlasTexel* t : texels)
             in.push_back(quantizeFragment(p, uint32_t(t->y) * uint32_t(H) + uint32_t(t->x), t->s, t->dsdu, t->dsdv));
-        auto tg = Clock::now();
-        std::vector<PixelFx> expected(in.size());
-        for (size_t i = 0; i < in.size(); ++i) {
-            StageTrace trace;
-            expected[i] = golden.eval(in[i], rtl ? &trace : nullptr);
-            if (rtl) board.expect(in[i], expected[i], trace);
-        }
-        r.goldenSeconds += since(tg);
-        const std::vector<PixelFx>* shown = &expected;
-        std::vector<PixelFx> got;
-        if (rtl) {
-            auto tr = Clock::now();
-            std::map<uint32_t, ProbeFx> probes;
-            got = rtl->run(in, prog.activeOctaves, &probes);
-            r.rtlSeconds += since(tr);
-            for (const PixelFx& px : got) {
-                auto it = probes.find(px.tag);
-                board.observe(px, it == probes.end() ? nullptr : &it->second);
-            }
-            shown = &got;
-        }
-        for (const PixelFx& px : *shown)
+        const std::vector<PixelFx> shown =
+            runBatch(golden, rtl, board, in, prog.activeOctaves, true, r.goldenSeconds, r.rtlSeconds);
+        for (const PixelFx& px : shown)
             if (px.tag < uint32_t(H) * uint32_t(H)) put(r.hardware, int(px.tag % uint32_t(H)), int(px.tag / uint32_t(H)), unpackRgba(p, px.rgba));
     }
     if (rtl) {

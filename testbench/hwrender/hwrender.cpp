@@ -44,6 +44,29 @@ ErrorStats compareToReference(const Image& hw, const Image& ref, int colourBits)
     return e;
 }
 
+std::vector<PixelFx> runBatch(GoldenPipeline& golden, RtlModel* rtl, Scoreboard& board,
+                              const std::vector<FragmentFx>& in, int activeOctaves, bool probes,
+                              double& goldenSeconds, double& rtlSeconds) {
+    auto tg = Clock::now();
+    std::vector<PixelFx> expected(in.size());
+    for (size_t i = 0; i < in.size(); ++i) {
+        StageTrace trace;
+        expected[i] = golden.eval(in[i], rtl ? &trace : nullptr);
+        if (rtl) board.expect(in[i], expected[i], trace);
+    }
+    goldenSeconds += since(tg);
+    if (!rtl) return expected;
+    auto tr = Clock::now();
+    std::map<uint32_t, ProbeFx> sampled;
+    std::vector<PixelFx> got = rtl->run(in, activeOctaves, probes ? &sampled : nullptr);
+    rtlSeconds += since(tr);
+    for (const PixelFx& px : got) {
+        auto it = sampled.find(px.tag);
+        board.observe(px, it == sampled.end() ? nullptr : &it->second);
+    }
+    return got;
+}
+
 HwRenderResult renderHardware(const Scene& scene, const Profile& p, RtlModel* rtl, const HwRenderOptions& opt) {
     const int W = scene.camera.width, H = scene.camera.height;
     HwRenderResult res;
@@ -95,29 +118,9 @@ HwRenderResult renderHardware(const Scene& scene, const Profile& p, RtlModel* rt
             for (const Fragment* f : byObject[obj])
                 in.push_back(quantizeFragment(p, uint32_t(f->y * W + f->x), f->s, f->dsdx, f->dsdy));
 
-            auto tg = Clock::now();
-            std::vector<PixelFx> expected(in.size());
-            for (size_t i = 0; i < in.size(); ++i) {
-                StageTrace trace;
-                expected[i] = golden.eval(in[i], rtl ? &trace : nullptr);
-                if (rtl) board.expect(in[i], expected[i], trace);
-            }
-            res.goldenSeconds += since(tg);
-
-            const std::vector<PixelFx>* shown = &expected;
-            std::vector<PixelFx> got;
-            if (rtl) {
-                auto tr = Clock::now();
-                std::map<uint32_t, ProbeFx> probes;
-                got = rtl->run(in, prog.activeOctaves, opt.probes ? &probes : nullptr);
-                res.rtlSeconds += since(tr);
-                for (const PixelFx& px : got) {
-                    auto it = probes.find(px.tag);
-                    board.observe(px, it == probes.end() ? nullptr : &it->second);
-                }
-                shown = &got;
-            }
-            for (const PixelFx& px : *shown) {
+            const std::vector<PixelFx> shown = runBatch(golden, rtl, board, in, prog.activeOctaves, opt.probes,
+                                                        res.goldenSeconds, res.rtlSeconds);
+            for (const PixelFx& px : shown) {
                 if (px.tag >= uint32_t(W) * H) continue;
                 colour[px.tag] = unpackRgba(p, px.rgba);
                 covered[px.tag] = 1;

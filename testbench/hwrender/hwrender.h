@@ -52,6 +52,17 @@ struct HwRenderResult {
 HwRenderResult renderHardware(const Scene& scene, const Profile& profile, RtlModel* rtl,
                               const HwRenderOptions& options = {});
 
+class Scoreboard;
+
+// One batch of fragments through the golden model (its pixels; with an RTL model also the
+// scoreboard's expectations and stage traces) and through the RTL model (each pixel observed by
+// the scoreboard, with the octave-stage probes when `probes`). Adds each model's time to
+// goldenSeconds and rtlSeconds. Returns the pixels to show: the RTL's when it ran, else the
+// golden model's. Used by the scene render and the atlas fill.
+std::vector<PixelFx> runBatch(GoldenPipeline& golden, RtlModel* rtl, Scoreboard& board,
+                              const std::vector<FragmentFx>& in, int activeOctaves, bool probes,
+                              double& goldenSeconds, double& rtlSeconds);
+
 ErrorStats compareToReference(const Image& hardware, const Image& reference, int colourBits);
 
 }  // namespace pst
