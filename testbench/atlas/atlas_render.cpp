@@ -73,8 +73,12 @@ Scene opaqueLayer(const Scene& scene) {
     return s;
 }
 
-AtlasRender renderWithAtlas(const Scene& scene, const Atlas& atlas, const Image& texels,
-                            const std::vector<int>& owners, Magnification filter) {
+namespace {
+
+// The view drawn by texture mapping: every covered screen pixel takes lookup(fragment), an
+// AtlasLookup (its colour, whether it read a background or another triangle's texel).
+template <class Lookup>
+AtlasRender drawWithAtlas(const Scene& scene, const Atlas& atlas, Lookup lookup) {
     const FragmentBuffer fb = rasterizeCharts(scene, atlas);
     AtlasRender r;
     r.image = Image(fb.width(), fb.height(), 4);
@@ -83,8 +87,7 @@ AtlasRender renderWithAtlas(const Scene& scene, const Atlas& atlas, const Image&
         for (int x = 0; x < fb.width(); ++x) {
             const Fragment& f = fb.at(x, y);
             if (f.object < 0) continue;
-            const int t = int(std::lround(f.s.z));
-            const AtlasLookup l = lookupAtlas(texels.data, owners, atlas.size(), t, glm::dvec2(f.s), filter);
+            const AtlasLookup l = lookup(f);
             over(r.image.pixel(x, y), l.rgba);
             ++r.pixels;
             r.seamPixels += l.touchedForeign;
@@ -92,19 +95,19 @@ AtlasRender renderWithAtlas(const Scene& scene, const Atlas& atlas, const Image&
     return r;
 }
 
+}  // namespace
+
+AtlasRender renderWithAtlas(const Scene& scene, const Atlas& atlas, const Image& texels,
+                            const std::vector<int>& owners, Magnification filter) {
+    return drawWithAtlas(scene, atlas, [&](const Fragment& f) {
+        return lookupAtlas(texels.data, owners, atlas.size(), int(std::lround(f.s.z)), glm::dvec2(f.s), filter);
+    });
+}
+
 AtlasRender renderWithAtlasTrilinear(const Scene& scene, const Atlas& atlas, const std::vector<Image>& levels) {
-    const FragmentBuffer fb = rasterizeCharts(scene, atlas);
-    AtlasRender r;
-    r.image = Image(fb.width(), fb.height(), 4);
-    fill(r.image, scene.background);
-    for (int y = 0; y < fb.height(); ++y)
-        for (int x = 0; x < fb.width(); ++x) {
-            const Fragment& f = fb.at(x, y);
-            if (f.object < 0) continue;
-            over(r.image.pixel(x, y), lookupTrilinear(levels, glm::dvec2(f.s), glm::dvec2(f.dsdx), glm::dvec2(f.dsdy)));
-            ++r.pixels;
-        }
-    return r;
+    return drawWithAtlas(scene, atlas, [&](const Fragment& f) {
+        return AtlasLookup{lookupTrilinear(levels, glm::dvec2(f.s), glm::dvec2(f.dsdx), glm::dvec2(f.dsdy)), false};
+    });
 }
 
 Image relativeScalePicture(const Scene& scene, const Atlas& atlas) {
