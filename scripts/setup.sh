@@ -18,6 +18,12 @@ PACKAGES=(
   libtinyobjloader-dev libmetis-dev # pst atlas: OBJ meshes (mesh = "obj"), the multiresolution atlas's partition
   libfftw3-dev libeigen3-dev       # model/subband: spectral noise tiles (FFT), least-squares weights
 )
+# scripts/pnr.py (place and route, not part of the test suite): `scripts/setup.sh --pnr` adds
+# qflow and its OSU 0.18 um technology (graywolf, qrouter, magic, netgen-lvs come with it) and
+# KLayout for the layout pictures.
+if [ "${1:-}" = "--pnr" ]; then
+  PACKAGES+=(qflow qflow-tech-osu018 klayout tcsh)
+fi
 # Node.js for the report's browser test (playwright-core): Debian's nodejs/npm unless a node
 # (and npm) is already on the PATH (e.g. another distribution's nodejs package, which has npm).
 command -v node >/dev/null 2>&1 || PACKAGES+=(nodejs)

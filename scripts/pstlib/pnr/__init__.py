@@ -1,0 +1,1 @@
+"""Place and route of a profile's blocks with Debian's qflow (scripts/pnr.py)."""

@@ -1,0 +1,115 @@
+"""A profile placed and routed block by block (scripts/pnr.py; the method is in its docstring).
+
+synthesis (pstlib.synth, netlists kept) -> the flattened netlist cut into blocks
+(partition.py) -> each block through qflow (qflow.py) -> its routed parasitics as SPEF
+(spef.py) -> OpenSTA before and after layout (timing.py) -> die, utilization, wirelength and
+a PNG (layout.py) -> OUT/PROFILE.json and .md (report.py).
+"""
+import concurrent.futures
+import dataclasses
+import json
+import pathlib
+import time
+
+from .. import contract
+from ..paths import ROOT
+from ..synth import flow as synth_flow, liberty, sta as synth_sta
+from ..synth.tools import SDC, run_sta, run_yosys
+from . import layout, partition, qflow, report, spef, timing
+
+STANDIN = "PST_MEMRD*"    # the memory read stand-ins: macros, outside every block
+
+
+@dataclasses.dataclass
+class Options:
+    out: pathlib.Path = ROOT / "out" / "pnr"
+    rom_dir: pathlib.Path = ROOT / "build" / "rom"
+    jobs: int = 1
+    limit: int = partition.LIMIT
+    only: tuple = ()          # block names to run (all when empty)
+    resume: bool = False      # keep the synthesis and the finished qflow steps of a previous run
+
+
+def cut(work: pathlib.Path, netlist: pathlib.Path, libs: list, top: str, limit: int) -> dict:
+    """Block name -> its mapped netlist WORK/blocks/blk_NAME.v (and the cell counts)."""
+    blocks_dir = work / "blocks"
+    blocks_dir.mkdir(parents=True, exist_ok=True)
+    run_yosys(partition.list_script(libs, netlist, top, blocks_dir / "cells.txt"), blocks_dir, "list")
+    raw = [l.strip() for l in (blocks_dir / "cells.txt").read_text().splitlines() if l.strip()]
+    cells = [c.split("/", 1)[1] for c in raw]
+    # Memory stand-ins by instance name are not known here; the split script leaves them out
+    # by type. Their count is small (one per read bit) and they are left out of the sizes.
+    paths = partition.choose(cells, limit)
+    parts = partition.assign(cells, paths)
+    sel = {}
+    for name, members in parts.items():
+        f = blocks_dir / f"{name}.sel"
+        f.write_text("".join(f"{top}/{c}\n" for c in members))
+        sel[name] = f
+    run_yosys(partition.split_script(libs, netlist, top, sel, blocks_dir, STANDIN), blocks_dir, "split")
+    by_path = {partition.block_name(p): p for p in paths}
+    return {name: {"netlist": blocks_dir / f"blk_{name}.v", "instance": by_path.get(name, "(top glue)"),
+                   "cells_synth": len(members)} for name, members in parts.items()}
+
+
+def run_block(name: str, info: dict, work: pathlib.Path, lib: pathlib.Path, out: pathlib.Path,
+              resume: bool = False) -> dict:
+    """One block through qflow, extraction and timing; its record."""
+    module = f"blk_{name}"
+    p = qflow.setup(work / "qflow" / name, module, info["netlist"], lib, resume)
+    times = qflow.run_steps(p, resume)
+    # Parasitics and timing.
+    t0 = time.time()
+    routed_v = (p.synthesis / f"{module}.rtlnopwr.v").read_text()
+    sta_v = p.path / "sta.v"
+    sta_v.write_text(timing.without_fill(routed_v))
+    spef_text, unmatched = spef.to_spef((p.layout / f"{module}.rc").read_text(), spef.netlist_pins(routed_v),
+                                        module, spef.port_directions(routed_v), spef.EDGE_FACTOR)
+    if unmatched:
+        raise RuntimeError(f"{module}: {len(unmatched)} routed nets not in the netlist (first {unmatched[0]})")
+    (p.path / f"{module}.spef").write_text(spef_text)
+    period = synth_sta.sdc_period(SDC.read_text())
+    sta = {}
+    for tag, sp in (("pre_layout", None), ("post_route", p.path / f"{module}.spef")):
+        run_sta(timing.script(lib, sta_v, module, SDC, sp, str(p.path / tag)), p.path, tag)
+        sta[tag] = timing.summary({k: (p.path / f"{tag}.{k}").read_text() for k in timing.REPORTS}, period)
+    times["extract_and_sta"] = round(time.time() - t0, 1)
+    fig = layout.def_figures((p.layout / f"{module}.def").read_text(),
+                             layout.lef_sizes(qflow.LEF.read_text()))
+    png = out / f"{name}.png"
+    layout.png(p.layout / f"{module}.gds", png)
+    for ext in ("def", "gds"):
+        (out / f"{name}.{ext}").write_bytes((p.layout / f"{module}.{ext}").read_bytes())
+    (out / f"{name}.spef").write_text(spef_text)
+    checks = qflow.results(p)
+    return {"block": name, "instance": info["instance"], "cells_synth": info["cells_synth"], **fig, **checks,
+            "sta": sta, "fmax_ratio": round(sta["post_route"]["fmax_mhz"] / sta["pre_layout"]["fmax_mhz"], 3),
+            "seconds": times, "png": png.name}
+
+
+def place_and_route(profile, opts: Options) -> dict:
+    """The whole profile: synthesis, cut, every block, the record OUT/NAME.json (and .md)."""
+    if not qflow.available():
+        raise synth_flow.InputError("qflow with the OSU018 technology is not installed (scripts/setup.sh --pnr)")
+    profile = pathlib.Path(profile)
+    name = profile.stem
+    out = pathlib.Path(opts.out) / name
+    work = out / "work"
+    work.mkdir(parents=True, exist_ok=True)
+    t0 = time.time()
+    so = synth_flow.Options(out=work / "synth", rom_dir=opts.rom_dir, keep=True, old_basis=False,
+                            reuse=opts.resume, mem_cache=ROOT / "out" / "synth" / "memories")
+    synth = synth_flow.synthesize(profile, so)
+    t_synth = time.time() - t0
+    lib = liberty.osu018_lib()
+    swork = work / "synth" / f"{name}.work"
+    blocks = cut(work, swork / "netlist.v", [lib, swork / "standin.lib"], synth["top"] if "top" in synth else "pst_top",
+                 opts.limit)
+    todo = {k: v for k, v in blocks.items() if not opts.only or k in opts.only}
+    with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, opts.jobs)) as ex:
+        futs = {k: ex.submit(run_block, k, v, work, lib, out, opts.resume) for k, v in todo.items()}
+        recs = [futs[k].result() for k in sorted(futs, key=lambda k: -blocks[k]["cells_synth"])]
+    result = report.assemble(name, synth, recs, round(t_synth, 1), round(time.time() - t0, 1))
+    (out.parent / f"{name}.json").write_text(json.dumps(result, indent=2) + "\n")
+    (out.parent / f"{name}.md").write_text(report.markdown(result))
+    return result

@@ -1,0 +1,107 @@
+"""The profile's flattened netlist cut into blocks small enough for qflow's placer and router.
+
+A block is every cell whose flattened name starts with an instance path (`u_width.`), less
+the blocks nested inside it; what no block claims is the block `top` (the top's glue, pipeline
+registers and small units). Memory stand-ins belong to no block: they are the macros, and the
+nets into and out of them become block pins.
+
+The cut is chosen from the cell counts alone (`choose`): a top-level instance is a block; one
+larger than LIMIT cells gives up its largest sub-instances (each cut again the same way) until
+what it keeps is at most LIMIT (a module with more cells of its own stays whole); instances under MIN_CELLS stay in `top`. graywolf and qrouter
+take about 10 + 4 minutes for 20k cells here (../shared/DESIGN.md section 9), so LIMIT is 25k.
+"""
+import collections
+import re
+
+LIMIT = 25000
+MIN_CELLS = 2000
+TOP = "pst_top"
+
+
+def parent(path: str) -> str:
+    """The instance path holding a flattened name ('u_a.u_b._12_' -> 'u_a.u_b'; '' at the top).
+    Generate scopes (`g_lane[0]`) are part of the path like instances."""
+    return path.rsplit(".", 1)[0] if "." in path else ""
+
+
+def subtree_counts(cells: list) -> collections.Counter:
+    """Instance path -> number of cells at or below it ('' is the whole design)."""
+    n = collections.Counter()
+    for c in cells:
+        p = parent(c)
+        while True:
+            n[p] += 1
+            if not p:
+                break
+            p = parent(p)
+    return n
+
+
+def children(counts: dict, path: str) -> list:
+    """Direct sub-paths of PATH, largest first."""
+    pre = path + "." if path else ""
+    kids = [p for p in counts if p.startswith(pre) and p != path and "." not in p[len(pre):]]
+    return sorted(kids, key=lambda p: (-counts[p], p))
+
+
+def _cut(counts: dict, path: str, limit: int) -> list:
+    """PATH and the sub-paths pulled out of it so that none keeps more than LIMIT cells."""
+    out = [path]
+    keep = counts[path]
+    for kid in children(counts, path):
+        if keep <= limit:
+            break
+        out += _cut(counts, kid, limit)
+        keep -= counts[kid]
+    return out
+
+
+def choose(cells: list, limit: int = LIMIT, min_cells: int = MIN_CELLS) -> list:
+    """Block instance paths (largest cut first) for flattened cell names CELLS (no module
+    prefix, memory stand-ins left out)."""
+    counts = subtree_counts(cells)
+    blocks = []
+    for kid in children(counts, ""):
+        if counts[kid] >= min_cells:
+            blocks += _cut(counts, kid, limit)
+    # A path that keeps no cell of its own (a generate scope around one instance) is no block.
+    kept = assign(cells, blocks)
+    return [b for b in blocks if block_name(b) in kept]
+
+
+def block_name(path: str) -> str:
+    """A file-safe name for a block's instance path ('u_octave.g_noise[0]' -> 'u_octave_g_noise_0')."""
+    return re.sub(r"_+", "_", re.sub(r"[^A-Za-z0-9_]", "_", path)).strip("_") or "top"
+
+
+def assign(cells: list, blocks: list) -> dict:
+    """Block name -> its cells: each cell to the longest block path it lies under, else `top`."""
+    by_len = sorted(blocks, key=len, reverse=True)
+    out = collections.defaultdict(list)
+    for c in cells:
+        b = next((p for p in by_len if c.startswith(p + ".")), None)
+        out[block_name(b) if b else "top"].append(c)
+    return dict(out)
+
+
+def list_script(libs: list, netlist, top: str, out) -> str:
+    """Yosys: the design flattened, its cell names (`top/name` lines) into OUT."""
+    return "\n".join([*(f"read_liberty -lib {lib}" for lib in libs), f"read_verilog {netlist}",
+                      f"hierarchy -top {top}", "flatten", f"tee -q -o {out} select -list t:*", ""])
+
+
+def split_script(libs: list, netlist, top: str, selections: dict, outdir, keep_types: str) -> str:
+    """Yosys: the flattened design's blocks (name -> a `select -read` file of `top/cell` lines)
+    each moved into a module blk_NAME (`submod`: nets crossing its edge become ports) and
+    written alone to OUTDIR/blk_NAME.v. Cells of type KEEP_TYPES (the memory stand-ins) stay
+    outside every block."""
+    lines = [*(f"read_liberty -lib {lib}" for lib in libs), f"read_verilog {netlist}",
+             f"hierarchy -top {top}", "flatten"]
+    for name, sel in selections.items():
+        lines += [f"select -read {sel}", f"select -set s_{name} % t:{keep_types} %d", "select -clear"]
+    lines += [f"submod -name blk_{name} @s_{name}" for name in selections]
+    lines += ["design -save split"]
+    for name in selections:
+        lines += ["design -load split", f"hierarchy -top blk_{name}",
+                  f"write_verilog -noattr {outdir}/blk_{name}.v"]
+    return "\n".join(lines) + "\n"

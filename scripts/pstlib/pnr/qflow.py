@@ -1,0 +1,170 @@
+"""One block through Debian's qflow (1.3.17, OSU 0.18 µm): its own project folder, the
+step scripts of /usr/lib/qflow/scripts run in order, each timed, each checked by the file it
+must leave.
+
+The block arrives as a mapped OSU018 netlist (the profile's own synthesis), so qflow's
+synthesis step only reads it (a Yosys script given as yosys_options) and then does what
+qflow adds: ypostproc, blifFanout (buffer trees sized from the liberty's limits), the
+Verilog and SPICE views. Then graywolf places (initial density DENSITY), qrouter routes
+(stages 1 and 2; the stage-3 cleanup is skipped: it takes longer than the routing and every
+net is routed without it), magic reads the routed DEF (migrate), netgen compares layout and
+netlist (LVS), magic writes the GDS and checks the design rules (DRC).
+"""
+import dataclasses
+import pathlib
+import re
+import shutil
+import time
+
+from .. import procs
+
+SCRIPTS = pathlib.Path("/usr/lib/qflow/scripts")
+TECH = "osu018"
+TECH_DIR = pathlib.Path("/usr/share/qflow/tech/osu018")
+LEF = TECH_DIR / "osu018_stdcells.lef"
+DENSITY = 0.7     # graywolf's initial density (decongest): 66-70 % utilization in the trial
+STEP_TIMEOUT = 3 * 3600
+
+
+class FlowError(RuntimeError):
+    """A qflow step failed (its log named)."""
+
+
+@dataclasses.dataclass
+class Project:
+    path: pathlib.Path
+    name: str            # the block's module name (blk_NAME)
+
+    @property
+    def synthesis(self) -> pathlib.Path:
+        return self.path / "synthesis"
+
+    @property
+    def layout(self) -> pathlib.Path:
+        return self.path / "layout"
+
+    @property
+    def log(self) -> pathlib.Path:
+        return self.path / "log"
+
+
+def available() -> bool:
+    """qflow, its step scripts and the OSU018 technology are installed (scripts/setup.sh --pnr)."""
+    return bool(shutil.which("qflow")) and (SCRIPTS / "router.sh").exists() and LEF.exists()
+
+
+def setup(path: pathlib.Path, name: str, netlist: pathlib.Path, lib: pathlib.Path, resume: bool = False) -> Project:
+    """A fresh qflow project for block NAME whose mapped netlist is NETLIST (RESUME: the one
+    already there, when its netlist is the same)."""
+    if resume and (path / "source" / f"{name}.v").exists() and \
+            (path / "source" / f"{name}.v").read_bytes() == pathlib.Path(netlist).read_bytes():
+        return Project(path, name)
+    if path.exists():
+        shutil.rmtree(path)
+    for d in ("source", "synthesis", "layout", "log"):
+        (path / d).mkdir(parents=True)
+    p = Project(path, name)
+    shutil.copy(netlist, path / "source" / f"{name}.v")
+    rc, out, err = procs.run(["qflow", "-T", TECH, name], cwd=path, timeout=120)
+    if rc != 0 or not (path / "project_vars.sh").exists():
+        raise FlowError(f"qflow -T {TECH} {name} in {path} failed:\n{out}\n{err}")
+    read = p.synthesis / "read_netlist.ys"
+    read.write_text(f"read_liberty -lib {lib}\nread_verilog {path / 'source' / (name + '.v')}\n"
+                    f"hierarchy -top {name}\nwrite_blif -buf BUFX2 A Y {name}_mapped.blif\n")
+    v = (path / "project_vars.sh").read_text()
+    v = re.sub(r"^# set yosys_options =.*$", f'set yosys_options = "-s {read}"', v, flags=re.M)
+    v = re.sub(r"^# set initial_density =.*$", f"set initial_density = {DENSITY}", v, flags=re.M)
+    (path / "project_vars.sh").write_text(v)
+    return p
+
+
+def _run(p: Project, script: str, args: list, must: list, log: str, ok=lambda rc, out: rc == 0) -> float:
+    t0 = time.time()
+    rc, out, err = procs.run(["tcsh", "-f", SCRIPTS / script, *args], cwd=p.path, timeout=STEP_TIMEOUT)
+    (p.log / f"{script}.out").write_text(out + "\n" + err)
+    missing = [str(m) for m in must if not pathlib.Path(m).exists()]
+    if not ok(rc, out) or missing:
+        tail = "\n".join((out + err).splitlines()[-20:])
+        raise FlowError(f"{script} for {p.name} failed (exit {rc}; missing {missing}); "
+                        f"log {p.log / log}:\n{tail}")
+    return time.time() - t0
+
+
+def synthesize(p: Project) -> float:
+    return _run(p, "synthesize.sh", [p.path, p.name, p.path / "source" / f"{p.name}.v"],
+                [p.synthesis / f"{p.name}.blif", p.synthesis / f"{p.name}.rtlnopwr.v"], "synth.log")
+
+
+def place(p: Project) -> float:
+    s = _run(p, "placement.sh", ["-d", p.path, p.name], [p.layout / f"{p.name}.def"], "place.log")
+    # Routing without qrouter's stage-3 cleanup (standard_route's third argument).
+    cfg = p.layout / f"{p.name}.cfg"
+    text = cfg.read_text()
+    line = f"qrouter::standard_route {p.name}_route.def false"
+    if line not in text:
+        raise FlowError(f"{cfg}: no `{line}` line to extend")
+    cfg.write_text(text.replace(line, line + " true"))
+    return s
+
+
+def route(p: Project) -> float:
+    # router.sh moves qrouter's NAME_route.def and NAME_route.rc back to NAME.def / NAME.rc.
+    s = _run(p, "router.sh", [p.path, p.name], [p.layout / f"{p.name}.rc"], "route.log")
+    out = (p.log / "router.sh.out").read_text()
+    if "Final: No failed routes!" not in out:
+        raise FlowError(f"qrouter left nets unrouted in {p.name} (log {p.log / 'route.log'})")
+    return s
+
+
+def migrate(p: Project) -> float:
+    return _run(p, "migrate.sh", [p.path, p.name], [p.layout / f"{p.name}.mag"], "migrate.log")
+
+
+def lvs(p: Project) -> float:
+    return _run(p, "lvs.sh", [p.path, p.name], [p.log / "lvs.log"], "lvs.log")
+
+
+def drc(p: Project) -> float:
+    # drc.sh exits 1 when magic counts errors; the count is a result (reported), not a crash.
+    return _run(p, "drc.sh", [p.path, p.name], [p.log / "drc.log"], "drc.log",
+                ok=lambda rc, out: rc == 0 or re.search(r"^drc = \d+", out, re.M) is not None)
+
+
+def gds(p: Project) -> float:
+    return _run(p, "gdsii.sh", [p.path, p.name], [p.layout / f"{p.name}.gds"], "gdsii.log")
+
+
+def run_steps(p: Project, resume: bool = False) -> dict:
+    """Every step in order; step -> seconds. RESUME skips the steps a previous run finished
+    (log/STEP.done holds their seconds); a step run again makes every later one run again."""
+    times = {}
+    for step, fn in STEPS:
+        done = p.log / f"{step}.done"
+        if resume and done.exists():
+            times[step] = float(done.read_text())
+            continue
+        resume = False
+        times[step] = round(fn(p), 1)
+        done.write_text(f"{times[step]}\n")
+    return times
+
+
+# The GDS before the DRC: gdsii.sh refuses to run after a DRC log that counted errors, and
+# the count is reported rather than hidden.
+STEPS = [("synthesize", synthesize), ("place", place), ("route", route), ("migrate", migrate),
+         ("lvs", lvs), ("gds", gds), ("drc", drc)]
+
+
+def results(p: Project) -> dict:
+    """DRC errors (magic, against the LEF cell views: Debian's OSU018 has no cell GDS) and the
+    LVS verdict (netgen: layout extracted by magic against qflow's netlist) of a finished run."""
+    drc_out = (p.log / "drc.sh.out").read_text()
+    m = re.search(r"^drc = (\d+)", drc_out, re.M)
+    if not m:
+        raise FlowError(f"{p.log / 'drc.sh.out'}: no DRC count")
+    lvs_out = (p.log / "lvs.sh.out").read_text()
+    e = re.search(r"Total errors = (\d+)", lvs_out)
+    if not e:
+        raise FlowError(f"{p.log / 'lvs.sh.out'}: no LVS error count")
+    return {"drc_errors": int(m.group(1)), "lvs_errors": int(e.group(1)),
+            "lvs_match": "Circuits match uniquely" in lvs_out and int(e.group(1)) == 0}

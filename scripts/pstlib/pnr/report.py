@@ -1,0 +1,83 @@
+"""The record of a profile placed and routed block by block, and its Markdown."""
+
+TARGET_MHZ = 100.0
+
+
+def assemble(name: str, synth: dict, blocks: list, synth_seconds: float, seconds: float) -> dict:
+    """Per block and for the whole profile: area is the blocks' dies plus the memories (their
+    model in the synthesis record); post-route Fmax is the slowest block's; the derate is the
+    worst block's post-route / pre-layout ratio, applied to the whole design's pre-layout Fmax
+    (the flat netlist with memories, where paths cross blocks)."""
+    post = min(blocks, key=lambda b: b["sta"]["post_route"]["fmax_mhz"])
+    derate = min(b["fmax_ratio"] for b in blocks)
+    die = sum(b["die_mm2"] for b in blocks)
+    mem = synth["memory_area_um2"] / 1e6
+    whole_pre = synth.get("fmax_mhz")
+    return {
+        "profile": name,
+        "method": "qflow 1.3.17 per block (graywolf, qrouter stages 1-2, magic DRC/GDS, netgen LVS); "
+                  "OpenSTA with qrouter's RC trees as SPEF (both fringe edges); typical corner",
+        "blocks": blocks,
+        "block_count": len(blocks),
+        "die_mm2_blocks": round(die, 4),
+        "memory_mm2": round(mem, 4),
+        "total_mm2": round(die + mem, 4),
+        "logic_cell_mm2": round(sum(b["cell_area_mm2"] for b in blocks), 4),
+        "cells": sum(b["cells"] for b in blocks),
+        "flip_flops": sum(b["flip_flops"] for b in blocks),
+        "wirelength_mm": round(sum(b["wirelength_mm"] for b in blocks), 1),
+        "drc_errors": sum(b["drc_errors"] for b in blocks),
+        "lvs_match": all(b["lvs_match"] for b in blocks),
+        "post_route_fmax_mhz": post["sta"]["post_route"]["fmax_mhz"],
+        "post_route_slowest_block": post["block"],
+        "post_route_critical_path": post["sta"]["post_route"]["critical_path"],
+        "hold_slack_ns": min(b["sta"]["post_route"]["hold_slack_ns"] for b in blocks),
+        "max_transition_violations": sum(b["sta"]["post_route"]["max_transition_violations"] for b in blocks),
+        "fmax_ratio_post_over_pre": derate,
+        "whole_design_pre_layout_fmax_mhz": whole_pre,
+        "whole_design_derated_fmax_mhz": round(whole_pre * derate, 1) if whole_pre else None,
+        "meets_target": post["sta"]["post_route"]["fmax_mhz"] >= TARGET_MHZ,
+        "target_mhz": TARGET_MHZ,
+        "synthesis": {k: synth.get(k) for k in ("logic_ge", "memory_ge", "total_ge", "total_area_mm2",
+                                                "flip_flops", "fmax_mhz", "clocks_per_pixel")},
+        "seconds": {"synthesis": synth_seconds, "total": seconds,
+                    "blocks": {b["block"]: b["seconds"] for b in blocks}},
+    }
+
+
+def markdown(r: dict) -> str:
+    md = [f"## Place and route: profile `{r['profile']}`\n",
+          f"Method: {r['method']}. Each block is timed alone with the SDC's 2 ns input and output "
+          "budgets at its pins; pre-layout and post-route are the same (qflow-buffered) netlist without "
+          "and with the routed parasitics.\n",
+          "| figure | value |", "|---|---:|",
+          f"| blocks | {r['block_count']} |",
+          f"| die area, sum of blocks | {r['die_mm2_blocks']:.3f} mm^2 (cells {r['logic_cell_mm2']:.3f} mm^2) |",
+          f"| memories (synthesis model) | {r['memory_mm2']:.3f} mm^2 |",
+          f"| **total** | **{r['total_mm2']:.3f} mm^2** |",
+          f"| cells / flip-flops | {r['cells']:,} / {r['flip_flops']:,} |",
+          f"| routed wire | {r['wirelength_mm']:,.1f} mm |",
+          f"| DRC errors / LVS | {r['drc_errors']} / {'match' if r['lvs_match'] else 'MISMATCH'} |",
+          f"| post-route Fmax (slowest block path) | {r['post_route_fmax_mhz']:.1f} MHz in `{r['post_route_slowest_block']}` "
+          f"({'meets' if r['meets_target'] else 'misses'} {r['target_mhz']:.0f} MHz) |",
+          f"| worst hold slack / max-transition violations | {r['hold_slack_ns']:+.3f} ns / {r['max_transition_violations']} |",
+          f"| post-route / pre-layout Fmax (worst block) | {r['fmax_ratio_post_over_pre']:.3f} |",
+          f"| whole design: pre-layout, derated | {r['whole_design_pre_layout_fmax_mhz']} MHz, "
+          f"{r['whole_design_derated_fmax_mhz']} MHz |",
+          f"| time | synthesis {r['seconds']['synthesis']:.0f} s, all {r['seconds']['total'] / 60:.1f} min |", "",
+          "| block | instance | cells | FF | die um | util | wire mm | DRC | LVS | Fmax pre | Fmax post | ratio | "
+          "reg-reg post | hold ns | worst path (post) | place + route min |",
+          "|---|---|---:|---:|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---|---:|"]
+    for b in r["blocks"]:
+        pre, post = b["sta"]["pre_layout"], b["sta"]["post_route"]
+        cp = post["critical_path"]
+        s = b["seconds"]
+        md.append(f"| {b['block']} | `{b['instance']}` | {b['cells']:,} | {b['flip_flops']:,} | "
+                  f"{b['die_um'][0]:.0f} x {b['die_um'][1]:.0f} | {b['utilization']:.2f} | {b['wirelength_mm']:,.1f} | "
+                  f"{b['drc_errors']} | {'match' if b['lvs_match'] else 'MISMATCH'} | {pre['fmax_mhz']:.1f} | "
+                  f"{post['fmax_mhz']:.1f} | {b['fmax_ratio']:.3f} | {post['reg2reg_fmax_mhz']:.1f} | "
+                  f"{post['hold_slack_ns']:+.3f} | `{cp['from']}` -> `{cp['to']}` ({cp['arrival_ns']:.2f} ns, "
+                  f"{cp['cells']} cells) | {(s['place'] + s['route']) / 60:.1f} |")
+    md.append("")
+    md += [f"![{b['block']}]({r['profile']}/{b['png']})" for b in r["blocks"]]
+    return "\n".join(md) + "\n"
