@@ -3,7 +3,8 @@
 synthesis (pstlib.synth, netlists kept) -> the flattened netlist cut into blocks
 (partition.py) -> each block through qflow (qflow.py) -> its routed parasitics as SPEF
 (spef.py) -> OpenSTA before and after layout (timing.py) -> die, utilization, wirelength and
-a PNG (layout.py) -> OUT/PROFILE.json and .md (report.py).
+a PNG (layout.py) -> OUT/PROFILE.json and .md (report.py). Beside it, the whole profile
+buffered by blifFanout instead of the synthesis' fanout step, timed (buffering.py).
 """
 import concurrent.futures
 import dataclasses
@@ -15,7 +16,7 @@ from .. import contract
 from ..paths import ROOT
 from ..synth import flow as synth_flow, liberty, sta as synth_sta
 from ..synth.tools import SDC, run_sta, run_yosys
-from . import layout, partition, qflow, report, spef, timing
+from . import buffering, layout, partition, qflow, report, spef, timing
 
 STANDIN = "PST_MEMRD*"    # the memory read stand-ins: macros, outside every block
 
@@ -103,13 +104,20 @@ def place_and_route(profile, opts: Options) -> dict:
     t_synth = time.time() - t0
     lib = liberty.osu018_lib()
     swork = work / "synth" / f"{name}.work"
-    blocks = cut(work, swork / "netlist.v", [lib, swork / "standin.lib"], synth["top"] if "top" in synth else "pst_top",
+    blocks = cut(work, swork / "netlist.v", [lib, swork / "standin.lib"], "pst_top",
                  opts.limit)
-    todo = {k: v for k, v in blocks.items() if not opts.only or k in opts.only}
+    buf = buffering.compare(work / "buffering", swork / "netlist_sta.v", [lib, swork / "standin.lib"], "pst_top",
+                            synth["fmax_mhz"])
+    # Largest blocks first: with N jobs the long ones overlap instead of finishing last.
+    todo = sorted((k for k in blocks if not opts.only or k in opts.only), key=lambda k: -blocks[k]["cells_synth"])
+    unknown = set(opts.only) - set(blocks)
+    if unknown:
+        raise synth_flow.InputError(f"--block {sorted(unknown)}: no such block (blocks: {', '.join(sorted(blocks))})")
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, opts.jobs)) as ex:
-        futs = {k: ex.submit(run_block, k, v, work, lib, out, opts.resume) for k, v in todo.items()}
-        recs = [futs[k].result() for k in sorted(futs, key=lambda k: -blocks[k]["cells_synth"])]
+        futs = {k: ex.submit(run_block, k, blocks[k], work, lib, out, opts.resume) for k in todo}
+        recs = [futs[k].result() for k in todo]
     result = report.assemble(name, synth, recs, round(t_synth, 1), round(time.time() - t0, 1))
+    result["buffering"] = buf
     (out.parent / f"{name}.json").write_text(json.dumps(result, indent=2) + "\n")
     (out.parent / f"{name}.md").write_text(report.markdown(result))
     return result

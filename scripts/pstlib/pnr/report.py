@@ -64,6 +64,10 @@ def markdown(r: dict) -> str:
           f"| post-route / pre-layout Fmax (worst block) | {r['fmax_ratio_post_over_pre']:.3f} |",
           f"| whole design: pre-layout, derated | {r['whole_design_pre_layout_fmax_mhz']} MHz, "
           f"{r['whole_design_derated_fmax_mhz']} MHz |",
+          *([f"| fanout step: synthesis' hand buffers vs blifFanout, whole design pre-layout | "
+              f"{r['buffering']['fmax_mhz_hand_fanout']} vs {r['buffering']['fmax_mhz_blif_fanout']} MHz "
+              f"({r['buffering']['blif_fanout_buffers']:,} buffers; "
+              f"{'within' if r['buffering']['within_2_percent'] else 'NOT within'} 2 %) |"] if "buffering" in r else []),
           f"| time | synthesis {r['seconds']['synthesis']:.0f} s, all {r['seconds']['total'] / 60:.1f} min |", "",
           "| block | instance | cells | FF | die um | util | wire mm | DRC | LVS | Fmax pre | Fmax post | ratio | "
           "reg-reg post | hold ns | worst path (post) | place + route min |",
