@@ -88,6 +88,13 @@ def main(argv=None) -> int:
         return 1
     if not args.quiet:
         print(report.markdown(result))
+    errors = report.signoff_errors(result)
+    if errors:
+        print(f"error: {profile}: sign-off checks failed (scripts/synth/pst.sdc; "
+              f"{pathlib.Path(args.out) / (result['profile'] + '.sta_signoff.txt')}):", file=sys.stderr)
+        for e in errors:
+            print(f"  {e}", file=sys.stderr)
+        return 1
     return 0
 
 

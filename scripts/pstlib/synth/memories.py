@@ -43,7 +43,7 @@ def synth_memory(mem: dict, lib: pathlib.Path, cache: pathlib.Path, yosys: str, 
         secs = run_yosys(script, tmp, "mem", yosys)
         stat = parse_stat_json((tmp / "stat.json").read_text())
         cells = next(iter(stat["modules"].values()))["num_cells_by_type"]
-        area = sum(n * areas[c] for c, n in cells.items() if c in areas)
+        area = liberty.cells_area(cells, areas)
         ffs = sum(n for c, n in cells.items() if c in ff_cells)
         clock = "create_clock -name clk -period 10 [get_ports clk]" if not memarea.is_rom(mem) else \
             "create_clock -name clk -period 10"
@@ -68,7 +68,7 @@ def synth_memory(mem: dict, lib: pathlib.Path, cache: pathlib.Path, yosys: str, 
 
 
 def memory_rows(mems: list, mem_syn: dict, instances: dict, lib: pathlib.Path, ge: float) -> tuple:
-    """The report's memory rows (those with instances), the stand-in index ((module, memory) ->
+    """The report's memory rows (every memory has at least one instance: RuntimeError if not), the stand-in index ((module, memory) ->
     k) and the stand-ins' delays (k -> ns). mem_syn: content key -> synth_memory's record."""
     memories, mem_index, delays = [], {}, {}
     for i, m in enumerate(mems):
@@ -82,6 +82,10 @@ def memory_rows(mems: list, mem_syn: dict, instances: dict, lib: pathlib.Path, g
             each = model["area_um2"]
         delays[i] = rec["delay_ns"]
         n = instances[(m["module"], m["memory"])]
+        if n < 1:
+            # Every memory Yosys found is in a module of the design: none means the counting
+            # lost it (a name mismatch), not that it costs nothing.
+            raise RuntimeError(f"memory {m['module']}.{m['memory']}: no instance in the design's hierarchy")
         mem_index[(m["module"].lstrip("\\"), m["memory"].lstrip("\\"))] = i
         entry = {"module": base_name(m["module"]), "memory": m["memory"].lstrip("\\"),
                  "kind": "ROM" if memarea.is_rom(m) else "RAM", "instances": n,
@@ -105,6 +109,5 @@ def memory_rows(mems: list, mem_syn: dict, instances: dict, lib: pathlib.Path, g
                                      for o in memarea.port_options(m, rec["area_um2"])]
             for o in entry["port_options"]:
                 o.pop("area")
-        if n:
-            memories.append(entry)
+        memories.append(entry)
     return memories, mem_index, delays

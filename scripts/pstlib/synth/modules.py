@@ -94,12 +94,15 @@ def synthesize_modules(doc: dict, rom_dir, lib, tmp: pathlib.Path, keep: set, al
     areas = liberty.cell_areas(lib_text)
     ffc = liberty.flip_flop_cells(lib_text)
     stat = parse_stat_json((tmp / "stat.json").read_text())
+    # Sub-modules (the black boxes too) and memory stand-ins have no area of their own here.
+    subs = {*stat["modules"], *keep, *(_yname(m) for m in keep), *liberty.STANDIN_TYPES}
     out = {}
     for name, m in stat["modules"].items():
         if name in keep or name.lstrip("\\") in {k.lstrip("\\") for k in keep}:
             continue
         cells = m.get("num_cells_by_type", {})
-        out[name] = {"area_um2": sum(n * areas[c] for c, n in cells.items() if c in areas),
+        area = liberty.cells_area(cells, areas, skip=subs)
+        out[name] = {"area_um2": area,
                      "flip_flops": sum(n for c, n in cells.items() if c in ffc),
                      "cells": sum(n for c, n in cells.items() if c in areas)}
     return {"modules": out, "seconds": secs}
