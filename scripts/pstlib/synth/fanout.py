@@ -159,7 +159,6 @@ def insert_buffers(netlist: str, min_instances: int = MIN_INSTANCES, cell: str =
     lines = netlist.split("\n")
     mods = _parse(lines)
     counts = {}
-    edits = {}        # line index -> new text
     inserts = {}      # line index -> text inserted after it
     serial = 0
     for mname, mod in mods.items():
@@ -199,7 +198,6 @@ def insert_buffers(netlist: str, min_instances: int = MIN_INSTANCES, cell: str =
                         if bit is not None:
                             loads.setdefault(find(bit), {}).setdefault(n, []).append((pin, pos, bit))
         # Buffer the nets with enough instances.
-        new_items = {k: [[it] for it in v[1]] for k, v in parsed.items()}   # item -> list of bit refs
         subst = {}   # (n, pin, bit) -> buffered wire
         added = []
         for net, insts in loads.items():

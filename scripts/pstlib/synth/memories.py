@@ -1,23 +1,24 @@
 """Each distinct memory synthesized alone to the cell library: its area and its
 address-to-data delay (OpenSTA), cached by content; and the report's memory rows."""
-import hashlib
 import json
 import pathlib
 import tempfile
 
-from . import liberty, memarea, sta
+from . import inputs, liberty, memarea, sta
 from .tools import ABC_CONSTR, ABC_DELAY_PS, ABC_SCRIPT, base_name, cell_lines, parse_stat_json, run_sta, run_yosys
 
 MEM_LOAD_PF = 0.02        # stand-alone memory: output load; stand-in: address-pin load
 MEM_SETUP_NS = 0.2        # stand-in write capture: setup (about DFFPOSX1's)
 
 
-def sha(path: pathlib.Path) -> str:
-    return hashlib.sha256(path.read_bytes()).hexdigest()[:16]
-
-
 def mem_flow_salt(lib: pathlib.Path) -> str:
-    return f"{ABC_SCRIPT}|{ABC_DELAY_PS}|{ABC_CONSTR}|{MEM_LOAD_PF}|{sha(lib)}|mem-flow-1"
+    """What a memory's stand-alone synthesis depends on besides its shape and content: the
+    mapping, the load, the code that builds, maps and times it, the cell library's content and
+    the tool versions."""
+    here = pathlib.Path(__file__).parent
+    code = [here / f for f in ("memarea.py", "memories.py", "tools.py", "liberty.py", "sta.py")]
+    return inputs.digest([*code, lib], (ABC_SCRIPT, ABC_DELAY_PS, ABC_CONSTR, MEM_LOAD_PF, "mem-flow-2",
+                                        *inputs.tool_versions()))
 
 
 def synth_memory(mem: dict, lib: pathlib.Path, cache: pathlib.Path, yosys: str, sta_bin: str,
