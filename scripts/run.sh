@@ -55,6 +55,7 @@ echo "== silicon figures (Yosys + OpenSTA), quick precision sweep, figures"
 # the reduced profile's synthesis (out/synth/reduced.{json,md}).
 /usr/bin/python3 scripts/synth.py full --quiet & full_synth=$!
 /usr/bin/python3 scripts/sweep.py --quick || rc=1
+/usr/bin/python3 scripts/synth.py balanced --quiet || rc=1     # in the baseline too (9-12 min on one core)
 wait "$full_synth" || rc=1
 [ -f out/synth/reduced.md ] || /usr/bin/python3 scripts/synth.py reduced --quiet || rc=1
 /usr/bin/python3 scripts/figures.py fig11 --out out || rc=1

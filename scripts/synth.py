@@ -6,7 +6,9 @@ standard cells (Debian's qflow-tech-osu018), OpenSTA timing, memory area, throug
 
 PROFILE is a name (rtl/configs/NAME.toml) or a profile file. Writes DIR/NAME.json and
 DIR/NAME.md (default DIR: out/synth) and prints the Markdown. Exit 2 on bad input (no such
-profile, no ROM images, no OSU018 library: run scripts/setup.sh), 1 when a tool fails.
+profile, no ROM images, no OSU018 library: run scripts/setup.sh), 1 when a tool fails or the
+design fails a sign-off check (a hold violation, a max-transition or max-capacitance violation:
+the message names the worst offender; the JSON and Markdown are written all the same).
 
 Method (the Markdown repeats it beside the figures):
 - Code: scripts/pstlib/synth/ (flow.py the steps below, blocks.py the report's blocks,
@@ -39,9 +41,17 @@ Method (the Markdown repeats it beside the figures):
   read port (scripts/pstlib/synth/memarea.py says where its numbers come from).
 - Timing: in the design's netlist every memory read bit is a stand-in cell with that delay
   (scripts/synth/mem_standin_map.v), every memory write bit a capture cell with a setup
-  check; OpenSTA 2.0.17 links the hierarchical netlist flat and reads scripts/synth/pst.sdc.
+  check; OpenSTA 2.0.17 links the hierarchical netlist flat and reads scripts/synth/pst.sdc
+  (10 ns clock, ideal clock network with clock uncertainty 0.4 ns setup / 0.1 ns hold and a
+  0.35 ns clock transition for qflow's buffered clock fanout, BUFX2-driven inputs with a
+  0.2 ns input transition, max transition 1.2 ns; where each number comes from is in the file).
   Every register is in the path group of its top-level block: the worst path per block is
-  the critical path of that stage. Fmax = 1 / (period - worst slack).
+  the critical path of that stage. Fmax = 1 / (period - worst setup slack), a pre-layout
+  figure (typical corner, no wire load; JSON fmax_basis "pre-layout").
+- Sign-off checks (scripts/pstlib/synth/sta.py): hold per stage and every violated hold
+  endpoint, every max-transition violation (report_check_types), and every net's load against
+  the liberty's max_capacitance of the pin driving it (OpenSTA 2.0.17 has no such check: a
+  Tcl loop over the leaf drivers and the data input ports). Any violation fails the run.
 - Logic depth: `ltp -noff` per module on the mapped netlist (cells on the longest
   combinational path; a sub-module instance counts as one cell).
 - Yosys runs with -e "implicitly declared|has no driver" so a silent mis-build fails.
@@ -88,6 +98,13 @@ def main(argv=None) -> int:
         return 1
     if not args.quiet:
         print(report.markdown(result))
+    errors = report.signoff_errors(result)
+    if errors:
+        print(f"error: {profile}: sign-off checks failed (scripts/synth/pst.sdc; "
+              f"{pathlib.Path(args.out) / (result['profile'] + '.sta_signoff.txt')}):", file=sys.stderr)
+        for e in errors:
+            print(f"  {e}", file=sys.stderr)
+        return 1
     return 0
 
 

@@ -71,3 +71,10 @@ def compare(baseline: dict, current: dict, tolerance: float = TOLERANCE) -> list
         if rel > tolerance:
             out.append((key, x, y, rel))
     return out
+
+
+def tool_mismatches(base_tools: dict, synth: dict) -> list:
+    """Profiles synthesized with other tools than the baseline's: (profile, its tools). Figures
+    of another Yosys or OpenSTA are not comparable with the baseline's (ABC's mapping and the
+    timer's interpolation change with the version)."""
+    return [(n, s.get("tools")) for n, s in sorted(synth.items()) if s.get("tools") != base_tools]

@@ -299,7 +299,8 @@ def flatten_figures(data: dict) -> dict:
 def gate_summary(gates: list) -> Optional[Table]:
     """Headline figures of each synthesized profile: every number at the top level of
     out/synth/<profile>.json (logic GE, flip-flops, memory bits, and whatever the synthesis
-    adds: area, Fmax, ...), one column per profile; keys a profile lacks are '-'."""
+    adds: area, Fmax, ...), one column per profile; keys a profile lacks are '-'. Fmax rows carry
+    the synthesis's basis (fmax_label: pre-layout, typical corner, no wire load)."""
     present = [g for g in gates if g.data]
     if not present:
         return None
@@ -309,8 +310,10 @@ def gate_summary(gates: list) -> Optional[Table]:
         keys += [k for k in f if k not in keys]
     t = Table(columns=["figure"] + [g.data.get("profile", g.anchor.split("-", 1)[1]) for g in present], rows=[])
     t.fmt = [""] + ["auto"] * len(present)
+    basis = next((g.data["fmax_label"] for g in present if g.data.get("fmax_label")), None)
     for k in keys:
-        t.rows.append([k.replace("_", " ")] + [f.get(k) for f in flat])
+        label = k.replace("_", " ") + (f", {basis}" if basis and "fmax" in k else "")
+        t.rows.append([label] + [f.get(k) for f in flat])
         t.failed.append(False)
         t.links.append({})
     return t

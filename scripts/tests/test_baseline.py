@@ -7,6 +7,9 @@ from pstlib import baseline
 from pstlib.paths import ROOT
 
 SCRIPTS = ROOT / "scripts"
+# The sign-off part of a synthesis record's timing that passes (pstlib.synth.report.timing_result).
+SIGNOFF_MET = {"hold": {"wns_ns": 0.1, "violations": 0, "worst": {}},
+               "max_transition": {"violations": 0, "worst": {}}, "max_capacitance": {"violations": 0, "worst": {}}}
 BASE = {"reduced": {"logic_ge": 100000, "fmax_mhz": 40.0, "psnr_db": {"marble": 40.0}, "rom_bits": 70849}}
 
 
@@ -44,7 +47,7 @@ def test_check_baseline_cli_fails_on_a_move(tmp_path):
     out = tmp_path / "out"
     (out / "synth").mkdir(parents=True)
     s = {"logic_ge": 100, "blocks": {}, "flip_flops": 1, "memory_ge": 2, "total_ge": 102, "rom_bits": 8,
-         "ram_bits": 9, "clocks_per_pixel": 1, "timing": {"fmax_mhz": 50.0}, "tools": {"yosys": "y"}}
+         "ram_bits": 9, "clocks_per_pixel": 1, "timing": dict(SIGNOFF_MET, fmax_mhz=50.0), "tools": {"yosys": "y"}}
     (out / "synth" / "reduced.json").write_text(json.dumps(s))
     (out / "regress.json").write_text(json.dumps(
         [{"scene": "scenes/a.toml", "profile": "reduced", "vs_reference": {"psnr": 40.0}}]))
@@ -61,3 +64,38 @@ def test_check_baseline_cli_fails_on_a_move(tmp_path):
     assert bad.returncode == 1 and "reduced.logic_ge: 100 -> 103" in bad.stdout
     (out / "regress.json").unlink()
     assert subprocess.run(cmd, capture_output=True, text=True).returncode == 2
+
+
+def test_check_baseline_cli_tools_signoff_and_add(tmp_path):
+    import copy
+    out = tmp_path / "out"
+    (out / "synth").mkdir(parents=True)
+    s = {"logic_ge": 100, "blocks": {}, "flip_flops": 1, "memory_ge": 2, "total_ge": 102, "rom_bits": 8,
+         "ram_bits": 9, "clocks_per_pixel": 1, "timing": dict(SIGNOFF_MET, fmax_mhz=50.0),
+         "tools": {"yosys": "y", "opensta": "2.0.17"}}
+    (out / "synth" / "reduced.json").write_text(json.dumps(s))
+    (out / "regress.json").write_text("[]")
+    bfile = tmp_path / "baseline.json"
+    bfile.write_text(json.dumps({"tolerance": 0.02, "tools": s["tools"], "profiles": baseline.collect({"reduced": s}, [])}))
+    cmd = ["/usr/bin/python3", str(SCRIPTS / "check_baseline.py"), "--out", str(out), "--baseline", str(bfile)]
+    assert subprocess.run(cmd, capture_output=True, text=True).returncode == 0
+    # another OpenSTA: not comparable, said so
+    other = dict(s, tools={"yosys": "y", "opensta": "2.1.0"})
+    (out / "synth" / "reduced.json").write_text(json.dumps(other))
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    assert r.returncode == 1 and "not comparable" in r.stdout and "2.1.0" in r.stdout
+    # a hold violation fails even with every figure in place
+    bad = copy.deepcopy(s)
+    bad["timing"]["hold"] = {"wns_ns": -0.05, "violations": 2,
+                             "worst": {"slack_ns": -0.05, "startpoint": "a/q", "endpoint": "b/d", "stage": "s"}}
+    (out / "synth" / "reduced.json").write_text(json.dumps(bad))
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    assert r.returncode == 1 and "sign-off check failed: hold: 2 endpoints" in r.stdout
+    # --add: one more profile, the others untouched
+    (out / "synth" / "reduced.json").write_text(json.dumps(s))
+    (out / "synth" / "balanced.json").write_text(json.dumps(dict(s, logic_ge=500)))
+    before = json.loads(bfile.read_text())["profiles"]["reduced"]
+    assert subprocess.run(cmd + ["--add", "balanced"], capture_output=True, text=True).returncode == 0
+    after = json.loads(bfile.read_text())["profiles"]
+    assert after["reduced"] == before and after["balanced"]["logic_ge"] == 500
+    assert subprocess.run(cmd, capture_output=True, text=True).returncode == 0

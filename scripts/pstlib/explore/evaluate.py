@@ -20,8 +20,7 @@ import tomllib
 
 from .. import atomic, contract
 from ..fmt import tail
-from ..paths import ROOT
-from ..synth import flow
+from ..synth import flow, inputs, liberty
 from .local import run
 from .results import psnr as summary_psnr
 from .store import Store, read_json, reusable
@@ -44,32 +43,26 @@ def render(pst, scene, profile, size: int, rdir: pathlib.Path, truth: int = 0):
 
 # ---- the sweep's area: the whole flow, cached as out/synth/NAME.json with a sidecar NAME.sweep.json
 
-def synth_inputs(root=ROOT) -> list:
-    """What a gate count depends on besides the profile: the RTL, the flow (scripts/synth.py and
-    scripts/pstlib/synth/) and its files in scripts/synth/ (cell libraries, stand-ins, constraints)."""
-    synth = root / "scripts" / "synth"
-    flow = root / "scripts" / "pstlib" / "synth"
-    return [root / "scripts" / "synth.py",
-            *sorted(p for p in flow.glob("*.py") if not p.name.startswith("test_")),
-            *sorted(p for p in synth.glob("*") if p.suffix in (".lib", ".v", ".sdc")),
-            *sorted((root / "rtl").glob("*.sv"))]
+def synth_inputs() -> list:
+    """What a gate count depends on besides the profile: the files of pstlib.synth.inputs
+    (RTL, contract, the flow's code and scripts/synth/ files, the cell library, the ROM images
+    the flow reads by default)."""
+    return inputs.input_files(liberty.osu018_lib(), flow.Options().rom_dir)
 
 
-def synth_key(profile: pathlib.Path, inputs=None) -> dict:
-    """Content keys of a synthesis: the profile's values (comments aside) and the RTL + synthesis
-    script + cell library."""
-    h = hashlib.sha256()
-    for f in synth_inputs() if inputs is None else inputs:
-        h.update(f.name.encode() + b"\0" + f.read_bytes() + b"\0")
+def synth_key(profile: pathlib.Path, files=None) -> dict:
+    """Content keys of a synthesis: the profile's values (comments aside), and every input
+    file with the Yosys and OpenSTA versions."""
     values = json.dumps(tomllib.loads(profile.read_text()), sort_keys=True)
-    return {"profile": hashlib.sha256(values.encode()).hexdigest()[:16], "rtl": h.hexdigest()[:16]}
+    return {"profile": hashlib.sha256(values.encode()).hexdigest()[:16],
+            "inputs": inputs.digest(synth_inputs() if files is None else files, inputs.tool_versions())}
 
 
-def synth_cache_valid(synth_json: pathlib.Path, profile: pathlib.Path, inputs=None) -> bool:
+def synth_cache_valid(synth_json: pathlib.Path, profile: pathlib.Path, files=None) -> bool:
     """out/synth/NAME.json stands for this profile: its sidecar NAME.sweep.json has the same
     content keys or, without a sidecar (a synthesis run by hand), it is newer than the profile
     and every synthesis input."""
-    inputs = synth_inputs() if inputs is None else inputs
+    files = synth_inputs() if files is None else files
     if not synth_json.exists():
         return False
     try:
@@ -80,11 +73,11 @@ def synth_cache_valid(synth_json: pathlib.Path, profile: pathlib.Path, inputs=No
     side = synth_json.with_name(synth_json.stem + ".sweep.json")
     if side.exists():
         try:
-            return json.loads(side.read_text()) == synth_key(profile, inputs)
+            return json.loads(side.read_text()) == synth_key(profile, files)
         except (OSError, ValueError):
             return False
     t = synth_json.stat().st_mtime
-    return not any(d.stat().st_mtime > t for d in [profile, *inputs])
+    return not any(d.stat().st_mtime > t for d in [profile, *files])
 
 
 def synth_record(sha: str, sj: pathlib.Path, key=None) -> dict:

@@ -12,6 +12,7 @@ them, the top's own row last.
 import re
 
 from ..paths import rtl_source
+from . import liberty
 from .tools import base_name
 
 BLOCK_DEPTH = 2
@@ -72,7 +73,11 @@ def analyse(stat: dict, ltp_text: str, areas: dict, ff_cells: set, mems: list) -
     own = {}
     for name, m in modules.items():
         cells = m.get("num_cells_by_type", {})
-        own[name] = {"logic": sum(n * areas[c] for c, n in cells.items() if c in areas),
+        try:
+            logic = liberty.cells_area(cells, areas, skip=(*modules, *liberty.STANDIN_TYPES))
+        except RuntimeError as e:
+            raise RuntimeError(f"module {name}: {e}") from None
+        own[name] = {"logic": logic,
                      "ffs": sum(n for c, n in cells.items() if c in ff_cells),
                      "subs": {c: n for c, n in cells.items() if c in modules},
                      "cells": sum(n for c, n in cells.items() if c in areas)}

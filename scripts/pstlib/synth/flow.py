@@ -111,7 +111,8 @@ def check_inputs(profile, opts: Options) -> tuple:
 
 
 def synthesize(profile, opts: Options) -> dict:
-    """Synthesizes one profile; writes OUT/NAME.{json,md,ltp.txt,sta.txt} and returns the record.
+    """Synthesizes one profile; writes OUT/NAME.{json,md,ltp.txt,sta.txt,sta_signoff.txt} and returns
+    the record (report.signoff_errors tells whether it passes the hold and design-rule checks).
     InputError on bad input, RuntimeError when a tool fails."""
     profile, prof, lib = check_inputs(profile, opts)
     name = profile.stem
@@ -173,13 +174,19 @@ def synthesize(profile, opts: Options) -> dict:
                 delays, memories.MEM_SETUP_NS, memories.MEM_LOAD_PF / 8))
             (tmp / "netlist_sta.v").write_text(rename_standins(netlist, mem_index))
             top = a["top"].lstrip("\\")
+            files = {k: tmp / f"{k}.txt" for k in ("setup", "hold", "hold_violators", "transition")}
+            limits = liberty.max_capacitance(lib_text)
             tcl = sta.sta_script([str(lib), str(tmp / "standin.lib")], str(tmp / "netlist_sta.v"), top,
-                                 str(SDC), str(tmp / "checks.txt"))
+                                 str(SDC), {k: str(f) for k, f in files.items()}, limits,
+                                 limits[f"{sta.sdc_driving_cell(SDC.read_text())}/Y"])
             times["sta"], sta_out = run_sta(tcl, tmp, "sta", opts.sta)
-            rep = (tmp / "checks.txt").read_text()
-            (out / f"{name}.sta.txt").write_text(rep)
+            reports = {k: f.read_text() for k, f in files.items()}
+            (out / f"{name}.sta.txt").write_text(reports["setup"])
+            (out / f"{name}.sta_signoff.txt").write_text(
+                reports["hold"] + reports["hold_violators"] + reports["transition"]
+                + "".join(l + "\n" for l in sta_out.splitlines() if l.startswith("max_capacitance")))
             mods = sta.netlist_instances(netlist)
-            timing = report.timing_result(rep, sta_out, lambda pt: sta.register_name(pt, mods, top))
+            timing = report.timing_result(reports, sta_out, lambda pt: sta.register_name(pt, mods, top))
     times["total"] = time.time() - t_all
 
     result = report.assemble(name, profile, prof, a, a_old, ge, old_ge, mem_rows, timing, times, lib, opts)

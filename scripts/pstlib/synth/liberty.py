@@ -33,15 +33,43 @@ def _strip_comments(text: str) -> str:
 
 def cell_areas(text: str) -> dict:
     """Cell name -> area from a liberty file's text (the first `area` inside each cell group)."""
-    text = _strip_comments(text)
-    starts = [(m.start(), m.group(1)) for m in re.finditer(r"\bcell\s*\(\s*\"?([\w$]+)\"?\s*\)\s*\{", text)]
     areas = {}
-    for i, (pos, name) in enumerate(starts):
-        end = starts[i + 1][0] if i + 1 < len(starts) else len(text)
-        m = re.search(r"\barea\s*:\s*([0-9.eE+-]+)\s*;", text[pos:end])
+    for name, body in _cell_bodies(text):
+        m = re.search(r"\barea\s*:\s*([0-9.eE+-]+)\s*;", body)
         if m:
             areas[name] = float(m.group(1))
     return areas
+
+
+def _cell_bodies(text: str) -> list:
+    """(cell name, text of its group) of a liberty file's text, comments removed."""
+    text = _strip_comments(text)
+    starts = [(m.start(), m.group(1)) for m in re.finditer(r"\bcell\s*\(\s*\"?([\w$]+)\"?\s*\)\s*\{", text)]
+    return [(name, text[pos:starts[i + 1][0] if i + 1 < len(starts) else len(text)])
+            for i, (pos, name) in enumerate(starts)]
+
+
+def max_capacitance(text: str) -> dict:
+    """"CELL/PIN" -> the pin's max_capacitance (pF) of every output pin that has one."""
+    out = {}
+    for cell, body in _cell_bodies(text):
+        pins = [(m.start(), m.group(1)) for m in re.finditer(r"\bpin\s*\(\s*\"?(\w+)\"?\s*\)\s*\{", body)]
+        for i, (pos, pin) in enumerate(pins):
+            group = body[pos:pins[i + 1][0] if i + 1 < len(pins) else len(body)]
+            m = re.search(r"\bmax_capacitance\s*:\s*([0-9.eE+-]+)\s*;", group)
+            if m:
+                out[f"{cell}/{pin}"] = float(m.group(1))
+    return out
+
+
+def cells_area(cells: dict, areas: dict, skip=()) -> float:
+    """Area of a module's own cells (cell type -> count). Every type must have an area in the
+    liberty unless it is in SKIP (sub-modules, memory stand-ins costed apart): a type without
+    one is an error, not a silent zero."""
+    missing = sorted(c for c in cells if c not in areas and c not in skip)
+    if missing:
+        raise RuntimeError(f"cell types without an area in the liberty: {', '.join(missing)}")
+    return sum(n * areas[c] for c, n in cells.items() if c in areas)
 
 
 def library_name(text: str) -> str:
@@ -58,14 +86,7 @@ def ge_unit(areas: dict) -> float:
 
 def flip_flop_cells(text: str) -> set:
     """Cells with an ff or latch group (sequential cells)."""
-    text = _strip_comments(text)
-    starts = [(m.start(), m.group(1)) for m in re.finditer(r"\bcell\s*\(\s*\"?([\w$]+)\"?\s*\)\s*\{", text)]
-    out = set()
-    for i, (pos, name) in enumerate(starts):
-        end = starts[i + 1][0] if i + 1 < len(starts) else len(text)
-        if re.search(r"\b(ff|latch)\s*\(", text[pos:end]):
-            out.add(name)
-    return out
+    return {name for name, body in _cell_bodies(text) if re.search(r"\b(ff|latch)\s*\(", body)}
 
 
 # ---- stand-in cells for memories ----------------------------------------------------------
@@ -76,6 +97,7 @@ def flip_flop_cells(text: str) -> set:
 # the write clock. Read data launched by a write (clock to read data) is not modelled: the
 # RAMs are written only through the register interface while the pipeline is idle.
 ADDR_PINS = 16
+STANDIN_TYPES = ("PST_MEMRD", "PST_MEMWR")   # the cell types memories map to before renaming
 
 
 def standin_cell_name(k: int) -> str:

@@ -1,23 +1,24 @@
 """Each distinct memory synthesized alone to the cell library: its area and its
 address-to-data delay (OpenSTA), cached by content; and the report's memory rows."""
-import hashlib
 import json
 import pathlib
 import tempfile
 
-from . import liberty, memarea, sta
+from . import inputs, liberty, memarea, sta
 from .tools import ABC_CONSTR, ABC_DELAY_PS, ABC_SCRIPT, base_name, cell_lines, parse_stat_json, run_sta, run_yosys
 
 MEM_LOAD_PF = 0.02        # stand-alone memory: output load; stand-in: address-pin load
 MEM_SETUP_NS = 0.2        # stand-in write capture: setup (about DFFPOSX1's)
 
 
-def sha(path: pathlib.Path) -> str:
-    return hashlib.sha256(path.read_bytes()).hexdigest()[:16]
-
-
 def mem_flow_salt(lib: pathlib.Path) -> str:
-    return f"{ABC_SCRIPT}|{ABC_DELAY_PS}|{ABC_CONSTR}|{MEM_LOAD_PF}|{sha(lib)}|mem-flow-1"
+    """What a memory's stand-alone synthesis depends on besides its shape and content: the
+    mapping, the load, the code that builds, maps and times it, the cell library's content and
+    the tool versions."""
+    here = pathlib.Path(__file__).parent
+    code = [here / f for f in ("memarea.py", "memories.py", "tools.py", "liberty.py", "sta.py")]
+    return inputs.digest([*code, lib], (ABC_SCRIPT, ABC_DELAY_PS, ABC_CONSTR, MEM_LOAD_PF, "mem-flow-2",
+                                        *inputs.tool_versions()))
 
 
 def synth_memory(mem: dict, lib: pathlib.Path, cache: pathlib.Path, yosys: str, sta_bin: str,
@@ -43,7 +44,7 @@ def synth_memory(mem: dict, lib: pathlib.Path, cache: pathlib.Path, yosys: str, 
         secs = run_yosys(script, tmp, "mem", yosys)
         stat = parse_stat_json((tmp / "stat.json").read_text())
         cells = next(iter(stat["modules"].values()))["num_cells_by_type"]
-        area = sum(n * areas[c] for c, n in cells.items() if c in areas)
+        area = liberty.cells_area(cells, areas)
         ffs = sum(n for c, n in cells.items() if c in ff_cells)
         clock = "create_clock -name clk -period 10 [get_ports clk]" if not memarea.is_rom(mem) else \
             "create_clock -name clk -period 10"
@@ -68,7 +69,7 @@ def synth_memory(mem: dict, lib: pathlib.Path, cache: pathlib.Path, yosys: str, 
 
 
 def memory_rows(mems: list, mem_syn: dict, instances: dict, lib: pathlib.Path, ge: float) -> tuple:
-    """The report's memory rows (those with instances), the stand-in index ((module, memory) ->
+    """The report's memory rows (every memory has at least one instance: RuntimeError if not), the stand-in index ((module, memory) ->
     k) and the stand-ins' delays (k -> ns). mem_syn: content key -> synth_memory's record."""
     memories, mem_index, delays = [], {}, {}
     for i, m in enumerate(mems):
@@ -82,6 +83,10 @@ def memory_rows(mems: list, mem_syn: dict, instances: dict, lib: pathlib.Path, g
             each = model["area_um2"]
         delays[i] = rec["delay_ns"]
         n = instances[(m["module"], m["memory"])]
+        if n < 1:
+            # Every memory Yosys found is in a module of the design: none means the counting
+            # lost it (a name mismatch), not that it costs nothing.
+            raise RuntimeError(f"memory {m['module']}.{m['memory']}: no instance in the design's hierarchy")
         mem_index[(m["module"].lstrip("\\"), m["memory"].lstrip("\\"))] = i
         entry = {"module": base_name(m["module"]), "memory": m["memory"].lstrip("\\"),
                  "kind": "ROM" if memarea.is_rom(m) else "RAM", "instances": n,
@@ -105,6 +110,5 @@ def memory_rows(mems: list, mem_syn: dict, instances: dict, lib: pathlib.Path, g
                                      for o in memarea.port_options(m, rec["area_um2"])]
             for o in entry["port_options"]:
                 o.pop("area")
-        if n:
-            memories.append(entry)
+        memories.append(entry)
     return memories, mem_index, delays

@@ -9,8 +9,9 @@ The flow of pstlib.synth.flow split in two Yosys runs:
    first, so their instances stay cells and cost nothing), with the flow's own mapping
    (pstlib.synth.tools.map_lines): stat per module.
 A module's cache key is its derived name (its parameter values), the text of its source file,
-rtl/pst_pkg.sv and rtl/*.svh, and the flow (the ABC line, pstlib/synth/*.py and the
-scripts/synth/ files): a change elsewhere in rtl/ keeps it. Area = sum over derived modules of
+rtl/pst_pkg.sv and rtl/*.svh, and the flow (flow_salt: the ABC line, every input of
+pstlib.synth.inputs but the other RTL sources, the tool versions): a change elsewhere in rtl/
+keeps it. Area = sum over derived modules of
 instances x own cells' area, as the flow counts it (memories outside: stand-ins without area).
 Fmax is not part of this (it needs the whole netlist): pstlib.synth.flow gives it.
 """
@@ -22,8 +23,8 @@ import time
 
 from .. import atomic
 from ..paths import ROOT, rtl_source
-from . import blocks, liberty
-from .tools import (ABC_CONSTR, ABC_DELAY_PS, ABC_SCRIPT, SYNTH_DIR, base_name, hierarchy_of, map_lines,
+from . import blocks, inputs, liberty
+from .tools import (ABC_CONSTR, ABC_DELAY_PS, ABC_SCRIPT, base_name, hierarchy_of, map_lines,
                     parse_stat_json, read_lines, run_yosys)
 
 
@@ -35,10 +36,12 @@ def _sha(*parts) -> str:
     return h.hexdigest()[:20]
 
 
-def flow_salt(lib: pathlib.Path) -> str:
-    """What every module's gates depend on besides its source: the mapping and the cell library."""
-    files = [*sorted(pathlib.Path(__file__).parent.glob("*.py")), lib, *sorted(SYNTH_DIR.glob("*.v"))]
-    return _sha(ABC_SCRIPT, ABC_DELAY_PS, ABC_CONSTR, "module-flow-1", *[f.read_bytes() for f in files])
+def flow_salt(lib: pathlib.Path, rom_dir: pathlib.Path) -> str:
+    """What every module's gates depend on besides its own source and parameters: the mapping,
+    every input of pstlib.synth.inputs but the RTL's .sv files (the flow's code, the contract,
+    scripts/synth/, the cell library's content, the ROM images) and the tool versions."""
+    return inputs.digest(inputs.input_files(lib, rom_dir, rtl_sv=False),
+                         (ABC_SCRIPT, ABC_DELAY_PS, ABC_CONSTR, "module-flow-2", *inputs.tool_versions()))
 
 
 def module_key(derived: str, salt: str) -> str:
@@ -94,12 +97,15 @@ def synthesize_modules(doc: dict, rom_dir, lib, tmp: pathlib.Path, keep: set, al
     areas = liberty.cell_areas(lib_text)
     ffc = liberty.flip_flop_cells(lib_text)
     stat = parse_stat_json((tmp / "stat.json").read_text())
+    # Sub-modules (the black boxes too) and memory stand-ins have no area of their own here.
+    subs = {*stat["modules"], *keep, *(_yname(m) for m in keep), *liberty.STANDIN_TYPES}
     out = {}
     for name, m in stat["modules"].items():
         if name in keep or name.lstrip("\\") in {k.lstrip("\\") for k in keep}:
             continue
         cells = m.get("num_cells_by_type", {})
-        out[name] = {"area_um2": sum(n * areas[c] for c, n in cells.items() if c in areas),
+        area = liberty.cells_area(cells, areas, skip=subs)
+        out[name] = {"area_um2": area,
                      "flip_flops": sum(n for c, n in cells.items() if c in ffc),
                      "cells": sum(n for c, n in cells.items() if c in areas)}
     return {"modules": out, "seconds": secs}
@@ -118,7 +124,7 @@ class ModuleCache:
         self.dir = pathlib.Path(directory)
         self.lib = lib
         self.rom_dir = rom_dir
-        self.salt = flow_salt(lib)
+        self.salt = flow_salt(lib, rom_dir)
         self.ge_um2 = liberty.ge_unit(liberty.cell_areas(lib.read_text()))
 
     def get(self, key):

@@ -54,23 +54,78 @@ def fanout_summary(per_module: dict, a: dict, cell_area: float, ge: float) -> di
             "blocks": blocks}
 
 
-def timing_result(rep: str, sta_out: str, name=lambda p: p) -> dict:
-    period = sta.sdc_period(SDC.read_text())
+FMAX_BASIS = "pre-layout"
+FMAX_LABEL = "pre-layout (typical corner, no wire load)"
+
+
+def timing_result(reports: dict, sta_out: str, name=lambda p: p) -> dict:
+    """The timing record from the OpenSTA run's reports (sta.sta_script's REPORTS, read) and
+    its stdout (path groups, capacitance check): setup per stage and Fmax, hold per stage, the
+    hold, max-transition and max-capacitance violations."""
+    sdc = SDC.read_text()
+    period = sta.sdc_period(sdc)
     groups = sta.parse_groups(sta_out)
-    paths = sta.parse_checks(rep)
-    if not paths:
-        raise RuntimeError("OpenSTA reported no path")
-    stages = []
-    for p in paths:
-        g = groups.get(p["group"], {"key": p["group"], "instance": "", "module": ""})
-        stages.append({"group": g["key"], "stage": STAGE_OF.get(g["key"], g["key"]),
-                       "startpoint": name(p["startpoint"]), "endpoint": name(p["endpoint"]),
-                       "arrival_ns": p["arrival"], "slack_ns": p["slack"],
-                       "min_period_ns": round(period - p["slack"], 3), "cells": len(p["cells"]),
-                       "through": p["through"]})
+
+    def stage_rows(paths):
+        rows = []
+        for p in paths:
+            g = groups.get(p["group"], {"key": p["group"], "instance": "", "module": ""})
+            rows.append({"group": g["key"], "stage": STAGE_OF.get(g["key"], g["key"]),
+                         "startpoint": name(p["startpoint"]), "endpoint": name(p["endpoint"]),
+                         "arrival_ns": p["arrival"], "slack_ns": p["slack"],
+                         "min_period_ns": round(period - p["slack"], 3), "cells": len(p["cells"]),
+                         "through": p["through"]})
+        return rows
+
+    stages = stage_rows(sta.parse_checks(reports["setup"]))
+    holds = stage_rows(sta.parse_checks(reports["hold"]))
+    if not stages or not holds:
+        raise RuntimeError("OpenSTA reported no setup or no hold path")
+    for h in holds:
+        h.pop("min_period_ns")
     worst = min(stages, key=lambda s: s["slack_ns"])
-    return {"period_ns": period, "wns_ns": worst["slack_ns"], "fmax_mhz": round(sta.fmax_mhz(period, worst["slack_ns"]), 1),
-            "worst": worst, "stages": stages}
+    hold_worst = min(holds, key=lambda s: s["slack_ns"])
+    hold_viol = sta.parse_hold_violators(reports["hold_violators"])
+    trans = sta.parse_transition(reports["transition"])
+    cap = sta.parse_capacitance(sta_out)
+    if cap["worst"] is None:
+        raise RuntimeError("OpenSTA's run printed no capacitance check")
+    return {"period_ns": period, "constraints": sta.sdc_constraints(sdc),
+            "wns_ns": worst["slack_ns"], "fmax_mhz": round(sta.fmax_mhz(period, worst["slack_ns"]), 1),
+            "fmax_basis": FMAX_BASIS, "worst": worst, "stages": stages,
+            "hold": {"wns_ns": hold_worst["slack_ns"], "worst": hold_worst, "stages": holds,
+                     "violations": len(hold_viol), "violators": hold_viol[:20]},
+            "max_transition": {"worst": trans["worst"], "violations": len(trans["violations"]),
+                               "violators": trans["violations"][:20]},
+            "max_capacitance": {"worst": cap["worst"], "checked": cap["checked"],
+                                "violations": len(cap["violations"]), "violators": cap["violations"][:20]}}
+
+
+def signoff_errors(r: dict) -> list:
+    """What fails the sign-off checks of a synthesis record (hold, max transition, max
+    capacitance), each naming the worst offender; empty when all pass or no timing ran."""
+    t = r.get("timing")
+    if not t:
+        return []
+    if "hold" not in t:
+        return ["no sign-off checks in the record (made before they existed: rerun scripts/synth.py)"]
+    out = []
+    h = t["hold"]
+    if h["violations"] or h["wns_ns"] < 0:
+        w = h["worst"]
+        out.append(f"hold: {h['violations']} endpoints violated, worst slack {w['slack_ns']:+.3f} ns "
+                   f"{w['startpoint']} -> {w['endpoint']} ({w['stage']})")
+    tr = t["max_transition"]
+    if tr["violations"]:
+        w = tr["worst"]
+        out.append(f"max transition: {tr['violations']} pins, worst {w['pin']} {w['transition_ns']:.3f} ns "
+                   f"> {w['limit_ns']:.3f} ns")
+    c = t["max_capacitance"]
+    if c["violations"]:
+        w = c["worst"]     # the driver of least slack: the worst violation
+        out.append(f"max capacitance: {c['violations']} drivers, worst {w['pin']} ({w['cell']}) "
+                   f"{w['load_pf']:.3f} pF > {w['limit_pf']:.3f} pF")
+    return out
 
 
 def assemble(name, profile, prof, a, a_old, ge, old_ge, memories, timing, times, lib, opts) -> dict:
@@ -111,12 +166,17 @@ def assemble(name, profile, prof, a, a_old, ge, old_ge, memories, timing, times,
     }
     if timing:
         mpix = timing["fmax_mhz"] / cpp
-        res["throughput"] = {"fmax_mhz": timing["fmax_mhz"], "mpixel_s": round(mpix, 2),
+        res["throughput"] = {"fmax_mhz": timing["fmax_mhz"], "fmax_basis": FMAX_BASIS, "mpixel_s": round(mpix, 2),
                              "realtime_mpixel_s": round(REALTIME_MPIX, 1), "meets_realtime": mpix >= REALTIME_MPIX,
                              "area_time_ge_clocks": round(res["logic_ge"] * cpp),
                              "area_time_total_ge_clocks": round(res["total_ge"] * cpp)}
         # Headline numbers at the top level too (the report's side-by-side summary reads those).
         res["fmax_mhz"] = timing["fmax_mhz"]
+        res["fmax_basis"] = FMAX_BASIS     # a routed block's derate may be applied later
+        res["fmax_label"] = FMAX_LABEL
+        res["hold_wns_ns"] = timing["hold"]["wns_ns"]
+        res["max_transition_violations"] = timing["max_transition"]["violations"]
+        res["max_capacitance_violations"] = timing["max_capacitance"]["violations"]
         res["mpixel_s"] = res["throughput"]["mpixel_s"]
         res["area_time_ge_clocks"] = res["throughput"]["area_time_ge_clocks"]
         res["worst_path_ns"] = round(timing["period_ns"] - timing["wns_ns"], 3)
@@ -156,8 +216,17 @@ def markdown(r: dict) -> str:
               + (f" (pst regress: {cpp_m:.3f})" if cpp_m is not None else "") + " |")
     if t:
         w = r["timing"]["worst"]
-        md += [f"| Fmax (OpenSTA) | {t['fmax_mhz']:.1f} MHz (worst slack {r['timing']['wns_ns']:+.2f} ns at "
-               f"{r['timing']['period_ns']:g} ns) |",
+        tm = r["timing"]
+        c = tm["constraints"]
+        md += [f"| Fmax (OpenSTA), {FMAX_LABEL} | {t['fmax_mhz']:.1f} MHz (worst setup slack {tm['wns_ns']:+.2f} ns at "
+               f"{tm['period_ns']:g} ns, clock uncertainty {c['setup_uncertainty_ns']:g} ns) |",
+               f"| hold (worst slack, clock uncertainty {c['hold_uncertainty_ns']:g} ns) | {tm['hold']['wns_ns']:+.3f} ns, "
+               f"{tm['hold']['violations']:,} violated endpoints |",
+               f"| max transition ({c['max_transition_ns']:g} ns) | {tm['max_transition']['violations']:,} violations "
+               f"(worst {tm['max_transition']['worst']['transition_ns']:.3f} ns at `{tm['max_transition']['worst']['pin']}`) |",
+               f"| max capacitance (liberty, per output pin) | {tm['max_capacitance']['violations']:,} violations of "
+               f"{tm['max_capacitance']['checked']:,} drivers (least slack: {tm['max_capacitance']['worst']['load_pf']:.3f} "
+               f"of {tm['max_capacitance']['worst']['limit_pf']:.3f} pF at `{tm['max_capacitance']['worst']['pin']}`) |",
                f"| throughput | {t['mpixel_s']:.2f} Mpixel/s ({'meets' if t['meets_realtime'] else 'misses'} "
                f"640x480 60 Hz depth 2: {t['realtime_mpixel_s']} Mpixel/s) |",
                f"| area-time (logic GE x clocks/pixel) | {t['area_time_ge_clocks']:,} |",
@@ -204,12 +273,22 @@ def markdown(r: dict) -> str:
                           f"{o['total_ge']:,} | {o['cycles_factor']} | {o['note']} |")
         md.append("")
     if r["timing"]:
-        md += [f"Critical path per stage (OpenSTA, scripts/synth/pst.sdc: {r['timing']['period_ns']:g} ns target; "
+        c = r["timing"]["constraints"]
+        md += [f"Critical path per stage (OpenSTA, {FMAX_LABEL}; scripts/synth/pst.sdc: {c['period_ns']:g} ns target, "
+               f"clock uncertainty {c['setup_uncertainty_ns']:g} ns setup / {c['hold_uncertainty_ns']:g} ns hold, "
+               f"clock transition {c['clock_transition_ns']:g} ns, input transition {c['input_transition_ns']:g} ns; "
                "worst path into each block's registers):\n",
                "| stage (block) | start point | end point | through | arrival ns | slack ns | min period ns | cells |",
                "|---|---|---|---|---:|---:|---:|---:|"]
         for s in sorted(r["timing"]["stages"], key=lambda s: s["slack_ns"]):
             md.append(f"| {s['stage']} | `{s['startpoint']}` | `{s['endpoint']}` | {', '.join(s.get('through', []))} | "
                       f"{s['arrival_ns']:.2f} | {s['slack_ns']:+.2f} | {s['min_period_ns']:.2f} | {s['cells']} |")
+        md.append("")
+        md += ["Hold per stage (OpenSTA, shortest path into each block's registers):\n",
+               "| stage (block) | start point | end point | arrival ns | slack ns | cells |",
+               "|---|---|---|---:|---:|---:|"]
+        for s in sorted(r["timing"]["hold"]["stages"], key=lambda s: s["slack_ns"]):
+            md.append(f"| {s['stage']} | `{s['startpoint']}` | `{s['endpoint']}` | {s['arrival_ns']:.2f} | "
+                      f"{s['slack_ns']:+.3f} | {s['cells']} |")
         md.append("")
     return "\n".join(md) + "\n"

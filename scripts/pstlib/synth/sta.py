@@ -39,12 +39,60 @@ foreach key [dict keys $pst_groups] {
 """
 
 
-def sta_script(libs: list, netlist: str, top: str, sdc: str, report: str) -> str:
+def cap_check_tcl(limits: dict, input_limit: float) -> str:
+    """Tcl that checks every net against the max_capacitance of the pin driving it (OpenSTA
+    2.0.17 does not check the liberty's limit): every leaf output pin with a limit in LIMITS
+    ("CELL/PIN" -> pF) and every data input port (driven by the SDC's driving cell, limit
+    INPUT_LIMIT). Prints `max_capacitance PIN CELL LOAD LIMIT` per violation and one
+    `max_capacitance_worst PIN CELL LOAD LIMIT CHECKED` line (the pin of least slack)."""
+    table = " ".join(f"{k} {v:g}" for k, v in sorted(limits.items()))
+    return r"""
+set pst_limits [dict create %s]
+set pst_corner [sta::cmd_corner]
+set pst_worst {}
+set pst_checked 0
+proc pst_cap_check {name cell net limit} {
+  global pst_corner pst_worst pst_checked
+  if {$net == "NULL"} { return }
+  set load [expr {[$net capacitance rise $pst_corner max] * 1e12}]
+  set fall [expr {[$net capacitance fall $pst_corner max] * 1e12}]
+  if {$fall > $load} { set load $fall }
+  incr pst_checked
+  set line [format "%%s %%s %%.4f %%.4f" $name $cell $load $limit]
+  if {$load > $limit} { puts "max_capacitance $line" }
+  if {$pst_worst == {} || $limit - $load < [lindex $pst_worst 0]} { set pst_worst [list [expr {$limit - $load}] $line] }
+}
+foreach inst [sta::network_leaf_instances] {
+  set cell [get_property $inst ref_name]
+  foreach pin [get_pins -of_objects $inst -filter "direction == output"] {
+    set key "$cell/[get_property $pin lib_pin_name]"
+    if {[dict exists $pst_limits $key]} { pst_cap_check [get_full_name $pin] $cell [$pin net] [dict get $pst_limits $key] }
+  }
+}
+foreach port [delete_from_list [all_inputs] [get_ports clk_i]] {
+  pst_cap_check [get_full_name $port] port [get_nets -quiet [get_full_name $port]] %g
+}
+if {$pst_worst != {}} { puts "max_capacitance_worst [lindex $pst_worst 1] $pst_checked" }
+""" % (table, input_limit)
+
+
+def sta_script(libs: list, netlist: str, top: str, sdc: str, reports: dict, cap_limits: dict,
+               input_limit: float) -> str:
+    """The design's OpenSTA run: setup per stage (REPORTS["setup"]), hold per stage
+    (["hold"]), every hold violation (["hold_violators"]), every max-transition violation and
+    the pin of least transition slack (["transition"]); the capacitance check goes to stdout
+    with the path groups."""
+    r = reports
     lines = [f"read_liberty {lib}" for lib in libs]
     lines += [f"read_verilog {netlist}", f"link_design {{{top}}}", f"read_sdc {sdc}",
               stage_groups_tcl(),
-              f"report_checks -path_delay max -group_count 1 -endpoint_count 1 -digits 3 -fields {{fanout cap slew}} > {report}",
-              f"report_wns -digits 3 >> {report}",
+              f"report_checks -path_delay max -group_count 1 -endpoint_count 1 -digits 3 -fields {{fanout cap slew}} > {r['setup']}",
+              f"report_wns -digits 3 >> {r['setup']}",
+              f"report_checks -path_delay min -group_count 1 -endpoint_count 1 -digits 3 -fields {{fanout cap slew}} > {r['hold']}",
+              f"report_check_types -min_delay -all_violators -format end -digits 3 > {r['hold_violators']}",
+              f"report_check_types -max_transition -digits 3 > {r['transition']}",
+              f"report_check_types -max_transition -all_violators -digits 3 >> {r['transition']}",
+              cap_check_tcl(cap_limits, input_limit),
               "exit"]
     return "\n".join(lines) + "\n"
 
@@ -103,7 +151,7 @@ def parse_groups(text: str) -> dict:
 
 
 def parse_checks(text: str) -> list:
-    """Paths of an OpenSTA `report_checks -path_delay max` report (full format): one dict per
+    """Paths of an OpenSTA `report_checks -path_delay max` or `min` report (full format): one dict per
     path with group, startpoint, endpoint (and their kinds), arrival, required and slack in
     ns, and the cell types of the combinational cells on it (launching and capturing
     registers and ports left out)."""
@@ -151,12 +199,80 @@ def parse_checks(text: str) -> list:
     return paths
 
 
+_SLACK = r"(-?[0-9.]+) \((MET|VIOLATED)\)"
+_TRANSITION_ROW = re.compile(rf"^(\S+)\s+(-?[0-9.]+)\s+(-?[0-9.]+)\s+{_SLACK}$")
+_END_ROW = re.compile(rf"^(\S+) \((\S+)\)\s+(-?[0-9.]+)\s+(-?[0-9.]+)\s+{_SLACK}$")
+
+
+def parse_transition(text: str) -> dict:
+    """`report_check_types -max_transition` (the pin of least slack) and its `-all_violators`
+    form: {worst: {pin, limit_ns, transition_ns, slack_ns} or None, violations: [the same, one
+    per pin]}."""
+    rows = {}
+    for line in text.splitlines():
+        m = _TRANSITION_ROW.match(line.strip())
+        if m:
+            rows[m.group(1)] = {"pin": m.group(1), "limit_ns": float(m.group(2)),
+                                "transition_ns": float(m.group(3)), "slack_ns": float(m.group(4))}
+    worst = min(rows.values(), key=lambda r: r["slack_ns"], default=None)
+    return {"worst": worst, "violations": [r for r in rows.values() if r["slack_ns"] < 0]}
+
+
+def parse_hold_violators(text: str) -> list:
+    """`report_check_types -min_delay -all_violators -format end`: one {endpoint, cell,
+    slack_ns} per violated endpoint."""
+    out = []
+    for line in text.splitlines():
+        m = _END_ROW.match(line.strip())
+        if m and m.group(6) == "VIOLATED":
+            out.append({"endpoint": m.group(1), "cell": m.group(2), "slack_ns": float(m.group(5))})
+    return out
+
+
+def parse_capacitance(text: str) -> dict:
+    """The lines of cap_check_tcl: {worst: {pin, cell, load_pf, limit_pf} or None, checked:
+    drivers checked, violations: [the same per violating driver]}."""
+    def row(parts):
+        return {"pin": parts[1], "cell": parts[2], "load_pf": float(parts[3]), "limit_pf": float(parts[4])}
+    out = {"worst": None, "checked": 0, "violations": []}
+    for line in text.splitlines():
+        parts = line.split()
+        if len(parts) == 5 and parts[0] == "max_capacitance":
+            out["violations"].append(row(parts))
+        elif len(parts) == 6 and parts[0] == "max_capacitance_worst":
+            out["worst"] = row(parts)
+            out["checked"] = int(parts[5])
+    return out
+
+
+def sdc_driving_cell(text: str) -> str:
+    """The library cell the SDC drives the data inputs with."""
+    m = re.search(r"set_driving_cell\b[^\n]*-lib_cell\s+(\S+)", text)
+    if not m:
+        raise ValueError("SDC has no set_driving_cell -lib_cell")
+    return m.group(1)
+
+
 def fmax_mhz(period_ns: float, worst_slack_ns: float) -> float:
     """The clock the design reaches: the target period less the worst slack."""
     need = period_ns - worst_slack_ns
     if need <= 0:
         raise ValueError(f"period {period_ns} ns less slack {worst_slack_ns} ns is not positive")
     return 1000.0 / need
+
+
+def sdc_constraints(text: str) -> dict:
+    """The SDC's clock uncertainty (setup, hold), clock transition, data input transition and
+    max transition in ns (None where the SDC sets none)."""
+    def num(pattern):
+        m = re.search(pattern, text)
+        return float(m.group(1)) if m else None
+    return {"period_ns": sdc_period(text),
+            "setup_uncertainty_ns": num(r"set_clock_uncertainty\s+-setup\s+([0-9.]+)"),
+            "hold_uncertainty_ns": num(r"set_clock_uncertainty\s+-hold\s+([0-9.]+)"),
+            "clock_transition_ns": num(r"set_clock_transition\s+([0-9.]+)"),
+            "input_transition_ns": num(r"-input_transition_rise\s+([0-9.]+)"),
+            "max_transition_ns": num(r"set_max_transition\s+([0-9.]+)")}
 
 
 def sdc_period(text: str) -> float:

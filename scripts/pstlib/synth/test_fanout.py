@@ -92,8 +92,14 @@ def test_buffers_where_the_rule_says():
     # The enable (3 instances, one through an alias) and d_i[0] (u0 and u1). Not: clk_i (clock),
     # d_i[3:1] (u1 only), lone[*] (one instance each), a_i (two pins of u2: one instance),
     # q_o (an output port), the library cells' pins.
-    assert src == sorted(["\\en.q", "\\en.q", "en_alias", "d_i[0]", "d_i[0]"])   # u1's through its alias
-    assert counts == {"top": 5}
+    # One root buffer per net on the net's driver, one leaf buffer per instance fed by the root.
+    roots = {y: a for a, y in bufs.values() if not a.startswith("_fob")}
+    assert sorted(roots.values()) == ["\\en.q", "d_i[0]"]
+    leaves = sorted(a for a, _ in bufs.values() if a.startswith("_fob"))
+    en_root = next(y for y, a in roots.items() if a == "\\en.q")
+    d_root = next(y for y, a in roots.items() if a == "d_i[0]")
+    assert leaves == sorted([en_root] * 3 + [d_root] * 2)   # the enable's three (u1's through its alias)
+    assert counts == {"top": 7}
     wire = {a: y for a, y in bufs.values()}
     assert pin(out, "\\u0.x", "en_i").startswith("_fob")
     assert pin(out, "u1", "en_i").startswith("_fob")
@@ -105,15 +111,32 @@ def test_buffers_where_the_rule_says():
     assert pin(out, "u1", "clk_i") == "clk_i"
     assert wire  # every buffer drives a wire used by exactly one instance pin
     for _, y in bufs.values():
-        assert len(re.findall(rf"\b{y}\b", out)) == 3   # declared, driven, used once
+        uses = {en_root: 3, d_root: 2}.get(y, 1)
+        assert len(re.findall(rf"\b{y}\b", out)) == 2 + uses   # declared, driven, its loads
     # The leaf module and everything else unchanged.
     assert out.split("module top")[0] == NETLIST.split("module top")[0]
 
 
+def test_tree_feeds_limits_every_buffer_fanout():
+    made = []
+
+    def buf(src):
+        made.append(src)
+        return f"w{len(made)}"
+    assert fanout.tree_feeds("r", 5, buf, max_fanout=16) == ["r"] * 5 and made == []
+    feeds = fanout.tree_feeds("r", 40, buf, max_fanout=16)
+    assert len(feeds) == 40 and made == ["r", "r", "r"]            # three buffers under the root
+    assert [feeds.count(w) for w in ("w1", "w2", "w3")] == [16, 16, 8]
+    made.clear()
+    feeds = fanout.tree_feeds("r", 300, buf, max_fanout=16)       # 19 buffers need a level of 2
+    assert len(feeds) == 300 and max(feeds.count(w) for w in set(feeds)) <= 16
+    assert made.count("r") == 2 and len(made) == 21
+
+
 def test_threshold():
     out, counts = fanout.insert_buffers(NETLIST, min_instances=3)
-    assert counts == {"top": 3}
-    assert sorted(a for a, _ in buffers(out).values()) == ["\\en.q", "\\en.q", "en_alias"]
+    assert counts == {"top": 4}
+    assert sorted(a for a, _ in buffers(out).values() if not a.startswith("_fob")) == ["\\en.q"]
     out, counts = fanout.insert_buffers(NETLIST, min_instances=4)
     assert out == NETLIST and counts == {}
 
