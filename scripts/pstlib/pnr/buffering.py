@@ -1,5 +1,6 @@
-"""Is the synthesis' hand-written fanout step (pstlib/synth/fanout.py: one BUFX4 per
-sub-module instance on nets into several instances) as good as buffering from the library?
+"""Is the synthesis' hand-written fanout step (pstlib/synth/fanout.py: a BUFX4 per sub-module
+instance on nets into several instances, fed by a tree of BUFX4) as good as buffering from
+the library?
 
 The profile's timed netlist without those buffers is flattened and buffered by qflow's
 blifFanout (buffer trees from the liberty's pin capacitances: at most 16 loads and 30 fF per
@@ -25,10 +26,16 @@ def strip_fanout_buffers(netlist: str) -> tuple:
     for mod in re.split(r"(?m)^(?=module )", netlist):
         src = {w: s for s, w in cell.findall(mod)}
         n += len(src)
+
+        def root(w):
+            # The buffers form a tree: a buffer's input may be another buffer's output.
+            while w in src:
+                w = src[w]
+            return w
         mod = cell.sub("", mod)
         mod = re.sub(rf"(?m)^\s*wire {PREFIX}\d+_;\n", "", mod)
         if src:
-            mod = re.sub(rf"{PREFIX}\d+_(?!\w)", lambda m: src[m.group(0)], mod)
+            mod = re.sub(rf"{PREFIX}\d+_(?!\w)", lambda m: root(m.group(0)), mod)
         out.append(mod)
     return "".join(out), n
 
