@@ -70,10 +70,13 @@ def run_block(name: str, info: dict, work: pathlib.Path, lib: pathlib.Path, out:
         raise RuntimeError(f"{module}: {len(unmatched)} routed nets not in the netlist (first {unmatched[0]})")
     (p.path / f"{module}.spef").write_text(spef_text)
     period = synth_sta.sdc_period(SDC.read_text())
-    sta = {}
-    for tag, sp in (("pre_layout", None), ("post_route", p.path / f"{module}.spef")):
-        run_sta(timing.script(lib, sta_v, module, SDC, sp, str(p.path / tag)), p.path, tag)
-        sta[tag] = timing.summary({k: (p.path / f"{tag}.{k}").read_text() for k in timing.REPORTS}, period)
+    runs = {}
+    for tag, sp, prop in (("pre_layout", None, False), ("post_route", p.path / f"{module}.spef", True),
+                          ("post_route_pins", p.path / f"{module}.spef", False)):
+        _, stdout = run_sta(timing.script(lib, sta_v, module, SDC, sp, str(p.path / tag), prop), p.path, tag)
+        runs[tag] = timing.summary({k: (p.path / f"{tag}.{k}").read_text() for k in timing.REPORTS}, stdout, period)
+    sta = {"pre_layout": timing.combine(runs["pre_layout"], runs["pre_layout"]),
+           "post_route": timing.combine(runs["post_route"], runs["post_route_pins"])}
     times["extract_and_sta"] = round(time.time() - t0, 1)
     fig = layout.def_figures((p.layout / f"{module}.def").read_text(),
                              layout.lef_sizes(qflow.LEF.read_text()))
