@@ -2,6 +2,7 @@
 """Place and route of one hardware profile, block by block, with Debian's qflow (OSU 0.18 µm).
 
     scripts/pnr.py PROFILE [--out DIR] [--jobs N] [--limit CELLS] [--block NAME ...] [--resume]
+                           [--update-derate]
 
 Writes DIR/PROFILE.json and DIR/PROFILE.md (default DIR: out/pnr) and, per block,
 DIR/PROFILE/BLOCK.{def,gds,spef,png}; the qflow projects stay in DIR/PROFILE/work/. Exit 2
@@ -36,7 +37,7 @@ import sys
 from pstlib import procs
 from pstlib.paths import ROOT, profile_path
 from pstlib.pnr import flow, partition, qflow, report
-from pstlib.synth import flow as synth_flow
+from pstlib.synth import flow as synth_flow, report as synth_report
 
 
 def main(argv=None) -> int:
@@ -47,11 +48,17 @@ def main(argv=None) -> int:
     ap.add_argument("--jobs", type=int, default=1, help="blocks placed and routed at once")
     ap.add_argument("--limit", type=int, default=partition.LIMIT, help="largest block, in cells")
     ap.add_argument("--block", action="append", default=[], help="run only this block (repeatable)")
+    ap.add_argument("--update-derate", action="store_true",
+                    help="write the worst block's post-route / pre-layout Fmax ratio to "
+                         "scripts/synth/layout_derate.json (every synthesis then reports its Fmax derated by it)")
     ap.add_argument("--resume", action="store_true",
                     help="keep the synthesis netlist and the qflow steps a previous run finished")
     args = ap.parse_args(argv)
     if args.jobs < 1 or args.limit < 100:
         print("error: --jobs must be >= 1 and --limit >= 100", file=sys.stderr)
+        return 2
+    if args.update_derate and args.block:
+        print("error: --update-derate needs every block (no --block)", file=sys.stderr)
         return 2
     opts = flow.Options(out=pathlib.Path(args.out), rom_dir=pathlib.Path(args.rom_dir), jobs=args.jobs,
                         limit=args.limit, only=tuple(args.block), resume=args.resume)
@@ -68,6 +75,9 @@ def main(argv=None) -> int:
         procs.stop_children()
         return 130
     print(report.markdown(result))
+    if args.update_derate:
+        report.write_derate(result, synth_report.DERATE_FILE)
+        print(f"derate {result['fmax_ratio_post_over_pre']} -> {synth_report.DERATE_FILE}")
     return 0
 
 

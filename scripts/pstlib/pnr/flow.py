@@ -93,16 +93,18 @@ def run_block(name: str, info: dict, work: pathlib.Path, lib: pathlib.Path, out:
 
 def place_and_route(profile, opts: Options) -> dict:
     """The whole profile: synthesis, cut, every block, the record OUT/NAME.json (and .md)."""
+    profile = pathlib.Path(profile)
+    so = synth_flow.Options(out=pathlib.Path(opts.out) / profile.stem / "work" / "synth", rom_dir=opts.rom_dir,
+                            keep=True, old_basis=False, reuse=opts.resume,
+                            mem_cache=ROOT / "out" / "synth" / "memories")
+    synth_flow.check_inputs(profile, so)      # bad input before anything is written
     if not qflow.available():
         raise synth_flow.InputError("qflow with the OSU018 technology is not installed (scripts/setup.sh --pnr)")
-    profile = pathlib.Path(profile)
     name = profile.stem
     out = pathlib.Path(opts.out) / name
     work = out / "work"
     work.mkdir(parents=True, exist_ok=True)
     t0 = time.time()
-    so = synth_flow.Options(out=work / "synth", rom_dir=opts.rom_dir, keep=True, old_basis=False,
-                            reuse=opts.resume, mem_cache=ROOT / "out" / "synth" / "memories")
     synth = synth_flow.synthesize(profile, so)
     t_synth = time.time() - t0
     lib = liberty.osu018_lib()

@@ -1,4 +1,11 @@
-"""The record of a profile placed and routed block by block, and its Markdown."""
+"""The record of a profile placed and routed block by block, its Markdown, and the derate
+file every synthesis reads (scripts/synth/layout_derate.json)."""
+import datetime
+import json
+import pathlib
+import subprocess
+
+from ..paths import ROOT
 
 TARGET_MHZ = 100.0
 
@@ -88,3 +95,18 @@ def markdown(r: dict) -> str:
     md.append("")
     md += [f"![{b['block']}]({r['profile']}/{b['png']})" for b in r["blocks"]]
     return "\n".join(md) + "\n"
+
+
+def write_derate(r: dict, path) -> None:
+    """The worst block's post-route / pre-layout ratio, with where it comes from."""
+    sha = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True,
+                         text=True).stdout.strip() or "unknown"
+    slow = next(b for b in r["blocks"] if b["block"] == r["post_route_slowest_block"])
+    doc = {"profile": r["profile"], "ratio": r["fmax_ratio_post_over_pre"],
+           "source": f"scripts/pnr.py {r['profile']} on {sha}, {datetime.date.today().isoformat()}",
+           "worst_ratio_block": min(r["blocks"], key=lambda b: b["fmax_ratio"])["block"],
+           "post_route_fmax_mhz": r["post_route_fmax_mhz"], "slowest_block": r["post_route_slowest_block"],
+           "slowest_block_pre_layout_fmax_mhz": slow["sta"]["pre_layout"]["fmax_mhz"],
+           "block_ratios": {b["block"]: b["fmax_ratio"] for b in r["blocks"]},
+           "method": r["method"]}
+    pathlib.Path(path).write_text(json.dumps(doc, indent=2) + "\n")

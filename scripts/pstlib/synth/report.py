@@ -56,6 +56,14 @@ def fanout_summary(per_module: dict, a: dict, cell_area: float, ge: float) -> di
 
 FMAX_BASIS = "pre-layout"
 FMAX_LABEL = "pre-layout (typical corner, no wire load)"
+# The post-route / pre-layout Fmax ratio of the routed reduced profile (scripts/pnr.py reduced
+# --update-derate writes it): every profile's pre-layout Fmax is also given derated by it.
+DERATE_FILE = SDC.parent / "layout_derate.json"
+
+
+def layout_derate():
+    """{ratio, source, ...} of the last routed profile, or None when none was routed."""
+    return json.loads(DERATE_FILE.read_text()) if DERATE_FILE.exists() else None
 
 
 def timing_result(reports: dict, sta_out: str, name=lambda p: p) -> dict:
@@ -172,8 +180,15 @@ def assemble(name, profile, prof, a, a_old, ge, old_ge, memories, timing, times,
                              "area_time_total_ge_clocks": round(res["total_ge"] * cpp)}
         # Headline numbers at the top level too (the report's side-by-side summary reads those).
         res["fmax_mhz"] = timing["fmax_mhz"]
-        res["fmax_basis"] = FMAX_BASIS     # a routed block's derate may be applied later
+        res["fmax_basis"] = FMAX_BASIS
         res["fmax_label"] = FMAX_LABEL
+        d = layout_derate()
+        if d:
+            res["fmax_derated_mhz"] = round(timing["fmax_mhz"] * d["ratio"], 1)
+            res["fmax_derate"] = d
+            res["throughput"]["fmax_derated_mhz"] = res["fmax_derated_mhz"]
+            res["throughput"]["mpixel_s_derated"] = round(res["fmax_derated_mhz"] / cpp, 2)
+            res["throughput"]["meets_realtime_derated"] = res["fmax_derated_mhz"] / cpp >= REALTIME_MPIX
         res["hold_wns_ns"] = timing["hold"]["wns_ns"]
         res["max_transition_violations"] = timing["max_transition"]["violations"]
         res["max_capacitance_violations"] = timing["max_capacitance"]["violations"]
@@ -220,6 +235,10 @@ def markdown(r: dict) -> str:
         c = tm["constraints"]
         md += [f"| Fmax (OpenSTA), {FMAX_LABEL} | {t['fmax_mhz']:.1f} MHz (worst setup slack {tm['wns_ns']:+.2f} ns at "
                f"{tm['period_ns']:g} ns, clock uncertainty {c['setup_uncertainty_ns']:g} ns) |",
+               *([f"| Fmax derated by {r['fmax_derate']['ratio']:.3f} (post-route / pre-layout of the routed "
+                  f"{r['fmax_derate']['profile']} profile, {r['fmax_derate']['source']}) | {r['fmax_derated_mhz']:.1f} MHz: "
+                  f"{t['mpixel_s_derated']:.2f} Mpixel/s ({'meets' if t['meets_realtime_derated'] else 'misses'} "
+                  f"{t['realtime_mpixel_s']:.1f}) |"] if r.get("fmax_derated_mhz") else []),
                f"| hold (worst slack, clock uncertainty {c['hold_uncertainty_ns']:g} ns) | {tm['hold']['wns_ns']:+.3f} ns, "
                f"{tm['hold']['violations']:,} violated endpoints |",
                f"| max transition ({c['max_transition_ns']:g} ns) | {tm['max_transition']['violations']:,} violations "
