@@ -88,7 +88,8 @@ def main() -> int:
 
 def add_profile(base: dict, path: pathlib.Path, out: pathlib.Path, name: str) -> int:
     """--add NAME: NAME's figures from OUT/synth/NAME.json (and OUT/regress.json's PSNRs when
-    present) into the baseline, which must have been made with the same tools."""
+    present, else the baseline's own) into the baseline, which must have been made with the
+    same tools."""
     f = out / "synth" / f"{name}.json"
     if not f.exists():
         print(f"error: {f}: missing (run scripts/synth.py {name})", file=sys.stderr)
@@ -107,7 +108,12 @@ def add_profile(base: dict, path: pathlib.Path, out: pathlib.Path, name: str) ->
         return 1
     reg_path = out / "regress.json"
     regress = json.loads(reg_path.read_text()) if reg_path.exists() else []
-    base["profiles"].update(baseline.collect(synth, regress))
+    new = baseline.collect(synth, regress)
+    # The PSNRs come from the regression, not the synthesis: kept when this run has none.
+    for k in ("psnr_db", "regress_size"):
+        if k not in new[name] and k in base["profiles"].get(name, {}):
+            new[name][k] = base["profiles"][name][k]
+    base["profiles"].update(new)
     path.write_text(json.dumps(base, indent=2, sort_keys=True) + "\n")
     print(f"baseline: {name} added to {path}")
     return 0

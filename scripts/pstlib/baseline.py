@@ -23,6 +23,11 @@ def collect(synth: dict, regress: list) -> dict:
         }
         if s.get("timing"):
             p["fmax_mhz"] = s["timing"]["fmax_mhz"]
+            # Which constraints the Fmax was timed with (an entry without it predates the
+            # sign-off SDC: ideal clock, no uncertainty).
+            c = s["timing"].get("constraints") or {}
+            if c.get("setup_uncertainty_ns") is not None:
+                p["fmax_setup_uncertainty_ns"] = c["setup_uncertainty_ns"]
         out[name] = p
     for r in regress:
         name = r.get("profile")

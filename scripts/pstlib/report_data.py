@@ -8,6 +8,8 @@ import re
 from dataclasses import dataclass, field
 from typing import Optional
 
+from . import silicon_table
+
 
 class InputError(Exception):
     """An input file is missing or malformed: `FILE: what is wrong`."""
@@ -230,7 +232,7 @@ def collect(out_dir) -> Report:
     synth = root / "synth"
     # The two profiles and any other profile the regression ran (out/synth also holds the
     # sweep's points, <base>_<knob>_<value>.json: those belong to the sweep's section).
-    names = ["reduced", "full"]
+    names = ["full", "reduced", "balanced"]
     names += sorted({r["profile"] for r in rep.runs} - set(names))
     for name in names:
         rep.gates.append(read_included(f"Gates and timing: {name}", f"gates-{name}", synth / f"{name}.md", root,
@@ -296,24 +298,31 @@ def flatten_figures(data: dict) -> dict:
     return out
 
 
-def gate_summary(gates: list) -> Optional[Table]:
-    """Headline figures of each synthesized profile: every number at the top level of
-    out/synth/<profile>.json (logic GE, flip-flops, memory bits, and whatever the synthesis
-    adds: area, Fmax, ...), one column per profile; keys a profile lacks are '-'. Fmax rows carry
-    the synthesis's basis (fmax_label: pre-layout, typical corner, no wire load)."""
+def gate_summary(gates: list, root: Optional[pathlib.Path] = None, runs: list = ()) -> Optional[Table]:
+    """The silicon table (pstlib/silicon_table.py: the README's rows) of each synthesized
+    profile, named profiles first: out/synth/<profile>.json, the post-route Fmax of
+    out/pnr/<profile>.json when the profile was placed and routed, the worst paper scene of the
+    regression RUNS; the last row links each profile's raw JSON."""
     present = [g for g in gates if g.data]
     if not present:
         return None
-    flat = [flatten_figures(g.data) for g in present]
-    keys = []
-    for f in flat:
-        keys += [k for k in f if k not in keys]
-    t = Table(columns=["figure"] + [g.data.get("profile", g.anchor.split("-", 1)[1]) for g in present], rows=[])
-    t.fmt = [""] + ["auto"] * len(present)
-    basis = next((g.data["fmax_label"] for g in present if g.data.get("fmax_label")), None)
-    for k in keys:
-        label = k.replace("_", " ") + (f", {basis}" if basis and "fmax" in k else "")
-        t.rows.append([label] + [f.get(k) for f in flat])
+    order = {n: i for i, n in enumerate(silicon_table.PROFILES)}
+    present.sort(key=lambda g: order.get(g.data.get("profile"), len(order)))
+    profiles = []
+    for g in present:
+        name = g.data.get("profile", g.anchor.split("-", 1)[1])
+        pnr_file = root / "pnr" / f"{name}.json" if root else None
+        pnr = json.loads(pnr_file.read_text()) if pnr_file and pnr_file.exists() else None
+        psnr = {scene_stem(r): r["vs_reference"]["psnr"] for r in runs
+                if r.get("profile") == name and (r.get("vs_reference") or {}).get("psnr") is not None}
+        profiles.append(silicon_table.from_synth({"profile": name, **g.data}, pnr, psnr or None))
+    t = Table(columns=["figure"] + [p["profile"] for p in profiles], rows=[])
+    t.fmt = [""] * (len(profiles) + 1)
+    for row in silicon_table.rows(profiles):
+        t.rows.append(row)
         t.failed.append(False)
         t.links.append({})
+    t.rows.append(["raw figures"] + [""] * len(profiles))
+    t.failed.append(False)
+    t.links.append({p["profile"]: [(f"synth/{p['profile']}.json", f"synth/{p['profile']}.json")] for p in profiles})
     return t

@@ -165,11 +165,13 @@ def render(rep: Report, embed_all: bool = False) -> str:
         section("images", "Images", "".join(parts))
 
     if rep.gates:
-        summary = gate_summary(rep.gates)
+        summary = gate_summary(rep.gates, rep.root, rep.runs)
         parts = []
         if summary is not None:
-            parts.append("<p>Headline figures of out/synth/&lt;profile&gt;.json ('-': not reported for "
-                         "that profile).</p>" + table(summary, cls="gates-summary"))
+            parts.append("<p>The silicon table (the README's rows) of each synthesized profile: "
+                         "out/synth/&lt;profile&gt;.json, post-route from out/pnr/&lt;profile&gt;.json when the "
+                         "profile was routed ('-': not reported for that profile); the raw JSON in the last row.</p>"
+                         + table(summary, cls="gates-summary"))
         parts += [included(g, 3) for g in rep.gates]
         section("gates", "Gates and timing", "".join(parts))
     for f in rep.figures:

@@ -44,7 +44,7 @@ def render(rep: Report, image_links) -> str:
         if rep.notes:
             out.append("Driver notes (what the hardware does differently from the scene's request):\n")
             out.append("\n".join(f"- {n}" for n in rep.notes) + "\n")
-    summary = gate_summary(rep.gates)
+    summary = gate_summary(rep.gates, rep.root, rep.runs)
     if summary is not None:
         out.append("## Gates and timing: summary\n")
         out.append(table(summary))

@@ -1,0 +1,96 @@
+"""The silicon table a designer reads first: one column per named profile, the same rows in
+the README (generated from scripts/synth/baseline.json and scripts/synth/layout_derate.json:
+`scripts/silicon_table.py --write`) and in the report (from out/synth/PROFILE.json and
+out/pnr/PROFILE.json).
+
+Each profile is normalized to one dict (`from_baseline`, `from_synth`) and `rows` turns the
+dicts into the table; the raw JSON stays one link away.
+"""
+from .synth.report import PAPER_GATES, REALTIME_MPIX
+
+PROFILES = ("full", "reduced", "balanced")
+GE_UM2 = 24.0     # NAND2X1 of OSU018: GE -> mm^2 where only GE are stored
+
+
+def _worst_psnr(psnr: dict):
+    if not psnr:
+        return None
+    scene = min(psnr, key=psnr.get)
+    return (scene, psnr[scene])
+
+
+def from_baseline(name: str, b: dict, derate) -> dict:
+    """A profile of scripts/synth/baseline.json (DERATE: layout_derate.json or None)."""
+    return {"profile": name, "logic_ge": b["logic_ge"], "memory_ge": b["memory_ge"], "total_ge": b["total_ge"],
+            "flip_flops": b["flip_flops"], "fmax_mhz": b.get("fmax_mhz"),
+            "signoff_sdc": b.get("fmax_setup_uncertainty_ns") is not None,
+            "post_route_mhz": derate["post_route_fmax_mhz"] if derate and derate["profile"] == name else None,
+            "derate": derate["ratio"] if derate else None,
+            "clocks_per_pixel": b["clocks_per_pixel"], "worst_psnr": _worst_psnr(b.get("psnr_db")),
+            "worst_path": None, "paper_gates": PAPER_GATES.get(name)}
+
+
+def from_synth(s: dict, pnr=None, psnr=None) -> dict:
+    """A profile of out/synth/PROFILE.json (PNR: out/pnr/PROFILE.json or None; PSNR: scene ->
+    dB of the regression, or None)."""
+    tm = s.get("timing") or {}
+    worst = tm.get("worst") or {}
+    d = s.get("fmax_derate")
+    return {"profile": s["profile"], "logic_ge": s.get("logic_ge"), "memory_ge": s.get("memory_ge"),
+            "total_ge": s.get("total_ge"), "flip_flops": s.get("flip_flops"), "fmax_mhz": s.get("fmax_mhz"),
+            "signoff_sdc": "constraints" in tm, "post_route_mhz": pnr["post_route_fmax_mhz"] if pnr else None,
+            "derate": d["ratio"] if d else None, "clocks_per_pixel": s.get("clocks_per_pixel"),
+            "worst_psnr": _worst_psnr(psnr), "paper_gates": s.get("paper_gates"),
+            "worst_path": (f"{worst['stage']}, {s['worst_path_ns']:.2f} ns" if worst.get("stage") and s.get("worst_path_ns")
+                           else None)}
+
+
+def _clock(p: dict):
+    """(MHz, label) the throughput is quoted at: post-route, else pre-layout derated, else
+    pre-layout."""
+    if p["post_route_mhz"]:
+        return p["post_route_mhz"], "post-route"
+    if p["fmax_mhz"] and p["derate"]:
+        return round(p["fmax_mhz"] * p["derate"], 1), "derated"
+    return p["fmax_mhz"], "pre-layout"
+
+
+def rows(profiles: list) -> list:
+    """[label, value per profile] rows (values as text, '-' when unknown)."""
+    def col(f):
+        return [f(p) for p in profiles]
+
+    def num(v, fmt="{:,}"):
+        return "-" if v is None else fmt.format(v)
+
+    out = [
+        ["logic GE", *col(lambda p: num(p["logic_ge"]))],
+        ["memory GE", *col(lambda p: num(p["memory_ge"]))],
+        ["total GE (mm^2)", *col(lambda p: "-" if p["total_ge"] is None else
+                                 f"{p['total_ge']:,} ({p['total_ge'] * GE_UM2 / 1e6:.1f})")],
+        ["flip-flops", *col(lambda p: num(p["flip_flops"]))],
+        ["Fmax pre-layout (typical, no wire)", *col(lambda p: "-" if not p["fmax_mhz"] else
+                                                    f"{p['fmax_mhz']:.1f} MHz" + ("" if p["signoff_sdc"] else " (ideal clock)"))],
+        ["Fmax post-route, or pre-layout x derate", *col(lambda p: "-" if not _clock(p)[0] else
+                                                         f"{_clock(p)[0]:.1f} MHz ({_clock(p)[1]}"
+                                                         + (f" x {p['derate']:.3f})" if _clock(p)[1] == "derated" else ")"))],
+        ["clocks per pixel", *col(lambda p: num(p["clocks_per_pixel"]))],
+        ["Mpixel/s at that clock", *col(lambda p: "-" if not (_clock(p)[0] and p["clocks_per_pixel"]) else
+                                        f"{_clock(p)[0] / p['clocks_per_pixel']:.2f}")],
+        [f"meets {REALTIME_MPIX:.1f} Mpixel/s", *col(lambda p: "-" if not (_clock(p)[0] and p["clocks_per_pixel"]) else
+                                                     ("yes" if _clock(p)[0] / p["clocks_per_pixel"] >= REALTIME_MPIX else "no"))],
+        ["logic GE x clocks per pixel", *col(lambda p: "-" if not (p["logic_ge"] and p["clocks_per_pixel"]) else
+                                             f"{p['logic_ge'] * p['clocks_per_pixel']:,}")],
+        ["worst path", *col(lambda p: p["worst_path"] or "-")],
+        ["worst paper scene", *col(lambda p: "-" if not p["worst_psnr"] else
+                                   f"{p['worst_psnr'][0]} {p['worst_psnr'][1]:.1f} dB")],
+        ["the paper's gate count", *col(lambda p: num(p["paper_gates"]))],
+    ]
+    return out
+
+
+def markdown(profiles: list) -> str:
+    head = ["figure", *(p["profile"] for p in profiles)]
+    lines = ["| " + " | ".join(head) + " |", "|---|" + "---:|" * len(profiles)]
+    lines += ["| " + " | ".join(r) + " |" for r in rows(profiles)]
+    return "\n".join(lines) + "\n"
