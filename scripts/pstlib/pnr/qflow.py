@@ -116,7 +116,40 @@ def route(p: Project) -> float:
     return s
 
 
+# Magic's OSU018 rules (SCN6M_SUBM.10.tech: "Metal2 area < 20", lambda 0.1 um) ask 0.2 um^2
+# of every metal island; qflow draws each block pin as a 0.3 x 0.3 um square (0.09 um^2) 1 um
+# inside the die edge, so every pin is a DRC error of the block on its own. Each such pin is
+# drawn PIN_LENGTH_UM tall about its centre (0.3 x 0.7 um = 0.21 um^2): along its track for
+# the bottom and top pins (vertical metal2, 0.8 um pitch), across it for the left and right
+# pins (horizontal metal3, whose tracks are 1.0 um apart: 0.5 um left to the next wire).
+# Found by DRC on the routed blocks: lengthened along x, a metal3 pin comes within 0.3 um of
+# the routing beside it (inwards) or shorts to qrouter's wires along the die edge (outwards).
+# The DRC and LVS that follow check the result.
+PIN_MIN_AREA_UM2 = 0.2
+PIN_LENGTH_UM = 0.7
+
+
+def widen_pins(def_text: str) -> tuple:
+    """The DEF with every block pin under PIN_MIN_AREA_UM2 drawn PIN_LENGTH_UM tall about its
+    centre, and how many were."""
+    units = float(re.search(r"^UNITS DISTANCE MICRONS (\d+)", def_text, re.M).group(1))
+    length = int(round(PIN_LENGTH_UM * units))
+    n = 0
+
+    def fix(m):
+        nonlocal n
+        layer, x1, y1, x2, y2 = m.group(1), *(int(v) for v in m.group(2, 3, 4, 5))
+        if (x2 - x1) * (y2 - y1) / units ** 2 >= PIN_MIN_AREA_UM2:
+            return m.group(0)
+        n += 1
+        return f"+ LAYER {layer} ( {x1} {-(length // 2)} ) ( {x2} {length - length // 2} )"
+    return re.sub(r"\+ LAYER (metal\d) \( (-?\d+) (-?\d+) \) \( (-?\d+) (-?\d+) \)", fix, def_text), n
+
+
 def migrate(p: Project) -> float:
+    routed = p.layout / f"{p.name}.def"
+    text, _ = widen_pins(routed.read_text())
+    routed.write_text(text)
     return _run(p, "migrate.sh", [p.path, p.name], [p.layout / f"{p.name}.mag"], "migrate.log")
 
 

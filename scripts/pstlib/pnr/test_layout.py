@@ -50,3 +50,15 @@ def test_wirelength_counts_every_segment():
 def test_unknown_cell_is_refused():
     with pytest.raises(ValueError, match="XOR9"):
         layout.def_figures(DEF.replace("DFFPOSX1_1 DFFPOSX1", "DFFPOSX1_1 XOR9"), layout.lef_sizes(LEF))
+
+
+def test_small_pins_drawn_taller():
+    from pstlib.pnr import qflow
+    d = ("UNITS DISTANCE MICRONS 100 ;\nPINS 3 ;\n- a + NET a\n  + LAYER metal2 ( -15 -15 ) ( 15 15 )\n"
+         "- b + NET b\n  + LAYER metal3 ( -15 -15 ) ( 15 15 )\n- vdd + NET vdd\n  + LAYER metal6 ( -80 -40 ) ( 80 40 )\n")
+    out, n = qflow.widen_pins(d)
+    assert n == 2
+    assert "+ LAYER metal2 ( -15 -35 ) ( 15 35 )" in out      # 0.3 x 0.7 um = 0.21 um^2
+    assert "+ LAYER metal3 ( -15 -35 ) ( 15 35 )" in out
+    assert "+ LAYER metal6 ( -80 -40 ) ( 80 40 )" in out      # 1.28 um^2: left alone
+    assert qflow.widen_pins(out)[1] == 0
