@@ -59,6 +59,7 @@ def run_block(name: str, info: dict, work: pathlib.Path, lib: pathlib.Path, out:
     module = f"blk_{name}"
     p = qflow.setup(work / "qflow" / name, module, info["netlist"], lib, resume)
     times = qflow.run_steps(p, resume)
+    density = times.pop("density")
     # Parasitics and timing.
     t0 = time.time()
     routed_v = (p.synthesis / f"{module}.rtlnopwr.v").read_text()
@@ -87,6 +88,7 @@ def run_block(name: str, info: dict, work: pathlib.Path, lib: pathlib.Path, out:
     (out / f"{name}.spef").write_text(spef_text)
     checks = qflow.results(p)
     return {"block": name, "instance": info["instance"], "cells_synth": info["cells_synth"], **fig, **checks,
+            "initial_density": density,
             "sta": sta, "fmax_ratio": round(sta["post_route"]["fmax_mhz"] / sta["pre_layout"]["fmax_mhz"], 3),
             "seconds": times, "png": png.name}
 

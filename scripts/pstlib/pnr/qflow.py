@@ -23,11 +23,17 @@ TECH = "osu018"
 TECH_DIR = pathlib.Path("/usr/share/qflow/tech/osu018")
 LEF = TECH_DIR / "osu018_stdcells.lef"
 DENSITY = 0.7     # graywolf's initial density (decongest): 66-70 % utilization in the trial
+DENSITY_STEP = 0.1    # a block qrouter cannot finish is placed again this much less dense,
+DENSITY_MIN = 0.4     # down to this
 STEP_TIMEOUT = 3 * 3600
 
 
 class FlowError(RuntimeError):
     """A qflow step failed (its log named)."""
+
+
+class Unrouted(FlowError):
+    """qrouter finished with nets it could not route (the placement is too dense)."""
 
 
 @dataclasses.dataclass
@@ -112,7 +118,7 @@ def route(p: Project) -> float:
     s = _run(p, "router.sh", [p.path, p.name], [p.layout / f"{p.name}.rc"], "route.log")
     out = (p.log / "router.sh.out").read_text()
     if "Final: No failed routes!" not in out:
-        raise FlowError(f"qrouter left nets unrouted in {p.name} (log {p.log / 'route.log'})")
+        raise Unrouted(f"qrouter left nets unrouted in {p.name} (log {p.log / 'route.log'})")
     return s
 
 
@@ -167,18 +173,46 @@ def gds(p: Project) -> float:
     return _run(p, "gdsii.sh", [p.path, p.name], [p.layout / f"{p.name}.gds"], "gdsii.log")
 
 
+def density(p: Project) -> float:
+    m = re.search(r"^set initial_density = ([0-9.]+)", (p.path / "project_vars.sh").read_text(), re.M)
+    return float(m.group(1)) if m else DENSITY
+
+
+def set_density(p: Project, d: float) -> None:
+    v = p.path / "project_vars.sh"
+    v.write_text(re.sub(r"^set initial_density = [0-9.]+", f"set initial_density = {d:.2f}", v.read_text(), flags=re.M))
+
+
 def run_steps(p: Project, resume: bool = False) -> dict:
     """Every step in order; step -> seconds. RESUME skips the steps a previous run finished
-    (log/STEP.done holds their seconds); a step run again makes every later one run again."""
+    (log/STEP.done holds their seconds); a step run again makes every later one run again.
+    When qrouter leaves nets unrouted, the block is placed again DENSITY_STEP less dense
+    (down to DENSITY_MIN) and routed again; the seconds of every try are summed."""
     times = {}
-    for step, fn in STEPS:
+    i = 0
+    while i < len(STEPS):
+        step, fn = STEPS[i]
         done = p.log / f"{step}.done"
         if resume and done.exists():
             times[step] = float(done.read_text())
+            i += 1
             continue
         resume = False
-        times[step] = round(fn(p), 1)
+        t0 = time.time()
+        try:
+            fn(p)
+        except Unrouted:
+            times[step] = times.get(step, 0.0) + round(time.time() - t0, 1)
+            d = round(density(p) - DENSITY_STEP, 2)
+            if d < DENSITY_MIN:
+                raise
+            set_density(p, d)
+            i = [s for s, _ in STEPS].index("place")
+            continue
+        times[step] = round(times.get(step, 0.0) + time.time() - t0, 1)
         done.write_text(f"{times[step]}\n")
+        i += 1
+    times["density"] = density(p)
     return times
 
 

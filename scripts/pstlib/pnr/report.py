@@ -79,7 +79,7 @@ def markdown(r: dict) -> str:
               f"({r['buffering']['blif_fanout_buffers']:,} buffers; "
               f"{'within' if r['buffering']['within_2_percent'] else 'NOT within'} 2 %) |"] if "buffering" in r else []),
           f"| time | synthesis {r['seconds']['synthesis']:.0f} s, all {r['seconds']['total'] / 60:.1f} min |", "",
-          "| block | instance | cells | FF | die um | util | wire mm | DRC | LVS | Fmax pre | Fmax post | ratio | "
+          "| block | instance | cells | FF | die um | util (placed at) | wire mm | DRC | LVS | Fmax pre | Fmax post | ratio | "
           "reg-reg post | hold ns | worst path (post) | place + route min |",
           "|---|---|---:|---:|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---|---:|"]
     for b in r["blocks"]:
@@ -87,7 +87,7 @@ def markdown(r: dict) -> str:
         cp = post["critical_path"]
         s = b["seconds"]
         md.append(f"| {b['block']} | `{b['instance']}` | {b['cells']:,} | {b['flip_flops']:,} | "
-                  f"{b['die_um'][0]:.0f} x {b['die_um'][1]:.0f} | {b['utilization']:.2f} | {b['wirelength_mm']:,.1f} | "
+                  f"{b['die_um'][0]:.0f} x {b['die_um'][1]:.0f} | {b['utilization']:.2f} ({b['initial_density']:.2f}) | {b['wirelength_mm']:,.1f} | "
                   f"{b['drc_errors']} | {'match' if b['lvs_match'] else 'MISMATCH'} | {pre['fmax_mhz']:.1f} | "
                   f"{post['fmax_mhz']:.1f} | {b['fmax_ratio']:.3f} | {post['reg2reg']['fmax_mhz']:.1f} | "
                   f"{post['hold_slack_ns']:+.3f} | `{cp['from']}` -> `{cp['to']}` ({cp['arrival_ns']:.2f} ns, "

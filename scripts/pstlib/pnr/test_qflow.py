@@ -1,0 +1,50 @@
+"""The step driver of pstlib/pnr/qflow.py: resume, and the retry at a lower density when
+qrouter leaves nets unrouted (the steps themselves replaced by stand-ins)."""
+import pytest
+
+from pstlib.pnr import qflow
+
+
+@pytest.fixture
+def project(tmp_path, monkeypatch):
+    (tmp_path / "log").mkdir()
+    (tmp_path / "project_vars.sh").write_text("set initial_density = 0.70\n")
+    calls = []
+    fails = {"route": 2}
+
+    def step(name):
+        def run(p):
+            calls.append((name, qflow.density(p)))
+            if fails.get(name, 0):
+                fails[name] -= 1
+                raise qflow.Unrouted("nets left")
+            return 1.0
+        return run
+    monkeypatch.setattr(qflow, "STEPS", [(n, step(n)) for n in ("synthesize", "place", "route", "drc")])
+    return qflow.Project(tmp_path, "blk"), calls, fails
+
+
+def test_unrouted_block_is_placed_again_less_dense(project):
+    p, calls, _ = project
+    times = qflow.run_steps(p)
+    assert [c[0] for c in calls] == ["synthesize", "place", "route", "place", "route", "place", "route", "drc"]
+    assert [c[1] for c in calls if c[0] == "place"] == [0.7, 0.6, 0.5]
+    assert times["density"] == 0.5 and (p.path / "log" / "drc.done").exists()
+
+
+def test_resume_skips_finished_steps(project):
+    p, calls, fails = project
+    fails["route"] = 0
+    qflow.run_steps(p)
+    (p.path / "log" / "drc.done").unlink()
+    calls.clear()
+    qflow.run_steps(p, resume=True)
+    assert [c[0] for c in calls] == ["drc"]
+
+
+def test_gives_up_below_the_least_density(project):
+    p, _, fails = project
+    fails["route"] = 10
+    with pytest.raises(qflow.Unrouted):
+        qflow.run_steps(p)
+    assert qflow.density(p) == pytest.approx(0.4)
