@@ -51,7 +51,9 @@ class Table:
 
 @dataclass
 class Layer:
-    """One image of a scene's viewer: `kind` reference | rtl | golden | truth | difference."""
+    """One image of a viewer: `kind` reference | rtl | golden | truth | difference (a scene's
+    regression), filtered | unfiltered | width (a reference render), atlas_render | per_pixel |
+    scale | atlas (a `pst atlas` run)."""
     label: str
     kind: str
     path: pathlib.Path             # absolute
@@ -74,6 +76,7 @@ class Included:
     text: Optional[str]            # None when missing
     missing: str = ""              # what to run to make it
     data: dict = field(default_factory=dict)   # a JSON file beside it, when there is one
+    view: Optional[SceneView] = None           # its images in a viewer (report.html), when it has one
 
 
 @dataclass
@@ -185,6 +188,32 @@ def read_included(title: str, anchor: str, path: pathlib.Path, root: pathlib.Pat
     return Included(title, anchor, text, missing, data)
 
 
+# The images `pst atlas` writes beside atlas.md, in the viewer's order (file, label, kind): the
+# textured render first and the per-pixel render second (the viewer's A and B), the atlas last.
+ATLAS_LAYERS = [("render_bilinear", "textured, bilinear", "atlas_render"),
+                ("per_pixel", "per-pixel render", "per_pixel"),
+                ("render_nearest", "textured, nearest", "atlas_render"),
+                ("render_trilinear", "textured, trilinear (MIP)", "atlas_render"),
+                ("truth", "ground truth", "truth"),
+                ("scale", "relative scale (Fig. 7)", "scale"),
+                ("atlas", "atlas (reference fill)", "atlas"),
+                ("atlas_rtl", "atlas (RTL fill)", "atlas"),
+                ("atlas_golden", "atlas (golden-model fill)", "atlas")]
+
+
+def atlas_view(d: pathlib.Path, data: dict) -> Optional[SceneView]:
+    """The viewer of one `pst atlas` run's folder: the images of ATLAS_LAYERS it has (the
+    hardware fill named by its profile from atlas.json), None when it has none."""
+    profile = (data.get("hardware") or {}).get("profile", "")
+    layers = []
+    for f, label, kind in ATLAS_LAYERS:
+        if (d / f"{f}.png").exists():
+            if profile and f in ("atlas_rtl", "atlas_golden"):
+                label = label.replace("(", f"({profile} ", 1)
+            layers.append(Layer(label, kind, d / f"{f}.png", profile if kind == "atlas" else ""))
+    return SceneView(f"atlas-{d.name}", layers, []) if layers else None
+
+
 def reference_table(root: pathlib.Path) -> Optional[Table]:
     reports = sorted(root.glob("*/report.json"))
     if not reports:
@@ -254,10 +283,13 @@ def collect(out_dir) -> Report:
         for md in sorted((root / kind).glob("*.md")):
             title = "Filter options against the ground truth" if kind == "fidelity" else f"{kind.capitalize()}: {md.stem}"
             rep.extras.append(read_included(title, f"{kind}-{md.stem}", md, root, ""))
-    # `pst atlas SCENE` runs (default folder out/atlas/<scene>): their atlas.md with its images.
+    # `pst atlas SCENE` runs (default folder out/atlas/<scene>): their atlas.md, its images also
+    # in a viewer.
     for md in sorted((root / "atlas").glob("*/atlas.md")):
-        rep.extras.append(read_included(f"Texture atlas: {md.parent.name}", f"atlas-{md.parent.name}", md, root, "",
-                                        md.parent / "atlas.json"))
+        inc = read_included(f"Texture atlas: {md.parent.name}", f"atlas-{md.parent.name}", md, root, "",
+                            md.parent / "atlas.json")
+        inc.view = atlas_view(md.parent, inc.data)
+        rep.extras.append(inc)
     rep.references = reference_table(root)
     return rep
 

@@ -18,7 +18,7 @@ try:
 except ImportError:     # report.md does not need it: report.py says what is missing
     markdown = None
 
-from .report_data import Report, Table, failures_first, gate_summary, regress_table, scene_stem
+from .report_data import Report, Table, failures_first, gate_summary, regress_table, rel, scene_stem
 
 ASSETS = pathlib.Path(__file__).resolve().parent.parent / "viewer"
 MIME = {".png": "image/png", ".jpg": "image/jpeg", ".jpeg": "image/jpeg", ".gif": "image/gif",
@@ -109,16 +109,28 @@ def scene_stats(view) -> str:
     return '<p class="scene-stats">' + "; ".join(parts) + "</p>\n"
 
 
-def included(inc, level: int = 2) -> str:
+def without_images(text: str, paths: set) -> str:
+    """The Markdown text without its images whose link is one of `paths`."""
+    return re.sub(r"!\[[^\]]*\]\(([^)\s]+)\)[ \t]*", lambda m: "" if m.group(1) in paths else m.group(0), text)
+
+
+def included(inc, root: pathlib.Path, level: int = 2) -> str:
+    """An included file's section: its text; with a viewer, the text without the images the
+    viewer shows (its tables above), then the viewer."""
     out = [f'<section id="{esc(inc.anchor)}">', anchor_heading(level, inc.anchor, inc.title)]
     if inc.text is None:
         out.append(f'<p class="missing">({esc(inc.missing)})</p>' if inc.missing else "")
     else:
+        text = inc.text
+        if inc.view is not None:
+            text = without_images(text, {rel(l.path, root) for l in inc.view.layers})
         # The included file's headings go below this section's heading.
-        levels = [len(m) for m in re.findall(r"^(#+) ", inc.text, flags=re.M)]
+        levels = [len(m) for m in re.findall(r"^(#+) ", text, flags=re.M)]
         shift = level + 1 - min(levels) if levels else 0
-        text = re.sub(r"^(#+) ", lambda m: "#" * min(6, len(m.group(1)) + shift) + " ", inc.text, flags=re.M)
+        text = re.sub(r"^(#+) ", lambda m: "#" * min(6, len(m.group(1)) + shift) + " ", text, flags=re.M)
         out.append('<div class="md">' + md_to_html(text) + "</div>")
+    if inc.view is not None:
+        out.append(f"<p>{esc(ATLAS_VIEWER_HELP)}</p>" + viewer(inc.view, root))
     out.append("</section>\n")
     return "\n".join(out)
 
@@ -127,6 +139,9 @@ VIEWER_HELP = ("Each viewer: pick images A and B; the toggle button (or key t on
                "them; 'slider' shows A left of the yellow line and B right of it; zoom with the wheel or "
                "+/- (pixels stay square, unsmoothed), drag to pan; the values of every image under the "
                "cursor are printed below it (8-bit RGB). Difference images: |image - reference| x 8.")
+ATLAS_VIEWER_HELP = ("The run's images in the viewer (as the scenes' in Images: A and B, toggle, slider, zoom, "
+                     "values under the cursor). Every layer is drawn on the first one's pixel grid: the "
+                     "N x N atlas is scaled to the render's size, zoom in to see its texels.")
 
 
 def render(rep: Report, embed_all: bool = False) -> str:
@@ -172,16 +187,16 @@ def render(rep: Report, embed_all: bool = False) -> str:
                          "out/synth/&lt;profile&gt;.json, post-route from out/pnr/&lt;profile&gt;.json when the "
                          "profile was routed ('-': not reported for that profile); the raw JSON in the last row.</p>"
                          + table(summary, cls="gates-summary"))
-        parts += [included(g, 3) for g in rep.gates]
+        parts += [included(g, rep.root, 3) for g in rep.gates]
         section("gates", "Gates and timing", "".join(parts))
     for f in rep.figures:
         nav.append(f'<a href="#{esc(f.anchor)}">{esc(f.title)}</a>')
-        body.append(included(f))
+        body.append(included(f, rep.root))
     if rep.sweeps:
-        section("sweeps", "Sweeps", "".join(included(s, 3) for s in rep.sweeps))
+        section("sweeps", "Sweeps", "".join(included(s, rep.root, 3) for s in rep.sweeps))
     for x in rep.extras:
         nav.append(f'<a href="#{esc(x.anchor)}">{esc(x.title)}</a>')
-        body.append(included(x))
+        body.append(included(x, rep.root))
     if rep.references is not None:
         section("references", "Reference renders",
                 "<p>Ground truth: n x n jittered, unfiltered samples per pixel. RMS over RGB in [0, 1].</p>"

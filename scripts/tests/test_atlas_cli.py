@@ -158,6 +158,8 @@ def test_mip_not_uniform(tmp_path):
             r"--atlas: the multiresolution atlas \(--mip\) is uniform", out)
 
 
+# --mip pairs triangles across shared edges: an edge on three triangles is refused, named by the
+# OBJ file (the scene's `file` key, line 19) with the count; the strip atlas takes it.
 def test_mip_non_manifold_mesh(tmp_path):
     s = tmp_path / "obj.toml"
     s.write_text(OBJ_SCENE)
@@ -165,9 +167,31 @@ def test_mip_non_manifold_mesh(tmp_path):
     (tmp_path / "m.obj").write_text("v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 -1 0\nv 0 0 1\nf 1 2 3\nf 2 1 4\nf 1 2 5\n")
     out = tmp_path / "out"
     refused(["atlas", s, "--mip", "--size", 64, "-o", out, "-q"],
-            r"--mip: triangle \d+ of object 0: an edge shared by 3 triangles \(non-manifold\)", out)
+            re.escape(f"{s}:19: objects[0].file: {tmp_path / 'm.obj'}: 1 edge on 3 or more triangles (non-manifold; "
+                      "up to 3 on one edge, the first at triangle 0); --mip pairs triangles across their shared "
+                      "edges, which needs every edge on at most two triangles"), out)
     rc, _, err = pst("atlas", s, "--size", 64, "--truth", 1, "-o", out, "-q")  # the strip atlas takes it
     assert rc == 0, err
+    assert json.loads((out / "atlas.json").read_text())["mesh_edges"] == {"open": 6, "non_manifold": 1}
+
+
+# An open mesh (a cube without its +x face: 4 edges on one triangle) is accepted, with --mip too:
+# the dual graph only lacks the hole's 4 adjacencies; atlas.json counts the open edges.
+CUBE_WITHOUT_PLUS_X = ("v -1 -1 -1\nv 1 -1 -1\nv -1 1 -1\nv 1 1 -1\nv -1 -1 1\nv 1 -1 1\nv -1 1 1\nv 1 1 1\n"
+                       "f 1 5 7\nf 1 7 3\nf 3 7 8\nf 3 8 4\nf 1 2 6\nf 1 6 5\nf 5 6 8\nf 5 8 7\n"
+                       "f 1 3 4\nf 1 4 2\n")
+
+
+@pytest.mark.parametrize("mip", [False, True])
+def test_open_mesh_accepted_and_counted(tmp_path, mip):
+    s = tmp_path / "obj.toml"
+    s.write_text(OBJ_SCENE)
+    (tmp_path / "m.obj").write_text(CUBE_WITHOUT_PLUS_X)
+    out = tmp_path / "out"
+    rc, _, err = pst("atlas", s, *(["--mip"] if mip else []), "--size", 64, "--truth", 1, "-o", out, "-q")
+    assert rc == 0, err
+    assert json.loads((out / "atlas.json").read_text())["mesh_edges"] == {"open": 4, "non_manifold": 0}
+    assert "| mesh edges: open / non-manifold | 4 / 0 |" in (out / "atlas.md").read_text()
 
 
 # The atlas render's quality (ctest atlas_quality, label atlas): at a 1024 x 1024 atlas the

@@ -108,6 +108,62 @@ def test_atlas_runs_are_sections(tmp_path):
     assert "](atlas/wood_teapot/atlas.png)" in ex.text   # links from the report's folder
 
 
+# A `pst atlas --profile reduced` run's folder as the tool leaves it (fake 1x1 images): its
+# atlas.md (tables, the image line) and atlas.json.
+ATLAS_MD = """# Atlas: wood_teapot (length, 64 x 64, seam-free for bilinear)
+
+| measure | ours | paper Table 1 (rhino, length) |
+|---|---|---|
+| coverage C (eq. 1) | 0.91 | 0.93 |
+| relative scale S (eq. 2) | 1.13 | 0.86 |
+
+![atlas](atlas.png) ![textured, bilinear](render_bilinear.png) ![per-pixel](per_pixel.png) ![truth](truth.png) ![relative scale (Fig. 7)](scale.png)
+
+| seams (screen pixels reading a background or foreign texel) | nearest | bilinear |
+|---|---|---|
+| seam-free layout | 0 | 0 |
+
+Fill through reduced RTL: 4096 texels, 131072 cycles, 0 mismatches.
+"""
+
+
+def make_atlas_run(out: pathlib.Path) -> pathlib.Path:
+    d = out / "atlas" / "wood_teapot"
+    d.mkdir(parents=True)
+    (d / "atlas.md").write_text(ATLAS_MD)
+    (d / "atlas.json").write_text(json.dumps({"coverage": 0.91, "hardware": {"profile": "reduced", "model": "rtl"}}))
+    for k in ("atlas", "atlas_rtl", "render_nearest", "render_bilinear", "per_pixel", "truth", "scale"):
+        (d / f"{k}.png").write_bytes(PNG)
+    return d
+
+
+def test_atlas_run_has_a_viewer(tmp_path):
+    out = make_out(tmp_path)
+    make_atlas_run(out)
+    rep = report_data.collect(out)
+    ex = next(e for e in rep.extras if e.anchor == "atlas-wood_teapot")
+    # The textured render and the per-pixel one first (A and B), the atlas images last; no
+    # trilinear render (not a --mip run).
+    assert [(l.label, l.kind) for l in ex.view.layers] == [
+        ("textured, bilinear", "atlas_render"), ("per-pixel render", "per_pixel"), ("textured, nearest", "atlas_render"),
+        ("ground truth", "truth"), ("relative scale (Fig. 7)", "scale"), ("atlas (reference fill)", "atlas"),
+        ("atlas (reduced RTL fill)", "atlas")]
+    page = report_html.render(rep)
+    section = re.search(r'<section id="atlas-wood_teapot">(.*?)</section>', page, flags=re.S).group(1)
+    specs = [json.loads(s) for s in re.findall(r'<script type="application/json">(.*?)</script>', section, flags=re.S)]
+    assert len(specs) == 1 and specs[0]["name"] == "atlas-wood_teapot"
+    assert [l["label"] for l in specs[0]["layers"]] == [l.label for l in ex.view.layers]
+    assert all(l["src"].startswith("data:image/png;base64,") for l in specs[0]["layers"])
+    assert (specs[0]["a"], specs[0]["b"]) == (0, 1)
+    # The tables stay, above the viewer; the images the viewer shows are not repeated as <img>.
+    assert section.index("coverage C (eq. 1)") < section.index("seam-free layout") < section.index('class="pv"')
+    assert "Fill through reduced RTL: 4096 texels, 131072 cycles" in section
+    assert "<img" not in section
+    assert 'id="viewer-atlas-wood_teapot"' in page
+    # report.md keeps the images as links.
+    assert "![atlas](atlas/wood_teapot/atlas.png)" in report_md.render(rep, lambda r: [])
+
+
 def test_html_page_self_contained(tmp_path):
     out = make_out(tmp_path)
     rep = report_data.collect(out)

@@ -310,6 +310,33 @@ TEST(Multires, RefusesNonPowerOfTwoNonUniformAndNonManifold) {
     }
 }
 
+// Edge use, vertices welded by position: the cube and the torus are closed (every edge on two
+// triangles); the cube without its +x face has that face's 4 edges open; a 2 x 2 plane has
+// its 8 rim edges open; three triangles on one edge make it non-manifold (and their other 6
+// edges open), the first of them named.
+TEST(Multires, CountsOpenAndNonManifoldEdges) {
+    for (const Mesh& closed : {makeCube(), makeTorus(1.0, 0.4, 16, 8)}) {
+        const MeshEdges m = meshEdges(meshTriangles(closed));
+        EXPECT_EQ(m.open, 0);
+        EXPECT_EQ(m.nonManifold, 0);
+        EXPECT_EQ(m.firstNonManifold, -1);
+    }
+    std::vector<AtlasTriangle> cube = meshTriangles(makeCube());
+    cube.erase(cube.begin(), cube.begin() + 2);  // the +x quad's two triangles
+    const MeshEdges holed = meshEdges(cube);
+    EXPECT_EQ(holed.open, 4);
+    EXPECT_EQ(holed.nonManifold, 0);
+    EXPECT_EQ(meshEdges(meshTriangles(makePlane(1.0, 2))).open, 8);
+    std::vector<AtlasTriangle> fin = {rightTriangle(1, 1, 0), rightTriangle(1, 1, 1), rightTriangle(1, 1, 2)};
+    fin[1].x[2] = glm::dvec3(0, -1, 0);
+    fin[2].x[2] = glm::dvec3(0, 0, 1);
+    const MeshEdges f = meshEdges(fin);
+    EXPECT_EQ(f.nonManifold, 1);
+    EXPECT_EQ(f.mostTriangles, 3);
+    EXPECT_EQ(f.open, 6);
+    EXPECT_EQ(f.firstNonManifold, 0);
+}
+
 // Balanced quadtree: every triangle placed once in a 2^k grid of cells, seam-free lookups, and
 // MIP texels of the multiresolution atlas average only connected patches of the torus (a
 // closed, connected surface) at every level, while the strip atlas mixes non-neighbours.

@@ -139,9 +139,9 @@ void placeQuadtree(const std::vector<int>& items, const std::vector<std::vector<
 
 bool isPow2(int v) { return v > 0 && (v & (v - 1)) == 0; }
 
-}  // namespace
 
-std::vector<std::vector<int>> dualGraph(const std::vector<AtlasTriangle>& tris) {
+// The mesh's edges (vertices welded by position), each with the triangles on it.
+std::map<std::pair<int, int>, std::vector<int>> edgeUses(const std::vector<AtlasTriangle>& tris) {
     std::map<glm::dvec3, int, Vec3Less> weld;
     auto id = [&](const glm::dvec3& p) { return weld.emplace(p, int(weld.size())).first->second; };
     std::map<std::pair<int, int>, std::vector<int>> edges;
@@ -153,8 +153,27 @@ std::vector<std::vector<int>> dualGraph(const std::vector<AtlasTriangle>& tris) 
             edges[{std::min(a, b), std::max(a, b)}].push_back(int(t));
         }
     }
+    return edges;
+}
+
+}  // namespace
+
+MeshEdges meshEdges(const std::vector<AtlasTriangle>& tris) {
+    MeshEdges m;
+    for (const auto& [e, ts] : edgeUses(tris)) {
+        if (ts.size() == 1) {
+            ++m.open;
+        } else if (ts.size() > 2) {
+            if (m.nonManifold++ == 0) m.firstNonManifold = ts[0];
+            m.mostTriangles = std::max(m.mostTriangles, int(ts.size()));
+        }
+    }
+    return m;
+}
+
+std::vector<std::vector<int>> dualGraph(const std::vector<AtlasTriangle>& tris) {
     std::vector<std::vector<int>> g(tris.size());
-    for (const auto& [e, ts] : edges) {
+    for (const auto& [e, ts] : edgeUses(tris)) {
         if (ts.size() > 2)
             throw InputError("--mip: triangle " + std::to_string(tris[size_t(ts[0])].index) + " of object " +
                              std::to_string(tris[size_t(ts[0])].object) + ": an edge shared by " +

@@ -12,6 +12,20 @@
 
 namespace pst {
 
+// The use of the mesh's edges (vertices welded by position, as in dualGraph): open edges, on
+// one triangle only (a boundary: a plane's rim, an OBJ with a hole), and non-manifold edges, on
+// more than two. The pairing and the dual graph of the multiresolution atlas take open edges (a
+// triangle on the boundary has fewer neighbours, and may stay alone in its cell) but not
+// non-manifold ones (a pair's shared edge must be the hypotenuse of exactly two charts); the
+// strip atlases use no adjacency and take both.
+struct MeshEdges {
+    long long open = 0;          // edges on exactly one triangle
+    long long nonManifold = 0;   // edges on three or more triangles
+    int mostTriangles = 0;       // the most triangles on one non-manifold edge (0: none)
+    int firstNonManifold = -1;   // a triangle (index into the list) on the first non-manifold edge, -1: none
+};
+MeshEdges meshEdges(const std::vector<AtlasTriangle>& triangles);
+
 // The mesh's dual graph: triangles adjacent across an edge (vertices welded by position).
 // Throws InputError ("--mip: ...") for an edge shared by more than two triangles.
 std::vector<std::vector<int>> dualGraph(const std::vector<AtlasTriangle>& triangles);

@@ -639,6 +639,36 @@ std::string objectWhere(const std::string& path, int k) {
     return path;
 }
 
+// The use of each object's mesh edges (atlas triangles grouped by object; index = object).
+std::vector<MeshEdges> objectEdges(const Scene& scene, const std::vector<AtlasTriangle>& tris) {
+    std::vector<std::vector<AtlasTriangle>> byObject(scene.objects.size());
+    for (const AtlasTriangle& t : tris) byObject[size_t(t.object)].push_back(t);
+    std::vector<MeshEdges> out;
+    for (const auto& ts : byObject) {
+        MeshEdges m = meshEdges(ts);
+        // The triangle named by its index in the object's mesh, not in this object's list.
+        if (m.firstNonManifold >= 0) m.firstNonManifold = ts[size_t(m.firstNonManifold)].index;
+        out.push_back(m);
+    }
+    return out;
+}
+
+// --mip pairs triangles across their edges: refuses an object with an edge on three or more
+// triangles ("FILE:LINE: FIELD: ..." of its mesh key, or of its OBJ file). Open edges pass: a
+// boundary triangle only has fewer neighbours in the dual graph.
+void refuseNonManifold(const Scene& scene, const std::vector<MeshEdges>& edges) {
+    for (size_t o = 0; o < edges.size(); ++o) {
+        const MeshEdges& m = edges[o];
+        if (m.nonManifold == 0) continue;
+        throw InputError(scene.objects[o].meshSource + ": " + std::to_string(m.nonManifold) +
+                         (m.nonManifold == 1 ? " edge" : " edges") + " on 3 or more triangles (non-manifold; up to " +
+                         std::to_string(m.mostTriangles) + " on one edge, the first at triangle " +
+                         std::to_string(m.firstNonManifold) +
+                         "); --mip pairs triangles across their shared edges, which needs every edge on at most two "
+                         "triangles (the strip atlases, without --mip, take this mesh)");
+    }
+}
+
 // The profile's Fmax (MHz) from scripts/synth/baseline.json, 0 if it has none.
 double baselineFmax(const std::string& profile) {
     std::ifstream in(sourceDir() + "/scripts/synth/baseline.json");
@@ -669,6 +699,10 @@ int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
                              "].mesh: triangle " + std::to_string(t.index) + " of '" + scene.objects[size_t(t.object)].name +
                              "' has zero area (degenerate; check the object's scale)");
     }
+    const std::vector<MeshEdges> edges = objectEdges(scene, tris);
+    if (a.mip) refuseNonManifold(scene, edges);
+    long long openEdges = 0, nonManifoldEdges = 0;
+    for (const MeshEdges& m : edges) openEdges += m.open, nonManifoldEdges += m.nonManifold;
     const Atlas atlas = a.mip ? buildMultiresAtlas(tris, ao) : buildAtlas(tris, ao);
     AtlasOptions std0 = ao;
     std0.seamFree = false;
@@ -725,6 +759,7 @@ int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
     j["triangles"] = atlas.triangles.size();
     j["eq3_edge"] = atlas.eq3Edge;
     j["legs"] = {{"min", minLegs}, {"max", maxLegs}};
+    j["mesh_edges"] = {{"open", openEdges}, {"non_manifold", nonManifoldEdges}};
     j["strips"] = atlas.stripCount;
     j["coverage"] = coverage(atlas);
     j["relative_scale"] = relativeScale(atlas);
@@ -836,7 +871,8 @@ int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
        << "| relative scale S (eq. 2) | " << relativeScale(atlas) << " | "
        << (ao.kind == AtlasKind::Uniform ? "1.75" : ao.kind == AtlasKind::Area ? "0.66" : "0.86") << " |\n"
        << "| triangles | " << atlas.triangles.size() << " | |\n| legs (texels) | " << minLegs << " .. " << maxLegs
-       << " | |\n| eq. 3 pair edge | " << atlas.eq3Edge << " | |\n\n"
+       << " | |\n| eq. 3 pair edge | " << atlas.eq3Edge << " | |\n"
+       << "| mesh edges: open / non-manifold | " << openEdges << " / " << nonManifoldEdges << " | |\n\n"
        << "![atlas](atlas.png) ![textured, bilinear](render_bilinear.png) ![per-pixel](per_pixel.png) "
        << "![truth](truth.png) ![relative scale (Fig. 7)](scale.png)\n\n"
        << "| seams (screen pixels reading a background or foreign texel) | nearest | bilinear |\n|---|---|---|\n"

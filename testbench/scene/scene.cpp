@@ -26,13 +26,18 @@ struct Ctx {
     bool meshes = true;   // false: check the objects' keys and values only, build no meshes
     bool tables = true;   // false: check the colour maps' keys and values only, build no tables
 
-    [[noreturn]] void fail(const toml::node* n, const std::string& field,
-                           const std::string& what) const {
+    // "FILE:LINE: FIELD" of node n (":LINE" when the node has a line), a message's prefix.
+    std::string at(const toml::node* n, const std::string& field) const {
         std::ostringstream os;
         os << file;
         if (n && n->source().begin.line > 0) os << ":" << n->source().begin.line;
-        os << ": " << field << ": " << what;
-        throw InputError(os.str());
+        os << ": " << field;
+        return os.str();
+    }
+
+    [[noreturn]] void fail(const toml::node* n, const std::string& field,
+                           const std::string& what) const {
+        throw InputError(at(n, field) + ": " + what);
     }
 };
 
@@ -395,6 +400,7 @@ SceneObject parseObject(const Ctx& c, const toml::table& t, const std::string& p
         const std::string file = getString(c, t, path, "file", "");
         if (file.empty()) c.fail(fn, join(path, "file"), "mesh = \"obj\" needs file = \"NAME.obj\"");
         const std::string full = file[0] == '/' ? file : (std::filesystem::path(c.file).parent_path() / file).string();
+        o.meshSource = c.at(fn, join(path, "file")) + ": " + full;
         make = [&c, fn, full, field = join(path, "file")] {
             try {
                 return loadObjMesh(full, kMaxSceneNumber, kMaxSceneTriangles);
@@ -407,6 +413,8 @@ SceneObject parseObject(const Ctx& c, const toml::table& t, const std::string& p
                "unknown mesh '" + kind + "' (expected teapot, cube, sphere, torus, plane or obj)");
     }
     o.name = kind;
+    if (o.meshSource.empty())
+        o.meshSource = c.at(find(t, "mesh") ? find(t, "mesh") : &t, join(path, "mesh")) + ": '" + kind + "'";
     const std::string texName = getString(c, t, path, "texture", "");
     auto it = textureIndex.find(texName);
     if (it == textureIndex.end())

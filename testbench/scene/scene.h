@@ -30,6 +30,9 @@ constexpr size_t kMaxSceneTriangles = size_t(1) << 22;
 
 struct SceneObject {
     std::string name;   // mesh kind and index, for messages
+    // Where the mesh comes from, a message's prefix: "FILE:LINE: objects[K].mesh: 'KIND'" (the
+    // scene file's mesh key) or "FILE:LINE: objects[K].file: PATH" (an OBJ mesh, its file).
+    std::string meshSource;
     Mesh mesh;          // world space, texcoords already mapped to texture space
     int texture = 0;    // index into Scene::textures
     int layer = 0;      // 0 = opaque z-buffered pass; k > 0 = pass k blended "over" layer < k

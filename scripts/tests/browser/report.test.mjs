@@ -78,6 +78,9 @@ fs.writeFileSync(path.join(OUT, "sweep/reduced/sweep.md"), "## Plots\n\n- [octav
 // writes the sweep's own page, out/sweep/reduced/index.html.
 run(PST, ["render", "scenes/zoneplate.toml", "--size", "16", "--profile", "reduced", "--model", "golden", "-q",
           "-o", path.join(OUT, "sweep/reduced/renders/reduced/zoneplate")]);
+// A texture-atlas run (reference fill) in its default folder: its section gets a viewer.
+run(PST, ["atlas", "scenes/wood_torus.toml", "--size", "256", "--image", "32", "--truth", "1", "-q",
+          "-o", path.join(OUT, "atlas/wood_torus")]);
 // One run marked failed (as a mismatch would leave it): the page must put it first.
 const runs = JSON.parse(fs.readFileSync(path.join(OUT, "regress.json"), "utf8"));
 const failing = runs.find((r) => r.scene.endsWith("planet.toml") && r.profile === "reduced");
@@ -139,13 +142,14 @@ try {
   check(imgs.all.length === 2 && imgs.all.every((i) => i.w > 0), `${imgs.all.length} <img> elements load`,
         JSON.stringify(imgs.all.filter((i) => !(i.w > 0))));
   // Per scene: reference, full, reduced, difference x 2; zoneplate also the ground truth;
-  // bases (reference render only): filtered, unfiltered, filter width.
-  check(imgs.layers.length === 2 * 5 + 1 + 3 && imgs.layers.every((i) => i.w > 0),
-        `${imgs.layers.length} viewer images load (expected 14)`, JSON.stringify(imgs.layers));
+  // bases (reference render only): filtered, unfiltered, filter width; the atlas run: textured
+  // bilinear and nearest, per-pixel, truth, relative scale, atlas.
+  check(imgs.layers.length === 2 * 5 + 1 + 3 + 6 && imgs.layers.every((i) => i.w > 0),
+        `${imgs.layers.length} viewer images load (expected 20)`, JSON.stringify(imgs.layers));
 
   // Sections with anchors
   const ids = await page.evaluate(() => ["regression", "images", "scene-zoneplate", "scene-planet", "scene-bases", "gates",
-    "gates-reduced", "gates-full", "fig11", "fig10", "sweeps", "sweep-reduced", "references"].filter((id) => !document.getElementById(id)));
+    "gates-reduced", "gates-full", "fig11", "fig10", "sweeps", "sweep-reduced", "atlas-wood_torus", "references"].filter((id) => !document.getElementById(id)));
   check(ids.length === 0, "sections have anchors", "missing " + ids.join(", "));
   const gateText = await page.textContent("#gates");
   check(gateText.includes("12,345") && gateText.includes("99.5") && gateText.includes("not synthesized"),
@@ -264,6 +268,29 @@ try {
   const px = `x ${geo.ox + 2}, y ${geo.oy + 1}`;
   check(readout.includes(px) && /reference: \d+ \d+ \d+/.test(readout), "readout shows the values under the cursor",
         `${readout.slice(0, 120)} (expected ${px})`);
+
+  // The atlas run's viewer: A the textured render, B the per-pixel render; the 256 x 256 atlas
+  // drawn on the 32 x 32 render's grid; its tables above the viewer.
+  const AV = "#viewer-atlas-wood_torus";
+  const atlas = await page.$eval(AV, (v) => ({
+    labels: Array.from(v.querySelector(".pv-bar select").options).map((o) => o.textContent),
+    a: v.pvState.a, b: v.pvState.b, sizes: v.pvImages.map((i) => i.naturalWidth),
+    tableAbove: v.parentElement.querySelector("table") !== null &&
+      (v.parentElement.querySelector("table").compareDocumentPosition(v) & Node.DOCUMENT_POSITION_FOLLOWING) !== 0 }));
+  const atlasLabels = ["textured, bilinear", "per-pixel render", "textured, nearest", "ground truth",
+                       "relative scale (Fig. 7)", "atlas (reference fill)"];
+  check(JSON.stringify(atlas.labels) === JSON.stringify(atlasLabels) && atlas.a === 0 && atlas.b === 1 &&
+        atlas.sizes[0] === 32 && atlas.sizes[5] === 256 && atlas.tableAbove,
+        "atlas section: the run's images in the viewer, its tables above", JSON.stringify(atlas));
+  const aSel = await page.$$(`${AV} .pv-bar select`);
+  await aSel[1].selectOption("5");
+  const aCanvas = await page.$(`${AV} canvas`);
+  const aShown = () => page.$eval(AV, (v) => v.dataset.show);
+  if ((await aShown()) !== "a") await page.click(`${AV} .pv-toggle`);
+  const shotRender = await aCanvas.screenshot();
+  await page.click(`${AV} .pv-toggle`);
+  const shotAtlas = await aCanvas.screenshot();
+  check((await aShown()) === "b" && !shotRender.equals(shotAtlas), "atlas viewer toggles between the render and the atlas");
 
   await page.goto("file://" + HTML);
   await page.waitForTimeout(300);
