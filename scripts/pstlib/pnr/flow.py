@@ -122,9 +122,19 @@ def place_and_route(profile, opts: Options) -> dict:
         raise synth_flow.InputError(f"--block {sorted(unknown)}: no such block (blocks: {', '.join(sorted(blocks))})")
     with concurrent.futures.ThreadPoolExecutor(max_workers=max(1, opts.jobs)) as ex:
         futs = {k: ex.submit(run_block, k, blocks[k], work, lib, out, opts.resume) for k in todo}
-        recs = [futs[k].result() for k in todo]
+        recs, failed = [], {}
+        for k in todo:
+            try:
+                recs.append(futs[k].result())
+            except (qflow.FlowError, RuntimeError) as e:
+                # A block that does not finish is reported, the others are kept.
+                failed[k] = {"instance": blocks[k]["instance"], "cells_synth": blocks[k]["cells_synth"],
+                             "error": str(e).splitlines()[0]}
+    if not recs:
+        raise RuntimeError("no block finished: " + "; ".join(f"{k}: {v['error']}" for k, v in failed.items()))
     result = report.assemble(name, synth, recs, round(t_synth, 1), round(time.time() - t0, 1))
     result["buffering"] = buf
+    result["failed_blocks"] = failed
     (out.parent / f"{name}.json").write_text(json.dumps(result, indent=2) + "\n")
     (out.parent / f"{name}.md").write_text(report.markdown(result))
     return result

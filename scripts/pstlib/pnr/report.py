@@ -60,8 +60,9 @@ def markdown(r: dict) -> str:
           "and with the routed parasitics (post-route: clock propagated through qflow's clock buffers, setup "
           "uncertainty the SDC's jitter only).\n",
           "| figure | value |", "|---|---:|",
-          f"| blocks | {r['block_count']} |",
-          f"| die area, sum of blocks | {r['die_mm2_blocks']:.3f} mm^2 (cells {r['logic_cell_mm2']:.3f} mm^2) |",
+          f"| blocks | {r['block_count']} routed"
+          + (f"; not finished: {', '.join(r['failed_blocks'])} (below)" if r.get("failed_blocks") else "") + " |",
+          f"| die area, sum of the routed blocks | {r['die_mm2_blocks']:.3f} mm^2 (cells {r['logic_cell_mm2']:.3f} mm^2) |",
           f"| memories (synthesis model) | {r['memory_mm2']:.3f} mm^2 |",
           f"| **total** | **{r['total_mm2']:.3f} mm^2** |",
           f"| cells / flip-flops | {r['cells']:,} / {r['flip_flops']:,} |",
@@ -92,6 +93,9 @@ def markdown(r: dict) -> str:
                   f"{post['fmax_mhz']:.1f} | {b['fmax_ratio']:.3f} | {post['reg2reg']['fmax_mhz']:.1f} | "
                   f"{post['hold_slack_ns']:+.3f} | `{cp['from']}` -> `{cp['to']}` ({cp['arrival_ns']:.2f} ns, "
                   f"{cp['cells']} cells) | {(s['place'] + s['route']) / 60:.1f} |")
+    for name, f in r.get("failed_blocks", {}).items():
+        md.append(f"| {name} | `{f['instance']}` | ({f['cells_synth']:,} cells synthesized) | - | - | - | - | - | - | - | "
+                  f"- | - | - | - | not finished: {f['error']} | - |")
     md.append("")
     md += [f"![{b['block']}]({r['profile']}/{b['png']})" for b in r["blocks"]]
     return "\n".join(md) + "\n"
@@ -103,6 +107,7 @@ def write_derate(r: dict, path) -> None:
                          text=True).stdout.strip() or "unknown"
     slow = next(b for b in r["blocks"] if b["block"] == r["post_route_slowest_block"])
     doc = {"profile": r["profile"], "ratio": r["fmax_ratio_post_over_pre"],
+           "blocks": [b["block"] for b in r["blocks"]], "not_routed": sorted(r.get("failed_blocks", {})),
            "source": f"scripts/pnr.py {r['profile']} on {sha}, {datetime.date.today().isoformat()}",
            "worst_ratio_block": min(r["blocks"], key=lambda b: b["fmax_ratio"])["block"],
            "post_route_fmax_mhz": r["post_route_fmax_mhz"], "slowest_block": r["post_route_slowest_block"],

@@ -18,6 +18,4 @@ def test_unknown_profile(tmp_path):
 def test_bad_flags(tmp_path):
     r = run(tmp_path, "reduced", "--jobs", "0")
     assert r.returncode == 2 and "--jobs" in r.stderr
-    r = run(tmp_path, "reduced", "--block", "top", "--update-derate")
-    assert r.returncode == 2 and "--update-derate" in r.stderr
     assert not (tmp_path / "out").exists()
