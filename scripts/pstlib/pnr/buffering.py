@@ -56,9 +56,10 @@ def compare(work, netlist_sta, libs: list, top: str, synth_fmax: float) -> dict:
     for _ in range(20):     # iterated to convergence, as qflow's synthesize.sh does
         rc, out, err = procs.run([BLIF_FANOUT, "-s", "nullstring", *lib_args, "-b", "BUFX2,CLKBUF1",
                                   "-i", "A,A", "-o", "Y,Y", work / "cur.blif", work / "next.blif"], cwd=work)
+        out = out + err          # blifFanout reports on stderr; its exit status is the change count
         m = re.search(r"(\d+) buffers were added", out)
         if rc < 0 or not m or not (work / "next.blif").exists():
-            raise RuntimeError(f"blifFanout failed:\n{out[-2000:]}\n{err[-2000:]}")
+            raise RuntimeError(f"blifFanout failed:\n{out[-3000:]}")
         added += int(m.group(1))
         (work / "next.blif").replace(work / "cur.blif")
         if re.search(r"Number of gates changed: 0\b", out):

@@ -70,7 +70,9 @@ def parse_rc_line(line: str) -> dict:
         pos += 3
         node = None
         if toks[pos] not in ("(", ")", ","):
-            node = toks[pos]
+            # qrouter writes ERROR for a branch that ends at no pin and goes on nowhere (a
+            # dangling stub of the routing): its R and C stay, at an internal node.
+            node = None if toks[pos] == "ERROR" else toks[pos]
             pos += 1
         kids = []
         while toks[pos] != ")":

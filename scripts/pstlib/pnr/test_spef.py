@@ -64,3 +64,13 @@ def test_spef_names_the_netlist_net_and_keeps_the_capacitance():
 def test_unknown_net_is_reported():
     _, unmatched = spef.to_spef(REG, {}, "blk", {})
     assert unmatched == ["u_colour.u_clut.g_ch[0].sn[15]"]
+
+
+def test_dangling_stub_is_an_internal_node():
+    # qrouter 1.4.71 writes ERROR where a routed branch ends at no pin (blk_top.rc, 4 nets).
+    line = "n1 1 INVX1_1/Y 1 ( 1.0 0.001 ( 2.0 0.002 ERROR ) , ( 3.0 0.003 NAND2X1_2/A ) ) "
+    t = spef.parse_rc_line(line)["tree"]
+    assert t[3][0][2] is None and t[3][1][2] == "NAND2X1_2/A"
+    pins = {("INVX1_1", "Y"): "n1", ("NAND2X1_2", "A"): "n1"}
+    text, unmatched = spef.to_spef(line, pins, "blk", {})
+    assert unmatched == [] and "*D_NET n1 0.006" in text
