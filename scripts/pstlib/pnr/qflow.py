@@ -8,7 +8,7 @@ qflow adds: ypostproc, blifFanout (buffer trees sized from the liberty's limits)
 Verilog and SPICE views. Then graywolf places (initial density DENSITY), qrouter routes
 (stages 1 and 2; the stage-3 cleanup is skipped: it takes longer than the routing and every
 net is routed without it), magic reads the routed DEF (migrate), netgen compares layout and
-netlist (LVS), magic writes the GDS and checks the design rules (DRC).
+netlist (LVS), after magic has written the GDS and checked the design rules (DRC).
 """
 import dataclasses
 import pathlib
@@ -165,13 +165,22 @@ def lvs(p: Project) -> float:
                 ok=lambda rc, out: rc == 0 or re.search(r"Total errors = \d+", out) is not None)
 
 
+def _clear_later_logs(p: Project, *names) -> None:
+    """qflow's gdsii.sh and drc.sh refuse to run when the LVS or DRC log of an earlier run ends
+    in an error condition; those steps run after them here and write their logs again."""
+    for n in names:
+        (p.log / n).unlink(missing_ok=True)
+
+
 def drc(p: Project) -> float:
+    _clear_later_logs(p, "lvs.log")
     # drc.sh exits 1 when magic counts errors; the count is a result (reported), not a crash.
     return _run(p, "drc.sh", [p.path, p.name], [p.log / "drc.log"], "drc.log",
                 ok=lambda rc, out: rc == 0 or re.search(r"^drc = \d+", out, re.M) is not None)
 
 
 def gds(p: Project) -> float:
+    _clear_later_logs(p, "drc.log", "lvs.log")
     return _run(p, "gdsii.sh", [p.path, p.name], [p.layout / f"{p.name}.gds"], "gdsii.log")
 
 
@@ -218,10 +227,10 @@ def run_steps(p: Project, resume: bool = False) -> dict:
     return times
 
 
-# The GDS before the DRC: gdsii.sh refuses to run after a DRC log that counted errors, and
-# the count is reported rather than hidden.
+# The GDS, then DRC, then LVS: gdsii.sh refuses to run after a DRC or LVS log that ends in an
+# error, drc.sh after such an LVS log; the counts are reported rather than hidden.
 STEPS = [("synthesize", synthesize), ("place", place), ("route", route), ("migrate", migrate),
-         ("lvs", lvs), ("gds", gds), ("drc", drc)]
+         ("gds", gds), ("drc", drc), ("lvs", lvs)]
 
 
 def results(p: Project) -> dict:
