@@ -62,7 +62,11 @@ def run_block(name: str, info: dict, work: pathlib.Path, lib: pathlib.Path, out:
     density = times.pop("density")
     # Parasitics and timing.
     t0 = time.time()
-    routed_v = (p.synthesis / f"{module}.rtlnopwr.v").read_text()
+    # The netlist as placed: qflow's router.sh keeps it as NAME_synth.rtlnopwr.v and rewrites
+    # NAME.rtlnopwr.v with its filler cells (annotate.tcl), which garbles some port names of
+    # the larger blocks (u_octave: four ports named with bytes from memory).
+    placed = p.synthesis / f"{module}_synth.rtlnopwr.v"
+    routed_v = (placed if placed.exists() else p.synthesis / f"{module}.rtlnopwr.v").read_text()
     sta_v = p.path / "sta.v"
     sta_v.write_text(timing.without_fill(routed_v))
     spef_text, unmatched = spef.to_spef((p.layout / f"{module}.rc").read_text(), spef.netlist_pins(routed_v),
