@@ -66,7 +66,11 @@ def run_block(name: str, info: dict, work: pathlib.Path, lib: pathlib.Path, out:
     # NAME.rtlnopwr.v with its filler cells (annotate.tcl), which garbles some port names of
     # the larger blocks (u_octave: four ports named with bytes from memory).
     placed = p.synthesis / f"{module}_synth.rtlnopwr.v"
-    routed_v = (placed if placed.exists() else p.synthesis / f"{module}.rtlnopwr.v").read_text()
+    netlist_v = placed if placed.exists() else p.synthesis / f"{module}.rtlnopwr.v"
+    try:
+        routed_v = netlist_v.read_text()
+    except UnicodeDecodeError:
+        raise qflow.FlowError(f"{netlist_v}: qflow's blif2Verilog wrote port names that are not text (long bus names of this block)") from None
     sta_v = p.path / "sta.v"
     sta_v.write_text(timing.without_fill(routed_v))
     spef_text, unmatched = spef.to_spef((p.layout / f"{module}.rc").read_text(), spef.netlist_pins(routed_v),
@@ -130,7 +134,7 @@ def place_and_route(profile, opts: Options) -> dict:
         for k in todo:
             try:
                 recs.append(futs[k].result())
-            except (qflow.FlowError, RuntimeError) as e:
+            except (qflow.FlowError, RuntimeError, ValueError) as e:
                 # A block that does not finish is reported, the others are kept.
                 failed[k] = {"instance": blocks[k]["instance"], "cells_synth": blocks[k]["cells_synth"],
                              "error": str(e).splitlines()[0]}
