@@ -25,6 +25,7 @@ def from_baseline(name: str, b: dict, derate) -> dict:
             "flip_flops": b["flip_flops"], "fmax_mhz": b.get("fmax_mhz"),
             "signoff_sdc": b.get("fmax_setup_uncertainty_ns") is not None,
             "post_route_mhz": derate["post_route_fmax_mhz"] if derate and derate["profile"] == name else None,
+            "post_route_partial": bool(derate and derate["profile"] == name and derate.get("not_routed")),
             "derate": derate["ratio"] if derate else None,
             "clocks_per_pixel": b["clocks_per_pixel"], "worst_psnr": _worst_psnr(b.get("psnr_db")),
             "worst_path": None, "paper_gates": PAPER_GATES.get(name)}
@@ -39,6 +40,7 @@ def from_synth(s: dict, pnr=None, psnr=None) -> dict:
     return {"profile": s["profile"], "logic_ge": s.get("logic_ge"), "memory_ge": s.get("memory_ge"),
             "total_ge": s.get("total_ge"), "flip_flops": s.get("flip_flops"), "fmax_mhz": s.get("fmax_mhz"),
             "signoff_sdc": "constraints" in tm, "post_route_mhz": pnr["post_route_fmax_mhz"] if pnr else None,
+            "post_route_partial": bool(pnr and pnr.get("failed_blocks")),
             "derate": d["ratio"] if d else None, "clocks_per_pixel": s.get("clocks_per_pixel"),
             "worst_psnr": _worst_psnr(psnr), "paper_gates": s.get("paper_gates"),
             "worst_path": (f"{worst['stage']}, {s['worst_path_ns']:.2f} ns" if worst.get("stage") and s.get("worst_path_ns")
@@ -49,7 +51,7 @@ def _clock(p: dict):
     """(MHz, label) the throughput is quoted at: post-route, else pre-layout derated, else
     pre-layout."""
     if p["post_route_mhz"]:
-        return p["post_route_mhz"], "post-route"
+        return p["post_route_mhz"], "post-route" + (", timed blocks only" if p.get("post_route_partial") else "")
     if p["fmax_mhz"] and p["derate"]:
         return round(p["fmax_mhz"] * p["derate"], 1), "derated"
     return p["fmax_mhz"], "pre-layout"
