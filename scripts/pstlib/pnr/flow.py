@@ -16,7 +16,7 @@ from .. import contract
 from ..paths import ROOT
 from ..synth import flow as synth_flow, liberty, sta as synth_sta
 from ..synth.tools import SDC, run_sta, run_yosys
-from . import buffering, layout, partition, qflow, report, spef, timing
+from . import blif, buffering, layout, partition, qflow, report, spef, timing
 
 STANDIN = "PST_MEMRD*"    # the memory read stand-ins: macros, outside every block
 
@@ -62,15 +62,10 @@ def run_block(name: str, info: dict, work: pathlib.Path, lib: pathlib.Path, out:
     density = times.pop("density")
     # Parasitics and timing.
     t0 = time.time()
-    # The netlist as placed: qflow's router.sh keeps it as NAME_synth.rtlnopwr.v and rewrites
-    # NAME.rtlnopwr.v with its filler cells (annotate.tcl), which garbles some port names of
-    # the larger blocks (u_octave: four ports named with bytes from memory).
-    placed = p.synthesis / f"{module}_synth.rtlnopwr.v"
-    netlist_v = placed if placed.exists() else p.synthesis / f"{module}.rtlnopwr.v"
-    try:
-        routed_v = netlist_v.read_text()
-    except UnicodeDecodeError:
-        raise qflow.FlowError(f"{netlist_v}: qflow's blif2Verilog wrote port names that are not text (long bus names of this block)") from None
+    # The netlist as placed, written from the BLIF graywolf placed (pstlib/pnr/blif.py): qflow's
+    # blif2Verilog garbles the port names of the large blocks and merges ports whose names
+    # hold a bus index inside a path (g_ch[0].sn_d[1] -> g_ch[0]).
+    routed_v = blif.to_verilog((p.synthesis / f"{module}.blif").read_text())
     sta_v = p.path / "sta.v"
     sta_v.write_text(timing.without_fill(routed_v))
     spef_text, unmatched = spef.to_spef((p.layout / f"{module}.rc").read_text(), spef.netlist_pins(routed_v),

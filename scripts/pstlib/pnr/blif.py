@@ -1,0 +1,71 @@
+"""A placed block's netlist written from qflow's BLIF (synthesis/NAME.blif, the file graywolf
+placed), for OpenSTA and the SPEF: qflow's own blif2Verilog writes some port names of the
+large blocks as bytes that are not text (u_octave, the noise unit of reduced).
+
+Instances are named as qflow's blif2cel names the placed cells: CELL_N, N counting each cell
+type from 1 in BLIF order (the routed DEF's component names). Nets are the BLIF's names with
+every character other than a letter, a digit or _ made _ (as blif2Verilog -c does); a
+collision is an error.
+"""
+import collections
+import re
+
+
+def _logical_lines(text: str):
+    buf = ""
+    for line in text.splitlines():
+        line = line.split("#", 1)[0].rstrip()
+        if line.endswith("\\"):
+            buf += line[:-1] + " "
+            continue
+        buf += line
+        if buf.strip():
+            yield buf.strip()
+        buf = ""
+
+
+def to_verilog(blif_text: str) -> str:
+    """Structural Verilog of the BLIF's one model (.inputs, .outputs, .gate lines)."""
+    model, ins, outs, gates = None, [], [], []
+    for line in _logical_lines(blif_text):
+        parts = line.split()
+        if parts[0] == ".model":
+            model = parts[1]
+        elif parts[0] == ".inputs":
+            ins += parts[1:]
+        elif parts[0] == ".outputs":
+            outs += parts[1:]
+        elif parts[0] in (".gate", ".subckt"):
+            gates.append((parts[1], [p.split("=", 1) for p in parts[2:]]))
+        elif parts[0] == ".end":
+            break
+        elif parts[0].startswith("."):
+            raise ValueError(f"BLIF construct not expected in a mapped netlist: {parts[0]}")
+    if model is None:
+        raise ValueError("BLIF has no .model")
+    names = {}
+
+    def name(n):
+        if n not in names:
+            v = re.sub(r"[^A-Za-z0-9_]", "_", n)
+            if v and v[0].isdigit():
+                v = "n" + v
+            names[n] = v
+        return names[n]
+    ports = [name(n) for n in ins + outs]
+    if len(set(names.values())) != len(names):
+        dup = collections.Counter(names.values()).most_common(1)[0][0]
+        raise ValueError(f"BLIF names collide as Verilog identifiers ({dup})")
+    nets = sorted({name(net) for _, pins in gates for _, net in pins} - set(ports))
+    out = [f"module {model} ({', '.join(ports)});"]
+    out += [f"input {name(n)};" for n in ins] + [f"output {name(n)};" for n in outs]
+    out += [f"wire {n};" for n in nets]
+    count = collections.Counter()
+    for cell, pins in gates:
+        count[cell] += 1
+        conns = ", ".join(f".{p}({name(n)})" for p, n in pins)
+        out.append(f"{cell} {cell}_{count[cell]} ( {conns} );")
+    if len(set(names.values())) != len(names):
+        dup = collections.Counter(names.values()).most_common(1)[0][0]
+        raise ValueError(f"BLIF names collide as Verilog identifiers ({dup})")
+    return "\n".join(out + ["endmodule", ""])
