@@ -40,7 +40,7 @@ def from_synth(s: dict, pnr=None, psnr=None) -> dict:
     return {"profile": s["profile"], "logic_ge": s.get("logic_ge"), "memory_ge": s.get("memory_ge"),
             "total_ge": s.get("total_ge"), "flip_flops": s.get("flip_flops"), "fmax_mhz": s.get("fmax_mhz"),
             "signoff_sdc": "constraints" in tm, "post_route_mhz": pnr["post_route_fmax_mhz"] if pnr else None,
-            "post_route_partial": bool(pnr and pnr.get("failed_blocks")),
+            "post_route_partial": bool(pnr and (pnr.get("failed_blocks") or pnr.get("skipped_blocks"))),
             "derate": d["ratio"] if d else None, "clocks_per_pixel": s.get("clocks_per_pixel"),
             "worst_psnr": _worst_psnr(psnr), "paper_gates": s.get("paper_gates"),
             "worst_path": (f"{worst['stage']}, {s['worst_path_ns']:.2f} ns" if worst.get("stage") and s.get("worst_path_ns")

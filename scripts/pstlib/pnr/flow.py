@@ -138,6 +138,7 @@ def place_and_route(profile, opts: Options) -> dict:
     result = report.assemble(name, synth, recs, round(t_synth, 1), round(time.time() - t0, 1))
     result["buffering"] = buf
     result["failed_blocks"] = failed
+    result["skipped_blocks"] = sorted(set(blocks) - set(todo))      # left out with --block
     (out.parent / f"{name}.json").write_text(json.dumps(result, indent=2) + "\n")
     (out.parent / f"{name}.md").write_text(report.markdown(result))
     return result

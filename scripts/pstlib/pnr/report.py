@@ -61,7 +61,8 @@ def markdown(r: dict) -> str:
           "uncertainty the SDC's jitter only).\n",
           "| figure | value |", "|---|---:|",
           f"| blocks | {r['block_count']} routed"
-          + (f"; not finished: {', '.join(r['failed_blocks'])} (below)" if r.get("failed_blocks") else "") + " |",
+          + (f"; not finished: {', '.join(r['failed_blocks'])} (below)" if r.get("failed_blocks") else "")
+          + (f"; not run (--block): {', '.join(r['skipped_blocks'])}" if r.get("skipped_blocks") else "") + " |",
           f"| die area, sum of the routed blocks | {r['die_mm2_blocks']:.3f} mm^2 (cells {r['logic_cell_mm2']:.3f} mm^2) |",
           f"| memories (synthesis model) | {r['memory_mm2']:.3f} mm^2 |",
           f"| **total** | **{r['total_mm2']:.3f} mm^2** |",
@@ -107,7 +108,7 @@ def write_derate(r: dict, path) -> None:
                          text=True).stdout.strip() or "unknown"
     slow = next(b for b in r["blocks"] if b["block"] == r["post_route_slowest_block"])
     doc = {"profile": r["profile"], "ratio": r["fmax_ratio_post_over_pre"],
-           "blocks": [b["block"] for b in r["blocks"]], "not_routed": sorted(r.get("failed_blocks", {})),
+           "blocks": [b["block"] for b in r["blocks"]], "not_routed": sorted([*r.get("failed_blocks", {}), *r.get("skipped_blocks", [])]),
            "source": f"scripts/pnr.py {r['profile']} on {sha}, {datetime.date.today().isoformat()}",
            "worst_ratio_block": min(r["blocks"], key=lambda b: b["fmax_ratio"])["block"],
            "post_route_fmax_mhz": r["post_route_fmax_mhz"], "slowest_block": r["post_route_slowest_block"],
