@@ -53,9 +53,6 @@ def to_verilog(blif_text: str) -> str:
             names[n] = v
         return names[n]
     ports = [name(n) for n in ins + outs]
-    if len(set(names.values())) != len(names):
-        dup = collections.Counter(names.values()).most_common(1)[0][0]
-        raise ValueError(f"BLIF names collide as Verilog identifiers ({dup})")
     nets = sorted({name(net) for _, pins in gates for _, net in pins} - set(ports))
     out = [f"module {model} ({', '.join(ports)});"]
     out += [f"input {name(n)};" for n in ins] + [f"output {name(n)};" for n in outs]

@@ -135,8 +135,6 @@ def to_spef(rc_text: str, pins: dict, design: str, directions: dict, cap_factor:
                 unmatched.append(rec["net"])
                 continue
             vnet = port
-        names = {}
-
         def node_name(ref):
             kind, a, b = _pin_ref(ref)
             return _esc(vnet) if kind == "P" else f"{_esc(a)}:{b}"

@@ -1,7 +1,6 @@
 """One small block through the whole per-block flow (qflow place and route, DRC, LVS, GDS,
 SPEF, OpenSTA before and after layout, PNG): skipped where qflow is not installed
 (scripts/setup.sh --pnr); about a minute here."""
-import pathlib
 import shutil
 import subprocess
 
