@@ -1,7 +1,8 @@
-"""The silicon table a designer reads first: one column per named profile, the same rows in
-the README (generated from scripts/synth/baseline.json and scripts/synth/layout_derate.json:
-`scripts/silicon_table.py --write`) and in the report (from out/synth/PROFILE.json and
-out/pnr/PROFILE.json).
+"""The silicon tables: one column per named profile. The summary a designer reads first has
+the same rows in the README and docs/HARDWARE.md (generated from scripts/synth/baseline.json
+and scripts/synth/layout_derate.json: `scripts/gen_docs.py --write`) and in the report (from
+out/synth/PROFILE.json and out/pnr/PROFILE.json); docs/HARDWARE.md also has the logic per
+block (`blocks_markdown`) and the critical path per stage (`stages_markdown`).
 
 Each profile is normalized to one dict (`from_baseline`, `from_synth`) and `rows` turns the
 dicts into the table; the raw JSON stays one link away.
@@ -28,7 +29,8 @@ def from_baseline(name: str, b: dict, derate) -> dict:
             "post_route_partial": bool(derate and derate["profile"] == name and derate.get("not_routed")),
             "derate": derate["ratio"] if derate else None,
             "clocks_per_pixel": b["clocks_per_pixel"], "worst_psnr": _worst_psnr(b.get("psnr_db")),
-            "worst_path": None, "paper_gates": PAPER_GATES.get(name)}
+            "worst_path": None, "paper_gates": PAPER_GATES.get(name),
+            "block_ge": b.get("block_ge") or {}, "stage_path_ns": b.get("stage_path_ns") or {}}
 
 
 def from_synth(s: dict, pnr=None, psnr=None) -> dict:
@@ -44,7 +46,9 @@ def from_synth(s: dict, pnr=None, psnr=None) -> dict:
             "derate": d["ratio"] if d else None, "clocks_per_pixel": s.get("clocks_per_pixel"),
             "worst_psnr": _worst_psnr(psnr), "paper_gates": s.get("paper_gates"),
             "worst_path": (f"{worst['stage']}, {s['worst_path_ns']:.2f} ns" if worst.get("stage") and s.get("worst_path_ns")
-                           else None)}
+                           else None),
+            "block_ge": {b: v["logic_ge"] for b, v in (s.get("blocks") or {}).items()},
+            "stage_path_ns": s.get("critical_path_ns") or {}}
 
 
 def _clock(p: dict):
@@ -96,3 +100,41 @@ def markdown(profiles: list) -> str:
     lines = ["| " + " | ".join(head) + " |", "|---|" + "---:|" * len(profiles)]
     lines += ["| " + " | ".join(r) + " |" for r in rows(profiles)]
     return "\n".join(lines) + "\n"
+
+
+def _table(head: list, body: list) -> str:
+    lines = ["| " + " | ".join(head) + " |", "|---|" + "---:|" * (len(head) - 1)]
+    lines += ["| " + " | ".join(r) + " |" for r in body]
+    return "\n".join(lines) + "\n"
+
+
+def blocks_markdown(profiles: list) -> str:
+    """Logic GE per block (a block: a module at depth 1 or 2 of the hierarchy, pstlib/synth/
+    blocks.py; building blocks counted in the block holding them), the top's own row last."""
+    names = sorted({b for p in profiles for b in p["block_ge"]}, key=lambda b: (b == "top", b))
+    body = [[f"`{b}`", *("-" if b not in p["block_ge"] else f"{p['block_ge'][b]:,}" for p in profiles)]
+            for b in names]
+    body.append(["**logic**", *("-" if p["logic_ge"] is None else f"**{p['logic_ge']:,}**" for p in profiles)])
+    return _table(["block (logic GE)", *(p["profile"] for p in profiles)], body)
+
+
+def _stage_key(stage: str):
+    """Pipeline order: by the first register letter the stage names ([A] .. [D]), the others
+    (the register file, the clock group) last."""
+    i = stage.find("[")
+    return (stage[i + 1] if i >= 0 else "~", stage)
+
+
+def stages_markdown(profiles: list) -> str:
+    """Critical path per stage (ns, pre-layout, min period of the stage's path group) and
+    each profile's worst in bold."""
+    names = sorted({s for p in profiles for s in p["stage_path_ns"]}, key=_stage_key)
+    body = []
+    for st in names:
+        row = [st]
+        for p in profiles:
+            v = p["stage_path_ns"].get(st)
+            worst = v is not None and v == max(p["stage_path_ns"].values())
+            row.append("-" if v is None else (f"**{v:.2f}**" if worst else f"{v:.2f}"))
+        body.append(row)
+    return _table(["path group (ns)", *(p["profile"] for p in profiles)], body)

@@ -99,3 +99,10 @@ def test_check_baseline_cli_tools_signoff_and_add(tmp_path):
     after = json.loads(bfile.read_text())["profiles"]
     assert after["reduced"] == before and after["balanced"]["logic_ge"] == 500
     assert subprocess.run(cmd, capture_output=True, text=True).returncode == 0
+
+
+def test_stage_paths_are_recorded_not_checked():
+    cur = json.loads(json.dumps(BASE))
+    for p in cur.values():
+        p["stage_path_ns"] = {"octave stage [A] -> [B]": 99.0}
+    assert baseline.compare(BASE, cur) == []
