@@ -1,7 +1,7 @@
 """The ground-truth table of the filter options: RMS and PSNR against the N x N ground
 truth for the unfiltered image, the paper's filter (the SAT) and each option beyond the paper
 (the trapezoid footprint, bandlimited octaves), per scene and per animated sequence, with the
-flicker of each sequence and the issue's goals, met or missed.
+flicker of each sequence and the filter goals, met or missed.
 
 Inputs: `pst render SCENE --truth N --variants sat,...` (report.json: vs_truth of the unfiltered
 image and of every variant) and `pst animate SCENE --truth N --variants ...` (flicker.json: per
@@ -87,7 +87,7 @@ def _cell(rms, paper):
 
 
 def goals(stills, seqs):
-    """The issue's goals (filter error vs unfiltered, flicker) for the paper's filter and the best
+    """The goals (filter error vs unfiltered, flicker) for the paper's filter and the best
     option, as (goal, figure, met) tuples."""
     out = []
     by = {r["scene"]: r for r in stills}

@@ -5,7 +5,7 @@ import pytest
 from pstlib.pnr import spef
 
 # A register output into three loads, and a block input pin into four (copied from
-# blk_colour.rc, 2026-12-03).
+# blk_colour.rc).
 REG = ("u_colour.u_clut.g_ch[0].sn[15] 1 DFFPOSX1_40/Q 3 ( 0.266667 6.57e-05 ( 19.68 0.00459282 "
        "( 3.52 0.00077988 XNOR2X1_29/B ) , ( 4.53333 0.0011169 NAND2X1_2/B ) ) , "
        "( 5.01333 0.0011166 INVX1_509/A ) ) ")

@@ -22,7 +22,7 @@ import re
 SRAM_BITCELL_UM2 = 13.5
 SRAM_ARRAY_EFFICIENCY = 0.5
 FLOP_RAM_UM2_PER_BIT = 157.1        # storage + write port: 256 x 32, 2 ports 2,114,172 um^2,
-FLOP_RAM_UM2_PER_BIT_PORT = 50.5    #   3 ports 2,527,668 um^2 (scripts/synth.py, 2026-12-01)
+FLOP_RAM_UM2_PER_BIT_PORT = 50.5    #   3 ports 2,527,668 um^2 (scripts/synth.py)
 RAM_NS_PER_ADDRESS_BIT = 1.652 / 8
 
 
