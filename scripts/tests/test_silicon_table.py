@@ -1,20 +1,13 @@
-"""The README's silicon table is the one scripts/silicon_table.py generates from the committed
-baseline and derate (a change of either regenerates it in the same commit)."""
-import subprocess
-
+"""The silicon tables (pstlib/silicon_table.py): the summary's rows, the logic per block and
+the critical path per stage. That the README's and docs/HARDWARE.md's copies are the generated
+ones is scripts/tests/test_gen_docs.py's (and ctest docs_stale's) check."""
 from pstlib import silicon_table
-from pstlib.paths import PY, ROOT
-
-
-def test_readme_table_is_generated():
-    r = subprocess.run([PY, str(ROOT / "scripts" / "silicon_table.py"), "--check"], capture_output=True, text=True)
-    assert r.returncode == 0, r.stderr
 
 
 def profile(**kw):
     p = {"profile": "x", "logic_ge": 1000, "memory_ge": 500, "total_ge": 1500, "flip_flops": 10, "fmax_mhz": 100.0,
          "signoff_sdc": True, "post_route_mhz": None, "derate": None, "clocks_per_pixel": 2,
-         "worst_psnr": ("planet", 41.04), "worst_path": None, "paper_gates": None}
+         "worst_psnr": ("planet", 41.04), "worst_path": None, "paper_gates": None, "block_ge": {}, "stage_path_ns": {}}
     p.update(kw)
     return p
 
@@ -27,3 +20,22 @@ def test_clock_is_post_route_else_derated_else_pre_layout():
     assert rows["meets 36.9 Mpixel/s"] == ["yes", "yes", "yes"]
     assert rows["logic GE x clocks per pixel"] == ["2,000"] * 3
     assert rows["worst paper scene"] == ["planet 41.0 dB"] * 3
+
+
+def test_blocks_union_of_profiles_top_last():
+    a = profile(profile="a", block_ge={"top": 5, "noise": 700, "quadric": 295})
+    b = profile(profile="b", block_ge={"quadric_serial": 90, "top": 5, "noise": 905})
+    lines = silicon_table.blocks_markdown([a, b]).splitlines()
+    assert lines[0] == "| block (logic GE) | a | b |"
+    assert [ln.split(" | ")[0] for ln in lines[2:]] == ["| `noise`", "| `quadric`", "| `quadric_serial`", "| `top`",
+                                                        "| **logic**"]
+    assert lines[3] == "| `quadric` | 295 | - |"
+    assert lines[-1] == "| **logic** | **1,000** | **1,000** |"
+
+
+def test_stages_in_pipeline_order_worst_in_bold():
+    a = profile(profile="a", stage_path_ns={"clk": 3.0, "filter width [B] -> [C]": 8.5, "[A] input register": 4.0,
+                                            "octave stage [A] -> [B]": 9.25})
+    lines = silicon_table.stages_markdown([a]).splitlines()
+    assert lines[2:] == ["| [A] input register | 4.00 |", "| octave stage [A] -> [B] | **9.25** |",
+                         "| filter width [B] -> [C] | 8.50 |", "| clk | 3.00 |"]
