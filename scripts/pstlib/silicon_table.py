@@ -20,6 +20,14 @@ def _worst_psnr(psnr: dict):
     return (scene, psnr[scene])
 
 
+def _worst_stage(paths: dict):
+    """"stage, ns" of the slowest path group (baseline.json's stage_path_ns), or None."""
+    if not paths:
+        return None
+    stage = max(paths, key=paths.get)
+    return f"{stage}, {paths[stage]:.2f} ns"
+
+
 def from_baseline(name: str, b: dict, derate) -> dict:
     """A profile of scripts/synth/baseline.json (DERATE: layout_derate.json or None)."""
     return {"profile": name, "logic_ge": b["logic_ge"], "memory_ge": b["memory_ge"], "total_ge": b["total_ge"],
@@ -29,7 +37,7 @@ def from_baseline(name: str, b: dict, derate) -> dict:
             "post_route_partial": bool(derate and derate["profile"] == name and derate.get("not_routed")),
             "derate": derate["ratio"] if derate else None,
             "clocks_per_pixel": b["clocks_per_pixel"], "worst_psnr": _worst_psnr(b.get("psnr_db")),
-            "worst_path": None, "paper_gates": PAPER_GATES.get(name),
+            "worst_path": _worst_stage(b.get("stage_path_ns")), "paper_gates": PAPER_GATES.get(name),
             "block_ge": b.get("block_ge") or {}, "stage_path_ns": b.get("stage_path_ns") or {}}
 
 
