@@ -1,4 +1,4 @@
-// Stage 2 of the texture pipeline (docs/HARDWARE.md): the noise unit. Rayshade's Noise3
+// pst_noise: the noise unit (docs/HARDWARE.md stage 2). Rayshade's Noise3
 // (value-plus-gradient lattice noise) and its analytic gradient in fixed point, with the
 // cheaper variants as parameters. Combinational when NoiseRegs = 0, else a pipeline (below).
 // Golden: pst::noiseFx
@@ -87,7 +87,8 @@
 //                    derivative lerps' products, the own-axis products and the node
 //                    registers lose NF - NoiseGradFrac low bits
 //   NoiseRegs        pipeline registers (0..6, above)
-// ROM images: `PST_ROM_DIR/{hash4096,perm256,perlin256,value16}.memh, written by
+// The tables: pst_noise_hash_rom (T, two banks, pair and single read ports) and
+// pst_noise_value_rom (R, four banks); their images `PST_ROM_DIR/*.memh are written by
 // sim/tools/pst_roms.
 //
 // Ports:
@@ -225,25 +226,24 @@ module pst_noise #(
     end
   end
 
-  // The hash table T (Rayshade's 4096 x 12 or the 256 x 8 permutation) in two banks: T[2a]
-  // in rom_e[a], T[2a + 1] in rom_o[a]. The two lookups of a corner pair (X and X + 1, or
-  // h ^ Y and h ^ (Y + 1), h ^ Z and h ^ (Z + 1)) always differ in bit 0, so a pair takes one
-  // read of each bank (parallel: 7 pairs, 7 read ports per half-size bank instead of 14 on
-  // the whole table); a lookup without a partner reads both banks at its address and picks
-  // by bit 0.
-  localparam int HD = (1 << HW) / 2;   // bank depth
-  logic [HW-1:0] rom_e [HD];
-  logic [HW-1:0] rom_o [HD];
-  if (NoiseHash == pst_pkg::NoiseHashRayshade) begin : g_rayshade
-    initial $readmemh({`PST_ROM_DIR, "/hash4096_even.memh"}, rom_e);
-    initial $readmemh({`PST_ROM_DIR, "/hash4096_odd.memh"}, rom_o);
-  end else if (NoiseHash == pst_pkg::NoiseHashPerm256) begin : g_perm256
-    initial $readmemh({`PST_ROM_DIR, "/perm256_even.memh"}, rom_e);
-    initial $readmemh({`PST_ROM_DIR, "/perm256_odd.memh"}, rom_o);
-  end else begin : g_perlin256
-    initial $readmemh({`PST_ROM_DIR, "/perlin256_even.memh"}, rom_e);
-    initial $readmemh({`PST_ROM_DIR, "/perlin256_odd.memh"}, rom_o);
-  end
+  // The hash table T (pst_noise_hash_rom, two banks by bit 0): a corner pair's two lookups
+  // (X and X + 1, or h ^ Y and h ^ (Y + 1), h ^ Z and h ^ (Z + 1)) always differ in bit 0 and
+  // take one read of each bank (parallel: 7 pairs, 7 read ports per half-size bank instead of
+  // 14 on the whole table); a lookup without a partner reads both banks (a single port).
+  //   parallel: pair 0 = X; 1, 2 = h1[bx] ^ Y; 3..6 = h2 ^ Z of corners i, i + 4.
+  //   serial:   singles 0..CPS-1 = level 2, CPS..2 CPS-1 = level 3, 2 CPS = level 1 when
+  //             CPS = 1 (else pair 0 = X: corners 2j and 2j + 1).
+  localparam int Pairs   = (NoiseSteps == 1) ? 7 : (CPS > 1 ? 1 : 0);
+  localparam int Singles = (NoiseSteps == 1) ? 0 : 2 * CPS + (CPS == 1 ? 1 : 0);
+  localparam int PW = (Pairs > 0) ? Pairs : 1;
+  localparam int SW = (Singles > 0) ? Singles : 1;
+  logic [PW*HW-1:0] pa0 /*verilator split_var*/, pa1 /*verilator split_var*/;
+  logic [PW*HW-1:0] ph0 /*verilator split_var*/, ph1 /*verilator split_var*/;
+  logic [SW*HW-1:0] sa /*verilator split_var*/, sh /*verilator split_var*/;
+  pst_noise_hash_rom #(.NoiseHash(NoiseHash), .Pairs(Pairs), .Singles(Singles)) u_hash (
+    .pair_a0_i (pa0), .pair_a1_i (pa1), .pair_h0_o (ph0), .pair_h1_o (ph1),
+    .single_a_i (sa), .single_h_o (sh)
+  );
   // The chain's combining step: XOR (rayshade, perm256) or an HW-bit add (perlin256).
   function automatic logic [HW-1:0] chain_op(logic [HW-1:0] h, logic [HW-1:0] x);
     if (NoiseHash == pst_pkg::NoiseHashPerlin256) chain_op = h + x;
@@ -254,169 +254,104 @@ module pst_noise #(
   //   parallel: the lookups shared along the chain (2 + 4 + 8 = 14); serial: three chained
   //   lookups per corner.
   logic [CPS*HW-1:0] h2_d, z_d, h2_q, z_q;   // corner i at [i*HW +: HW]
+  logic [CPS*HW-1:0] h3;                     // corner i at [i*HW +: HW]
   if (NoiseSteps == 1) begin : g_hash_par
     logic [2*HW-1:0] h1;   // T[X_bx] at [bx*HW +: HW]
-    logic [4*HW-1:0] h2;   // T[h1 ^ Y_by] at [(bx + 2 by)*HW +: HW]
-    // Pair X_0, X_1: one read per bank.
-    logic [HW-1:0] x0, x1, xe, xo;
-    assign x0 = idx[0*HW +: HW];
-    assign x1 = idx[1*HW +: HW];
-    assign xe = rom_e[x0[0] ? x1[HW-1:1] : x0[HW-1:1]];
-    assign xo = rom_o[x0[0] ? x0[HW-1:1] : x1[HW-1:1]];
-    assign h1 = x0[0] ? {xe, xo} : {xo, xe};
-    logic unused_x1;   // bit 0 of the partner is ~x0[0]
-    assign unused_x1 = x1[0];
-    // Pairs h1[bx] ^ Y_0, h1[bx] ^ Y_1.
+    assign pa0[0 +: HW] = idx[0*HW +: HW];
+    assign pa1[0 +: HW] = idx[1*HW +: HW];
+    assign h1 = {ph1[0 +: HW], ph0[0 +: HW]};
     for (genvar bx = 0; bx < 2; bx++) begin : g_h2
-      logic [HW-1:0] a0, a1, de, dd;
-      assign a0 = chain_op(h1[bx*HW +: HW], idx[2*HW +: HW]);
-      assign a1 = chain_op(h1[bx*HW +: HW], idx[3*HW +: HW]);
-      assign de = rom_e[a0[0] ? a1[HW-1:1] : a0[HW-1:1]];
-      assign dd = rom_o[a0[0] ? a0[HW-1:1] : a1[HW-1:1]];
-      assign h2[bx*HW +: HW]       = a0[0] ? dd : de;
-      assign h2[(bx + 2)*HW +: HW] = a0[0] ? de : dd;
-      logic unused_a1;
-      assign unused_a1 = a1[0];
+      assign pa0[(1 + bx)*HW +: HW] = chain_op(h1[bx*HW +: HW], idx[2*HW +: HW]);
+      assign pa1[(1 + bx)*HW +: HW] = chain_op(h1[bx*HW +: HW], idx[3*HW +: HW]);
     end
-    for (genvar c = 0; c < 8; c++) begin : g_c
-      assign h2_d[c*HW +: HW] = h2[(c%4)*HW +: HW];
+    for (genvar c = 0; c < 8; c++) begin : g_c   // h2 = T[h1 ^ Y_by] of corner c
+      assign h2_d[c*HW +: HW] = ((c % 4) < 2) ? ph0[(1 + c % 2)*HW +: HW] : ph1[(1 + c % 2)*HW +: HW];
       assign z_d[c*HW +: HW]  = idx[(4 + c/4)*HW +: HW];
     end
+    // Level 3 (before b1): corners i and i + 4 (Z_0 and Z_1) pair up.
+    for (genvar i = 0; i < 4; i++) begin : g_h3
+      assign pa0[(3 + i)*HW +: HW] = chain_op(h2_q[i*HW +: HW], z_q[i*HW +: HW]);
+      assign pa1[(3 + i)*HW +: HW] = chain_op(h2_q[(i + 4)*HW +: HW], z_q[(i + 4)*HW +: HW]);
+      assign h3[i*HW +: HW]       = ph0[(3 + i)*HW +: HW];
+      assign h3[(i + 4)*HW +: HW] = ph1[(3 + i)*HW +: HW];
+    end
+    assign sa = '0;
+    logic unused_sh;
+    assign unused_sh = ^sh;
   end else begin : g_hash_ser
-    // The step's corners, three chained lookups each (only the h1 lookups of corners
-    // 2j, 2j + 1, X_0 and X_1, pair up: the others read both banks).
+    // The step's corners, three chained lookups each (only the level-1 lookups of corners
+    // 2j, 2j + 1, X_0 and X_1, pair up).
     logic [CPS*HW-1:0] h1;
     for (genvar i = 0; i < CPS; i++) begin : g_chain
       logic [2:0]    c;
-      logic [HW-1:0] y, a, de, dd;
+      logic [HW-1:0] y;
       assign c  = corner_of(tok[0 +: 3], 3'(i));
       assign y  = c[1] ? idx[3*HW +: HW] : idx[2*HW +: HW];
       assign z_d[i*HW +: HW] = c[2] ? idx[5*HW +: HW] : idx[4*HW +: HW];
-      assign a  = chain_op(h1[i*HW +: HW], y);
-      assign de = rom_e[a[HW-1:1]];
-      assign dd = rom_o[a[HW-1:1]];
-      assign h2_d[i*HW +: HW] = a[0] ? dd : de;
+      assign sa[i*HW +: HW]   = chain_op(h1[i*HW +: HW], y);
+      assign h2_d[i*HW +: HW] = sh[i*HW +: HW];
+      // Level 3 (before b1).
+      assign sa[(CPS + i)*HW +: HW] = chain_op(h2_q[i*HW +: HW], z_q[i*HW +: HW]);
+      assign h3[i*HW +: HW]         = sh[(CPS + i)*HW +: HW];
       logic unused_c;
       assign unused_c = c[0];
     end
     if (CPS == 1) begin : g_h1_single
-      logic [HW-1:0] x, de, dd;
-      logic [2:0]    c;
+      logic [2:0] c;
       assign c  = corner_of(tok[0 +: 3], 3'd0);
-      assign x  = c[0] ? idx[1*HW +: HW] : idx[0*HW +: HW];
-      assign de = rom_e[x[HW-1:1]];
-      assign dd = rom_o[x[HW-1:1]];
-      assign h1 = x[0] ? dd : de;
-      logic unused_c;
-      assign unused_c = ^c[2:1];
+      assign sa[2*HW +: HW] = c[0] ? idx[1*HW +: HW] : idx[0*HW +: HW];
+      assign h1 = sh[2*HW +: HW];
+      assign pa0 = '0;
+      assign pa1 = '0;
+      logic unused_ph;
+      assign unused_ph = ^{c[2:1], ph0, ph1};
     end else begin : g_h1_pairs
       // Corners 2j (x = X_0) and 2j + 1 (X_1) share one read per bank.
-      logic [HW-1:0] x0, x1, xe, xo;
-      assign x0 = idx[0*HW +: HW];
-      assign x1 = idx[1*HW +: HW];
-      assign xe = rom_e[x0[0] ? x1[HW-1:1] : x0[HW-1:1]];
-      assign xo = rom_o[x0[0] ? x0[HW-1:1] : x1[HW-1:1]];
+      assign pa0 = idx[0*HW +: HW];
+      assign pa1 = idx[1*HW +: HW];
       for (genvar j = 0; j < CPS / 2; j++) begin : g_pair
-        assign h1[(2*j)*HW +: HW]     = x0[0] ? xo : xe;
-        assign h1[(2*j + 1)*HW +: HW] = x0[0] ? xe : xo;
+        assign h1[(2*j)*HW +: HW]     = ph0;
+        assign h1[(2*j + 1)*HW +: HW] = ph1;
       end
-      logic unused_x1;
-      assign unused_x1 = x1[0];
     end
   end
   pst_delay #(.Width(2*CPS*HW), .Depth(NoiseRegs > 0 ? 1 : 0)) u_b0 (
     .clk_i, .rst_ni, .en_i, .d_i ({z_d, h2_d}), .q_o ({z_q, h2_q})
   );
 
-  // ---- 3. level 3 and the value table (before b1) -----------------------------------------
-  // h3 = T[h2 ^ Z] (parallel: corners c and c + 4, Z_0 and Z_1, pair up); value ROM R[m + k],
-  // m = h3 & 0xff, in four banks by address mod 4 (value_b<b>[j] = R[4 j + b]): a corner's four
-  // consecutive entries are one read of each bank, rotated by m mod 4 (8 read ports per
-  // 67-entry bank instead of 32 on the whole table in full).
-  // (unread, and dropped by synthesis, when the corners are grad12)
-  localparam int VD = 67;   // bank depth: R[0..266] (bank 3's entry 66 is padding)
-  /* verilator lint_off UNUSEDSIGNAL */
-  logic [15:0] value_b0 [VD];
-  logic [15:0] value_b1 [VD];
-  logic [15:0] value_b2 [VD];
-  logic [15:0] value_b3 [VD];
-  /* verilator lint_on UNUSEDSIGNAL */
-  initial $readmemh({`PST_ROM_DIR, "/value16_b0.memh"}, value_b0);
-  initial $readmemh({`PST_ROM_DIR, "/value16_b1.memh"}, value_b1);
-  initial $readmemh({`PST_ROM_DIR, "/value16_b2.memh"}, value_b2);
-  initial $readmemh({`PST_ROM_DIR, "/value16_b3.memh"}, value_b3);
-
-  logic [CPS*HW-1:0] h3;   // corner i at [i*HW +: HW]
-  if (NoiseSteps == 1) begin : g_h3_pairs
-    for (genvar i = 0; i < 4; i++) begin : g_pair
-      logic [HW-1:0] a0, a1, de, dd;
-      assign a0 = chain_op(h2_q[i*HW +: HW], z_q[i*HW +: HW]);
-      assign a1 = chain_op(h2_q[(i + 4)*HW +: HW], z_q[(i + 4)*HW +: HW]);
-      assign de = rom_e[a0[0] ? a1[HW-1:1] : a0[HW-1:1]];
-      assign dd = rom_o[a0[0] ? a0[HW-1:1] : a1[HW-1:1]];
-      assign h3[i*HW +: HW]       = a0[0] ? dd : de;
-      assign h3[(i + 4)*HW +: HW] = a0[0] ? de : dd;
-      logic unused_a1;
-      assign unused_a1 = a1[0];
-    end
-  end else begin : g_h3_single
-    for (genvar i = 0; i < CPS; i++) begin : g_corner
-      logic [HW-1:0] a, de, dd;
-      assign a  = chain_op(h2_q[i*HW +: HW], z_q[i*HW +: HW]);
-      assign de = rom_e[a[HW-1:1]];
-      assign dd = rom_o[a[HW-1:1]];
-      assign h3[i*HW +: HW] = a[0] ? dd : de;
-    end
-  end
-
+  // ---- 3. the value table (before b1) -----------------------------------------------------
+  // R[m + k], m = h3 & 0xff (pst_noise_value_rom: four banks, a corner's four entries one read
+  // of each); grad12 corners read no value table.
   logic [CPS*4*RW-1:0] r_d, r_q;   // corner i: R[m + k] at [(4i + k)*RW +: RW]
   logic [CPS*4-1:0]    hb_d, hb_q; // corner i: m[3:0] (grad12's direction) at [4i +: 4]
-  for (genvar i = 0; i < CPS; i++) begin : g_value
-    logic [7:0]    m;
-    logic [4*16-1:0] bank;   // bank b's entry: R[m + ((b - m) mod 4)] at [b*16 +: 16]
-    assign m  = h3[i*HW +: 8];
-    assign hb_d[4*i +: 4] = m[3:0];
-    if (NoiseCorner == pst_pkg::NoiseCornerGrad12) begin : g_unused_m
-      logic unused_m;  // grad12 corners use the hash's low four bits only, no value table
-      assign unused_m = ^{m[7:4], bank};
-    end
-    for (genvar b = 0; b < 4; b++) begin : g_bank
-      logic [8:0] e;   // the entry of bank b among R[m .. m + 3]
-      logic [6:0] j;
-      logic [1:0] off;
-      assign off = 2'(b) - m[1:0];
-      assign e = {1'b0, m} + {7'b0, off};
-      assign j = e[8:2];
-      if (b == 0) begin : g_b0
-        assign bank[b*16 +: 16] = value_b0[j];
-      end else if (b == 1) begin : g_b1
-        assign bank[b*16 +: 16] = value_b1[j];
-      end else if (b == 2) begin : g_b2
-        assign bank[b*16 +: 16] = value_b2[j];
-      end else begin : g_b3
-        assign bank[b*16 +: 16] = value_b3[j];
-      end
-      logic unused_e;
-      assign unused_e = ^e[1:0];
-    end
+  logic [CPS*8-1:0]    mi;         // corner i's m at [i*8 +: 8]
+  for (genvar i = 0; i < CPS; i++) begin : g_m
+    assign mi[i*8 +: 8]   = h3[i*HW +: 8];
+    assign hb_d[4*i +: 4] = h3[i*HW +: 4];
     if (HW > 8) begin : g_unused_h3
       logic unused_h3;
       assign unused_h3 = ^h3[i*HW+8 +: HW-8];
     end
-    for (genvar k = 0; k < 4; k++) begin : g_r
-      if (NoiseCorner != pst_pkg::NoiseCornerGrad12 &&
-          (k == 0 || NoiseCorner == pst_pkg::NoiseCornerValueGradient)) begin : g_read
-        logic [15:0] r16;
-        assign r16 = bank[2'(m[1:0] + 2'(k))*16 +: 16];
-        assign r_d[(4*i+k)*RW +: RW] = r16[15 -: RW];  // floor: value16 >>> (15 - VF)
-        if (RW < 16) begin : g_unused_low
-          logic unused_r16;
-          assign unused_r16 = ^r16[15-RW:0];
+  end
+  // Value-gradient corners read R[m .. m + 3], value corners R[m] (the rest zero), grad12
+  // corners nothing.
+  localparam int Reads = (NoiseCorner == pst_pkg::NoiseCornerValueGradient) ? 4 : 1;
+  if (NoiseCorner != pst_pkg::NoiseCornerGrad12) begin : g_value
+    logic [CPS*Reads*RW-1:0] r;
+    pst_noise_value_rom #(.Corners(CPS), .Reads(Reads), .Bits(RW)) u_value (.m_i (mi), .r_o (r));
+    for (genvar i = 0; i < CPS; i++) begin : g_corner
+      for (genvar k = 0; k < 4; k++) begin : g_r
+        if (k < Reads) begin : g_read
+          assign r_d[(4*i+k)*RW +: RW] = r[(Reads*i+k)*RW +: RW];
+        end else begin : g_zero
+          assign r_d[(4*i+k)*RW +: RW] = '0;
         end
-      end else begin : g_zero
-        assign r_d[(4*i+k)*RW +: RW] = '0;  // value corners read R[m] only, grad12 corners nothing
       end
     end
+  end else begin : g_no_value
+    assign r_d = '0;
+    logic unused_m;   // grad12 corners use the hash's low four bits only
+    assign unused_m = ^mi;
   end
   pst_delay #(.Width(CPS*4*RW), .Depth(NoiseRegs > 1 ? 1 : 0)) u_b1 (
     .clk_i, .rst_ni, .en_i, .d_i (r_d), .q_o (r_q)

@@ -60,19 +60,10 @@ module pst_width_stage #(
   );
 
   logic en;   // the pipeline advances (Regs > 0)
-  if (Regs == 0) begin : g_hold
-    assign valid_o = valid_i & done;
-    assign ready_o = done & ready_i;
-    assign side_o  = side_i;
-    assign busy_o  = 1'b0;
-    assign en      = 1'b0;
-  end else begin : g_flow
-    pst_pipe_flow #(.Depth(Regs), .SideW(SideW)) u_flow (
-      .clk_i, .rst_ni, .valid_i, .ready_o, .side_i, .valid_o, .ready_i, .side_o,
-      .en_o (en), .busy_o);
-    logic unused_done;
-    assign unused_done = done;
-  end
+  logic unused_move;
+  pst_pipe_flow #(.Depth(Regs), .SideW(SideW)) u_flow (
+    .clk_i, .rst_ni, .valid_i, .done_i (done), .ready_o, .side_i, .valid_o, .ready_i, .side_o,
+    .adv_o (en), .move_o (unused_move), .busy_o);
 
 endmodule
 

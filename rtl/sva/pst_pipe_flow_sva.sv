@@ -1,10 +1,11 @@
-// pst_pipe_flow_sva: checker of pst_pipe_flow (the pipelined stages' flow control): the
-// handshake on both sides, busy_o while a fragment is offered, no advance while the end is
+// pst_pipe_flow_sva: checker of pst_pipe_flow (the stages' flow control): the handshake on
+// both sides, busy_o while a pipelined stage offers a fragment, no advance while the end is
 // refused; cover points for a stall with a fragment waiting upstream and for streaming.
 `include "sva/pst_assert.svh"
 `default_nettype none
 
 module pst_pipe_flow_sva #(
+  parameter int Depth = 1,
   parameter int SideW = 1
 ) (
   input logic             clk_i,
@@ -14,18 +15,18 @@ module pst_pipe_flow_sva #(
   input logic             valid_o,
   input logic             ready_i,
   input logic [SideW-1:0] side_o,
-  input logic             en_o,
+  input logic             adv_o,
   input logic             busy_o
 );
   `PST_ASSERT(SideStableUntilTaken, (valid_o && !ready_i) |=> (valid_o && $stable(side_o)))
   // The source keeps an offer the pipeline refuses; a refused end stalls the pipeline.
   `PST_ASSERT(UpstreamHoldsOffer, (valid_i && !ready_o) |=> valid_i)
-  `PST_ASSERT(StallWhenRefused, (valid_o && !ready_i) |-> !en_o)
-  `PST_ASSERT(BusyWhileOffering, valid_o |-> busy_o)
+  `PST_ASSERT(StallWhenRefused, (valid_o && !ready_i) |-> !adv_o)
+  `PST_ASSERT(BusyWhileOffering, valid_o |-> (busy_o || Depth == 0))
   `PST_COVER(StalledWithInput, valid_o && !ready_i && valid_i)
   `PST_COVER(Streaming, valid_i && valid_o && ready_i)
 endmodule
 
-bind pst_pipe_flow pst_pipe_flow_sva #(.SideW(SideW)) u_sva (.*);
+bind pst_pipe_flow pst_pipe_flow_sva #(.Depth(Depth), .SideW(SideW)) u_sva (.*);
 
 `default_nettype wire

@@ -1,8 +1,9 @@
 """The report's blocks, read off the elaborated hierarchy (no hand-written module list).
 
-A block is a module the design holds at depth 1 or 2 (BLOCK_DEPTH: the top's children, the
-pipeline's stages, and theirs, the stages' units: quadric, noise, worley, octave fade, octave
-term, filter width, colour-table filter, ...), named after its module without the `pst_`
+A block is a module the design holds at depth 1 to 4 (BLOCK_DEPTH: the top's children, the
+pipeline's stages; theirs, the octave datapath, the noise units, the filter width, the
+colour-table filter; and two levels of units below: quadric, octave lane, transform, term,
+fade, noise, worley, the noise unit's weights, corners, lerps and ROMs, ...), named after its module without the `pst_`
 prefix; the top's own logic is the block `top`. A building block (a module instantiated by
 more than one module: pst_delay, pst_mul_booth, pst_floor_sat, pst_isqrt, pst_pipe_flow, ...)
 and anything deeper than BLOCK_DEPTH counts in the block of the instance holding it. Blocks
@@ -15,7 +16,7 @@ from ..paths import rtl_source
 from . import liberty
 from .tools import base_name
 
-BLOCK_DEPTH = 2
+BLOCK_DEPTH = 4
 TOP_BLOCK = "top"
 
 

@@ -19,7 +19,8 @@ SUBS = {
     "$paramod$3\\pst_worley": {"$paramod$9\\pst_delay": 3},
     "$paramod$4\\pst_octave_fade": {}, "$paramod$5\\pst_fade_lg": {},
     "$paramod$6\\pst_noise": {"$paramod$7\\pst_noise_lerp": 3},
-    "$paramod$7\\pst_noise_lerp": {"$paramod$8\\pst_mul_booth": 2},
+    "$paramod$7\\pst_noise_lerp": {"$paramod$8\\pst_mul_booth": 2, "$paramod$11\\pst_lerp_core": 1},
+    "$paramod$11\\pst_lerp_core": {"$paramod$12\\pst_lerp_leaf": 1}, "$paramod$12\\pst_lerp_leaf": {},
     "$paramod$2\\pst_colour_stage": {"$paramod$10\\pst_clut_filter": 1},
     "$paramod$10\\pst_clut_filter": {"$paramod$8\\pst_mul_booth": 1},
     "$paramod$8\\pst_mul_booth": {}, "$paramod$9\\pst_delay": {},
@@ -31,8 +32,8 @@ ORDER = _position(["pst_octave_stage", "pst_colour_stage", "pst_noise", "pst_wor
 def test_worley_and_the_fades_have_their_own_rows_in_hierarchy_order():
     got = blocks.block_instances(SUBS, "\\pst_top", ORDER)
     order = list(dict.fromkeys(b for _, b, _ in got))
-    assert order == ["octave_stage", "noise", "worley", "octave_fade", "fade_lg", "colour_stage", "clut_filter",
-                     "top"]
+    assert order == ["octave_stage", "noise", "noise_lerp", "lerp_core", "worley", "octave_fade", "fade_lg",
+                     "colour_stage", "clut_filter", "top"]
     assert got[("$paramod$3\\pst_worley", "worley", "pst_octave_stage")] == 1
     assert got[("$paramod$4\\pst_octave_fade", "octave_fade", "pst_octave_stage")] == 2
 
@@ -43,8 +44,9 @@ def test_building_blocks_and_deeper_modules_count_in_the_block_holding_them():
     assert got[("$paramod$9\\pst_delay", "worley", "pst_worley")] == 3
     assert got[("$paramod$9\\pst_delay", "octave_stage", "pst_octave_stage")] == 4
     assert got[("$paramod$9\\pst_delay", "top", "pst_top")] == 1
-    assert got[("$paramod$7\\pst_noise_lerp", "noise", "pst_noise")] == 6            # depth 3: in noise
-    assert got[("$paramod$8\\pst_mul_booth", "noise", "pst_noise_lerp")] == 12
+    assert got[("$paramod$7\\pst_noise_lerp", "noise_lerp", "pst_noise")] == 6      # depth 3: its own block
+    assert got[("$paramod$8\\pst_mul_booth", "noise_lerp", "pst_noise_lerp")] == 12
+    assert got[("$paramod$12\\pst_lerp_leaf", "lerp_core", "pst_lerp_core")] == 6   # depth 5: in its holder
     assert got[("$paramod$8\\pst_mul_booth", "clut_filter", "pst_clut_filter")] == 1
     assert sum(k for (m, _, _), k in got.items() if m == "$paramod$8\\pst_mul_booth") == 13
 
@@ -68,16 +70,16 @@ def test_shared_leaves_are_listed_per_holder_with_their_total_area():
                                                        {"module": "\\$paramod$4\\pst_mul_booth", "memory": "t"}])
     assert a["mem_instances"] == {("$paramod$1\\pst_noise_lerp", "rom"): 2,
                                   ("\\$paramod$4\\pst_mul_booth", "t"): 2}     # memories per instance
-    noise = a["blocks"]["noise"]
-    booth = noise["modules"]["pst_mul_booth in pst_noise_lerp"]
+    noise, lerp = a["blocks"]["noise"], a["blocks"]["noise_lerp"]
+    booth = lerp["modules"]["pst_mul_booth in pst_noise_lerp"]
     assert booth["instances"] == 6 and booth["area"] == 2 * (2 * 10 + 40) * 24.0
-    assert noise["modules"]["pst_noise_lerp"]["area"] == 2 * 24.0
+    assert lerp["modules"]["pst_noise_lerp"]["area"] == 2 * 24.0
     assert noise["modules"]["pst_delay in pst_noise"]["area"] == 3 * 96.0
     assert a["blocks"]["top"]["modules"]["pst_mul_booth in pst_top"]["area"] == 10 * 24.0
     top_delay = a["blocks"]["top"]["modules"]["pst_delay in pst_top"]
     assert top_delay["area"] == 3 * 96.0 and a["blocks"]["top"]["ffs"] == 3
-    assert noise["area"] == 2 * 24.0 + 2 * 60 * 24.0 + 3 * 96.0
-    assert list(a["blocks"]) == ["octave_stage", "noise", "top"]
+    assert noise["area"] == 3 * 96.0 and lerp["area"] == 2 * 24.0 + 2 * 60 * 24.0
+    assert list(a["blocks"]) == ["octave_stage", "noise", "noise_lerp", "top"]
 
 
 def test_the_checked_in_rtl_orders_the_octave_stage_before_the_colour_stage():
@@ -95,7 +97,7 @@ def test_module_hierarchy_counts_instances():
 
 def test_the_module_cache_counts_blocks_as_the_flow_does():
     got = modules.block_counts(SUBS, "\\pst_top")
-    assert got[("$paramod$8\\pst_mul_booth", "noise")] == 12
+    assert got[("$paramod$8\\pst_mul_booth", "noise_lerp")] == 12
     assert got[("$paramod$9\\pst_delay", "worley")] == 3 and got[("\\pst_top", "top")] == 1
 
 

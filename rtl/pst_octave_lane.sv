@@ -1,0 +1,104 @@
+// pst_octave_lane: the body of one octave lane (docs/HARDWARE.md stages 2 and 4), combinational,
+// in three parts the datapaths register between as their schedules need:
+//   transform  the lattice index and fraction of M_i s + o_i (pst_octave_transform), Rows rows;
+//   fade       the octave's weight alpha from the pixel's lg edge lengths and lg ||M_i||
+//              (pst_octave_fade; 1.0 without FilterBandlimit);
+//   term       a_i n and rows of a_i M_i^T grad n, faded by alpha (pst_octave_term).
+// The parallel octave datapath (pst_octave_parallel) uses Rows = 3 with a beat through its
+// pipeline registers between the parts; the serial one (pst_octave_serial) Rows = 1, a row of
+// the matrices per cycle.
+//
+// Parameters:
+//   Rows             3: whole matrices; 1: one row per use (m_i, o_i, gm_i that row's).
+//   FilterBandlimit  isotropic: the fade (alpha_o from the table); off: alpha_o = 1.0.
+//   LgW              width of lgx_i, lgy_i (pst_fade_lg's lg_o).
+//   <Format>Int/Frac the profile's number formats (pst_top's header).
+`include "pst_pkg.sv"
+`default_nettype none
+
+module pst_octave_lane #(
+  parameter int Rows = 3, parameter int FilterBandlimit = pst_pkg::FilterBandlimitDefault,
+  parameter int LgW = 9,
+  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault,
+  parameter int NoiseOutFrac = pst_pkg::NoiseOutFracDefault,
+  parameter int CoordInt = pst_pkg::CoordIntDefault, parameter int CoordFrac = pst_pkg::CoordFracDefault,
+  parameter int MatrixInt = pst_pkg::MatrixIntDefault, parameter int MatrixFrac = pst_pkg::MatrixFracDefault,
+  parameter int OffsetInt = pst_pkg::OffsetIntDefault, parameter int OffsetFrac = pst_pkg::OffsetFracDefault,
+  parameter int AmplitudeInt = pst_pkg::AmplitudeIntDefault, parameter int AmplitudeFrac = pst_pkg::AmplitudeFracDefault,
+  parameter int GradMatrixInt = pst_pkg::GradMatrixIntDefault, parameter int GradMatrixFrac = pst_pkg::GradMatrixFracDefault,
+  parameter int FInt = pst_pkg::FIntDefault, parameter int FFrac = pst_pkg::FFracDefault,
+  parameter int GradInt = pst_pkg::GradIntDefault, parameter int GradFrac = pst_pkg::GradFracDefault,
+  localparam int CW  = CoordInt + CoordFrac,
+  localparam int MW  = MatrixInt + MatrixFrac,
+  localparam int OW  = OffsetInt + OffsetFrac,
+  localparam int AW  = AmplitudeInt + AmplitudeFrac,
+  localparam int GMW = GradMatrixInt + GradMatrixFrac,
+  localparam int FW  = FInt + FFrac,
+  localparam int GW  = GradInt + GradFrac,
+  localparam int LB  = pst_pkg::LatticeBits,
+  localparam int LF  = NoiseLatticeFrac,
+  localparam int NW  = pst_pkg::NoiseIntBits + NoiseOutFrac,
+  localparam int NGW = pst_pkg::NoiseGradIntBits + NoiseOutFrac,
+  localparam int FB  = pst_pkg::FadeBits,
+  localparam int LMW = pst_pkg::FadeLgBits
+) (
+  // Transform
+  input  logic [3*CW-1:0]         s_i,
+  input  logic [Rows*3*MW-1:0]    m_i,
+  input  logic [Rows*OW-1:0]      o_i,
+  output logic [Rows*LB-1:0]      lat_o,
+  output logic [Rows*LF-1:0]      frac_o,
+  // Fade
+  input  logic                    bl_i,
+  input  logic [LgW-1:0]          lgx_i,
+  input  logic [LgW-1:0]          lgy_i,
+  input  logic [LMW-1:0]          lgm_i,
+  input  logic [pst_pkg::FadeEntries*FB-1:0] fade_i,
+  output logic [FB-1:0]           alpha_o,
+  // Term
+  input  logic [NW-1:0]           n_i,
+  input  logic [3*NGW-1:0]        g_i,
+  input  logic [AW-1:0]           a_i,
+  input  logic [Rows*3*GMW-1:0]   gm_i,
+  input  logic [FB-1:0]           alpha_i,
+  output logic [FW-1:0]           fterm_o,
+  output logic [Rows*GW-1:0]      gterm_o
+);
+
+  localparam bit Bl = (FilterBandlimit == pst_pkg::FilterBandlimitIsotropic);
+
+  pst_octave_transform #(
+    .CoordInt(CoordInt), .CoordFrac(CoordFrac), .MatrixInt(MatrixInt), .MatrixFrac(MatrixFrac),
+    .OffsetInt(OffsetInt), .OffsetFrac(OffsetFrac), .NoiseLatticeFrac(NoiseLatticeFrac), .Rows(Rows)
+  ) u_transform (
+    .s_i (s_i), .m_i (m_i), .o_i (o_i), .lat_o (lat_o), .frac_o (frac_o)
+  );
+
+  if (Bl) begin : g_fade
+    pst_octave_fade #(.LgW(LgW)) u_fade (
+      .en_i (bl_i), .lgx_i (lgx_i), .lgy_i (lgy_i), .lgm_i (lgm_i), .table_i (fade_i), .alpha_o (alpha_o));
+  end else begin : g_whole
+    assign alpha_o = FB'(1 << pst_pkg::FadeFrac);
+    logic unused_fade;
+    assign unused_fade = ^{bl_i, lgx_i, lgy_i, lgm_i, fade_i};
+  end
+
+  pst_octave_term #(
+    .NoiseOutFrac(NoiseOutFrac), .AmplitudeInt(AmplitudeInt), .AmplitudeFrac(AmplitudeFrac),
+    .GradMatrixInt(GradMatrixInt), .GradMatrixFrac(GradMatrixFrac), .FInt(FInt), .FFrac(FFrac),
+    .GradInt(GradInt), .GradFrac(GradFrac), .Rows(Rows), .Bandlimit(Bl)
+  ) u_term (
+    .n_i (n_i), .g_i (g_i), .a_i (a_i), .gm_i (gm_i), .alpha_i (alpha_i), .fterm_o (fterm_o),
+    .gterm_o (gterm_o)
+  );
+
+  // Assertions
+`ifndef SYNTHESIS
+  initial begin
+    if (Rows != 1 && Rows != 3) $error("pst_octave_lane: Rows must be 1 or 3");
+  end
+`endif
+
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,84 @@
+// pst_octave_noise: the NoiseUnits noise units of the octave stage (docs/HARDWARE.md stage 2),
+// one per lane: the lattice-noise unit (pst_noise) or, with noise.worley_search, a worley unit
+// (pst_worley); all step together (en_i, valid_i, step_i). Beside each, the probes' copy of its
+// lattice input, delayed by its NoiseRegs registers so that it meets the unit's result.
+//
+// Parameters: the profile's noise keys (pst_top's header); DebugProbes = 0 ties the probe
+// outputs to zero.
+`include "pst_pkg.sv"
+`default_nettype none
+
+module pst_octave_noise #(
+  parameter int NoiseUnits = pst_pkg::NoiseUnitsDefault,
+  parameter int NoiseInterp = pst_pkg::NoiseInterpDefault, parameter int NoiseCorner = pst_pkg::NoiseCornerDefault,
+  parameter int NoiseHash = pst_pkg::NoiseHashDefault, parameter int NoiseValueFrac = pst_pkg::NoiseValueFracDefault,
+  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault, parameter int NoiseOutFrac = pst_pkg::NoiseOutFracDefault,
+  parameter int NoiseSteps = pst_pkg::NoiseStepsDefault, parameter int NoiseGuardBits = pst_pkg::NoiseGuardBitsDefault,
+  parameter int NoiseGradFrac = pst_pkg::NoiseGradFracDefault, parameter int NoiseRegs = pst_pkg::NoiseRegsDefault,
+  parameter int NoiseWorleySearch = pst_pkg::NoiseWorleySearchDefault,
+  parameter int NoiseWorleyPoints = pst_pkg::NoiseWorleyPointsDefault,
+  parameter int NoiseWorleyOrder = pst_pkg::NoiseWorleyOrderDefault,
+  parameter bit DebugProbes = 1'b1,
+  localparam int LF  = NoiseLatticeFrac,
+  localparam int NW  = pst_pkg::NoiseIntBits + NoiseOutFrac,
+  localparam int NGW = pst_pkg::NoiseGradIntBits + NoiseOutFrac,
+  localparam int LTW = pst_pkg::LatticeWidth,
+  localparam int WCW = pst_pkg::RegWorleyCount * (pst_pkg::WorleyCoefInt + pst_pkg::WorleyCoefFrac)
+) (
+  input  logic                        clk_i,
+  input  logic                        rst_ni,
+  input  logic                        en_i,
+  input  logic                        valid_i,
+  input  logic [2:0]                  step_i,
+  input  logic [NoiseUnits*LTW-1:0]   lat_i,    // lane u at [u*LTW +: LTW], likewise below
+  input  logic [NoiseUnits*3*LF-1:0]  frac_i,
+  input  logic [WCW-1:0]              worley_c_i,
+  output logic [NoiseUnits-1:0]       last_o,   // the output is an evaluation's last step
+  output logic [NoiseUnits*NW-1:0]    n_o,
+  output logic [NoiseUnits*3*NGW-1:0] g_o,
+  output logic [NoiseUnits*LTW-1:0]   probe_lat_o,
+  output logic [NoiseUnits*3*LF-1:0]  probe_frac_o
+);
+
+  for (genvar u = 0; u < NoiseUnits; u++) begin : g_unit
+    logic unit_valid;
+    if (NoiseWorleySearch == pst_pkg::NoiseWorleySearchNone) begin : g_lattice
+      pst_noise #(
+        .NoiseInterp(NoiseInterp), .NoiseCorner(NoiseCorner), .NoiseHash(NoiseHash),
+        .NoiseValueFrac(NoiseValueFrac), .NoiseLatticeFrac(NoiseLatticeFrac),
+        .NoiseOutFrac(NoiseOutFrac), .NoiseSteps(NoiseSteps), .NoiseGuardBits(NoiseGuardBits),
+        .NoiseGradFrac(NoiseGradFrac), .NoiseRegs(NoiseRegs)
+      ) u_noise (
+        .clk_i, .rst_ni, .en_i, .valid_i, .step_i, .lat_i (lat_i[u*LTW +: LTW]),
+        .frac_i (frac_i[u*3*LF +: 3*LF]), .valid_o (unit_valid), .last_o (last_o[u]),
+        .n_o (n_o[u*NW +: NW]), .grad_o (g_o[u*3*NGW +: 3*NGW])
+      );
+      logic unused_wc;
+      assign unused_wc = ^worley_c_i;
+    end else begin : g_worley
+      pst_worley #(
+        .NoiseLatticeFrac(NoiseLatticeFrac), .NoiseOutFrac(NoiseOutFrac), .NoiseSteps(NoiseSteps),
+        .NoiseGuardBits(NoiseGuardBits), .NoiseRegs(NoiseRegs), .NoiseWorleySearch(NoiseWorleySearch),
+        .NoiseWorleyPoints(NoiseWorleyPoints), .NoiseWorleyOrder(NoiseWorleyOrder)
+      ) u_noise (
+        .clk_i, .rst_ni, .en_i, .valid_i, .step_i, .lat_i (lat_i[u*LTW +: LTW]),
+        .frac_i (frac_i[u*3*LF +: 3*LF]), .coef_i (worley_c_i), .valid_o (unit_valid),
+        .last_o (last_o[u]), .n_o (n_o[u*NW +: NW]), .grad_o (g_o[u*3*NGW +: 3*NGW])
+      );
+    end
+    logic unused_valid;
+    assign unused_valid = unit_valid;
+
+    if (DebugProbes) begin : g_probe
+      pst_delay #(.Width(LTW + 3*LF), .Depth(NoiseRegs)) u_pr (
+        .clk_i, .rst_ni, .en_i, .d_i ({lat_i[u*LTW +: LTW], frac_i[u*3*LF +: 3*LF]}),
+        .q_o ({probe_lat_o[u*LTW +: LTW], probe_frac_o[u*3*LF +: 3*LF]}));
+    end else begin : g_no_probe
+      assign probe_lat_o[u*LTW +: LTW]    = '0;
+      assign probe_frac_o[u*3*LF +: 3*LF] = '0;
+    end
+  end
+
+endmodule
+
+`default_nettype wire

@@ -1,0 +1,299 @@
+// pst_octave_parallel: the parallel octave datapath of pst_octave_stage: every product every
+// cycle, a fragment per Passes x NoiseSteps cycles (a pixel per clock with one pass of one
+// step). Each cycle of a fragment in [A] issues a beat (its pass, step, first / last flags)
+// into a pipeline of Lat = XR + NoiseRegs + MR registers, which carries side_i (the tag and
+// Jacobian) beside it; [A] is released at the last beat's issue. Per lane (pst_octave_lane):
+//   issue     octave transform of the beat's pass            -> XR registers (OctaveRegs = 2)
+//   noise     the noise units (outside, pst_octave_noise)     -> NoiseRegs registers
+//   term      octave term, zero unless the lane's octave is active -> MR registers (OctaveRegs >= 1)
+// The quadric (pst_quadric) runs beside, pipelined through the first min(2, Lat) registers.
+// At the end the beat's terms go to the accumulators (acc_en_o, acc_first_o); the last beat
+// offers the fragment to [B] (valid_o) and the whole pipeline stalls while [B] refuses it.
+// busy_o: a beat is inside the pipeline's registers.
+//
+// Bandlimited octaves: the fade chain of a beat is spread over the XR + NoiseRegs registers
+// between its issue and its term: a register after the pixel's lengths (F1), one after their
+// lg (F2, pst_fade_pixel), the rest after the lanes' fades (F3); fewer registers leave the
+// chain combinational.
+//
+// Parameters: pst_octave_stage's (the profile's formats and registers); DebugProbes = 0 ties
+// the pr_* outputs to zero.
+`include "pst_pkg.sv"
+`default_nettype none
+
+module pst_octave_parallel #(
+  parameter int Octaves = pst_pkg::OctavesDefault, parameter int NoiseUnits = pst_pkg::NoiseUnitsDefault,
+  parameter int NoiseSteps = pst_pkg::NoiseStepsDefault, parameter int NoiseRegs = pst_pkg::NoiseRegsDefault,
+  parameter int OctaveRegs = pst_pkg::OctaveRegsDefault, parameter int FilterBandlimit = pst_pkg::FilterBandlimitDefault,
+  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault, parameter int NoiseOutFrac = pst_pkg::NoiseOutFracDefault,
+  parameter int CoordInt = pst_pkg::CoordIntDefault, parameter int CoordFrac = pst_pkg::CoordFracDefault,
+  parameter int MatrixInt = pst_pkg::MatrixIntDefault, parameter int MatrixFrac = pst_pkg::MatrixFracDefault,
+  parameter int OffsetInt = pst_pkg::OffsetIntDefault, parameter int OffsetFrac = pst_pkg::OffsetFracDefault,
+  parameter int AmplitudeInt = pst_pkg::AmplitudeIntDefault, parameter int AmplitudeFrac = pst_pkg::AmplitudeFracDefault,
+  parameter int GradMatrixInt = pst_pkg::GradMatrixIntDefault, parameter int GradMatrixFrac = pst_pkg::GradMatrixFracDefault,
+  parameter int QuadricInt = pst_pkg::QuadricIntDefault, parameter int QuadricFrac = pst_pkg::QuadricFracDefault,
+  parameter int FInt = pst_pkg::FIntDefault, parameter int FFrac = pst_pkg::FFracDefault,
+  parameter int GradInt = pst_pkg::GradIntDefault, parameter int GradFrac = pst_pkg::GradFracDefault,
+  parameter int JacobianInt = pst_pkg::JacobianIntDefault, parameter int JacobianFrac = pst_pkg::JacobianFracDefault,
+  parameter int SideW = pst_pkg::TagBits, parameter bit DebugProbes = 1'b1,
+  localparam int CW  = CoordInt + CoordFrac,
+  localparam int MW  = MatrixInt + MatrixFrac,
+  localparam int OW  = OffsetInt + OffsetFrac,
+  localparam int AW  = AmplitudeInt + AmplitudeFrac,
+  localparam int GMW = GradMatrixInt + GradMatrixFrac,
+  localparam int QW  = QuadricInt + QuadricFrac,
+  localparam int FW  = FInt + FFrac,
+  localparam int GW  = GradInt + GradFrac,
+  localparam int JW  = JacobianInt + JacobianFrac,
+  localparam int LF  = NoiseLatticeFrac,
+  localparam int NW  = pst_pkg::NoiseIntBits + NoiseOutFrac,
+  localparam int NGW = pst_pkg::NoiseGradIntBits + NoiseOutFrac,
+  localparam int LTW = pst_pkg::LatticeWidth,
+  localparam int TB  = pst_pkg::TagBits,
+  localparam int PPB = pst_pkg::ProbePassBits,
+  localparam int FB  = pst_pkg::FadeBits,
+  localparam int LMW = pst_pkg::FadeLgBits,
+  localparam int OctBits = $clog2(Octaves + 1)
+) (
+  input  logic                      clk_i,
+  input  logic                      rst_ni,
+  input  logic                      valid_i,
+  output logic                      ready_o,
+  input  logic [3*CW-1:0]           s_i,
+  input  logic [SideW-1:0]          side_i,
+  output logic                      valid_o,
+  input  logic                      ready_i,
+  output logic [SideW-1:0]          side_o,
+  output logic                      busy_o,
+  // Registers (pst_octave_stage's)
+  input  logic [OctBits-1:0]        active_i,
+  input  logic [10*QW-1:0]          quad_i,
+  input  logic [Octaves*9*MW-1:0]   oct_m_i,
+  input  logic [Octaves*3*OW-1:0]   oct_o_i,
+  input  logic [Octaves*AW-1:0]     oct_a_i,
+  input  logic [Octaves*9*GMW-1:0]  oct_gm_i,
+  input  logic [Octaves*LMW-1:0]    oct_lgm_i,
+  input  logic                      bl_i,
+  input  logic [pst_pkg::FadeEntries*FB-1:0] fade_i,
+  // The noise units (lane u at [u*W +: W])
+  output logic                      nz_en_o,
+  output logic                      nz_valid_o,
+  output logic [2:0]                nz_step_o,
+  output logic [NoiseUnits*LTW-1:0] nz_lat_o,
+  output logic [NoiseUnits*3*LF-1:0] nz_frac_o,
+  input  logic [NoiseUnits*NW-1:0]  nz_n_i,
+  input  logic [NoiseUnits*3*NGW-1:0] nz_g_i,
+  // The accumulators: this beat's terms, added (first: from zero); the quadric with the last
+  output logic [NoiseUnits*FW-1:0]  fterm_o,
+  output logic [NoiseUnits*3*GW-1:0] gterm_o,
+  output logic                      acc_en_o,
+  output logic                      acc_first_o,
+  output logic [FW-1:0]             q_o,
+  output logic [3*GW-1:0]           gradq_o,
+  // Probes: the pass whose noise results are at the noise units' outputs
+  output logic                      pr_valid_o,
+  output logic [PPB-1:0]            pr_pass_o,
+  output logic [TB-1:0]             pr_tag_o,
+  output logic [TB-1:0]             pr_q_tag_o
+);
+
+  localparam int Passes   = Octaves / NoiseUnits;
+  localparam int PassBits = (Passes > 1) ? $clog2(Passes) : 1;
+  localparam int XR       = (OctaveRegs >= 2) ? 1 : 0;   // after the transform
+  localparam int NR       = NoiseRegs;                    // inside the noise units
+  localparam int MR       = (OctaveRegs >= 1) ? 1 : 0;   // after the term
+  localparam int Lat      = XR + NR + MR;
+  localparam int Cycles   = Passes * NoiseSteps;         // a fragment's beats
+  localparam int CycBits  = (Cycles > 1) ? $clog2(Cycles) : 1;
+  localparam bit Bl       = (FilterBandlimit == pst_pkg::FilterBandlimitIsotropic);
+  localparam int LgW      = $clog2((JW + 1) << pst_pkg::FadeLgFrac) + 1;
+  localparam int FL       = XR + NR;                      // the fade chain's registers
+  localparam int F1       = (FL >= 3) ? 1 : 0;
+  localparam int F2       = (FL >= 2) ? 1 : 0;
+  localparam int F3       = FL - F1 - F2;
+
+  typedef struct packed {
+    logic                valid;
+    logic [PassBits-1:0] pass;
+    logic [2:0]          step;
+    logic                first;
+    logic                last;
+  } beat_t;
+
+  // The fragment's cycle in [A] and the beat it issues: pass p, noise step j at cycle
+  // p NoiseSteps + j.
+  logic [CycBits-1:0] cyc_q, cyc_d;
+  logic               en;         // the pipeline advances
+  beat_t              beat_f, beat_x, beat_n, beat_e;   // at issue, after [X], after the noise, at the end
+  logic [SideW-1:0]   side_x, side_n, side_e;
+  logic [PassBits-1:0] npass;
+  logic [2:0]          nstep;
+  assign npass  = PassBits'(32'(cyc_q) / NoiseSteps);
+  assign nstep  = 3'(32'(cyc_q) % NoiseSteps);
+  assign beat_f.valid = valid_i;
+  assign beat_f.pass  = npass;
+  assign beat_f.step  = nstep;
+  assign beat_f.first = (cyc_q == '0);
+  assign beat_f.last  = (32'(cyc_q) + 1 >= Cycles);
+
+  // The pipeline stalls only while the end holds a last beat that [B] refuses.
+  assign en      = ~(valid_o & ~ready_i);
+  assign ready_o = beat_f.last & en;
+  always_comb begin
+    cyc_d = cyc_q;
+    if (en && valid_i) cyc_d = beat_f.last ? '0 : cyc_q + 1'b1;
+  end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) cyc_q <= '0;
+    else cyc_q <= cyc_d;
+  end
+
+  // Quadric (every product every beat), pipelined through the first min(2, Lat) registers and
+  // delayed through the rest.
+  localparam int QR = (Lat < 2) ? Lat : 2;
+  logic [FW-1:0]   q_f;
+  logic [3*GW-1:0] gradq_f;
+  pst_quadric #(
+    .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
+    .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac),
+    .Regs(QR)
+  ) u_quadric (
+    .clk_i, .rst_ni, .en_i (en), .s_i (s_i), .coef_i (quad_i), .q_o (q_f), .gradq_o (gradq_f)
+  );
+  pst_delay #(.Width(FW + 3*GW), .Depth(Lat - QR)) u_q_delay (
+    .clk_i, .rst_ni, .en_i (en), .d_i ({gradq_f, q_f}), .q_o ({gradq_o, q_o}));
+
+  // Beats and side payload: [X] after the transform, NR beside the noise units, [M] after the
+  // term.
+  pst_delay #(.Width($bits(beat_f)), .Depth(XR), .Reset(1'b1)) u_beat_x (
+    .clk_i, .rst_ni, .en_i (en), .d_i (beat_f), .q_o (beat_x));
+  pst_delay #(.Width($bits(beat_f)), .Depth(NR), .Reset(1'b1)) u_beat_n (
+    .clk_i, .rst_ni, .en_i (en), .d_i (beat_x), .q_o (beat_n));
+  pst_delay #(.Width($bits(beat_f)), .Depth(MR), .Reset(1'b1)) u_beat_e (
+    .clk_i, .rst_ni, .en_i (en), .d_i (beat_n), .q_o (beat_e));
+  pst_delay #(.Width(SideW), .Depth(XR)) u_side_x (
+    .clk_i, .rst_ni, .en_i (en), .d_i (side_i), .q_o (side_x));
+  pst_delay #(.Width(SideW), .Depth(NR)) u_side_n (
+    .clk_i, .rst_ni, .en_i (en), .d_i (side_x), .q_o (side_n));
+  pst_delay #(.Width(SideW), .Depth(MR)) u_side_e (
+    .clk_i, .rst_ni, .en_i (en), .d_i (side_n), .q_o (side_e));
+
+  logic nlast_n;   // the beat after the noise units ends its pass's evaluation
+  assign nlast_n    = beat_n.valid && (32'(beat_n.step) == NoiseSteps - 1);
+  assign nz_en_o    = en;
+  assign nz_valid_o = beat_x.valid;
+  assign nz_step_o  = beat_x.step;
+
+  // Beats in the pipeline's registers (issued, not yet past the end).
+  if (Lat > 0) begin : g_count
+    localparam int IW = $clog2(Lat + 2);
+    logic [IW-1:0] inflight_q;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) inflight_q <= '0;
+      else if (en) inflight_q <= inflight_q + IW'(valid_i) - IW'(beat_e.valid);
+    end
+    assign busy_o = (inflight_q != '0);
+  end else begin : g_nocount
+    assign busy_o = 1'b0;
+  end
+
+  // The pixel's lg edge lengths for the fades (F1 + F2 registers after the issue).
+  logic [LgW-1:0] lgx, lgy;
+  if (Bl) begin : g_fade_px
+    pst_fade_pixel #(.JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac), .LenRegs(F1), .LgRegs(F2)) u_px (
+      .clk_i, .rst_ni, .en_i (en), .j_i (side_i[TB +: 6*JW]), .lgx_o (lgx), .lgy_o (lgy));
+  end else begin : g_no_fade
+    assign lgx = '0;
+    assign lgy = '0;
+  end
+
+  for (genvar u = 0; u < NoiseUnits; u++) begin : g_lane
+    // The register arrays indexed by the octave of the beat: at issue (transform, lg ||M||)
+    // and after the noise units (term); a constant when Passes = 1.
+    logic [9*MW-1:0]  m_sel;
+    logic [3*OW-1:0]  o_sel;
+    logic [AW-1:0]    a_sel;
+    logic [9*GMW-1:0] gm_sel;
+    logic [LMW-1:0]   lgm_sel;
+    always_comb begin
+      m_sel   = oct_m_i[u*9*MW +: 9*MW];
+      o_sel   = oct_o_i[u*3*OW +: 3*OW];
+      lgm_sel = oct_lgm_i[u*LMW +: LMW];
+      a_sel   = oct_a_i[u*AW +: AW];
+      gm_sel  = oct_gm_i[u*9*GMW +: 9*GMW];
+      for (int p = 1; p < Passes; p++) begin
+        if (32'(npass) == p) begin
+          m_sel   = oct_m_i[(p * NoiseUnits + u)*9*MW +: 9*MW];
+          o_sel   = oct_o_i[(p * NoiseUnits + u)*3*OW +: 3*OW];
+          lgm_sel = oct_lgm_i[(p * NoiseUnits + u)*LMW +: LMW];
+        end
+        if (32'(beat_n.pass) == p) begin
+          a_sel  = oct_a_i[(p * NoiseUnits + u)*AW +: AW];
+          gm_sel = oct_gm_i[(p * NoiseUnits + u)*9*GMW +: 9*GMW];
+        end
+      end
+    end
+    // The lane's octave after the noise units (lane_on: an active octave).
+    logic [OctBits:0] oct_n;
+    logic             lane_on;
+    assign oct_n   = (Passes > 1) ? (OctBits + 1)'(beat_n.pass) * (OctBits + 1)'(NoiseUnits) + (OctBits + 1)'(u)
+                                  : (OctBits + 1)'(u);
+    assign lane_on = oct_n < {1'b0, active_i};
+
+    logic [LTW-1:0]  lat_f;
+    logic [3*LF-1:0] frac_f;
+    logic [LMW-1:0]  lgm_2;
+    logic [FB-1:0]   alpha_2, alpha_n;
+    logic [FW-1:0]   fterm;
+    logic [3*GW-1:0] gterm;
+    pst_octave_lane #(
+      .Rows(3), .FilterBandlimit(FilterBandlimit), .LgW(LgW), .NoiseLatticeFrac(NoiseLatticeFrac),
+      .NoiseOutFrac(NoiseOutFrac), .CoordInt(CoordInt), .CoordFrac(CoordFrac), .MatrixInt(MatrixInt),
+      .MatrixFrac(MatrixFrac), .OffsetInt(OffsetInt), .OffsetFrac(OffsetFrac), .AmplitudeInt(AmplitudeInt),
+      .AmplitudeFrac(AmplitudeFrac), .GradMatrixInt(GradMatrixInt), .GradMatrixFrac(GradMatrixFrac),
+      .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
+    ) u_lane (
+      .s_i (s_i), .m_i (m_sel), .o_i (o_sel), .lat_o (lat_f), .frac_o (frac_f),
+      .bl_i (bl_i), .lgx_i (lgx), .lgy_i (lgy), .lgm_i (lgm_2), .fade_i (fade_i), .alpha_o (alpha_2),
+      .n_i (nz_n_i[u*NW +: NW]), .g_i (nz_g_i[u*3*NGW +: 3*NGW]), .a_i (a_sel), .gm_i (gm_sel),
+      .alpha_i (alpha_n), .fterm_o (fterm), .gterm_o (gterm)
+    );
+    pst_delay #(.Width(LTW + 3*LF), .Depth(XR)) u_x (
+      .clk_i, .rst_ni, .en_i (en), .d_i ({lat_f, frac_f}),
+      .q_o ({nz_lat_o[u*LTW +: LTW], nz_frac_o[u*3*LF +: 3*LF]}));
+    // The octave's lg ||M|| carried with the pixel's lg (F1 + F2), its fade delayed beside the
+    // noise unit to the term (F3).
+    pst_delay #(.Width(LMW), .Depth(Bl ? F1 + F2 : 0)) u_lgm (
+      .clk_i, .rst_ni, .en_i (en), .d_i (lgm_sel), .q_o (lgm_2));
+    pst_delay #(.Width(FB), .Depth(Bl ? F3 : 0)) u_alpha (
+      .clk_i, .rst_ni, .en_i (en), .d_i (alpha_2), .q_o (alpha_n));
+    pst_delay #(.Width(FW + 3*GW), .Depth(MR)) u_m (
+      .clk_i, .rst_ni, .en_i (en), .d_i ((lane_on && nlast_n) ? {gterm, fterm} : '0),
+      .q_o ({gterm_o[u*3*GW +: 3*GW], fterm_o[u*FW +: FW]}));
+  end
+
+  assign acc_en_o    = en & beat_e.valid;
+  assign acc_first_o = beat_e.first;
+  assign valid_o     = beat_e.valid & beat_e.last;
+  assign side_o      = side_e;
+
+  assign pr_valid_o  = DebugProbes & nlast_n;
+  assign pr_pass_o   = DebugProbes ? PPB'(beat_n.pass) : '0;
+  assign pr_tag_o    = DebugProbes ? side_n[TB-1:0] : '0;
+  assign pr_q_tag_o  = DebugProbes ? side_e[TB-1:0] : '0;
+  logic unused;
+  assign unused = ^{beat_x.pass, beat_x.first, beat_x.last, beat_n.first, beat_n.last, beat_e.pass,
+                    beat_e.step, side_n[SideW-1:TB]};
+
+  // Assertions
+`ifndef SYNTHESIS
+  initial begin
+    if (OctaveRegs < 0 || OctaveRegs > 2) $error("pst_octave_parallel: OctaveRegs must be 0..2");
+    if (Bl && SideW < TB + 6*JW) $error("pst_octave_parallel: SideW must hold the Jacobian above the tag");
+  end
+  assert property (@(posedge clk_i) disable iff (!rst_ni) 32'(cyc_q) < Cycles);
+`endif
+
+endmodule
+
+`default_nettype wire
