@@ -115,6 +115,7 @@ def settings(o: dict) -> SearchSettings:
                       f"--rom-dir: {o['rom_dir']}: no ROM images (cmake --build build --target pst_rom_images)")):
         if not ok:
             raise ValueError(what)
+    scenegen.check_training_seed(o.get("seed", 1))
     floor = o.get("synth_floor")
     return SearchSettings(classes, targets, losses, start_docs, knobs, pathlib.Path(o["out"]).resolve(), o["pst"],
                           o["rom_dir"], o["module_cache"], o["size"], o["train"], o["valid"], bool(o["paper"]),
