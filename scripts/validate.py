@@ -3,6 +3,7 @@
 
     scripts/validate.py PROFILE... [--count 64] [--size 128] [--seed 1000001] [--jobs 1]
                         [--out out/validate] [--pst build/pst]
+    scripts/validate.py --scenes-only [--count --size --seed --out]   the set alone: OUT/scenes/
 
 PROFILE: a name (rtl/configs/NAME.toml: full_exact, full, balanced, reduced, ...) or a profile
 file. The set (scripts/pstlib/valset.py): COUNT scenes in eight strata (step-sensitive colour
@@ -33,20 +34,23 @@ from pstlib.paths import ROOT
 
 def parse_args(argv):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("profiles", nargs="+", metavar="PROFILE")
+    ap.add_argument("profiles", nargs="*", metavar="PROFILE")
     ap.add_argument("--count", type=int, default=valset.DEFAULT_COUNT, help="scenes (default 64)")
     ap.add_argument("--size", type=int, default=valset.DEFAULT_SIZE, help="image size (default 128)")
     ap.add_argument("--seed", type=int, default=valset.DEFAULT_SEED, help=f"default {valset.DEFAULT_SEED}")
     ap.add_argument("--jobs", type=int, default=1, help="scenes rendered in parallel (default 1)")
     ap.add_argument("--out", default=str(ROOT / "out" / "validate"))
     ap.add_argument("--pst", default=str(ROOT / "build" / "pst"))
+    ap.add_argument("--scenes-only", action="store_true", help="write the set to OUT/scenes and stop (no render)")
     a = ap.parse_args(argv)
     try:
+        if not a.profiles and not a.scenes_only:
+            raise ValueError("name at least one PROFILE (full_exact is always rendered as the reference)")
         validation.resolve_profiles(a.profiles)
         valset.check(a.seed, a.count, a.size)
         if a.jobs < 1:
             raise ValueError(f"--jobs: at least 1, got {a.jobs}")
-        if not os.access(a.pst, os.X_OK):
+        if not a.scenes_only and not os.access(a.pst, os.X_OK):
             raise ValueError(f"--pst: {a.pst}: not an executable (cmake --build build --target pst)")
     except ValueError as e:
         ap.error(str(e))
@@ -55,6 +59,10 @@ def parse_args(argv):
 
 def main(argv=None) -> int:
     a = parse_args(sys.argv[1:] if argv is None else argv)
+    if a.scenes_only:
+        m = valset.write(pathlib.Path(a.out) / "scenes", a.seed, a.count, a.size)
+        print(f"wrote {len(m['scenes'])} validation scenes (seed {a.seed}) to {pathlib.Path(a.out) / 'scenes'}")
+        return 0
     return validation.run(a.profiles, a.count, a.size, a.seed, pathlib.Path(a.out), a.pst, a.jobs)
 
 

@@ -71,9 +71,10 @@ SIZE_RANGE = (16, 2048)
 MAX_COUNT = 4096
 
 
-def check_seed(seed: int) -> int:
+def check_seed(seed: int, flag: str = "--seed") -> int:
+    """SEED if it is a validation seed, else ValueError (what the command lines print)."""
     if not isinstance(seed, int) or not SEED_BEGIN <= seed < SEED_END:
-        raise ValueError(f"--seed: validation seeds are {SEED_BEGIN}..{SEED_END - 1} (training takes "
+        raise ValueError(f"{flag}: validation seeds are {SEED_BEGIN}..{SEED_END - 1} (training takes "
                          f"0..{SEED_BEGIN - 1}), got {seed}")
     return seed
 
