@@ -17,8 +17,10 @@ Every fourth training scene (index 3, 7, 11, ...) is a step-sensitive one: a ste
 taken mod, unfiltered, nearest-level MIP or summed-area table. There a tiny change of f (or of W,
 for the table) moves whole pixels across a colour step or a wrap, so a precision cut that a smooth
 texture hides shows there; the walks over full's formats found such cuts only on validation
-textures of this kind (valid_004 unfiltered and mod, valid_008 SAT). The validation set stays a
-plain random draw.
+textures of this kind (valid_004 unfiltered and mod, valid_008 SAT). This generator's "valid"
+set stays a plain random draw (scripts/gen_scenes.py --valid); the search and scripts/validate.py
+judge on the held-out set of valset.py instead (every stratum, its own seed range: see
+TRAIN_SEED_END).
 
 The categorical features are stratified (each set walks a shuffled list of each feature), so a
 set of >= 8 scenes holds every octave count 1..8, every filter, wrap, interpolation, matrix kind
