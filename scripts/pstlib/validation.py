@@ -105,6 +105,9 @@ def run(profile_names: list, count: int, size: int, seed: int, out: pathlib.Path
                 psnrs[name] = p
             except RuntimeError as e:
                 errors.append(str(e))
+            done = len(psnrs) + len(errors)
+            if done % 16 == 0 and done < len(features):
+                say(f"  {done}/{len(features)} scenes rendered ({time.time() - t0:.0f} s)")
     if errors:
         say("FAILED: " + errors[0])
         return 1
