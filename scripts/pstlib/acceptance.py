@@ -1,4 +1,4 @@
-"""The rule of acceptance for any format cut, search point or profile (issue 23), in one place.
+"""The rule of acceptance for any format cut, search point or profile, in one place.
 
 A candidate is judged scene by scene against a reference profile on the same scenes (full_exact
 for a named profile, the class's start profile in the search): each scene's PSNR of the golden

@@ -2,14 +2,14 @@
 seeds the training generator never takes.
 
 Why: a profile was once accepted on 16 plain random draws (scenegen's "valid" stream) and then
-lost up to 10 dB on textures of kinds that set did not hold (issue 23: a full quadric under a
-step map with a blended MIP, a plane to the horizon with nearest MIP and eight rotated octaves,
-a rotated marble on a torus with a clamped map). This set is stratified by those kinds. Scene
+lost up to 10 dB on textures of kinds that set did not hold (a full quadric under a step map
+with a blended MIP, a plane to the horizon with nearest MIP and eight rotated octaves, a
+rotated marble on a torus with a clamped map). This set is stratified by those kinds. Scene
 i belongs to stratum STRATA[i % 8]; a stratum pins the features that define it and walks the
 others (scenegen's shuffled walks, a stream per stratum and feature), so 8 scenes hold every
 stratum once and 64 hold every stratum eight times, with every filter, wrap, interpolation,
 matrix kind, quadric kind, mesh and octave count 1..8 among them. The first scene of some
-strata is the issue's kind exactly (ANCHORS).
+strata is one of those three kinds exactly (ANCHORS).
 
 Strata:
 - step_sensitive: a step colour map taken mod with no filter, nearest MIP or the summed-area
@@ -61,7 +61,7 @@ STRATA = {
     "plain": {},
 }
 STRATUM_NAMES = list(STRATA)
-# The first scene of these strata: the kinds issue 23 measured (numbers still drawn).
+# The first scene of these strata: the three kinds above (numbers still drawn).
 ANCHORS = {
     "quadric_step": {"filter": "mip_linear", "wrap": "mod"},
     "horizon": {"filter": "mip", "octaves": 8, "matrix": "rotated"},

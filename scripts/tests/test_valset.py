@@ -99,7 +99,7 @@ def test_64_scenes_cover_every_feature_of_the_training_generator():
     assert diag and all(abs(math.log2(v) - round(math.log2(v))) > 1e-6 for v in diag)
 
 
-def test_the_issue_kinds_are_in_every_set_of_eight_or_more():
+def test_the_three_hidden_kinds_are_in_every_set_of_eight_or_more():
     docs = _docs(count=8)
     kinds = [(f, _tex(d), d) for d, f in docs]
     assert any(f["quadric"] == "full" and t["colormap"]["interp"] == "step" and t["filter"] == "mip_linear"
