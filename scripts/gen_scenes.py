@@ -27,8 +27,10 @@ def main(argv=None) -> int:
     for k in ("train", "valid"):
         if not 0 <= getattr(a, k) <= 1000:
             ap.error(f"--{k}: must be in [0, 1000]")
-    if a.seed < 0:
-        ap.error("--seed: must be >= 0")
+    try:
+        scenegen.check_training_seed(a.seed)
+    except ValueError as e:
+        ap.error(str(e))
     out = pathlib.Path(a.out)
     m = scenegen.write(out, a.seed, {"train": a.train, "valid": a.valid})
     print(f"wrote {len(m['sets']['train'])} training and {len(m['sets']['valid'])} validation scenes "

@@ -3,7 +3,8 @@
 
     scripts/search.py [--classes 1,4,32] [--psnr DB | --psnr 1=50,4=45,32=30] [--max-loss DB] [--fmax MHZ]
                       [--start 1=full,4=full,32=reduced] [--knobs k1,k2,...] [--budget N]
-                      [--backtracks N] [--size 48] [--train 8] [--valid 8] [--seed 1] [--paper]
+                      [--backtracks N] [--size 48] [--train 8] [--valid 8] [--seed 1]
+                      [--valid-seed 1000001] [--paper]
                       [--jobs 2] [--backend local|slurm] [--rtl N] [--rtl-size 32] [--out out/search]
     scripts/search.py --big        the big run (below); explicit options override its values
 
@@ -14,16 +15,19 @@ the cheaper neighbour of least logic area that still has worst training PSNR >= 
 (and Fmax >= --fmax when given: scripts/synth.py with OpenSTA on those candidates only).
 --max-loss DB adds the texture-by-texture rule: every training scene within DB of the
 class's start profile (the worst scene alone hides a step colour map or a mod wrap that a
-cut spoils); the walk's merit is then GE saved per dB lost on the scene that loses most, the
-starts are scored on the validation set too, and each front point carries its largest loss on
-one scene against the start, training and validation (flagged when validation passes DB).
+cut spoils); the walk's merit is then GE saved per dB lost on the scene that loses most.
+Every front point is judged on the held-out validation set (scripts/pstlib/valset.py, seeds
+--valid-seed, apart from the training seeds) by the rule of acceptance
+(scripts/pstlib/acceptance.py): every validation scene within 1 dB of the class's start
+profile there; front.md gives its largest loss, the scene, and pass / FAIL.
 Knobs: the fraction bits of every format (coord, jacobian, matrix, amplitude, offset, quadric,
 f, grad, width), the noise unit's value/lattice/out fractions and guard bits, the reciprocal
 bits, interpolation, corner, hash, |grad| norm, and `structure` (octaves, noise units, noise
 steps, datapath among those within the class's clocks per pixel).
 
 A point is evaluated by golden renders (`pst render --model golden`) of the training scenes
-(random scenes of scripts/gen_scenes.py, seed --seed, plus the paper's scenes with --paper) at
+(random scenes of scripts/gen_scenes.py, seed --seed in 0..999,999, plus the paper's scenes
+with --paper) at
 --size: its worst-scene PSNR against the double reference; clocks per pixel from the contract;
 logic GE from a per-module synthesis cache (scripts/pstlib/synth/modules.py: a derived module
 is synthesized once per parameter set and source, so a point that changes one format
@@ -39,7 +43,7 @@ front point: verilated into build-search/, `pst regress --size --rtl-size`, 0 mi
 --partition, --account, --time, --slurm-arg) and collects the same per-point results; a failed
 or cancelled task is rerun by the next run of the same command.
 
---big: all knobs, 32 training + 32 validation scenes plus the paper's at 128 x 128, budget 200
+--big: all knobs, 32 training + 64 validation scenes plus the paper's at 128 x 128, budget 200
 points per class, 4 backtracks, PSNR targets 1=50,4=45,32=30 (hours on a many-core machine or a
 cluster: use --backend slurm).
 Code: scripts/pstlib/explore/ (search.py the space and the walk, search_run.py the run,
@@ -70,8 +74,9 @@ def parse_args(argv):
     ap.add_argument("--backtracks", type=int, help="backtracks per walk (default 2)")
     ap.add_argument("--size", type=int, help="image size of the renders (default 48)")
     ap.add_argument("--train", type=int, help="random training scenes (default 8)")
-    ap.add_argument("--valid", type=int, help="random validation scenes (default 8)")
-    ap.add_argument("--seed", type=int, default=1)
+    ap.add_argument("--valid", type=int, help="held-out validation scenes (default 8; --big 64)")
+    ap.add_argument("--seed", type=int, default=1, help="training scenes' seed, 0..999999")
+    ap.add_argument("--valid-seed", type=int, help="validation set's seed, 1000000..1999999 (default 1000001)")
     ap.add_argument("--paper", action="store_true", default=None, help="the paper's scenes in the training set too")
     ap.add_argument("--synth-floor", type=float, default=None,
                     help="points whose worst training PSNR is below this are not synthesized (default: lowest target - 10)")

@@ -17,8 +17,10 @@ Every fourth training scene (index 3, 7, 11, ...) is a step-sensitive one: a ste
 taken mod, unfiltered, nearest-level MIP or summed-area table. There a tiny change of f (or of W,
 for the table) moves whole pixels across a colour step or a wrap, so a precision cut that a smooth
 texture hides shows there; the walks over full's formats found such cuts only on validation
-textures of this kind (valid_004 unfiltered and mod, valid_008 SAT). The validation set stays a
-plain random draw.
+textures of this kind (valid_004 unfiltered and mod, valid_008 SAT). This generator's "valid"
+set stays a plain random draw (scripts/gen_scenes.py --valid); the search and scripts/validate.py
+judge on the held-out set of valset.py instead (every stratum, its own seed range: see
+TRAIN_SEED_END).
 
 The categorical features are stratified (each set walks a shuffled list of each feature), so a
 set of >= 8 scenes holds every octave count 1..8, every filter, wrap, interpolation, matrix kind
@@ -41,6 +43,18 @@ MESHES = ["sphere", "cube", "plane", "torus", "teapot"]
 OCTAVE_COUNTS = list(range(1, 9))
 MAX_FREQ = 48.0           # largest |M| entry (reduced's matrix format holds |m| < 64)
 SET_NAMES = ("train", "valid")
+# Seeds of this generator (the search's training scenes and its own "valid" stream): below
+# TRAIN_SEED_END. The held-out validation set (valset.py) takes its seeds from
+# [TRAIN_SEED_END, 2 * TRAIN_SEED_END) and refuses these: no scene of it can be a training scene.
+TRAIN_SEED_END = 1_000_000
+
+
+def check_training_seed(seed: int) -> int:
+    """SEED if it is a training seed, else ValueError (what the command lines print)."""
+    if not isinstance(seed, int) or not 0 <= seed < TRAIN_SEED_END:
+        raise ValueError(f"--seed: training seeds are 0..{TRAIN_SEED_END - 1} (the validation set's "
+                         f"are {TRAIN_SEED_END}..{2 * TRAIN_SEED_END - 1}), got {seed}")
+    return seed
 STEP_FILTERS = ["none", "mip", "sat"]     # the filters that keep a step map's steps (see above)
 
 
@@ -195,8 +209,43 @@ def camera_and_object(r: random.Random, mesh: str) -> tuple:
     return {"eye": eye, "target": target, "fovy": r.uniform(35.0, 50.0)}, obj
 
 
+def scene_toml(header: list, size: int, background, cam: dict, quad: dict, filt: str, cmap: dict, octs: list,
+               obj: dict) -> str:
+    """The TOML text of a one-texture, one-object scene: HEADER (comment and title lines), a SIZE x
+    SIZE image, the camera (eye, target, fovy; near when given), texture "t" and the object."""
+    tex = "t"
+    lines = [*header, "",
+             "[image]", f"width = {size}", f"height = {size}", f"background = {_vec(background)}", "",
+             "[camera]", f"eye = {_vec(cam['eye'])}", f"target = {_vec(cam['target'])}", f"fovy = {_num(cam['fovy'])}"]
+    if "near" in cam:
+        lines.append(f"near = {_num(cam['near'])}")
+    lines += ["", f"[textures.{tex}]"]
+    if quad:
+        lines.append("quadric = { " + ", ".join(f"{k} = {_num(v)}" for k, v in quad.items()) + " }")
+    lines.append(f'filter = "{filt}"')
+    ramp = ",\n".join("  " + _vec(k) for k in cmap["ramp"])
+    lines.append(f'colormap = {{ size = {cmap["size"]}, wrap = "{cmap["wrap"]}", interp = "{cmap["interp"]}", '
+                 f'ramp = [\n{ramp} ] }}')
+    for o in octs:
+        lines += ["", f"[[textures.{tex}.octaves]]", f"amplitude = {_num(o['amplitude'])}",
+                  "matrix = [" + ", ".join(_vec(row) for row in o["matrix"]) + "]",
+                  f"offset = {_vec(o['offset'])}"]
+    lines += ["", "[[objects]]", f'mesh = "{obj["mesh"]}"', f'texture = "{tex}"']
+    for k, v in obj.items():
+        if k == "mesh":
+            continue
+        if isinstance(v, list):
+            lines.append(f"{k} = {_vec(v)}")
+        elif isinstance(v, int):
+            lines.append(f"{k} = {v}")
+        else:
+            lines.append(f"{k} = {_num(v)}")
+    return "\n".join(lines) + "\n"
+
+
 def scene(seed: int, set_name: str, index: int) -> tuple:
-    """(file name, TOML text, features) of scene INDEX of set SET_NAME."""
+    """(file name, TOML text, features) of scene INDEX of set SET_NAME (SEED a training seed)."""
+    check_training_seed(seed)
     pick = lambda feat, vals: _stratum(seed, set_name, feat, vals, index)   # noqa: E731
     count = pick("octaves", OCTAVE_COUNTS)
     mkind = pick("matrix", MATRIX_KINDS)
@@ -216,34 +265,10 @@ def scene(seed: int, set_name: str, index: int) -> tuple:
     cmap = colormap(r, wrap, interp)
     cam, obj = camera_and_object(r, mesh)
     name = f"{set_name}_{index:03d}"
-    tex = "t"
-    lines = [f"# Random scene {name} (scripts/gen_scenes.py, seed {seed}): {count} octave(s), {mkind} matrices,",
-             f"# {qkind} quadric, {interp} colour map ({wrap}), filter {filt}, mesh {mesh}.",
-             f'title = "random {name} (seed {seed})"', "",
-             "[image]", "width = 512", "height = 512",
-             f"background = {_vec([r.uniform(0, 0.25) for _ in range(3)])}", "",
-             "[camera]", f"eye = {_vec(cam['eye'])}", f"target = {_vec(cam['target'])}", f"fovy = {_num(cam['fovy'])}",
-             "", f"[textures.{tex}]"]
-    if quad:
-        lines.append("quadric = { " + ", ".join(f"{k} = {_num(v)}" for k, v in quad.items()) + " }")
-    lines.append(f'filter = "{filt}"')
-    ramp = ",\n".join("  " + _vec(k) for k in cmap["ramp"])
-    lines.append(f'colormap = {{ size = {cmap["size"]}, wrap = "{wrap}", interp = "{interp}", ramp = [\n{ramp} ] }}')
-    for o in octs:
-        lines += ["", f"[[textures.{tex}.octaves]]", f"amplitude = {_num(o['amplitude'])}",
-                  "matrix = [" + ", ".join(_vec(row) for row in o["matrix"]) + "]",
-                  f"offset = {_vec(o['offset'])}"]
-    lines += ["", "[[objects]]", f'mesh = "{obj["mesh"]}"', f'texture = "{tex}"']
-    for k, v in obj.items():
-        if k == "mesh":
-            continue
-        if isinstance(v, list):
-            lines.append(f"{k} = {_vec(v)}")
-        elif isinstance(v, int):
-            lines.append(f"{k} = {v}")
-        else:
-            lines.append(f"{k} = {_num(v)}")
-    text = "\n".join(lines) + "\n"
+    header = [f"# Random scene {name} (scripts/gen_scenes.py, seed {seed}): {count} octave(s), {mkind} matrices,",
+              f"# {qkind} quadric, {interp} colour map ({wrap}), filter {filt}, mesh {mesh}.",
+              f'title = "random {name} (seed {seed})"']
+    text = scene_toml(header, 512, [r.uniform(0, 0.25) for _ in range(3)], cam, quad, filt, cmap, octs, obj)
     feats = dict(ofeat, name=name, set=set_name, filter=filt, wrap=wrap, interp=interp, quadric=qkind,
                  cross_terms=qkind == "full", mesh=mesh, ramp_keys=len(cmap["ramp"]),
                  step_sensitive=step_sensitive(set_name, index))

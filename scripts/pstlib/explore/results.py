@@ -1,7 +1,10 @@
 """Sweep results: the PSNRs of pst's summary.json, a point's row (means over the scenes, gate
-count), the cheapest setting within 1 dB, the points checked on the RTL."""
+count), the cheapest setting within 1 dB (the rule of acceptance, scene by scene), the points
+checked on the RTL."""
 import math
 import pathlib
+
+from .. import acceptance
 
 PSNR_CAP = 100.0        # PSNR of an exact match (rms 0) in the means
 
@@ -67,13 +70,20 @@ def psnr_vs_base(out: pathlib.Path, name: str, base: str, scenes: list):
     return min(vals) if vals else None
 
 
-def cheapest_within(rows: list, base: dict, knob: str, db: float = 1.0):
-    """The cheapest setting of one knob (the base value included) whose mean PSNR vs reference
-    is within `db` of the base's; cheapest = lowest logic GE, then ROM bits. None if no GE."""
+def scene_psnrs(row: dict) -> dict:
+    """Scene -> PSNR vs reference of one row (its scenes' records)."""
+    return {k: psnr(v.get("vs_reference")) for k, v in (row.get("scenes") or {}).items()}
+
+
+def cheapest_within(rows: list, base: dict, knob: str, db: float = acceptance.TOLERANCE_DB):
+    """The cheapest setting of one knob (the base value included) that passes the rule of
+    acceptance against the base (every scene's PSNR vs reference within `db` of the base's PSNR
+    on that scene); cheapest = lowest logic GE, then ROM bits. None if no GE."""
     cands = [r for r in rows if r["knob"] == knob and r["status"] == "ok" and r["psnr_ref"] is not None]
     cands.append(dict(base, value=base["base_value"].get(knob)))
+    ref = scene_psnrs(base)
     ok = [r for r in cands if r["psnr_ref"] is not None and base["psnr_ref"] is not None
-          and r["psnr_ref"] >= base["psnr_ref"] - db]
+          and acceptance.judge(ref, scene_psnrs(r), db)["passed"]]
     if any(r["logic_ge"] is None for r in ok) or not ok:
         return None, ok
     return min(ok, key=lambda r: (r["logic_ge"], r["rom_bits"] or 0, r["ram_bits"] or 0)), ok

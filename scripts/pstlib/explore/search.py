@@ -31,6 +31,7 @@ import dataclasses
 import tomllib
 
 from .. import contract, tomledit
+from ..acceptance import passes, scene_loss      # the rule of acceptance, one place (scene_loss re-exported)
 from .point import Point, values_key
 from .sweep import _apply_key, _format_frac, _set_format_frac
 
@@ -157,16 +158,6 @@ def _sdesc(s: dict) -> str:
     return f"{s['octaves']}oct/{s['noise_units']}u/{s['noise_steps']}st/{s['datapath']}"
 
 
-def scene_loss(ref: dict, got: dict, missing=float("inf")):
-    """The largest PSNR loss, dB, of GOT (scene -> PSNR) against REF on any scene REF scored; a
-    scene GOT lacks counts as MISSING dB lost (None: left out; None when no scene is left)."""
-    losses = [p0 - got[s] if got.get(s) is not None else missing for s, p0 in ref.items()]
-    losses = [v for v in losses if v is not None]
-    if missing is None:
-        return max(losses) if losses else None
-    return max(losses, default=0.0)
-
-
 def feasible(r: dict, t) -> bool:
     """A result meets the targets (worst PSNR on the training set, clocks per pixel, Fmax when
     asked, and with t.max_loss every training scene within that many dB of t.ref's PSNR)."""
@@ -176,7 +167,7 @@ def feasible(r: dict, t) -> bool:
         return False
     if t.fmax > 0 and (r.get("fmax_mhz") is None or r["fmax_mhz"] < t.fmax):
         return False
-    if t.max_loss is not None and t.ref is not None and scene_loss(t.ref, r.get("train") or {}) > t.max_loss:
+    if t.max_loss is not None and t.ref is not None and not passes(scene_loss(t.ref, r.get("train") or {}), t.max_loss):
         return False
     return True
 

@@ -1,14 +1,12 @@
 """The search's outputs: every point (points.csv), the Pareto fronts per clocks-per-pixel class
-(front.csv, front.md, front.png), with the validation scores and the RTL check of each front
-point."""
+(front.csv, front.md, front.png), with each front point's verdict on the validation set (the
+rule of acceptance.py against the class's start) and its RTL check."""
 import csv
 import io
 import pathlib
 
-from .. import atomic
-from .search import pareto, scene_loss
-
-VALIDATION_GAP_DB = 3.0     # a front point whose validation PSNR is this far under its training PSNR is flagged
+from .. import acceptance, atomic
+from .search import pareto
 
 
 def fronts(rows: list, classes) -> dict:
@@ -17,25 +15,22 @@ def fronts(rows: list, classes) -> dict:
     return {c: pareto([r for r in rows if r.get("cpp") is not None and r["cpp"] <= c]) for c in classes}
 
 
-def gap_flag(r: dict):
-    if r.get("train_worst") is None or r.get("valid_worst") is None:
-        return None
-    return r["valid_worst"] < r["train_worst"] - VALIDATION_GAP_DB
-
-
-def losses(r: dict, start, max_loss) -> dict:
-    """A front point's largest PSNR loss, dB, on any one training / validation scene against its
-    class's START result (--max-loss; none without it), and the flag: the validation loss beyond
-    MAX_LOSS (the training loss is within it by construction)."""
-    if start is None or max_loss is None:
+def losses(r: dict, start) -> dict:
+    """A front point judged against its class's START result by the rule of acceptance
+    (acceptance.py: every validation scene within TOLERANCE_DB of the start's PSNR there): the
+    largest loss on one training / validation scene, the validation scene that loses most, and
+    valid_pass (None when the start or the point has no validation scores)."""
+    if start is None:
         return {}
-    out = {f"{s}_loss": scene_loss(start.get(s) or {}, r.get(s) or {}, missing=None) for s in ("train", "valid")}
-    out["valid_loss_flag"] = None if out["valid_loss"] is None else out["valid_loss"] > max_loss
-    return out
+    out = {"train_loss": acceptance.scene_loss(start.get("train") or {}, r.get("train") or {}, missing=None)}
+    if not start.get("valid") or not r.get("valid"):
+        return dict(out, valid_loss=None, valid_loss_scene=None, valid_pass=None)
+    v = acceptance.judge(start["valid"], r["valid"])
+    return dict(out, valid_loss=v["worst_loss"], valid_loss_scene=v["worst_loss_scene"], valid_pass=v["passed"])
 
 
 COLUMNS = ["class", "name", "cpp", "logic_ge", "train_worst", "train_mean", "valid_worst", "valid_mean",
-           "valid_gap_flag", "train_loss", "valid_loss", "valid_loss_flag", "rtl", "fmax_mhz", "move"]
+           "train_loss", "valid_loss", "valid_loss_scene", "valid_pass", "rtl", "fmax_mhz", "move"]
 
 
 def _fmt(v):
@@ -51,8 +46,8 @@ def front_rows(fr: dict, rtl: dict) -> list:
             out.append({"class": c, "name": r["name"], "cpp": r["cpp"], "logic_ge": r["logic_ge"],
                         "train_worst": r.get("train_worst"), "train_mean": r.get("train_mean"),
                         "valid_worst": r.get("valid_worst"), "valid_mean": r.get("valid_mean"),
-                        "valid_gap_flag": gap_flag(r), "train_loss": r.get("train_loss"),
-                        "valid_loss": r.get("valid_loss"), "valid_loss_flag": r.get("valid_loss_flag"),
+                        "train_loss": r.get("train_loss"), "valid_loss": r.get("valid_loss"),
+                        "valid_loss_scene": r.get("valid_loss_scene"), "valid_pass": r.get("valid_pass"),
                         "rtl": (rtl.get(r["name"]) or {}).get("summary"),
                         "fmax_mhz": r.get("fmax_mhz"), "move": r.get("move")})
     return out
@@ -68,10 +63,11 @@ def write_csv(path: pathlib.Path, rows: list, columns: list) -> None:
 
 
 def markdown(title: str, frows: list, targets: dict, best: dict, stats: dict, max_losses=None) -> str:
+    tol = acceptance.TOLERANCE_DB
     L = [f"# {title}\n", "Least logic area (OSU018 GE, per-module synthesis cache) subject to the worst training-scene "
-         "PSNR against the double reference and clocks per pixel; every front point scored on the validation set "
-         f"(flag: validation worst more than {VALIDATION_GAP_DB:g} dB under training worst) and checked on the RTL "
-         "(`pst regress`, 0 mismatches).\n"]
+         "PSNR against the double reference and clocks per pixel; every front point judged on the held-out validation "
+         f"set by the rule of acceptance (scripts/pstlib/acceptance.py: every validation scene within {tol:g} dB of "
+         "the class's start profile there) and checked on the RTL (`pst regress`, 0 mismatches).\n"]
     L.append("| class (clk/px <=) | target PSNR dB | best point | logic GE | worst train dB | worst valid dB |")
     L.append("|---:|---:|---|---:|---:|---:|")
     for c, b in best.items():
@@ -84,23 +80,25 @@ def markdown(title: str, frows: list, targets: dict, best: dict, stats: dict, ma
     if max_losses:
         L.append("Texture by texture (`--max-loss`): every training scene within " +
                  ", ".join(f"{v:g} dB (class {c})" for c, v in max_losses.items()) +
-                 " of the class's start profile; loss columns: the largest loss on one scene against the start, "
-                 "flagged when the validation loss passes the bound.\n")
-    L.append("| class | point | clk/px | logic GE | train worst / mean dB | valid worst / mean dB | gap flag | "
-             "max loss train / valid dB | RTL | how reached |")
+                 " of the class's start profile.\n")
+    L.append("Loss columns: the largest loss on one scene against the class's start, training / validation, and "
+             f"the validation scene that loses most; rule: pass when every validation scene is within {tol:g} dB.\n")
+    L.append("| class | point | clk/px | logic GE | train worst / mean dB | valid worst / mean dB | "
+             "max loss train / valid dB (scene) | rule | RTL | how reached |")
     L.append("|---:|---|---:|---:|---|---|---|---|---|---|")
     for r in frows:
-        flag = {True: "**FLAG**", False: "ok", None: "-"}[r["valid_gap_flag"]]
+        rule = {True: "pass", False: "**FAIL**", None: "-"}[r.get("valid_pass")]
         loss = "-" if r.get("train_loss") is None and r.get("valid_loss") is None else \
-            f"{_fmt(r.get('train_loss'))} / {_fmt(r.get('valid_loss'))}" + (" **FLAG**" if r.get("valid_loss_flag") else "")
+            f"{_fmt(r.get('train_loss'))} / {_fmt(r.get('valid_loss'))}" + \
+            (f" ({r['valid_loss_scene']})" if r.get("valid_loss_scene") else "")
         L.append(f"| {r['class']} | `{r['name']}` | {r['cpp']} | {r['logic_ge']:,} | {_fmt(r['train_worst'])} / "
-                 f"{_fmt(r['train_mean'])} | {_fmt(r['valid_worst'])} / {_fmt(r['valid_mean'])} | {flag} | {loss} | "
+                 f"{_fmt(r['train_mean'])} | {_fmt(r['valid_worst'])} / {_fmt(r['valid_mean'])} | {loss} | {rule} | "
                  f"{r['rtl'] or '-'} | {r['move'] or ''} |")
     L.append("")
     L.append(f"Search: {stats['points']} points evaluated ({stats['synthesized']} synthesized, "
              f"{stats['modules_synthesized']} module syntheses, the rest from the cache) in {stats['wall_s']:.0f} s wall: "
              f"{stats['points_per_hour']:.1f} points per hour. Scenes: {stats['train']} training, {stats['valid']} "
-             f"validation at {stats['size']} x {stats['size']}.\n")
+             f"validation (scripts/pstlib/valset.py) at {stats['size']} x {stats['size']}.\n")
     return "\n".join(L) + "\n"
 
 

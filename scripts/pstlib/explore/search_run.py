@@ -9,7 +9,7 @@ import pathlib
 import shutil
 import time
 
-from .. import atomic, contract, scenegen
+from .. import acceptance, atomic, contract, scenegen, valset
 from ..fmt import tail
 from ..paths import ROOT, profile_path
 from ..synth import flow
@@ -20,7 +20,7 @@ from .local import STOP, run_points, say, stop_children
 from .rtlcheck import rtl_check
 from .store import Store, read_json
 
-BIG = {"train": 32, "valid": 32, "size": 128, "paper": True, "budget": 200, "backtracks": 4,
+BIG = {"train": 32, "valid": 64, "size": 128, "paper": True, "budget": 200, "backtracks": 4,
        "psnr": "1=50,4=45,32=30"}
 DEFAULTS = {"psnr": "40", "budget": 40, "backtracks": 2, "size": 48, "train": 8, "valid": 8, "paper": False}
 DEFAULT_START = {1: "full", 4: "full", 32: "reduced"}
@@ -43,6 +43,7 @@ class SearchSettings:
     valid: int = 8
     paper: bool = False
     seed: int = 1
+    valid_seed: int = valset.DEFAULT_SEED
     budget: int = 40
     backtracks: int = 2
     fmax: float = 0.0
@@ -115,10 +116,13 @@ def settings(o: dict) -> SearchSettings:
                       f"--rom-dir: {o['rom_dir']}: no ROM images (cmake --build build --target pst_rom_images)")):
         if not ok:
             raise ValueError(what)
+    scenegen.check_training_seed(o.get("seed", 1))
+    valid_seed = valset.DEFAULT_SEED if o.get("valid_seed") is None else o["valid_seed"]
+    valset.check_seed(valid_seed, "--valid-seed")
     floor = o.get("synth_floor")
     return SearchSettings(classes, targets, losses, start_docs, knobs, pathlib.Path(o["out"]).resolve(), o["pst"],
                           o["rom_dir"], o["module_cache"], o["size"], o["train"], o["valid"], bool(o["paper"]),
-                          o["seed"], o["budget"], o["backtracks"], o["fmax"],
+                          o["seed"], valid_seed, o["budget"], o["backtracks"], o["fmax"],
                           min(targets.values()) - 10 if floor is None else floor, o["jobs"], o["backend"],
                           {"partition": o.get("partition"), "account": o.get("account"),
                            "time_limit": o.get("time_limit"), "extra": o.get("slurm_arg") or []},
@@ -135,7 +139,14 @@ class Job:
         old = read_json(self.out / "job.json") or {}
         self.known = old.get("points", {})
         sdir = self.out / "scenes"
-        scenegen.write(sdir, s.seed, {"train": s.train, "valid": s.valid})
+        # Training scenes from scenegen (seed s.seed), validation from the held-out set (valset.py,
+        # its own seed range): the front points are judged where no walk looked.
+        scenegen.write(sdir, s.seed, {"train": s.train})
+        if s.valid:
+            valset.write(sdir / "holdout", s.valid_seed, s.valid, valset.DEFAULT_SIZE)
+        else:
+            for old in (sdir / "holdout").glob("val_*.toml"):
+                old.unlink()
         train = sorted(str(p) for p in (sdir / "train").glob("train_*.toml"))
         if s.paper:
             train += [str(ROOT / "scenes" / f"{n}.toml") for n in PAPER_SCENES]
@@ -144,7 +155,8 @@ class Job:
                          "pst_sha": pst_sha, "module_cache": str(pathlib.Path(s.module_cache).resolve()),
                          "rom_dir": str(pathlib.Path(s.rom_dir).resolve()), "retry_failed": s.retry_failed,
                          "scenes": {"train": train,
-                                    "valid": sorted(str(p) for p in (sdir / "valid").glob("valid_*.toml"))}}
+                                    "valid": sorted(str(p) for p in (sdir / "holdout").glob("val_*.toml"))},
+                         "valid_seed": s.valid_seed}
         self.save()
 
     def save(self):
@@ -269,9 +281,9 @@ def run(s: SearchSettings) -> int:
         rows = [dict(r, name=n, move=p.move, cpp=p.cpp, profile_sha=p.sha) for n, (p, r) in archive.items()]
         fr = search_report.fronts(rows, s.class_list)
         front_names = sorted({r["name"] for f in fr.values() for r in f})
-        # With --max-loss the starts are scored on the validation set too: each front point's
-        # loss texture by texture is measured against its class's start there as well.
-        starts = {c: w["path"][0] for c, w in walks.items()} if s.max_losses else {}
+        # The starts are scored on the validation set too: each front point is judged by the rule
+        # of acceptance (acceptance.py) against its class's start, scene by scene.
+        starts = {c: w["path"][0] for c, w in walks.items()}
         say(f"validation of {len(front_names)} front point(s)")
         vnames = sorted(set(front_names) | set(starts.values()))
         vres = evaluate([archive[n][0] for n in vnames], which=("train", "valid"))
@@ -279,8 +291,7 @@ def run(s: SearchSettings) -> int:
         for n in vnames:
             by[n].update({k: vres[n].get(k) for k in ("valid", "valid_worst", "valid_mean")})
         fr = search_report.fronts(rows, s.class_list)
-        fr = {c: [dict(r, **search_report.losses(r, by.get(starts.get(c)), s.max_losses.get(c))) for r in f]
-              for c, f in fr.items()}
+        fr = {c: [dict(r, **search_report.losses(r, by.get(starts.get(c)))) for r in f] for c, f in fr.items()}
         chosen = sorted({r["name"] for f in fr.values() for r in f[: (len(f) if s.rtl is None else s.rtl)]})
         rtl = rtl_check(s.out, {n: (s.out / "points" / f"{n}.toml", by[n]["profile_sha"]) for n in chosen},
                         s.rtl_size, ROOT / "build-search", s.jobs) if chosen else {}
@@ -316,9 +327,11 @@ def report(s: SearchSettings, job: Job, stats: dict, walks: dict, rows: list, by
     for c, b in best.items():
         if b:
             say(f"  <= {c} clk/px: {b['name']} {b['logic_ge']:,} GE, worst train {b['train_worst']:.2f} dB")
-    flagged = [f"{r['name']} (class {r['class']})" for r in frows if r.get("valid_loss_flag")]
-    if flagged:
-        say(f"validation loss beyond --max-loss on some texture: {', '.join(flagged)}")
+    failed = [f"{r['name']} (class {r['class']}, {r['valid_loss']:.2f} dB on {r['valid_loss_scene']})"
+              for r in frows if r.get("valid_pass") is False]
+    if failed:
+        say(f"front points losing more than {acceptance.TOLERANCE_DB:g} dB against the start on a validation scene: "
+            f"{', '.join(failed)}")
     bad_rtl = [n for n, r in rtl.items() if not r.get("passed")]
     bad = [r["name"] for r in rows if r.get("status") != "ok"]
     if bad_rtl or bad:

@@ -87,7 +87,8 @@ def write_reports(s, out, base, rows, knobs, skipped, rtl, title, elapsed):
                   f"{fnum(r['psnr_truth'])} | {'' if r is base else fnum(dr, 2)} | "
                   f"{'' if r is base else fnum(dt, 2)} | {vsb(r)} | {rc} |")
     md += ["", "## Cheapest setting within 1 dB of the base", "",
-           "Per knob, among its values (the base's included) with mean PSNR vs reference >= the base's - 1 dB: "
+           "Per knob, among its values (the base's included) that pass the rule of acceptance against the base "
+           "(scripts/pstlib/acceptance.py: every scene's PSNR vs reference within 1 dB of the base's on that scene): "
            "the lowest logic GE, ties broken by ROM bits.", ""]
     lines = []
     for k in knobs if base["status"] == "ok" else []:

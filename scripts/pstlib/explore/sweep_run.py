@@ -177,7 +177,7 @@ def run(s: SweepSettings) -> int:
     elapsed = time.time() - t_start
     lines = write_reports(s, out, base_row, rows, s.knob_list, skipped, rtl, title, elapsed)
     say("")
-    say(f"cheapest setting within 1 dB of {base.name} (mean PSNR vs reference {fnum(base_row['psnr_ref'])} dB, "
+    say(f"cheapest setting with every scene within 1 dB of {base.name} (mean PSNR vs reference {fnum(base_row['psnr_ref'])} dB, "
         f"{kge(base_row['logic_ge'])} GE):")
     for line in lines:
         say("  " + line.replace("**", "").replace("`", ""))

@@ -82,6 +82,16 @@ def test_cheapest_within_one_db():
     assert results.cheapest_within(rows, base, "coord_frac")[0] is None
 
 
+def test_cheapest_within_is_the_rule_of_acceptance_scene_by_scene():
+    rows, base = rows_and_base()
+    # mean 39.75 dB (0.25 under the base) but scene a 1.5 dB under: it fails the rule
+    rows[1] = results.row_of(result("c10", "coord_frac", 10, (38.5, 41.0), (29.5, 29.5), ge=95000), ["a", "b"])
+    best, ok = results.cheapest_within(rows, base, "coord_frac")
+    assert best["name"] == "base" and "c10" not in [r["name"] for r in ok]
+    rows[1] = results.row_of(result("c10", "coord_frac", 10, (39.01, 41.0), (29.5, 29.5), ge=95000), ["a", "b"])
+    assert results.cheapest_within(rows, base, "coord_frac")[0]["name"] == "c10"
+
+
 def test_rtl_subset_takes_the_biggest_savings_then_other_knobs():
     rows, base = rows_and_base()
     assert results.rtl_subset(rows, base, ["coord_frac", "hash"], 1) == ["c10"]

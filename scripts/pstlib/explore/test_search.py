@@ -164,22 +164,25 @@ def test_max_loss_bounds_every_training_scene_not_only_the_worst():
     assert S.scene_loss({"paper": 40.0, "gone": 50.0}, rb["train"]) == float("inf")
 
 
-def test_losses_against_the_start_and_the_validation_flag():
+def test_front_points_are_judged_by_the_rule_of_acceptance_against_the_start():
     start = {"train": {"a": 50.0, "b": 60.0}, "valid": {"c": 55.0, "d": 45.0}}
     r = {"train": {"a": 49.5, "b": 60.0}, "valid": {"c": 52.5, "d": 46.0}}
-    got = search_report.losses(r, start, 1.0)
+    got = search_report.losses(r, start)
     assert got["train_loss"] == pytest.approx(0.5) and got["valid_loss"] == pytest.approx(2.5)
-    assert got["valid_loss_flag"] is True
-    assert search_report.losses(r, start, 3.0)["valid_loss_flag"] is False
-    assert search_report.losses(r, None, 1.0) == {} and search_report.losses(r, start, None) == {}
+    assert got["valid_loss_scene"] == "c" and got["valid_pass"] is False
+    ok = search_report.losses({"train": r["train"], "valid": {"c": 54.01, "d": 44.01}}, start)
+    assert ok["valid_pass"] is True and ok["valid_loss"] == pytest.approx(0.99)
+    bad = search_report.losses({"train": r["train"], "valid": {"c": 55.0, "d": 43.99}}, start)
+    assert bad["valid_pass"] is False and bad["valid_loss_scene"] == "d"
+    assert search_report.losses(r, None) == {}
+    assert search_report.losses({"train": r["train"]}, start)["valid_pass"] is None       # not validated
     md = search_report.markdown("t", [dict(**{"class": 1, "name": "p", "cpp": 1, "logic_ge": 5,
                                                         "train_worst": 49.5, "train_mean": 50.0, "valid_worst": 46.0,
-                                                        "valid_mean": 49.0, "valid_gap_flag": False, "rtl": None,
-                                                        "move": "m"}, **got)],
+                                                        "valid_mean": 49.0, "rtl": None, "move": "m"}, **got)],
                                 {1: 40.0}, {1: None}, {"points": 1, "synthesized": 1, "modules_synthesized": 0,
                                                       "wall_s": 1.0, "points_per_hour": 1.0, "train": 2, "valid": 2,
                                                       "size": 32}, {1: 1.0})
-    assert "0.50 / 2.50 **FLAG**" in md and "within 1 dB (class 1)" in md
+    assert "0.50 / 2.50 (c) | **FAIL**" in md and "within 1 dB (class 1)" in md
 
 
 def test_pareto_front():
@@ -192,12 +195,6 @@ def test_pareto_front():
     assert [r["name"] for r in S.pareto(noisy, eps=0.0)] == ["a", "b", "c"]
     fr = search_report.fronts([dict(r, cpp=1 if r["name"] in "ab" else 4) for r in rows], [1, 4])
     assert [r["name"] for r in fr[1]] == ["a", "b"] and [r["name"] for r in fr[4]] == ["a", "b", "d"]
-
-
-def test_validation_gap_flag():
-    assert search_report.gap_flag({"train_worst": 50.0, "valid_worst": 46.9}) is True
-    assert search_report.gap_flag({"train_worst": 50.0, "valid_worst": 47.0}) is False
-    assert search_report.gap_flag({"train_worst": 50.0}) is None
 
 
 def test_stored_results_are_reused_only_when_complete(tmp_path):
