@@ -204,6 +204,91 @@ package pst_pkg;
 
   /* verilator lint_on UNUSEDPARAM */
 
+  // Derived widths and cycle counts (rtl/contract.toml [formula]; the same functions are constexpr
+  // in model/golden/contract.h and Python in scripts/pstlib/formulas.py). Call them as
+  // pst_pkg::w_width(Log2Clut, WidthFrac).
+  function automatic int max_int(input int a, input int b);
+    max_int = (a > b) ? a : b;
+  endfunction
+  // w_int_bits: integer bits of W = w N in colour-table entries (unsigned, W < 4 N)
+  //   = Log2Clut + WidthExtraIntBits
+  function automatic int w_int_bits(input int Log2Clut);
+    w_int_bits = Log2Clut + WidthExtraIntBits;
+  endfunction
+  // w_width: bits of W (pst_filter_width's w_o, pst_clut_filter's w_i; WW in the RTL)
+  //   = w_int_bits(Log2Clut) + WidthFrac
+  function automatic int w_width(input int Log2Clut, input int WidthFrac);
+    w_width = w_int_bits(Log2Clut) + WidthFrac;
+  endfunction
+  // octave_passes: octave passes per fragment (NoiseUnits divides Octaves)
+  //   = Octaves / NoiseUnits
+  function automatic int octave_passes(input int Octaves, input int NoiseUnits);
+    octave_passes = Octaves / NoiseUnits;
+  endfunction
+  // term_regs: the register after the octave term (octave_regs >= 1); the serial quadric's Regs
+  //   = OctaveRegs >= 1 ? 1 : 0
+  function automatic int term_regs(input int OctaveRegs);
+    term_regs = (OctaveRegs >= 1) ? 1 : 0;
+  endfunction
+  // octave_cycles: cycles a fragment spends in the octave stage [A]: NoiseSteps per pass, plus on
+  // the serial datapath the first pass's transform rows, the last pass's term rows and the
+  // registers its noise and term pass through (pst_octave_stage Cycles)
+  //   = octave_passes(Octaves, NoiseUnits) * NoiseSteps + (Datapath == Datapath.serial ?
+  //     SerialOctaveExtraCycles + NoiseRegs + term_regs(OctaveRegs) : 0)
+  function automatic int octave_cycles(input int Octaves, input int NoiseUnits, input int NoiseSteps, input int Datapath, input int NoiseRegs, input int OctaveRegs);
+    octave_cycles = (octave_passes(Octaves, NoiseUnits) * NoiseSteps) + ((Datapath == DatapathSerial) ? ((SerialOctaveExtraCycles + NoiseRegs) + term_regs(OctaveRegs)) : 0);
+  endfunction
+  // quadric_chunks: serial quadric: u_r (QW + CW + 2 bits) in QW - 1-bit chunks (pst_quadric_serial
+  // NChunks)
+  //   = (QW + CW + 2 + QW - 2) / (QW - 1)
+  function automatic int quadric_chunks(input int QW, input int CW);
+    quadric_chunks = ((((QW + CW) + 2) + QW) - 2) / (QW - 1);
+  endfunction
+  // quadric_serial_steps: serial quadric: steps of the unit, 3 + Regs + chunks per row, plus the
+  // last product's sum with Regs = term_regs (pst_quadric_serial NSteps)
+  //   = SerialRows * (SerialRows + Regs + quadric_chunks(QW, CW)) + Regs
+  function automatic int quadric_serial_steps(input int QW, input int CW, input int Regs);
+    quadric_serial_steps = (SerialRows * ((SerialRows + Regs) + quadric_chunks(QW, CW))) + Regs;
+  endfunction
+  // quadric_cycles: cycles of the quadric in [A]: serial, its steps and the register its result
+  // passes before the sum
+  //   = Datapath == Datapath.serial ? quadric_serial_steps(QW, CW, term_regs(OctaveRegs)) +
+  //     term_regs(OctaveRegs) : 1
+  function automatic int quadric_cycles(input int Datapath, input int QW, input int CW, input int OctaveRegs);
+    quadric_cycles = (Datapath == DatapathSerial) ? (quadric_serial_steps(QW, CW, term_regs(OctaveRegs)) + term_regs(OctaveRegs)) : 1;
+  endfunction
+  // width_root_steps: serial euclidean norm: ceil((WW + 1) / 2) root cycles, two digits each
+  // (pst_filter_width NSq)
+  //   = (WW + 2) / 2
+  function automatic int width_root_steps(input int WW);
+    width_root_steps = (WW + 2) / 2;
+  endfunction
+  // width_serial_steps: serial filter width: the products, then for the euclidean norm the squares
+  // and the root (pst_filter_width NSteps)
+  //   = WidthProducts + (FilterNorm == FilterNorm.euclid ? WidthEuclidSquares +
+  //     width_root_steps(w_width(Log2Clut, WidthFrac)) : 0)
+  function automatic int width_serial_steps(input int FilterNorm, input int Log2Clut, input int WidthFrac);
+    width_serial_steps = WidthProducts + ((FilterNorm == FilterNormEuclid) ? (WidthEuclidSquares + width_root_steps(w_width(Log2Clut, WidthFrac))) : 0);
+  endfunction
+  // width_cycles: cycles of the filter width stage [B]
+  //   = Datapath == Datapath.serial ? width_serial_steps(FilterNorm, Log2Clut, WidthFrac) : 1
+  function automatic int width_cycles(input int Datapath, input int FilterNorm, input int Log2Clut, input int WidthFrac);
+    width_cycles = (Datapath == DatapathSerial) ? width_serial_steps(FilterNorm, Log2Clut, WidthFrac) : 1;
+  endfunction
+  // colour_cycles: cycles of the colour-table filter stage [C]: serial, one channel per cycle and
+  // its registers
+  //   = Datapath == Datapath.serial ? ColourSteps + ColourRegs : 1
+  function automatic int colour_cycles(input int Datapath, input int ColourRegs);
+    colour_cycles = (Datapath == DatapathSerial) ? (ColourSteps + ColourRegs) : 1;
+  endfunction
+  // clocks_per_pixel: the pipeline's clocks per pixel: its slowest stage
+  //   = max(max(octave_cycles(Octaves, NoiseUnits, NoiseSteps, Datapath, NoiseRegs, OctaveRegs),
+  //     quadric_cycles(Datapath, QW, CW, OctaveRegs)), max(width_cycles(Datapath, FilterNorm,
+  //     Log2Clut, WidthFrac), colour_cycles(Datapath, ColourRegs)))
+  function automatic int clocks_per_pixel(input int Octaves, input int NoiseUnits, input int NoiseSteps, input int Datapath, input int NoiseRegs, input int OctaveRegs, input int QW, input int CW, input int FilterNorm, input int Log2Clut, input int WidthFrac, input int ColourRegs);
+    clocks_per_pixel = max_int(max_int(octave_cycles(Octaves, NoiseUnits, NoiseSteps, Datapath, NoiseRegs, OctaveRegs), quadric_cycles(Datapath, QW, CW, OctaveRegs)), max_int(width_cycles(Datapath, FilterNorm, Log2Clut, WidthFrac), colour_cycles(Datapath, ColourRegs)));
+  endfunction
+
 endpackage
 
 `default_nettype wire

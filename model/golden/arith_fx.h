@@ -68,14 +68,9 @@ uint64_t isqrtFx(unsigned __int128 x);
 int64_t shiftSatSigned(fx::i128 v, int sh, int bits);
 
 // Serial datapath step counts (cycles a fragment spends in the unit; the RTL's, checked by
-// sim/unit/arith_unit_test and listed in docs/HARDWARE.md by scripts/pstlib/contract.py):
-// the quadric 3 (3 + ceil((QW + CW + 2) / (QW - 1))) (rtl/pst_quadric_serial.sv NSteps); the
-// filter width WidthProducts, plus WidthEuclidSquares + ceil((WW + 1) / 2) for the euclidean
-// norm (rtl/pst_filter_width.sv NSteps).
+// sim/unit/arith_unit_test): contract::quadric_serial_steps (rtl/pst_quadric_serial.sv
+// NSteps) and contract::width_serial_steps (rtl/pst_filter_width.sv NSteps) of the profile.
 int quadricSerialSteps(const Profile& p);
 int filterWidthSerialSteps(const Profile& p);
-
-// Width of the W format (unsigned): Log2Clut + 2 + WidthFrac.
-inline int widthBits(const Profile& p) { return p.widthIntBits() + p.widthFrac; }
 
 }  // namespace pst

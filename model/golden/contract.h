@@ -4,6 +4,125 @@
 #pragma once
 
 #include <cstdint>
+#include <string_view>
+
+namespace pst {
+
+// Profile enums (the enum keys of rtl/contract.toml): one enum class per key, named after its RTL
+// parameter (or the key's `cpp`), enumerators UpperCamel of the values in the contract's order, so
+// that a value's index is the RTL parameter's value.
+enum class Datapath : int { Parallel, Serial };  // pipeline.datapath
+enum class NoiseInterp : int { Scurve, Linear, Quintic };  // noise.interp
+enum class NoiseCorner : int { ValueGradient, Value, Grad12 };  // noise.corner
+enum class NoiseHash : int { Rayshade, Perm256, Perlin256 };  // noise.hash
+enum class NoiseWorleySearch : int { None, Octant, Cube27 };  // noise.worley_search
+enum class GradNorm : int { Euclid, MaxHalfMin, L1 };  // filter.norm
+enum class FilterBandlimit : int { Off, Isotropic };  // filter.bandlimit
+
+// A signed two's-complement format: `intBits` integer bits including the sign, `fracBits`
+// fraction bits; value = integer / 2^fracBits.
+struct FixedFormat {
+    int intBits = 0;
+    int fracBits = 0;
+    constexpr int width() const { return intBits + fracBits; }
+};
+
+// Every key of a profile, typed, in description order; the defaults are the profile full's
+// (rtl/configs/full.toml, as pst_pkg's *Default). contract::paramValue and contract::setParam reach
+// a member by RTL parameter.
+struct ProfileParams {
+    // [pipeline]
+    // K: noise terms a_i n(T_i s) the hardware holds (register map: 16 octave blocks)
+    int octaves = 8;
+    // noise units in parallel: octaves / noise_units passes per pixel
+    int noiseUnits = 8;
+    // cycles per pass: a noise unit walks its 8 corners over 1, 2, 4 or 8 cycles
+    int noiseSteps = 1;
+    // N = 2^log2_clut colour-table entries (the SAT range 0x2000 + 4 e stays below 0x4000)
+    int log2Clut = 8;
+    // bits per RGBA channel of the colour table and the output
+    int colourBits = 8;
+    // parallel: every product every cycle; serial: quadric rows, filter-width products and colour
+    // channels one per cycle
+    Datapath datapath = Datapath::Parallel;
+    // pipeline registers in each noise unit, at the first noise_regs of its boundaries: hash levels
+    // 1-2 | hash level 3 and value table | corners | lerp levels 1, 2, 3 (latency; serial: +
+    // noise_regs cycles per pixel)
+    int noiseRegs = 6;
+    // pipeline registers around the noise unit: 1 after the octave term, 2 also after the octave
+    // transform (parallel only) (latency; serial: + 1 cycle per pixel for the term register)
+    int octaveRegs = 2;
+    // pipeline registers in the parallel filter width: after the dot products, after ax^2 + ay^2,
+    // the rest inside the square root (latency only; ignored by the serial unit, which has none)
+    int widthRegs = 5;
+    // pipeline registers in the colour-table filter: after the table reads, after the sums and the
+    // MIP blend (parallel: latency; serial: + colour_regs cycles in [C])
+    int colourRegs = 2;
+    // [noise]
+    // interpolation weights (quintic: Perlin 2002's fade 6t^5 - 15t^4 + 10t^3)
+    NoiseInterp noiseInterp = NoiseInterp::Scurve;
+    // corner function (grad12: Perlin 2002's grad(), 12 directions from 4 hash bits, no value ROM)
+    NoiseCorner noiseCorner = NoiseCorner::ValueGradient;
+    // lattice hash: Rayshade's 4096 x 12 ROM, a 256 x 8 permutation (XOR chain), or Perlin 2002's
+    // 256 x 8 permutation (additive chain)
+    NoiseHash noiseHash = NoiseHash::Rayshade;
+    // R table fraction bits
+    int noiseValueFrac = 15;
+    // fraction bits of T_i s seen by the noise unit
+    int noiseLatticeFrac = 16;
+    // noise value and gradient fraction bits
+    int noiseOutFrac = 16;
+    // fraction bits of the noise unit's nodes below out_frac
+    int noiseGuardBits = 4;
+    // fraction bits the noise unit keeps on its derivative lanes (the noise gradient, which feeds
+    // only the filter width): corners and every lerp floor them to multiples of 2^-grad_frac; >=
+    // out_frac + guard_bits keeps every node bit (exact lerps); lattice noise only (a worley unit
+    // needs >= out_frac + guard_bits)
+    int noiseGradFrac = 16;
+    // none: the noise unit is the lattice-noise unit above; else a worley unit (basis worley,
+    // rtl/pst_worley.sv) searching the 2 x 2 x 2 cubes toward the nearest faces (octant) or the 27
+    // cubes around the home cube (cube27), its cubes' points from the 256-entry feature-point ROM
+    // indexed by the perm256 cube hash
+    NoiseWorleySearch noiseWorleySearch = NoiseWorleySearch::None;
+    // worley unit: feature points per cube at most (the ROM's count is Worley's Poisson count
+    // clamped to it)
+    int noiseWorleyPoints = 4;
+    // worley unit: F1 .. F_order computed (coefficients C_k of higher k must be 0)
+    int noiseWorleyOrder = 2;
+    // [filter]
+    // |grad_x f|: euclid (sqrt), max + min / 2, |gx| + |gy|
+    GradNorm filterNorm = GradNorm::Euclid;
+    // SAT division: reciprocal fraction bits
+    int filterRecipFrac = 18;
+    // bandlimited octaves (beyond the paper): isotropic builds the fade unit (pst_octave_fade: per
+    // octave alpha = h(lg ||M|| + lg |dsdx|) h(lg ||M|| + lg |dsdy|) from a driver-written table,
+    // scaling the octave term and its gradient; enabled per texture by control.bandlimit); off
+    // builds none
+    FilterBandlimit filterBandlimit = FilterBandlimit::Off;
+    // [formats]
+    // s, t, r
+    FixedFormat coord = {12, 20};
+    // ds/dx, ds/dy entries
+    FixedFormat jacobian = {8, 18};
+    // M_i entries
+    FixedFormat matrix = {8, 16};
+    // o_i
+    FixedFormat offset = {13, 16};
+    // a_i
+    FixedFormat amplitude = {2, 16};
+    // a_i M_i^T entries
+    FixedFormat gradMatrix = {8, 11};
+    // A..J
+    FixedFormat quadric = {8, 16};
+    // colour index f
+    FixedFormat f = {12, 20};
+    // grad_s f components
+    FixedFormat grad = {16, 14};
+    // W = w N fraction bits (unsigned, formula w_int_bits integer bits)
+    int widthFrac = 8;
+};
+
+}  // namespace pst
 
 namespace pst::contract {
 
@@ -63,6 +182,85 @@ inline constexpr const char* kNoiseHashNames[] = {"rayshade", "perm256", "perlin
 inline constexpr const char* kNoiseWorleySearchNames[] = {"none", "octant", "cube27"};
 inline constexpr const char* kFilterNormNames[] = {"euclid", "max_half_min", "l1"};
 inline constexpr const char* kFilterBandlimitNames[] = {"off", "isotropic"};
+
+// A profile enum's name ("?" out of range) and its value by name (false: unknown name).
+constexpr const char* name(::pst::Datapath v) {
+    return int(v) >= 0 && int(v) < 2 ? kDatapathNames[int(v)] : "?";
+}
+constexpr bool fromName(std::string_view s, ::pst::Datapath* out) {
+    for (int i = 0; i < 2; ++i)
+        if (s == kDatapathNames[i]) {
+            *out = ::pst::Datapath(i);
+            return true;
+        }
+    return false;
+}
+constexpr const char* name(::pst::NoiseInterp v) {
+    return int(v) >= 0 && int(v) < 3 ? kNoiseInterpNames[int(v)] : "?";
+}
+constexpr bool fromName(std::string_view s, ::pst::NoiseInterp* out) {
+    for (int i = 0; i < 3; ++i)
+        if (s == kNoiseInterpNames[i]) {
+            *out = ::pst::NoiseInterp(i);
+            return true;
+        }
+    return false;
+}
+constexpr const char* name(::pst::NoiseCorner v) {
+    return int(v) >= 0 && int(v) < 3 ? kNoiseCornerNames[int(v)] : "?";
+}
+constexpr bool fromName(std::string_view s, ::pst::NoiseCorner* out) {
+    for (int i = 0; i < 3; ++i)
+        if (s == kNoiseCornerNames[i]) {
+            *out = ::pst::NoiseCorner(i);
+            return true;
+        }
+    return false;
+}
+constexpr const char* name(::pst::NoiseHash v) {
+    return int(v) >= 0 && int(v) < 3 ? kNoiseHashNames[int(v)] : "?";
+}
+constexpr bool fromName(std::string_view s, ::pst::NoiseHash* out) {
+    for (int i = 0; i < 3; ++i)
+        if (s == kNoiseHashNames[i]) {
+            *out = ::pst::NoiseHash(i);
+            return true;
+        }
+    return false;
+}
+constexpr const char* name(::pst::NoiseWorleySearch v) {
+    return int(v) >= 0 && int(v) < 3 ? kNoiseWorleySearchNames[int(v)] : "?";
+}
+constexpr bool fromName(std::string_view s, ::pst::NoiseWorleySearch* out) {
+    for (int i = 0; i < 3; ++i)
+        if (s == kNoiseWorleySearchNames[i]) {
+            *out = ::pst::NoiseWorleySearch(i);
+            return true;
+        }
+    return false;
+}
+constexpr const char* name(::pst::GradNorm v) {
+    return int(v) >= 0 && int(v) < 3 ? kFilterNormNames[int(v)] : "?";
+}
+constexpr bool fromName(std::string_view s, ::pst::GradNorm* out) {
+    for (int i = 0; i < 3; ++i)
+        if (s == kFilterNormNames[i]) {
+            *out = ::pst::GradNorm(i);
+            return true;
+        }
+    return false;
+}
+constexpr const char* name(::pst::FilterBandlimit v) {
+    return int(v) >= 0 && int(v) < 2 ? kFilterBandlimitNames[int(v)] : "?";
+}
+constexpr bool fromName(std::string_view s, ::pst::FilterBandlimit* out) {
+    for (int i = 0; i < 2; ++i)
+        if (s == kFilterBandlimitNames[i]) {
+            *out = ::pst::FilterBandlimit(i);
+            return true;
+        }
+    return false;
+}
 
 enum class KeyKind { Range, Values, Enum, Format };
 struct KeySpec {
@@ -230,5 +428,233 @@ inline constexpr int kFadeLgFrac = 4;  // fraction bits of the fade unit's lg va
 inline constexpr int kFadeLgBits = 9;  // bits of the lg ||M||_2 register (signed)
 inline constexpr int kFadeLgLo = 3;  // the fade table starts at lg nu = -FadeLgLo (entry 0 below -FadeLgLo + 1/4)
 inline constexpr int kWidthEuclidSquares = 2;  // serial euclidean norm: the two squares, one per cycle, before the root's ceil((WW + 1) / 2) cycles
+
+// RTL parameter names, indexed by Param.
+inline constexpr const char* kParamNames[kNumParams] = {
+    "Octaves",
+    "NoiseUnits",
+    "NoiseSteps",
+    "Log2Clut",
+    "ColourBits",
+    "Datapath",
+    "NoiseRegs",
+    "OctaveRegs",
+    "WidthRegs",
+    "ColourRegs",
+    "NoiseInterp",
+    "NoiseCorner",
+    "NoiseHash",
+    "NoiseValueFrac",
+    "NoiseLatticeFrac",
+    "NoiseOutFrac",
+    "NoiseGuardBits",
+    "NoiseGradFrac",
+    "NoiseWorleySearch",
+    "NoiseWorleyPoints",
+    "NoiseWorleyOrder",
+    "FilterNorm",
+    "FilterRecipFrac",
+    "FilterBandlimit",
+    "CoordInt",
+    "CoordFrac",
+    "JacobianInt",
+    "JacobianFrac",
+    "MatrixInt",
+    "MatrixFrac",
+    "OffsetInt",
+    "OffsetFrac",
+    "AmplitudeInt",
+    "AmplitudeFrac",
+    "GradMatrixInt",
+    "GradMatrixFrac",
+    "QuadricInt",
+    "QuadricFrac",
+    "FInt",
+    "FFrac",
+    "GradInt",
+    "GradFrac",
+    "WidthFrac",
+};
+
+// A ProfileParams member by RTL parameter (enums as their index).
+constexpr int paramValue(const ProfileParams& p, Param k) {
+    switch (k) {
+        case Octaves: return p.octaves;
+        case NoiseUnits: return p.noiseUnits;
+        case NoiseSteps: return p.noiseSteps;
+        case Log2Clut: return p.log2Clut;
+        case ColourBits: return p.colourBits;
+        case Datapath: return int(p.datapath);
+        case NoiseRegs: return p.noiseRegs;
+        case OctaveRegs: return p.octaveRegs;
+        case WidthRegs: return p.widthRegs;
+        case ColourRegs: return p.colourRegs;
+        case NoiseInterp: return int(p.noiseInterp);
+        case NoiseCorner: return int(p.noiseCorner);
+        case NoiseHash: return int(p.noiseHash);
+        case NoiseValueFrac: return p.noiseValueFrac;
+        case NoiseLatticeFrac: return p.noiseLatticeFrac;
+        case NoiseOutFrac: return p.noiseOutFrac;
+        case NoiseGuardBits: return p.noiseGuardBits;
+        case NoiseGradFrac: return p.noiseGradFrac;
+        case NoiseWorleySearch: return int(p.noiseWorleySearch);
+        case NoiseWorleyPoints: return p.noiseWorleyPoints;
+        case NoiseWorleyOrder: return p.noiseWorleyOrder;
+        case FilterNorm: return int(p.filterNorm);
+        case FilterRecipFrac: return p.filterRecipFrac;
+        case FilterBandlimit: return int(p.filterBandlimit);
+        case CoordInt: return p.coord.intBits;
+        case CoordFrac: return p.coord.fracBits;
+        case JacobianInt: return p.jacobian.intBits;
+        case JacobianFrac: return p.jacobian.fracBits;
+        case MatrixInt: return p.matrix.intBits;
+        case MatrixFrac: return p.matrix.fracBits;
+        case OffsetInt: return p.offset.intBits;
+        case OffsetFrac: return p.offset.fracBits;
+        case AmplitudeInt: return p.amplitude.intBits;
+        case AmplitudeFrac: return p.amplitude.fracBits;
+        case GradMatrixInt: return p.gradMatrix.intBits;
+        case GradMatrixFrac: return p.gradMatrix.fracBits;
+        case QuadricInt: return p.quadric.intBits;
+        case QuadricFrac: return p.quadric.fracBits;
+        case FInt: return p.f.intBits;
+        case FFrac: return p.f.fracBits;
+        case GradInt: return p.grad.intBits;
+        case GradFrac: return p.grad.fracBits;
+        case WidthFrac: return p.widthFrac;
+        case kNumParams: break;
+    }
+    return 0;
+}
+constexpr void setParam(ProfileParams& p, Param k, int v) {
+    switch (k) {
+        case Octaves: p.octaves = v; break;
+        case NoiseUnits: p.noiseUnits = v; break;
+        case NoiseSteps: p.noiseSteps = v; break;
+        case Log2Clut: p.log2Clut = v; break;
+        case ColourBits: p.colourBits = v; break;
+        case Datapath: p.datapath = ::pst::Datapath(v); break;
+        case NoiseRegs: p.noiseRegs = v; break;
+        case OctaveRegs: p.octaveRegs = v; break;
+        case WidthRegs: p.widthRegs = v; break;
+        case ColourRegs: p.colourRegs = v; break;
+        case NoiseInterp: p.noiseInterp = ::pst::NoiseInterp(v); break;
+        case NoiseCorner: p.noiseCorner = ::pst::NoiseCorner(v); break;
+        case NoiseHash: p.noiseHash = ::pst::NoiseHash(v); break;
+        case NoiseValueFrac: p.noiseValueFrac = v; break;
+        case NoiseLatticeFrac: p.noiseLatticeFrac = v; break;
+        case NoiseOutFrac: p.noiseOutFrac = v; break;
+        case NoiseGuardBits: p.noiseGuardBits = v; break;
+        case NoiseGradFrac: p.noiseGradFrac = v; break;
+        case NoiseWorleySearch: p.noiseWorleySearch = ::pst::NoiseWorleySearch(v); break;
+        case NoiseWorleyPoints: p.noiseWorleyPoints = v; break;
+        case NoiseWorleyOrder: p.noiseWorleyOrder = v; break;
+        case FilterNorm: p.filterNorm = ::pst::GradNorm(v); break;
+        case FilterRecipFrac: p.filterRecipFrac = v; break;
+        case FilterBandlimit: p.filterBandlimit = ::pst::FilterBandlimit(v); break;
+        case CoordInt: p.coord.intBits = v; break;
+        case CoordFrac: p.coord.fracBits = v; break;
+        case JacobianInt: p.jacobian.intBits = v; break;
+        case JacobianFrac: p.jacobian.fracBits = v; break;
+        case MatrixInt: p.matrix.intBits = v; break;
+        case MatrixFrac: p.matrix.fracBits = v; break;
+        case OffsetInt: p.offset.intBits = v; break;
+        case OffsetFrac: p.offset.fracBits = v; break;
+        case AmplitudeInt: p.amplitude.intBits = v; break;
+        case AmplitudeFrac: p.amplitude.fracBits = v; break;
+        case GradMatrixInt: p.gradMatrix.intBits = v; break;
+        case GradMatrixFrac: p.gradMatrix.fracBits = v; break;
+        case QuadricInt: p.quadric.intBits = v; break;
+        case QuadricFrac: p.quadric.fracBits = v; break;
+        case FInt: p.f.intBits = v; break;
+        case FFrac: p.f.fracBits = v; break;
+        case GradInt: p.grad.intBits = v; break;
+        case GradFrac: p.grad.fracBits = v; break;
+        case WidthFrac: p.widthFrac = v; break;
+        case kNumParams: break;
+    }
+}
+
+// Derived widths and cycle counts (rtl/contract.toml [formula]; the same functions are in pst_pkg
+// and scripts/pstlib/formulas.py).
+constexpr int max_int(int a, int b) { return a > b ? a : b; }
+// w_int_bits: integer bits of W = w N in colour-table entries (unsigned, W < 4 N)
+//   = Log2Clut + WidthExtraIntBits
+constexpr int w_int_bits(int log2Clut) {
+    return log2Clut + kWidthExtraIntBits;
+}
+// w_width: bits of W (pst_filter_width's w_o, pst_clut_filter's w_i; WW in the RTL)
+//   = w_int_bits(Log2Clut) + WidthFrac
+constexpr int w_width(int log2Clut, int widthFrac) {
+    return w_int_bits(log2Clut) + widthFrac;
+}
+// octave_passes: octave passes per fragment (NoiseUnits divides Octaves)
+//   = Octaves / NoiseUnits
+constexpr int octave_passes(int octaves, int noiseUnits) {
+    return octaves / noiseUnits;
+}
+// term_regs: the register after the octave term (octave_regs >= 1); the serial quadric's Regs
+//   = OctaveRegs >= 1 ? 1 : 0
+constexpr int term_regs(int octaveRegs) {
+    return (octaveRegs >= 1) ? 1 : 0;
+}
+// octave_cycles: cycles a fragment spends in the octave stage [A]: NoiseSteps per pass, plus on the
+// serial datapath the first pass's transform rows, the last pass's term rows and the registers its
+// noise and term pass through (pst_octave_stage Cycles)
+//   = octave_passes(Octaves, NoiseUnits) * NoiseSteps + (Datapath == Datapath.serial ?
+//     SerialOctaveExtraCycles + NoiseRegs + term_regs(OctaveRegs) : 0)
+constexpr int octave_cycles(int octaves, int noiseUnits, int noiseSteps, int datapath, int noiseRegs, int octaveRegs) {
+    return (octave_passes(octaves, noiseUnits) * noiseSteps) + ((datapath == 1) ? ((kSerialOctaveExtraCycles + noiseRegs) + term_regs(octaveRegs)) : 0);
+}
+// quadric_chunks: serial quadric: u_r (QW + CW + 2 bits) in QW - 1-bit chunks (pst_quadric_serial
+// NChunks)
+//   = (QW + CW + 2 + QW - 2) / (QW - 1)
+constexpr int quadric_chunks(int qw, int cw) {
+    return ((((qw + cw) + 2) + qw) - 2) / (qw - 1);
+}
+// quadric_serial_steps: serial quadric: steps of the unit, 3 + Regs + chunks per row, plus the last
+// product's sum with Regs = term_regs (pst_quadric_serial NSteps)
+//   = SerialRows * (SerialRows + Regs + quadric_chunks(QW, CW)) + Regs
+constexpr int quadric_serial_steps(int qw, int cw, int regs) {
+    return (kSerialRows * ((kSerialRows + regs) + quadric_chunks(qw, cw))) + regs;
+}
+// quadric_cycles: cycles of the quadric in [A]: serial, its steps and the register its result
+// passes before the sum
+//   = Datapath == Datapath.serial ? quadric_serial_steps(QW, CW, term_regs(OctaveRegs)) +
+//     term_regs(OctaveRegs) : 1
+constexpr int quadric_cycles(int datapath, int qw, int cw, int octaveRegs) {
+    return (datapath == 1) ? (quadric_serial_steps(qw, cw, term_regs(octaveRegs)) + term_regs(octaveRegs)) : 1;
+}
+// width_root_steps: serial euclidean norm: ceil((WW + 1) / 2) root cycles, two digits each
+// (pst_filter_width NSq)
+//   = (WW + 2) / 2
+constexpr int width_root_steps(int ww) {
+    return (ww + 2) / 2;
+}
+// width_serial_steps: serial filter width: the products, then for the euclidean norm the squares
+// and the root (pst_filter_width NSteps)
+//   = WidthProducts + (FilterNorm == FilterNorm.euclid ? WidthEuclidSquares +
+//     width_root_steps(w_width(Log2Clut, WidthFrac)) : 0)
+constexpr int width_serial_steps(int filterNorm, int log2Clut, int widthFrac) {
+    return kWidthProducts + ((filterNorm == 0) ? (kWidthEuclidSquares + width_root_steps(w_width(log2Clut, widthFrac))) : 0);
+}
+// width_cycles: cycles of the filter width stage [B]
+//   = Datapath == Datapath.serial ? width_serial_steps(FilterNorm, Log2Clut, WidthFrac) : 1
+constexpr int width_cycles(int datapath, int filterNorm, int log2Clut, int widthFrac) {
+    return (datapath == 1) ? width_serial_steps(filterNorm, log2Clut, widthFrac) : 1;
+}
+// colour_cycles: cycles of the colour-table filter stage [C]: serial, one channel per cycle and its
+// registers
+//   = Datapath == Datapath.serial ? ColourSteps + ColourRegs : 1
+constexpr int colour_cycles(int datapath, int colourRegs) {
+    return (datapath == 1) ? (kColourSteps + colourRegs) : 1;
+}
+// clocks_per_pixel: the pipeline's clocks per pixel: its slowest stage
+//   = max(max(octave_cycles(Octaves, NoiseUnits, NoiseSteps, Datapath, NoiseRegs, OctaveRegs),
+//     quadric_cycles(Datapath, QW, CW, OctaveRegs)), max(width_cycles(Datapath, FilterNorm,
+//     Log2Clut, WidthFrac), colour_cycles(Datapath, ColourRegs)))
+constexpr int clocks_per_pixel(int octaves, int noiseUnits, int noiseSteps, int datapath, int noiseRegs, int octaveRegs, int qw, int cw, int filterNorm, int log2Clut, int widthFrac, int colourRegs) {
+    return max_int(max_int(octave_cycles(octaves, noiseUnits, noiseSteps, datapath, noiseRegs, octaveRegs), quadric_cycles(datapath, qw, cw, octaveRegs)), max_int(width_cycles(datapath, filterNorm, log2Clut, widthFrac), colour_cycles(datapath, colourRegs)));
+}
 
 }  // namespace pst::contract

@@ -123,7 +123,7 @@ void noiseFx(const Profile& prof, const int lat[3], const int64_t frac[3], int64
     const int OF = prof.noiseOutFrac;
     const int NF = noiseNodeFrac(prof);
     const int F = noiseGradFloor(prof);
-    const bool scurve = prof.noise.interp == NoiseInterp::SCurve;
+    const bool scurve = prof.noise.interp == NoiseInterp::Scurve;
     const bool quintic = prof.noise.interp == NoiseInterp::Quintic;
     const bool valueGradient = prof.noise.corner == NoiseCorner::ValueGradient;
     const bool grad12 = prof.noise.corner == NoiseCorner::Grad12;
@@ -268,7 +268,7 @@ void noiseFx(const Profile& prof, const int lat[3], const int64_t frac[3], int64
 NoiseFxErrorBound noiseFxErrorBound(const Profile& prof) {
     const int LF = prof.noiseLatticeFrac, VF = prof.noiseValueFrac, OF = prof.noiseOutFrac;
     const int NF = noiseNodeFrac(prof);
-    const bool scurve = prof.noise.interp == NoiseInterp::SCurve;
+    const bool scurve = prof.noise.interp == NoiseInterp::Scurve;
     const bool quintic = prof.noise.interp == NoiseInterp::Quintic;
     const bool vg = prof.noise.corner == NoiseCorner::ValueGradient;
     const bool g12 = prof.noise.corner == NoiseCorner::Grad12;

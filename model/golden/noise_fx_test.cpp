@@ -22,7 +22,7 @@
 namespace pst {
 namespace {
 
-Profile profile(const char* name) { return loadProfile(sourceDir() + "/rtl/configs/" + name + ".toml"); }
+Profile profile(const char* name) { return loadNamedProfile(name, sourceDir()); }
 
 // A profile's formats with the noise unit in Perlin's 2002 variant (basis perlin2002).
 Profile perlinProfile(const char* name) {
@@ -104,7 +104,7 @@ TEST(NoiseFx, OctaveTransformMatchesLongDouble) {
 
 TEST(NoiseFx, HashIsTheReferenceHash) {
     for (const char* name : {"full", "reduced", "balanced"}) {
-        for (NoiseHash hash : {NoiseHash::Rayshade4096, NoiseHash::Perm256, NoiseHash::Perlin256}) {
+        for (NoiseHash hash : {NoiseHash::Rayshade, NoiseHash::Perm256, NoiseHash::Perlin256}) {
             Profile prof = profile(name);
             prof.noise.hash = hash;
             std::mt19937_64 rng(5);
@@ -134,7 +134,7 @@ TEST(NoiseFx, HashOfLatticeIndexWraps) {
     // 4095 is 0 (and of 255 is 256 -> 0 for perm256), as noiseHash of the unwrapped index.
     const Profile prof = profile("full");
     std::mt19937 rng(3);
-    for (NoiseHash hash : {NoiseHash::Rayshade4096, NoiseHash::Perm256}) {
+    for (NoiseHash hash : {NoiseHash::Rayshade, NoiseHash::Perm256}) {
         Profile p = prof;
         p.noise.hash = hash;
         for (int it = 0; it < 5000; ++it) {
@@ -249,9 +249,9 @@ TEST(NoiseFx, ReducedProfileTracksReference) {
 // Every interpolation / corner / hash variant with each profile's formats.
 TEST(NoiseFx, VariantsTrackReference) {
     for (const char* name : {"full", "reduced"}) {
-        for (NoiseInterp interp : {NoiseInterp::SCurve, NoiseInterp::Linear})
-            for (NoiseCorner corner : {NoiseCorner::ValueGradient, NoiseCorner::ValueOnly})
-                for (NoiseHash hash : {NoiseHash::Rayshade4096, NoiseHash::Perm256}) {
+        for (NoiseInterp interp : {NoiseInterp::Scurve, NoiseInterp::Linear})
+            for (NoiseCorner corner : {NoiseCorner::ValueGradient, NoiseCorner::Value})
+                for (NoiseHash hash : {NoiseHash::Rayshade, NoiseHash::Perm256}) {
                     Profile prof = profile(name);
                     prof.noise = {interp, corner, hash};
                     checkAgainstReference(prof, std::string(name) + " formats " + toString(interp) + "/" +
@@ -266,8 +266,8 @@ TEST(NoiseFx, VariantsTrackReference) {
 TEST(NoiseFx, GradFracFloorsOnlyTheDerivatives) {
     std::mt19937_64 rng(77);
     for (const char* name : {"full", "reduced"}) {
-        for (NoiseInterp interp : {NoiseInterp::SCurve, NoiseInterp::Linear})
-            for (NoiseCorner corner : {NoiseCorner::ValueGradient, NoiseCorner::ValueOnly}) {
+        for (NoiseInterp interp : {NoiseInterp::Scurve, NoiseInterp::Linear})
+            for (NoiseCorner corner : {NoiseCorner::ValueGradient, NoiseCorner::Value}) {
                 Profile exact = profile(name);
                 exact.noise = {interp, corner, NoiseHash::Perm256};
                 const int NF = noiseNodeFrac(exact);

@@ -70,7 +70,7 @@ void worleyFx(const Profile& prof, const int lat[3], const int64_t frac[3], cons
     if (prof.noise.basis != NoiseBasis::Worley) throw std::invalid_argument("worleyFx: the profile has no worley unit");
     const int LF = prof.noiseLatticeFrac, OF = prof.noiseOutFrac, NF = OF + prof.noiseGuardBits;
     const int DF = worleyDistFrac(prof), CF = contract::kWorleyCoefFrac, PF = contract::kWorleyPointFrac;
-    const int K = prof.worleyOrder, M = prof.noise.maxPoints, N = worleySearchCubes(prof);
+    const int K = prof.noiseWorleyOrder, M = prof.noise.maxPoints, N = worleySearchCubes(prof);
     const auto& P = NoiseTables::get().perm;
 
     int64_t U[3];

@@ -85,7 +85,7 @@ public:
     Bench() : ctx_(std::make_unique<VerilatedContext>()), top_(std::make_unique<Vpst_clut_filter>(ctx_.get())), gold_(prof()) {
         const Profile& p = prof();
         fw_ = p.f.width();
-        ww_ = p.widthIntBits() + p.widthFrac;
+        ww_ = p.widthBits();
         top_->clk_i = 0;
         top_->we_i = 0;
         top_->rst_ni = 1;
@@ -199,7 +199,7 @@ void loadTables(Bench& b, std::mt19937_64& rng, int style) {
 
 void specialVectors(Bench& b) {
     const Profile& p = prof();
-    const int N = p.clutSize(), fw = p.f.width(), ww = p.widthIntBits() + p.widthFrac, wf = p.widthFrac;
+    const int N = p.clutSize(), fw = p.f.width(), ww = p.widthBits(), wf = p.widthFrac;
     const int64_t fMin = fx::minSigned(fw), fMax = fx::maxSigned(fw), wMax = fx::maxUnsigned(ww);
     auto fOfU = [&](double u) { return fx::satSigned(i128(std::llround(std::ldexp(u / N, p.f.fracBits))), fw); };
     const int64_t one = int64_t(1) << wf, n = int64_t(N) << wf;
@@ -223,7 +223,7 @@ void specialVectors(Bench& b) {
 
 void randomVectors(Bench& b, std::mt19937_64& rng, int count) {
     const Profile& p = prof();
-    const int N = p.clutSize(), fw = p.f.width(), ww = p.widthIntBits() + p.widthFrac;
+    const int N = p.clutSize(), fw = p.f.width(), ww = p.widthBits();
     const int64_t fMin = fx::minSigned(fw), fMax = fx::maxSigned(fw), wMax = fx::maxUnsigned(ww);
     std::uniform_real_distribution<double> U(0.0, 1.0);
     auto pick = [&](int64_t lo, int64_t hi) { return std::uniform_int_distribution<int64_t>(lo, hi)(rng); };
