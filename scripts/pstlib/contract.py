@@ -549,7 +549,8 @@ def _address_text(name: str, r: dict) -> str:
 def sv_package(c: Contract) -> str:
     L = [f"// {HEADER}",
          "// pst_pkg: the hardware contract (rtl/contract.toml) for the RTL: profile enums, the",
-         "// register map, port and probe layouts and the fixed step counts. Referenced as pst_pkg::Name",
+         "// register map, port and probe layouts, the fixed step counts and the derived widths and cycle",
+         "// counts as functions (pst_pkg::w_width(Log2Clut, WidthFrac)). Referenced as pst_pkg::Name",
          "// (Yosys 0.23 reads no `import`). Every file that uses it includes it first (the guard makes",
          "// that once), so any file order works in Verilator and Yosys.",
          "`ifndef PST_PKG_SV", "`define PST_PKG_SV", "`default_nettype none", "", "package pst_pkg;", "",
@@ -652,7 +653,8 @@ def sv_checks(c: Contract) -> str:
 def cpp_header(c: Contract) -> str:
     L = [f"// {HEADER}",
          "// The hardware contract (rtl/contract.toml) for the golden model, the driver and the harness:",
-         "// profile schema, register map and fixed layouts.",
+         "// profile enums and the typed ProfileParams, profile schema, register map, fixed layouts and",
+         "// the derived widths and cycle counts as constexpr functions.",
          "#pragma once", "", "#include <cstdint>", "#include <string_view>", ""]
     L += _cpp_types(c)
     L += ["namespace pst::contract {", ""]
