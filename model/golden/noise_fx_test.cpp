@@ -27,10 +27,10 @@ Profile profile(const char* name) { return loadNamedProfile(name, sourceDir()); 
 // A profile's formats with the noise unit in Perlin's 2002 variant (basis perlin2002).
 Profile perlinProfile(const char* name) {
     Profile p = profile(name);
-    p.noise.interp = NoiseInterp::Quintic;
-    p.noise.corner = NoiseCorner::Grad12;
-    p.noise.hash = NoiseHash::Perlin256;
-    p.noise.basis = hardwareBasis(p.noise);
+    p.noiseInterp = NoiseInterp::Quintic;
+    p.noiseCorner = NoiseCorner::Grad12;
+    p.noiseHash = NoiseHash::Perlin256;
+    p.noise = hardwareNoise(p);
     return p;
 }
 
@@ -106,7 +106,8 @@ TEST(NoiseFx, HashIsTheReferenceHash) {
     for (const char* name : {"full", "reduced", "balanced"}) {
         for (NoiseHash hash : {NoiseHash::Rayshade, NoiseHash::Perm256, NoiseHash::Perlin256}) {
             Profile prof = profile(name);
-            prof.noise.hash = hash;
+            prof.noiseHash = hash;
+            prof.noise = hardwareNoise(prof);
             std::mt19937_64 rng(5);
             // Beyond +-2048 too: the lattice index wraps at 4096 (perm256 at 256).
             std::uniform_real_distribution<double> coord(-50.0, 50.0), wide(-500.0, 500.0);
@@ -136,7 +137,8 @@ TEST(NoiseFx, HashOfLatticeIndexWraps) {
     std::mt19937 rng(3);
     for (NoiseHash hash : {NoiseHash::Rayshade, NoiseHash::Perm256}) {
         Profile p = prof;
-        p.noise.hash = hash;
+        p.noiseHash = hash;
+        p.noise = hardwareNoise(p);
         for (int it = 0; it < 5000; ++it) {
             int lat[3];
             for (int& l : lat) {

@@ -23,12 +23,11 @@ namespace {
 Profile reducedWorley() { return loadProfile(sourceDir() + "/sim/test_profiles/reduced_worley.toml"); }
 Profile fullWorley(WorleySearchKind search, int points, int order) {
     Profile p = loadNamedProfile("full", sourceDir());
-    p.noise.hash = NoiseHash::Perm256;
-    p.noise.basis = NoiseBasis::Worley;
-    p.noise.search = search;
-    p.noise.maxPoints = points;
-    p.noise.cubes = WorleyCubes::Rom256;
+    p.noiseHash = NoiseHash::Perm256;
+    p.noiseWorleySearch = search == WorleySearchKind::Octant ? NoiseWorleySearch::Octant : NoiseWorleySearch::Cube27;
+    p.noiseWorleyPoints = points;
     p.noiseWorleyOrder = order;
+    p.noise = hardwareNoise(p);
     return p;
 }
 
