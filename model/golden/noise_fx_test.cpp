@@ -218,7 +218,7 @@ void checkAgainstReference(const Profile& prof, const std::string& label) {
         const double evp = std::fabs(nf - np);
         maxVp = std::max(maxVp, evp);
         ASSERT_LE(evp, bound.value + bound.gradMax * sumDp) << label;
-        if (prof.noise.interp != NoiseInterp::Linear || sameCell) {
+        if (prof.noiseInterp != NoiseInterp::Linear || sameCell) {
             for (int k = 0; k < 3; ++k) {
                 const double eg = std::fabs(gf[k] - gp[k]);
                 maxGp = std::max(maxGp, eg);
