@@ -3,7 +3,6 @@
 // schema (keys, ranges, enums, cross-constraints) is rtl/contract.toml's, through contract.h.
 #pragma once
 
-#include <array>
 #include <string>
 
 #include "contract.h"
@@ -17,7 +16,7 @@ namespace pst {
 // or one row / one channel per cycle (Serial: fewer multipliers; the octave transform and term
 // rows take 3 + 3 more cycles per pixel, see rtl/pst_octave_stage.sv; needs noise_steps >= 4).
 // The arithmetic is the same bit for bit.
-
+//
 // A profile: its keys (ProfileParams, generated from rtl/contract.toml into contract.h: one
 // typed member per key, octaves .. widthFrac), its name and file, and the noise options the
 // golden model's noise unit computes with (hardwareNoise of the noise keys).
