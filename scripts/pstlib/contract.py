@@ -335,6 +335,16 @@ def python_formulas(c: Contract) -> str:
     return "\n".join(L) + "\n"
 
 
+def _formula_functions(c: Contract):
+    """The formulas of a description as Python functions (python_formulas' text, executed once
+    per description)."""
+    if "_functions" not in c.__dict__:
+        ns: dict = {}
+        exec(compile(python_formulas(c), f"{c.path} [formula]", "exec"), ns)  # noqa: S102 (our own generator)
+        c.__dict__["_functions"] = argparse.Namespace(**{f.name: ns[f.name] for f in c.formulas})
+    return c.__dict__["_functions"]
+
+
 def _names(t: tuple, kind: str) -> set[str]:
     """The names of `kind` ("const", "call", ...) a tree reads."""
     out = {t[1]} if t[0] == kind else set()
@@ -848,15 +858,19 @@ def stage_cycles(doc: dict, c: Contract | None = None) -> dict[str, int]:
     """Cycles a fragment spends in each stage of a (valid) profile, from the contract's
     [formula] functions (scripts/pstlib/formulas.py; the golden model and pst_pkg have the same).
     The pipeline's clocks per pixel is the largest of them."""
-    v = dict(parameters(doc, c or load()))
+    c = c or load()
+    v = dict(parameters(doc, c))
+    # The description's own formulas (not the generated file, which may be stale while
+    # --write regenerates it).
+    f = _formula_functions(c)
     qw, cw = v["QuadricInt"] + v["QuadricFrac"], v["CoordInt"] + v["CoordFrac"]
     dp = v["Datapath"]
-    out = {"octave": formulas.octave_cycles(v["Octaves"], v["NoiseUnits"], v["NoiseSteps"], dp, v["NoiseRegs"],
+    out = {"octave": f.octave_cycles(v["Octaves"], v["NoiseUnits"], v["NoiseSteps"], dp, v["NoiseRegs"],
                                             v["OctaveRegs"]),
-           "quadric": formulas.quadric_cycles(dp, qw, cw, v["OctaveRegs"]),
-           "width": formulas.width_cycles(dp, v["FilterNorm"], v["Log2Clut"], v["WidthFrac"]),
-           "colour": formulas.colour_cycles(dp, v["ColourRegs"])}
-    out["pixel"] = formulas.clocks_per_pixel(v["Octaves"], v["NoiseUnits"], v["NoiseSteps"], dp, v["NoiseRegs"],
+           "quadric": f.quadric_cycles(dp, qw, cw, v["OctaveRegs"]),
+           "width": f.width_cycles(dp, v["FilterNorm"], v["Log2Clut"], v["WidthFrac"]),
+           "colour": f.colour_cycles(dp, v["ColourRegs"])}
+    out["pixel"] = f.clocks_per_pixel(v["Octaves"], v["NoiseUnits"], v["NoiseSteps"], dp, v["NoiseRegs"],
                                              v["OctaveRegs"], qw, cw, v["FilterNorm"], v["Log2Clut"],
                                              v["WidthFrac"], v["ColourRegs"])
     return out
