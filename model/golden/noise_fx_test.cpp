@@ -24,13 +24,18 @@ namespace {
 
 Profile profile(const char* name) { return loadNamedProfile(name, sourceDir()); }
 
+// A profile's formats with another noise variant: its keys, and Profile::noise from them.
+void setNoiseKeys(Profile& p, NoiseInterp interp, NoiseCorner corner, NoiseHash hash) {
+    p.noiseInterp = interp;
+    p.noiseCorner = corner;
+    p.noiseHash = hash;
+    p.noise = hardwareNoise(p);
+}
+
 // A profile's formats with the noise unit in Perlin's 2002 variant (basis perlin2002).
 Profile perlinProfile(const char* name) {
     Profile p = profile(name);
-    p.noiseInterp = NoiseInterp::Quintic;
-    p.noiseCorner = NoiseCorner::Grad12;
-    p.noiseHash = NoiseHash::Perlin256;
-    p.noise = hardwareNoise(p);
+    setNoiseKeys(p, NoiseInterp::Quintic, NoiseCorner::Grad12, NoiseHash::Perlin256);
     return p;
 }
 
@@ -106,8 +111,7 @@ TEST(NoiseFx, HashIsTheReferenceHash) {
     for (const char* name : {"full", "reduced", "balanced"}) {
         for (NoiseHash hash : {NoiseHash::Rayshade, NoiseHash::Perm256, NoiseHash::Perlin256}) {
             Profile prof = profile(name);
-            prof.noiseHash = hash;
-            prof.noise = hardwareNoise(prof);
+            setNoiseKeys(prof, prof.noiseInterp, prof.noiseCorner, hash);
             std::mt19937_64 rng(5);
             // Beyond +-2048 too: the lattice index wraps at 4096 (perm256 at 256).
             std::uniform_real_distribution<double> coord(-50.0, 50.0), wide(-500.0, 500.0);
@@ -137,8 +141,7 @@ TEST(NoiseFx, HashOfLatticeIndexWraps) {
     std::mt19937 rng(3);
     for (NoiseHash hash : {NoiseHash::Rayshade, NoiseHash::Perm256}) {
         Profile p = prof;
-        p.noiseHash = hash;
-        p.noise = hardwareNoise(p);
+        setNoiseKeys(p, p.noiseInterp, p.noiseCorner, hash);
         for (int it = 0; it < 5000; ++it) {
             int lat[3];
             for (int& l : lat) {
@@ -255,7 +258,7 @@ TEST(NoiseFx, VariantsTrackReference) {
             for (NoiseCorner corner : {NoiseCorner::ValueGradient, NoiseCorner::Value})
                 for (NoiseHash hash : {NoiseHash::Rayshade, NoiseHash::Perm256}) {
                     Profile prof = profile(name);
-                    prof.noise = {interp, corner, hash};
+                    setNoiseKeys(prof, interp, corner, hash);
                     checkAgainstReference(prof, std::string(name) + " formats " + toString(interp) + "/" +
                                                     toString(corner) + "/" + toString(hash));
                 }
@@ -271,7 +274,7 @@ TEST(NoiseFx, GradFracFloorsOnlyTheDerivatives) {
         for (NoiseInterp interp : {NoiseInterp::Scurve, NoiseInterp::Linear})
             for (NoiseCorner corner : {NoiseCorner::ValueGradient, NoiseCorner::Value}) {
                 Profile exact = profile(name);
-                exact.noise = {interp, corner, NoiseHash::Perm256};
+                setNoiseKeys(exact, interp, corner, NoiseHash::Perm256);
                 const int NF = noiseNodeFrac(exact);
                 ASSERT_LE(exact.noiseGradFrac, NF) << name;   // full 16 of 20, reduced every node bit
                 exact.noiseGradFrac = NF;                        // the exact unit
