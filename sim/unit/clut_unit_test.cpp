@@ -205,7 +205,7 @@ void specialVectors(Bench& b) {
     const int64_t one = int64_t(1) << wf, n = int64_t(N) << wf;
     std::vector<int64_t> ws = {0, 1, one - 1, one, one + 1, 2 * one, 3 * one, n / 2, n - 1, n, n + 1,
                                2 * n, 3 * n, wMax - 1, wMax};
-    for (int k = 1; k < p.log2Clut + 2; ++k) {  // every MIP level boundary
+    for (int k = 1; k < p.widthIntBits(); ++k) {  // every MIP level boundary (W < 2^widthIntBits)
         ws.push_back((int64_t(1) << k << wf) - 1);
         ws.push_back(int64_t(1) << k << wf);
         ws.push_back((int64_t(3) << k << wf) / 2);
