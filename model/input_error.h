@@ -1,7 +1,10 @@
 // A user-input error: "file:line: field: what is wrong". Callers exit with status 2.
+// inputWhere / inputError write that form for every reader of user files (profiles in
+// model/golden/profile.cpp, scenes in testbench/scene/scene.cpp).
 #pragma once
 
 #include <stdexcept>
+#include <string>
 
 namespace pst {
 
@@ -9,5 +12,24 @@ class InputError : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;
 };
+
+// "FILE:LINE" (":LINE" left out when line <= 0: not known).
+inline std::string inputWhere(const std::string& file, long line) {
+    return line > 0 ? file + ":" + std::to_string(line) : file;
+}
+// "FILE:LINE: FIELD", a message's prefix.
+inline std::string inputWhere(const std::string& file, long line, const std::string& field) {
+    return inputWhere(file, line) + ": " + field;
+}
+// InputError("FILE:LINE: FIELD: WHAT").
+inline InputError inputError(const std::string& file, long line, const std::string& field, const std::string& what) {
+    return InputError(inputWhere(file, line, field) + ": " + what);
+}
+// The line of a parsed node (toml++'s toml::node or anything with source().begin.line), 0 for
+// none.
+template <class Node>
+long lineOf(const Node* n) {
+    return n ? long(n->source().begin.line) : 0;
+}
 
 }  // namespace pst

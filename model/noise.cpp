@@ -16,29 +16,11 @@ namespace pst {
 
 // ---- enum names ---------------------------------------------------------------------------
 
-bool parseNoiseInterp(const std::string& name, NoiseInterp* out) {
-    if (name == "scurve") *out = NoiseInterp::SCurve;
-    else if (name == "linear") *out = NoiseInterp::Linear;
-    else if (name == "quintic") *out = NoiseInterp::Quintic;
-    else return false;
-    return true;
-}
+bool parseNoiseInterp(const std::string& name, NoiseInterp* out) { return contract::fromName(name, out); }
 
-bool parseNoiseCorner(const std::string& name, NoiseCorner* out) {
-    if (name == "value_gradient") *out = NoiseCorner::ValueGradient;
-    else if (name == "value") *out = NoiseCorner::ValueOnly;
-    else if (name == "grad12") *out = NoiseCorner::Grad12;
-    else return false;
-    return true;
-}
+bool parseNoiseCorner(const std::string& name, NoiseCorner* out) { return contract::fromName(name, out); }
 
-bool parseNoiseHash(const std::string& name, NoiseHash* out) {
-    if (name == "rayshade") *out = NoiseHash::Rayshade4096;
-    else if (name == "perm256") *out = NoiseHash::Perm256;
-    else if (name == "perlin256") *out = NoiseHash::Perlin256;
-    else return false;
-    return true;
-}
+bool parseNoiseHash(const std::string& name, NoiseHash* out) { return contract::fromName(name, out); }
 
 bool parseNoiseBasis(const std::string& name, NoiseBasis* out) {
     if (name == "rayshade") *out = NoiseBasis::Rayshade;
@@ -117,30 +99,9 @@ const char* toString(WorleySearchKind v) {
 }
 const char* toString(WorleyCubes v) { return v == WorleyCubes::Lcg ? "lcg" : "rom256"; }
 
-const char* toString(NoiseInterp v) {
-    switch (v) {
-    case NoiseInterp::SCurve: return "scurve";
-    case NoiseInterp::Linear: return "linear";
-    case NoiseInterp::Quintic: return "quintic";
-    }
-    return "?";
-}
-const char* toString(NoiseCorner v) {
-    switch (v) {
-    case NoiseCorner::ValueGradient: return "value_gradient";
-    case NoiseCorner::ValueOnly: return "value";
-    case NoiseCorner::Grad12: return "grad12";
-    }
-    return "?";
-}
-const char* toString(NoiseHash v) {
-    switch (v) {
-    case NoiseHash::Rayshade4096: return "rayshade";
-    case NoiseHash::Perm256: return "perm256";
-    case NoiseHash::Perlin256: return "perlin256";
-    }
-    return "?";
-}
+const char* toString(NoiseInterp v) { return contract::name(v); }
+const char* toString(NoiseCorner v) { return contract::name(v); }
+const char* toString(NoiseHash v) { return contract::name(v); }
 
 // ---- tables -------------------------------------------------------------------------------
 
@@ -248,7 +209,7 @@ double noise(const glm::dvec3& p, const NoiseOptions& opt, glm::dvec3* grad) {
         }
         i0[k] = static_cast<int>(x[k]);
         double u = x[k] - i0[k];
-        if (opt.interp == NoiseInterp::SCurve) {
+        if (opt.interp == NoiseInterp::Scurve) {
             s[k] = u * u * (3.0 - 2.0 * u);  // SCURVE(u)
             ds[k] = 6.0 * u * (1.0 - u);     // SCURVE'(u)
         } else {

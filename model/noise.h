@@ -22,28 +22,24 @@
 
 #include <glm/vec3.hpp>
 
+#include "golden/contract.h"
+
 namespace pst {
 
-// Interpolation of the eight lattice corners.
-enum class NoiseInterp {
-    SCurve,  // Rayshade: weights SCURVE(u) = u^2 (3 - 2u)
-    Linear,  // reduced hardware: tri-linear weights u
-    Quintic, // Perlin 2002's fade 6u^5 - 15u^4 + 10u^3 (hardware profiles of basis perlin2002)
-};
-
-// What each lattice corner contributes.
-enum class NoiseCorner {
-    ValueGradient,  // Rayshade: 0.5 R[m] + R[m+1] dx + R[m+2] dy + R[m+3] dz
-    ValueOnly,      // 0.5 R[m]
-    Grad12,         // Perlin 2002's grad(m & 15, dx, dy, dz): +-d_u +-d_v, no value table
-};
-
-// How a lattice point (ix, iy, iz) becomes the value-table index m.
-enum class NoiseHash {
-    Rayshade4096,  // T[T[T[ix&0xfff]^(iy&0xfff)]^(iz&0xfff)] & 0xff, T a 4096-entry permutation
-    Perm256,       // P[P[P[ix&0xff]^(iy&0xff)]^(iz&0xff)], P a 256-entry permutation (8-bit ROM)
-    Perlin256,     // Perlin 2002: P[(P[(P[X] + Y) & 255] + Z) & 255], X = floor(x) & 255, his P
-};
+// The hardware's noise variants are profile keys (rtl/contract.toml noise.interp, noise.corner,
+// noise.hash); their enums are generated from it into golden/contract.h, in the contract's order:
+//   NoiseInterp  interpolation of the eight lattice corners:
+//                Scurve  Rayshade: weights SCURVE(u) = u^2 (3 - 2u)
+//                Linear  reduced hardware: tri-linear weights u
+//                Quintic Perlin 2002's fade 6u^5 - 15u^4 + 10u^3 (hardware profiles of basis perlin2002)
+//   NoiseCorner  what each lattice corner contributes:
+//                ValueGradient  Rayshade: 0.5 R[m] + R[m+1] dx + R[m+2] dy + R[m+3] dz
+//                Value          0.5 R[m]
+//                Grad12         Perlin 2002's grad(m & 15, dx, dy, dz): +-d_u +-d_v, no value table
+//   NoiseHash    how a lattice point (ix, iy, iz) becomes the value-table index m:
+//                Rayshade   T[T[T[ix&0xfff]^(iy&0xfff)]^(iz&0xfff)] & 0xff, T a 4096-entry permutation
+//                Perm256    P[P[P[ix&0xff]^(iy&0xff)]^(iz&0xff)], P a 256-entry permutation (8-bit ROM)
+//                Perlin256  Perlin 2002: P[(P[(P[X] + Y) & 255] + Z) & 255], X = floor(x) & 255, his P
 // The three values Quintic, Grad12, Perlin256 come together: they are how a hardware profile
 // (rtl/contract.toml) says "basis perlin2002", and the reference for them is perlin2002()
 // (NoiseBasis::Perlin2002). noise() with basis Rayshade refuses them (std::invalid_argument).
@@ -82,9 +78,9 @@ enum class WorleySearchKind { Exact, Cube27, Octant };
 enum class WorleyCubes { Lcg, Rom256 };
 
 struct NoiseOptions {
-    NoiseInterp interp = NoiseInterp::SCurve;
+    NoiseInterp interp = NoiseInterp::Scurve;
     NoiseCorner corner = NoiseCorner::ValueGradient;
-    NoiseHash hash = NoiseHash::Rayshade4096;
+    NoiseHash hash = NoiseHash::Rayshade;
     NoiseBasis basis = NoiseBasis::Rayshade;
     // Worley only: n = C1 F1 + C2 F2 + C3 F3 + C4 F4 + cell * cell(ID of the nearest point).
     WorleyMetric metric = WorleyMetric::Euclid;
@@ -158,7 +154,7 @@ int noiseHash(int ix, int iy, int iz, NoiseHash hash);
 
 // n(p) and, if grad != nullptr, its analytic gradient dn/dp (not Rayshade's DNoise3, which is
 // not a gradient). With default options this equals Rayshade's Noise3 bit for bit (for
-// p > -1e6, see "Domain" above). |n| <= 3.5 always (ValueGradient; 0.5 for ValueOnly).
+// p > -1e6, see "Domain" above). |n| <= 3.5 always (ValueGradient; 0.5 for Value).
 // The gradient is exact inside a cell; on a lattice plane it is the one-sided derivative
 // from the cell above (SCURVE noise is C1 there, Linear noise only C0).
 // opt.basis Perlin2002 / Worley hand p to perlin2002() / worleyBasis() (their headers);

@@ -158,12 +158,12 @@ TEST(Noise, LatticePointsAreHalfValue) {
         // Independent hashes written here.
         const int m4096 = T[T[T[ia & 0xfff] ^ (ib & 0xfff)] ^ (ic & 0xfff)] & 0xff;
         const int m256 = P[P[P[ia & 0xff] ^ (ib & 0xff)] ^ (ic & 0xff)];
-        ASSERT_EQ(noiseHash(ia, ib, ic, NoiseHash::Rayshade4096), m4096);
+        ASSERT_EQ(noiseHash(ia, ib, ic, NoiseHash::Rayshade), m4096);
         ASSERT_EQ(noiseHash(ia, ib, ic, NoiseHash::Perm256), m256);
         const glm::dvec3 p(a, b, c);
-        for (NoiseInterp in : {NoiseInterp::SCurve, NoiseInterp::Linear})
-            for (NoiseCorner co : {NoiseCorner::ValueGradient, NoiseCorner::ValueOnly}) {
-                ASSERT_EQ(noise(p, {in, co, NoiseHash::Rayshade4096}), 0.5 * R[m4096]);
+        for (NoiseInterp in : {NoiseInterp::Scurve, NoiseInterp::Linear})
+            for (NoiseCorner co : {NoiseCorner::ValueGradient, NoiseCorner::Value}) {
+                ASSERT_EQ(noise(p, {in, co, NoiseHash::Rayshade}), 0.5 * R[m4096]);
                 ASSERT_EQ(noise(p, {in, co, NoiseHash::Perm256}), 0.5 * R[m256]);
             }
     }
@@ -177,7 +177,7 @@ TEST(Noise, Bounded) {
         const glm::dvec3 p(d(rng), d(rng), d(rng));
         const double n = noise(p);
         ASSERT_LE(std::abs(n), 3.5);
-        ASSERT_LE(std::abs(noise(p, {NoiseInterp::Linear, NoiseCorner::ValueOnly,
+        ASSERT_LE(std::abs(noise(p, {NoiseInterp::Linear, NoiseCorner::Value,
                                      NoiseHash::Perm256})),
                   0.5);
         lo = std::min(lo, n);
@@ -210,9 +210,9 @@ glm::dvec3 pointInCell(std::mt19937_64& rng, double margin) {
 TEST(Noise, GradientMatchesFiniteDifferences) {
     std::mt19937_64 rng(5);
     const double h = 1e-6;
-    for (NoiseInterp in : {NoiseInterp::SCurve, NoiseInterp::Linear})
-        for (NoiseCorner co : {NoiseCorner::ValueGradient, NoiseCorner::ValueOnly})
-            for (NoiseHash ha : {NoiseHash::Rayshade4096, NoiseHash::Perm256}) {
+    for (NoiseInterp in : {NoiseInterp::Scurve, NoiseInterp::Linear})
+        for (NoiseCorner co : {NoiseCorner::ValueGradient, NoiseCorner::Value})
+            for (NoiseHash ha : {NoiseHash::Rayshade, NoiseHash::Perm256}) {
                 const NoiseOptions opt{in, co, ha};
                 for (int k = 0; k < 10000; ++k) {
                     const glm::dvec3 p = pointInCell(rng, 4 * h);
@@ -269,30 +269,30 @@ TEST(Noise, OutOfRangeAndNonFinite) {
         ASSERT_NEAR(a, b, 1e-9);
         for (int c = 0; c < 3; ++c) ASSERT_NEAR(ga[c], gb[c], 1e-8);
         // Perm256 repeats every 256 cells.
-        const NoiseOptions p256{NoiseInterp::SCurve, NoiseCorner::ValueGradient,
+        const NoiseOptions p256{NoiseInterp::Scurve, NoiseCorner::ValueGradient,
                                 NoiseHash::Perm256};
         ASSERT_NEAR(noise(p, p256), noise(p + glm::dvec3(256.0, -512.0, 768.0), p256), 1e-9);
     }
 }
 
 TEST(Noise, EnumNamesRoundTrip) {
-    for (NoiseInterp v : {NoiseInterp::SCurve, NoiseInterp::Linear}) {
+    for (NoiseInterp v : {NoiseInterp::Scurve, NoiseInterp::Linear}) {
         NoiseInterp r;
         ASSERT_TRUE(parseNoiseInterp(toString(v), &r));
         EXPECT_EQ(r, v);
     }
-    for (NoiseCorner v : {NoiseCorner::ValueGradient, NoiseCorner::ValueOnly}) {
+    for (NoiseCorner v : {NoiseCorner::ValueGradient, NoiseCorner::Value}) {
         NoiseCorner r;
         ASSERT_TRUE(parseNoiseCorner(toString(v), &r));
         EXPECT_EQ(r, v);
     }
-    for (NoiseHash v : {NoiseHash::Rayshade4096, NoiseHash::Perm256}) {
+    for (NoiseHash v : {NoiseHash::Rayshade, NoiseHash::Perm256}) {
         NoiseHash r;
         ASSERT_TRUE(parseNoiseHash(toString(v), &r));
         EXPECT_EQ(r, v);
     }
-    EXPECT_STREQ(toString(NoiseInterp::SCurve), "scurve");
-    EXPECT_STREQ(toString(NoiseCorner::ValueOnly), "value");
+    EXPECT_STREQ(toString(NoiseInterp::Scurve), "scurve");
+    EXPECT_STREQ(toString(NoiseCorner::Value), "value");
     EXPECT_STREQ(toString(NoiseHash::Perm256), "perm256");
     NoiseInterp i;
     NoiseCorner c;

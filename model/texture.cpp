@@ -37,22 +37,9 @@ glm::dvec3 Quadric::gradient(const glm::dvec3& s) const {
                             C * s.x + F * s.y + H * s.z + I);
 }
 
-bool parseGradNorm(const std::string& name, GradNorm* out) {
-    if (name == "euclid") *out = GradNorm::Euclid;
-    else if (name == "max_half_min") *out = GradNorm::MaxHalfMin;
-    else if (name == "l1") *out = GradNorm::L1;
-    else return false;
-    return true;
-}
+bool parseGradNorm(const std::string& name, GradNorm* out) { return contract::fromName(name, out); }
 
-const char* toString(GradNorm v) {
-    switch (v) {
-    case GradNorm::Euclid: return "euclid";
-    case GradNorm::MaxHalfMin: return "max_half_min";
-    case GradNorm::L1: return "l1";
-    }
-    return "?";
-}
+const char* toString(GradNorm v) { return contract::name(v); }
 
 double evalF(const Texture& tex, const glm::dvec3& s, glm::dvec3* gradS) {
     // Eq. 1: f = q(s) + sum_i a_i n(M_i s + o_i);

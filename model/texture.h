@@ -14,6 +14,7 @@
 #include <glm/vec4.hpp>
 
 #include "colormap.h"
+#include "golden/contract.h"
 #include "noise.h"
 
 namespace pst {
@@ -34,12 +35,10 @@ struct Octave {
     glm::dvec3 offset = glm::dvec3(0.0);
 };
 
-// How |grad_x f| is formed from its two components (gx, gy).
-enum class GradNorm {
-    Euclid,   // sqrt(gx^2 + gy^2), the paper's |grad f|
-    MaxHalfMin,  // max + min/2 (a cheap hardware approximation)
-    L1,       // |gx| + |gy| (the paper's zone-plate example, section 3.4)
-};
+// How |grad_x f| is formed from its two components (gx, gy): GradNorm, generated from
+// rtl/contract.toml's filter.norm into golden/contract.h: Euclid sqrt(gx^2 + gy^2), the paper's
+// |grad f|; MaxHalfMin max + min/2 (a cheap hardware approximation); L1 |gx| + |gy| (the
+// paper's zone-plate example, section 3.4).
 bool parseGradNorm(const std::string& name, GradNorm* out);  // "euclid", "max_half_min", "l1"
 const char* toString(GradNorm v);
 

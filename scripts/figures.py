@@ -22,7 +22,7 @@ import sys
 from pstlib.fig10 import fig10, parse_bits, parse_crop
 from pstlib.fig11 import fig11
 from pstlib.figdata import InputMissing
-from pstlib.paths import ROOT
+from pstlib.paths import ROOT, profile_path
 
 
 def main(argv=None):
@@ -35,7 +35,7 @@ def main(argv=None):
     a10.add_argument("--bits", type=parse_bits, default=parse_bits("4,6,8,10,12,16"),
                      help="coord fraction bits to render (default 4,6,8,10,12,16)")
     a10.add_argument("--scene", default=str(ROOT / "scenes" / "precision.toml"))
-    a10.add_argument("--base", default=str(ROOT / "rtl" / "configs" / "full.toml"), help="base profile")
+    a10.add_argument("--base", default=str(profile_path("full")), help="base profile")
     a10.add_argument("--pst", default=str(ROOT / "build" / "pst"))
     a10.add_argument("--threads", type=int, default=2, help="threads of each render (default 2)")
     a10.add_argument("--crop", type=parse_crop, action="append",

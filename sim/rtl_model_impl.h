@@ -211,7 +211,7 @@ private:
 
     PixelFx sample() const {
         const int fw = p_.f.width(), gw = p_.grad.width();
-        const int ww = p_.widthIntBits() + p_.widthFrac;
+        const int ww = p_.widthBits();
         PixelFx px;
         px.tag = top_->out_tag_o;
         px.rgba = uint32_t(port::get(top_->out_rgba_o, 0, 4 * p_.colourBits));

@@ -34,18 +34,11 @@ int magnitudeBits(i128 v) {
 }  // namespace
 
 int quadricSerialSteps(const Profile& p) {
-    const int QW = p.quadric.width(), CW = p.coord.width();
-    const int chunks = (QW + CW + 2 + QW - 2) / (QW - 1);  // u_r (QW + CW + 2 bits) in QW - 1-bit chunks
-    // With the octave stage's term register the product is registered too: a row waits a step
-    // for u_r, and the last product's sum takes one more (rtl/pst_quadric_serial.sv, Regs).
-    const int regs = p.octaveRegs >= 1 ? 1 : 0;
-    return contract::kSerialRows * (contract::kSerialRows + regs + chunks) + regs;
+    return contract::quadric_serial_steps(p.quadric.width(), p.coord.width(), contract::term_regs(p.octaveRegs));
 }
 
 int filterWidthSerialSteps(const Profile& p) {
-    const int rootSteps = (widthBits(p) + 2) / 2;  // ceil((WW + 1) / 2) root cycles, two digits each
-    return contract::kWidthProducts +
-           (p.filterNorm == GradNorm::Euclid ? contract::kWidthEuclidSquares + rootSteps : 0);
+    return contract::width_serial_steps(int(p.filterNorm), p.log2Clut, p.widthFrac);
 }
 
 int64_t shiftSatSigned(i128 v, int sh, int bits) {
@@ -157,7 +150,7 @@ uint64_t isqrtFx(unsigned __int128 x) {
 }
 
 int64_t filterWidthFx(const Profile& p, const int64_t grad[3], const int64_t j[6]) {
-    const int ww = widthBits(p);
+    const int ww = p.widthBits();
     const int64_t wmax = fx::maxUnsigned(ww);
     // Step 1: gx = grad . dsdx, gy = grad . dsdy at GradFrac + JacobianFrac (GW + JW + 2 bits).
     i128 gx = 0, gy = 0;

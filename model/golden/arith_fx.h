@@ -52,11 +52,11 @@ int64_t accumulateGrad(const Profile& p, int64_t gradq, const std::vector<int64_
 // Stage 5. grad: 3 x Grad; j: 6 x Jacobian (ds/dx, dt/dx, dr/dx, ds/dy, dt/dy, dr/dy).
 //   gx = grad . dsdx, gy = grad . dsdy exact (GradFrac + JacobianFrac),
 //   Wx = floor(gx N to WidthFrac) (N = 2^Log2Clut: a shift), Wy likewise,
-//   ax = min(|Wx|, WMax), ay = min(|Wy|, WMax)   (WMax = 2^WW - 1, WW = Log2Clut + 2 + WidthFrac:
+//   ax = min(|Wx|, WMax), ay = min(|Wy|, WMax)   (WMax = 2^WW - 1, WW = contract::w_width(Log2Clut, WidthFrac):
 //        every norm is >= max(ax, ay), so this clamp never changes the saturated result and
 //        keeps the square root's input at 2 WW + 1 bits),
 //   norm by p.filterNorm: Euclid isqrt(ax^2 + ay^2); MaxHalfMin max + floor(min / 2); L1 ax + ay,
-//   W = min(norm, WMax): unsigned, Log2Clut + 2 integer bits, WidthFrac fraction bits.
+//   W = min(norm, WMax): unsigned, contract::w_int_bits(Log2Clut) integer bits, WidthFrac fraction bits.
 int64_t filterWidthFx(const Profile& p, const int64_t grad[3], const int64_t j[6]);
 
 // floor(sqrt(x)) by the digit-by-digit (restoring) method of rtl/pst_isqrt.sv, two input bits
@@ -68,14 +68,9 @@ uint64_t isqrtFx(unsigned __int128 x);
 int64_t shiftSatSigned(fx::i128 v, int sh, int bits);
 
 // Serial datapath step counts (cycles a fragment spends in the unit; the RTL's, checked by
-// sim/unit/arith_unit_test and listed in docs/HARDWARE.md by scripts/pstlib/contract.py):
-// the quadric 3 (3 + ceil((QW + CW + 2) / (QW - 1))) (rtl/pst_quadric_serial.sv NSteps); the
-// filter width WidthProducts, plus WidthEuclidSquares + ceil((WW + 1) / 2) for the euclidean
-// norm (rtl/pst_filter_width.sv NSteps).
+// sim/unit/arith_unit_test): contract::quadric_serial_steps (rtl/pst_quadric_serial.sv
+// NSteps) and contract::width_serial_steps (rtl/pst_filter_width.sv NSteps) of the profile.
 int quadricSerialSteps(const Profile& p);
 int filterWidthSerialSteps(const Profile& p);
-
-// Width of the W format (unsigned): Log2Clut + 2 + WidthFrac.
-inline int widthBits(const Profile& p) { return p.widthIntBits() + p.widthFrac; }
 
 }  // namespace pst

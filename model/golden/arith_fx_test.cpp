@@ -20,7 +20,7 @@ namespace {
 using fx::i128;
 using u128 = unsigned __int128;
 
-Profile load(const char* name) { return loadProfile(profilePath(name, sourceDir())); }
+Profile load(const char* name) { return loadNamedProfile(name, sourceDir()); }
 
 // The shipped profiles, and a "narrow" variant of each whose F and Grad formats have few
 // integer bits, so that saturation is common in the reference comparisons.
@@ -301,7 +301,7 @@ TEST(ArithFx, FilterWidthWithinBoundOfReference) {
         for (int ni = 0; ni < 3; ++ni) {
             p.filterNorm = norms[ni];
             std::mt19937_64 g(14 + ni);
-            const double wmax = double(fx::maxUnsigned(widthBits(p)));
+            const double wmax = double(fx::maxUnsigned(p.widthBits()));
             const double scale = std::ldexp(1.0, p.log2Clut + p.widthFrac);
             long inRange = 0, saturated = 0;
             double worst = 0;
@@ -348,7 +348,7 @@ TEST(ArithFx, FilterWidthExactCases) {
         const int sh = p.jacobian.fracBits - p.log2Clut - p.widthFrac;  // j LSBs per W LSB (log2)
         ASSERT_GE(sh, 0) << p.name;
         const int64_t one = int64_t(1) << p.grad.fracBits;
-        const int64_t wmax = fx::maxUnsigned(widthBits(p));
+        const int64_t wmax = fx::maxUnsigned(p.widthBits());
         auto w = [&](GradNorm n, int64_t jx, int64_t jy) {
             p.filterNorm = n;
             const int64_t gr[3] = {one, 0, 0}, j[6] = {jx, 0, 0, jy, 0, 0};

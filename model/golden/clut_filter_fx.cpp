@@ -130,7 +130,7 @@ ClutFilterFx::ClutFilterFx(const Profile& p) {
     wf_ = p.widthFrac;
     rf_ = p.filterRecipFrac;
     fw_ = p.f.width();
-    ww_ = p.widthIntBits() + p.widthFrac;
+    ww_ = p.widthBits();
     p_ = std::max(wf_ + 1, p.f.fracBits - log2N_);  // u and W/2 both exact at P fraction bits
     uShift_ = log2N_ - p.f.fracBits + p_;            // f -> u at P: f 2^(Log2Clut - FFrac + P)
     hShift_ = p_ - wf_ - 1;                           // W -> W/2 at P

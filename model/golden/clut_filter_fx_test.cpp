@@ -34,7 +34,7 @@ namespace {
 
 using fx::i128;
 
-Profile namedProfile(const std::string& name) { return loadProfile(profilePath(name, sourceDir())); }
+Profile namedProfile(const std::string& name) { return loadNamedProfile(name, sourceDir()); }
 
 // Synthetic profiles: other table sizes and the case FFrac < Log2Clut.
 Profile synthetic(const std::string& name, int log2N, int cb, int fInt, int fFrac, int wf, int rf) {
@@ -101,7 +101,7 @@ struct Vec {
 };
 
 Vec randomVector(const Profile& p, std::mt19937_64& rng, int cat) {
-    const int N = p.clutSize(), fw = p.f.width(), ww = p.widthIntBits() + p.widthFrac;
+    const int N = p.clutSize(), fw = p.f.width(), ww = p.widthBits();
     const int64_t fMin = fx::minSigned(fw), fMax = fx::maxSigned(fw);
     const int64_t wMax = fx::maxUnsigned(ww);
     std::uniform_real_distribution<double> U(0.0, 1.0);

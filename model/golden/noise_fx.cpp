@@ -123,10 +123,10 @@ void noiseFx(const Profile& prof, const int lat[3], const int64_t frac[3], int64
     const int OF = prof.noiseOutFrac;
     const int NF = noiseNodeFrac(prof);
     const int F = noiseGradFloor(prof);
-    const bool scurve = prof.noise.interp == NoiseInterp::SCurve;
-    const bool quintic = prof.noise.interp == NoiseInterp::Quintic;
-    const bool valueGradient = prof.noise.corner == NoiseCorner::ValueGradient;
-    const bool grad12 = prof.noise.corner == NoiseCorner::Grad12;
+    const bool scurve = prof.noiseInterp == NoiseInterp::Scurve;
+    const bool quintic = prof.noiseInterp == NoiseInterp::Quintic;
+    const bool valueGradient = prof.noiseCorner == NoiseCorner::ValueGradient;
+    const bool grad12 = prof.noiseCorner == NoiseCorner::Grad12;
     const int valueW = 3 + NF;  // Q3.NF node values
     const int gradW = 5 + NF;   // Q5.NF node derivatives
 
@@ -155,8 +155,8 @@ void noiseFx(const Profile& prof, const int lat[3], const int64_t frac[3], int64
 
     // Hash: 2 + 4 + 8 lookups, corner c = bx + 2 by + 4 bz.
     const NoiseTables& tables = NoiseTables::get();
-    const bool perm = prof.noise.hash == NoiseHash::Perm256;
-    const bool perlin = prof.noise.hash == NoiseHash::Perlin256;
+    const bool perm = prof.noiseHash == NoiseHash::Perm256;
+    const bool perlin = prof.noiseHash == NoiseHash::Perlin256;
     const int idxMask = perm || perlin ? 0xff : kLatticeMask;
     const int idxBias = perlin ? -(contract::kLatticeOffset & 0xff) : 0;  // X = floor(x) & 255
     const auto& perlinP = perlin2002Permutation();
@@ -268,10 +268,10 @@ void noiseFx(const Profile& prof, const int lat[3], const int64_t frac[3], int64
 NoiseFxErrorBound noiseFxErrorBound(const Profile& prof) {
     const int LF = prof.noiseLatticeFrac, VF = prof.noiseValueFrac, OF = prof.noiseOutFrac;
     const int NF = noiseNodeFrac(prof);
-    const bool scurve = prof.noise.interp == NoiseInterp::SCurve;
-    const bool quintic = prof.noise.interp == NoiseInterp::Quintic;
-    const bool vg = prof.noise.corner == NoiseCorner::ValueGradient;
-    const bool g12 = prof.noise.corner == NoiseCorner::Grad12;
+    const bool scurve = prof.noiseInterp == NoiseInterp::Scurve;
+    const bool quintic = prof.noiseInterp == NoiseInterp::Quintic;
+    const bool vg = prof.noiseCorner == NoiseCorner::ValueGradient;
+    const bool g12 = prof.noiseCorner == NoiseCorner::Grad12;
     const double q = std::ldexp(1.0, -LF), e = std::ldexp(1.0, -NF), o = std::ldexp(1.0, -OF);
     // The derivative lanes' floor (noise.grad_frac): eg = 2^F e per derivative floor, and the
     // own-axis product's value difference floored to 2^F (F > 0) errs by < eg ds_fx more.

@@ -22,15 +22,20 @@
 namespace pst {
 namespace {
 
-Profile profile(const char* name) { return loadProfile(sourceDir() + "/rtl/configs/" + name + ".toml"); }
+Profile profile(const char* name) { return loadNamedProfile(name, sourceDir()); }
+
+// A profile's formats with another noise variant: its keys, and Profile::noise from them.
+void setNoiseKeys(Profile& p, NoiseInterp interp, NoiseCorner corner, NoiseHash hash) {
+    p.noiseInterp = interp;
+    p.noiseCorner = corner;
+    p.noiseHash = hash;
+    p.noise = hardwareNoise(p);
+}
 
 // A profile's formats with the noise unit in Perlin's 2002 variant (basis perlin2002).
 Profile perlinProfile(const char* name) {
     Profile p = profile(name);
-    p.noise.interp = NoiseInterp::Quintic;
-    p.noise.corner = NoiseCorner::Grad12;
-    p.noise.hash = NoiseHash::Perlin256;
-    p.noise.basis = hardwareBasis(p.noise);
+    setNoiseKeys(p, NoiseInterp::Quintic, NoiseCorner::Grad12, NoiseHash::Perlin256);
     return p;
 }
 
@@ -104,9 +109,9 @@ TEST(NoiseFx, OctaveTransformMatchesLongDouble) {
 
 TEST(NoiseFx, HashIsTheReferenceHash) {
     for (const char* name : {"full", "reduced", "balanced"}) {
-        for (NoiseHash hash : {NoiseHash::Rayshade4096, NoiseHash::Perm256, NoiseHash::Perlin256}) {
+        for (NoiseHash hash : {NoiseHash::Rayshade, NoiseHash::Perm256, NoiseHash::Perlin256}) {
             Profile prof = profile(name);
-            prof.noise.hash = hash;
+            setNoiseKeys(prof, prof.noiseInterp, prof.noiseCorner, hash);
             std::mt19937_64 rng(5);
             // Beyond +-2048 too: the lattice index wraps at 4096 (perm256 at 256).
             std::uniform_real_distribution<double> coord(-50.0, 50.0), wide(-500.0, 500.0);
@@ -134,9 +139,9 @@ TEST(NoiseFx, HashOfLatticeIndexWraps) {
     // 4095 is 0 (and of 255 is 256 -> 0 for perm256), as noiseHash of the unwrapped index.
     const Profile prof = profile("full");
     std::mt19937 rng(3);
-    for (NoiseHash hash : {NoiseHash::Rayshade4096, NoiseHash::Perm256}) {
+    for (NoiseHash hash : {NoiseHash::Rayshade, NoiseHash::Perm256}) {
         Profile p = prof;
-        p.noise.hash = hash;
+        setNoiseKeys(p, p.noiseInterp, p.noiseCorner, hash);
         for (int it = 0; it < 5000; ++it) {
             int lat[3];
             for (int& l : lat) {
@@ -216,7 +221,7 @@ void checkAgainstReference(const Profile& prof, const std::string& label) {
         const double evp = std::fabs(nf - np);
         maxVp = std::max(maxVp, evp);
         ASSERT_LE(evp, bound.value + bound.gradMax * sumDp) << label;
-        if (prof.noise.interp != NoiseInterp::Linear || sameCell) {
+        if (prof.noiseInterp != NoiseInterp::Linear || sameCell) {
             for (int k = 0; k < 3; ++k) {
                 const double eg = std::fabs(gf[k] - gp[k]);
                 maxGp = std::max(maxGp, eg);
@@ -249,11 +254,11 @@ TEST(NoiseFx, ReducedProfileTracksReference) {
 // Every interpolation / corner / hash variant with each profile's formats.
 TEST(NoiseFx, VariantsTrackReference) {
     for (const char* name : {"full", "reduced"}) {
-        for (NoiseInterp interp : {NoiseInterp::SCurve, NoiseInterp::Linear})
-            for (NoiseCorner corner : {NoiseCorner::ValueGradient, NoiseCorner::ValueOnly})
-                for (NoiseHash hash : {NoiseHash::Rayshade4096, NoiseHash::Perm256}) {
+        for (NoiseInterp interp : {NoiseInterp::Scurve, NoiseInterp::Linear})
+            for (NoiseCorner corner : {NoiseCorner::ValueGradient, NoiseCorner::Value})
+                for (NoiseHash hash : {NoiseHash::Rayshade, NoiseHash::Perm256}) {
                     Profile prof = profile(name);
-                    prof.noise = {interp, corner, hash};
+                    setNoiseKeys(prof, interp, corner, hash);
                     checkAgainstReference(prof, std::string(name) + " formats " + toString(interp) + "/" +
                                                     toString(corner) + "/" + toString(hash));
                 }
@@ -266,10 +271,10 @@ TEST(NoiseFx, VariantsTrackReference) {
 TEST(NoiseFx, GradFracFloorsOnlyTheDerivatives) {
     std::mt19937_64 rng(77);
     for (const char* name : {"full", "reduced"}) {
-        for (NoiseInterp interp : {NoiseInterp::SCurve, NoiseInterp::Linear})
-            for (NoiseCorner corner : {NoiseCorner::ValueGradient, NoiseCorner::ValueOnly}) {
+        for (NoiseInterp interp : {NoiseInterp::Scurve, NoiseInterp::Linear})
+            for (NoiseCorner corner : {NoiseCorner::ValueGradient, NoiseCorner::Value}) {
                 Profile exact = profile(name);
-                exact.noise = {interp, corner, NoiseHash::Perm256};
+                setNoiseKeys(exact, interp, corner, NoiseHash::Perm256);
                 const int NF = noiseNodeFrac(exact);
                 ASSERT_LE(exact.noiseGradFrac, NF) << name;   // full 16 of 20, reduced every node bit
                 exact.noiseGradFrac = NF;                        // the exact unit

@@ -45,7 +45,7 @@ void GoldenPipeline::write(uint16_t addr, uint32_t data) {
     const Profile& p = profile_;
     if (addr == c::kRegControl) {
         ctrl_ = data & ((1u << c::kRegControlBits) - 1);  // [0] clamp, [2:1] filter kind, [3] bandlimit
-        if (!p.bandlimit) ctrl_ &= ~(1u << c::kRegControlBandlimitLsb);  // no fade unit: the bit is not kept
+        if (!p.bandlimit()) ctrl_ &= ~(1u << c::kRegControlBandlimitLsb);  // no fade unit: the bit is not kept
     } else if (addr == c::kRegActive) {
         const int bits = [&] { int b = 0; while ((1 << b) < p.octaves + 1) ++b; return b; }();
         active_ = int(fx::wrapUnsigned(data, bits));  // the RTL keeps $clog2(Octaves + 1) bits
@@ -54,7 +54,7 @@ void GoldenPipeline::write(uint16_t addr, uint32_t data) {
     } else if (addr >= c::kRegWorley && addr < c::kRegWorley + c::kRegWorleyCount) {
         worley_[addr - c::kRegWorley] = fx::wrapSigned(data, c::kWorleyCoefInt + c::kWorleyCoefFrac);
     } else if (addr >= c::kRegFade && addr < c::kRegFade + c::kRegFadeCount) {
-        if (p.bandlimit) fade_[addr - c::kRegFade] = int64_t(fx::wrapUnsigned(data, c::kFadeBits));
+        if (p.bandlimit()) fade_[addr - c::kRegFade] = int64_t(fx::wrapUnsigned(data, c::kFadeBits));
     } else if (addr >= c::kRegOctave && addr < c::kRegOctave + c::kRegOctaveStride * p.octaves) {
         Octave& o = oct_[(addr - c::kRegOctave) / c::kRegOctaveStride];
         const int k = (addr - c::kRegOctave) % c::kRegOctaveStride;
@@ -66,7 +66,7 @@ void GoldenPipeline::write(uint16_t addr, uint32_t data) {
             o.a = fx::wrapSigned(data, p.amplitude.width());
         else if (k >= c::kRegOctaveGm && k < c::kRegOctaveGm + c::kRegOctaveGmCount)
             o.gm[k - c::kRegOctaveGm] = fx::wrapSigned(data, p.gradMatrix.width());
-        else if (k == c::kRegOctaveLgm && p.bandlimit)
+        else if (k == c::kRegOctaveLgm && p.bandlimit())
             o.lgm = fx::wrapSigned(data, c::kFadeLgBits);
     }
     clut_->write(addr, data);  // decodes the table ranges itself
@@ -88,7 +88,7 @@ PixelFx GoldenPipeline::eval(const FragmentFx& fr, StageTrace* trace) const {
     fx::i128 fsum = t.q;
     fx::i128 gsum[3] = {t.gradq[0], t.gradq[1], t.gradq[2]};
     // Bandlimited octaves: the footprint's two edges' lg lengths, once per pixel.
-    const bool fade = p.bandlimit && ((ctrl_ >> contract::kRegControlBandlimitLsb) & 1u);
+    const bool fade = p.bandlimit() && ((ctrl_ >> contract::kRegControlBandlimitLsb) & 1u);
     t.lgx = fadeLgFx(p, fr.j);
     t.lgy = fadeLgFx(p, fr.j + 3);
     for (int i = 0; i < t.octaves; ++i) {
@@ -114,7 +114,7 @@ PixelFx GoldenPipeline::eval(const FragmentFx& fr, StageTrace* trace) const {
 
     // Stage 5: filter width.
     t.w = filterWidthFx(p, t.grad, fr.j);
-    if (fault_ == Stage::FilterWidth) t.w = int64_t(fx::wrapUnsigned(t.w + 1, p.widthIntBits() + p.widthFrac));
+    if (fault_ == Stage::FilterWidth) t.w = int64_t(fx::wrapUnsigned(t.w + 1, p.widthBits()));
 
     // Stage 6: colour-table filter.
     t.rgba = clut_->filter(t.f, t.w, (ctrl_ & 1u) != 0, int((ctrl_ >> 1) & 3u));

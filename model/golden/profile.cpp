@@ -13,6 +13,24 @@ namespace pst {
 NoiseBasis hardwareBasis(const NoiseOptions& n) {
     return n.corner == NoiseCorner::Grad12 ? NoiseBasis::Perlin2002 : NoiseBasis::Rayshade;
 }
+
+NoiseOptions hardwareNoise(const ProfileParams& p) {
+    NoiseOptions n;
+    n.interp = p.noiseInterp;
+    n.corner = p.noiseCorner;
+    n.hash = p.noiseHash;
+    n.basis = hardwareBasis(n);
+    n.maxPoints = p.noiseWorleyPoints;
+    // A worley unit (rtl/pst_worley.sv) instead of the lattice-noise unit: basis worley, the
+    // hardware's search and its 256-entry feature-point ROM, Euclidean distances, no cell term.
+    if (p.noiseWorleySearch != NoiseWorleySearch::None) {
+        n.basis = NoiseBasis::Worley;
+        n.search = p.noiseWorleySearch == NoiseWorleySearch::Octant ? WorleySearchKind::Octant : WorleySearchKind::Cube27;
+        n.cubes = WorleyCubes::Rom256;
+        n.metric = WorleyMetric::Euclid;
+    }
+    return n;
+}
 namespace {
 
 struct Reader {
@@ -20,11 +38,7 @@ struct Reader {
     const toml::table& root;
 
     [[noreturn]] void fail(const toml::node* n, const std::string& field, const std::string& what) const {
-        std::ostringstream os;
-        os << path;
-        if (n && n->source().begin.line > 0) os << ":" << n->source().begin.line;
-        os << ": " << field << ": " << what;
-        throw InputError(os.str());
+        throw inputError(path, lineOf(n), field, what);
     }
     const toml::table& section(const char* name) const {
         const toml::node* n = root.get(name);
@@ -60,7 +74,7 @@ Profile parseProfile(const std::string& text, const std::string& path) {
     try {
         root = toml::parse(text, path);
     } catch (const toml::parse_error& e) {
-        throw InputError(path + ":" + std::to_string(e.source().begin.line) + ": " + std::string(e.description()));
+        throw InputError(inputWhere(path, e.source().begin.line) + ": " + std::string(e.description()));
     }
     const Reader r{path, root};
     // Every key of the schema (rtl/contract.toml, through the generated contract.h) into one
@@ -134,51 +148,8 @@ Profile parseProfile(const std::string& text, const std::string& path) {
 
     Profile p;
     p.path = path;
-    for (int i = 0; i < c::kNumParams; ++i) p.params[i] = v[i];
-    p.octaves = v[c::Octaves];
-    p.noiseUnits = v[c::NoiseUnits];
-    p.noiseSteps = v[c::NoiseSteps];
-    p.log2Clut = v[c::Log2Clut];
-    p.colourBits = v[c::ColourBits];
-    p.datapath = Datapath(v[c::Datapath]);
-    p.noiseRegs = v[c::NoiseRegs];
-    p.octaveRegs = v[c::OctaveRegs];
-    p.widthRegs = v[c::WidthRegs];
-    p.colourRegs = v[c::ColourRegs];
-    p.noise.interp = NoiseInterp(v[c::NoiseInterp]);
-    p.noise.corner = NoiseCorner(v[c::NoiseCorner]);
-    p.noise.hash = NoiseHash(v[c::NoiseHash]);
-    p.noise.basis = hardwareBasis(p.noise);
-    // A worley unit (rtl/pst_worley.sv) instead of the lattice-noise unit: basis worley, the
-    // hardware's search and its 256-entry feature-point ROM, Euclidean distances, no cell term.
-    p.worleyOrder = v[c::NoiseWorleyOrder];
-    p.noise.maxPoints = v[c::NoiseWorleyPoints];
-    // (c::kNoiseWorleySearchNames: 0 none, 1 octant, 2 cube27; checked by profile_test.)
-    if (v[c::NoiseWorleySearch] != 0) {
-        p.noise.basis = NoiseBasis::Worley;
-        p.noise.search = v[c::NoiseWorleySearch] == 1 ? WorleySearchKind::Octant : WorleySearchKind::Cube27;
-        p.noise.cubes = WorleyCubes::Rom256;
-        p.noise.metric = WorleyMetric::Euclid;
-    }
-    p.noiseValueFrac = v[c::NoiseValueFrac];
-    p.noiseLatticeFrac = v[c::NoiseLatticeFrac];
-    p.noiseOutFrac = v[c::NoiseOutFrac];
-    p.noiseGuardBits = v[c::NoiseGuardBits];
-    p.noiseGradFrac = v[c::NoiseGradFrac];
-    p.filterNorm = GradNorm(v[c::FilterNorm]);
-    p.filterRecipFrac = v[c::FilterRecipFrac];
-    p.bandlimit = v[c::FilterBandlimit] == 1;  // kFilterBandlimitNames: off, isotropic
-    const auto fmt = [&](c::Param i) { return FixedFormat{v[i], v[i + 1]}; };
-    p.coord = fmt(c::CoordInt);
-    p.jacobian = fmt(c::JacobianInt);
-    p.matrix = fmt(c::MatrixInt);
-    p.offset = fmt(c::OffsetInt);
-    p.amplitude = fmt(c::AmplitudeInt);
-    p.gradMatrix = fmt(c::GradMatrixInt);
-    p.quadric = fmt(c::QuadricInt);
-    p.f = fmt(c::FInt);
-    p.grad = fmt(c::GradInt);
-    p.widthFrac = v[c::WidthFrac];
+    for (int i = 0; i < c::kNumParams; ++i) c::setParam(p, c::Param(i), v[i]);
+    p.noise = hardwareNoise(p);
     p.name = path.substr(path.find_last_of('/') + 1);
     if (auto dot = p.name.rfind(".toml"); dot != std::string::npos) p.name.resize(dot);
     return p;
@@ -193,18 +164,27 @@ Profile loadProfile(const std::string& path) {
 }
 
 std::string profileDifference(const Profile& a, const Profile& b) {
-    for (const contract::KeySpec& k : contract::kSchema) {
-        const bool differs = a.params[k.param] != b.params[k.param] ||
-                             (k.kind == contract::KeyKind::Format && a.params[k.param + 1] != b.params[k.param + 1]);
-        if (differs) return std::string(k.section) + "." + k.key;
-    }
+    namespace c = contract;
+    const auto differ = [&](int i) { return c::paramValue(a, c::Param(i)) != c::paramValue(b, c::Param(i)); };
+    for (const c::KeySpec& k : c::kSchema)
+        if (differ(k.param) || (k.kind == c::KeyKind::Format && differ(k.param + 1)))
+            return std::string(k.section) + "." + k.key;
     return "";
 }
 
+bool isProfileFile(const std::string& nameOrPath) {
+    // As scripts/pstlib/paths.py profile_path.
+    const std::string ext = ".toml";
+    return nameOrPath.find('/') != std::string::npos ||
+           (nameOrPath.size() >= ext.size() && nameOrPath.compare(nameOrPath.size() - ext.size(), ext.size(), ext) == 0);
+}
+
 std::string profilePath(const std::string& nameOrPath, const std::string& sourceDir) {
-    if (nameOrPath.find('/') != std::string::npos || nameOrPath.find(".toml") != std::string::npos)
-        return nameOrPath;
-    return sourceDir + "/rtl/configs/" + nameOrPath + ".toml";
+    return isProfileFile(nameOrPath) ? nameOrPath : sourceDir + "/rtl/configs/" + nameOrPath + ".toml";
+}
+
+Profile loadNamedProfile(const std::string& nameOrPath, const std::string& sourceDir) {
+    return loadProfile(profilePath(nameOrPath, sourceDir));
 }
 
 }  // namespace pst

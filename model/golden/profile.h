@@ -3,7 +3,6 @@
 // schema (keys, ranges, enums, cross-constraints) is rtl/contract.toml's, through contract.h.
 #pragma once
 
-#include <array>
 #include <string>
 
 #include "contract.h"
@@ -12,76 +11,38 @@
 
 namespace pst {
 
-// A signed two's-complement format: `intBits` integer bits including the sign, `fracBits`
-// fraction bits; value = integer / 2^fracBits.
-struct FixedFormat {
-    int intBits = 0;
-    int fracBits = 0;
-    int width() const { return intBits + fracBits; }
-};
-
-// How the quadric, filter-width and colour-table units are built: every product every cycle
-// (parallel), or one row / one channel per cycle (serial: fewer multipliers; the octave
-// transform and term rows take 3 + 3 more cycles per pixel, see rtl/pst_octave_stage.sv; needs
-// noise_steps >= 4). The arithmetic is the same bit for bit.
-// The order is rtl/contract.toml's (pipeline.datapath), checked by profile_test.
-enum class Datapath { Parallel, Serial };
-
-struct Profile {
+// How the quadric, filter-width and colour-table units are built (Datapath, generated from
+// rtl/contract.toml pipeline.datapath into contract.h): every product every cycle (Parallel),
+// or one row / one channel per cycle (Serial: fewer multipliers; the octave transform and term
+// rows take 3 + 3 more cycles per pixel, see rtl/pst_octave_stage.sv; needs noise_steps >= 4).
+// The arithmetic is the same bit for bit.
+//
+// A profile: its keys (ProfileParams, generated from rtl/contract.toml into contract.h: one
+// typed member per key, octaves .. widthFrac), its name and file, and the noise options the
+// golden model's noise unit computes with (hardwareNoise of the noise keys).
+struct Profile : ProfileParams {
     std::string name;
     std::string path;
-
-    // [pipeline]
-    int octaves = 8;        // K noise terms held
-    int noiseUnits = 8;     // noise units in parallel
-    int noiseSteps = 1;     // cycles per noise evaluation (1, 2, 4, 8)
-    int log2Clut = 8;       // N = 2^log2Clut colour-table entries
-    int colourBits = 8;     // bits per RGBA channel
-    Datapath datapath = Datapath::Parallel;
-    int noiseRegs = 0;      // pipeline registers in each noise unit (0..6)
-    int octaveRegs = 0;     // pipeline registers around it: 1 after the term, 2 also after the transform
-    int widthRegs = 0;      // pipeline registers in the parallel filter width
-    int colourRegs = 0;     // pipeline registers in the colour-table filter
-    // [noise] (noise.basis: hardwareBasis of interp / corner / hash)
+    // The hardware's noise variant in the reference model's terms (basis: hardwareBasis of
+    // interp / corner / hash; noise.worley_search != none: basis Worley, its search,
+    // maxPoints = noiseWorleyPoints, cubes Rom256). Set by parseProfile from the keys; after
+    // changing a noise key, set it again: p.noise = hardwareNoise(p).
     NoiseOptions noise;
-    int noiseValueFrac = 15;    // R table fraction bits
-    int noiseLatticeFrac = 16;  // fraction bits of T_i s into the noise unit
-    int noiseOutFrac = 16;      // noise value and gradient fraction bits
-    int noiseGuardBits = 4;     // fraction bits of the noise unit's nodes below noiseOutFrac
-    int noiseGradFrac = 20;     // fraction bits kept on the derivative lanes (noise_fx.h noiseGradFloor)
-    // noise.worley_search != none: the noise unit is a worley unit (noise.basis Worley;
-    // noise.search, noise.maxPoints, noise.cubes = Rom256 say which variant), F1..F_worleyOrder.
-    int worleyOrder = 2;
-    // [filter]
-    GradNorm filterNorm = GradNorm::Euclid;
-    int filterRecipFrac = 18;
-    bool bandlimit = false;     // filter.bandlimit = "isotropic": the fade unit (pst_octave_fade) is built
-    // [formats]
-    FixedFormat coord, jacobian, matrix, offset, amplitude, gradMatrix, quadric, f, grad;
-    int widthFrac = 8;
 
     int clutSize() const { return 1 << log2Clut; }
-    int octavePasses() const { return (octaves + noiseUnits - 1) / noiseUnits; }
-    // The octave stage's nominal cycles per fragment (rtl/pst_octave_stage.sv Cycles): the
-    // pipeline's rate as long as the other serial units are shorter (docs/HARDWARE.md lists
-    // every stage's cycles; a profile whose serial quadric, quadricSerialSteps, takes longer
-    // runs at the quadric's rate). Used for simulation timeouts; `pst regress` reports the
+    // The pipeline's clocks per pixel (contract::clocks_per_pixel: its slowest stage, the
+    // docs/HARDWARE.md cycle table). Used for simulation timeouts; `pst regress` reports the
     // measured rate.
-    // The pipeline registers add latency only, except on the serial datapath, where the
-    // fragment waits in the octave stage for its last pass's noise and term registers.
     int cyclesPerPixel() const {
-        return octavePasses() * noiseSteps +
-               (datapath == Datapath::Serial
-                    ? contract::kSerialOctaveExtraCycles + noiseRegs + (octaveRegs >= 1 ? 1 : 0)
-                    : 0);
+        return contract::clocks_per_pixel(octaves, noiseUnits, noiseSteps, int(datapath), noiseRegs, octaveRegs,
+                                          quadric.width(), coord.width(), int(filterNorm), log2Clut, widthFrac,
+                                          colourRegs);
     }
-
-    // W = w N in entries: unsigned, log2Clut + 2 integer bits, widthFrac fraction bits.
-    int widthIntBits() const { return log2Clut + 2; }
-
-    // Every key's value indexed by RTL parameter (contract::Param): what a verilated model
-    // was built from, compared by sameHardware().
-    std::array<int, contract::kNumParams> params{};
+    // W = w N in entries: unsigned, widthIntBits() integer bits, widthFrac fraction bits.
+    int widthIntBits() const { return contract::w_int_bits(log2Clut); }
+    int widthBits() const { return contract::w_width(log2Clut, widthFrac); }
+    // filter.bandlimit = "isotropic": the fade unit (pst_octave_fade) is built.
+    bool bandlimit() const { return filterBandlimit == FilterBandlimit::Isotropic; }
 };
 
 // "" when a and b describe the same hardware (every key equal), else the first key that
@@ -93,8 +54,16 @@ Profile loadProfile(const std::string& path);
 // The noise basis a hardware noise variant computes: Perlin2002 for Perlin's 2002 triple
 // (quintic, grad12, perlin256; the contract allows it only whole), Rayshade otherwise.
 NoiseBasis hardwareBasis(const NoiseOptions& n);
+// The noise options of a profile's noise keys (Profile::noise).
+NoiseOptions hardwareNoise(const ProfileParams& p);
 Profile parseProfile(const std::string& text, const std::string& path);
-// "full" -> <source>/rtl/configs/full.toml; a path is used as it is.
+// A profile argument ("full", "rtl/configs/full.toml", "mine.toml") is a file when it has a
+// '/' in it or ends in ".toml", else the name of a profile in <source>/rtl/configs: the one
+// rule every command line and test uses (scripts/pstlib/paths.py profile_path in Python).
+bool isProfileFile(const std::string& nameOrPath);
+// "full" -> <sourceDir>/rtl/configs/full.toml; a file is used as it is.
 std::string profilePath(const std::string& nameOrPath, const std::string& sourceDir);
+// loadProfile(profilePath(nameOrPath, sourceDir)).
+Profile loadNamedProfile(const std::string& nameOrPath, const std::string& sourceDir);
 
 }  // namespace pst

@@ -11,6 +11,7 @@
 
 #include "contract.h"
 #include "input_error.h"
+#include "source_dir.h"
 
 namespace pst {
 namespace {
@@ -55,6 +56,67 @@ TEST(Profile, ModelEnumsFollowTheContractOrder) {
     EXPECT_STREQ(contract::kDatapathNames[int(Datapath::Serial)], "serial");
 }
 
+// The generated enums (contract.h) name the contract's values in its order, both ways.
+TEST(Profile, GeneratedEnumsMatchTheContract) {
+    const auto check = [](auto first, const auto& names) {
+        using E = decltype(first);
+        for (int i = 0; i < int(std::size(names)); ++i) {
+            EXPECT_STREQ(contract::name(E(i)), names[i]);
+            E e{};
+            ASSERT_TRUE(contract::fromName(names[i], &e));
+            EXPECT_EQ(int(e), i);
+        }
+        E e{};
+        EXPECT_FALSE(contract::fromName("no_such_value", &e));
+        EXPECT_STREQ(contract::name(E(int(std::size(names)))), "?");
+    };
+    check(Datapath{}, contract::kDatapathNames);
+    check(NoiseInterp{}, contract::kNoiseInterpNames);
+    check(NoiseCorner{}, contract::kNoiseCornerNames);
+    check(NoiseHash{}, contract::kNoiseHashNames);
+    check(NoiseWorleySearch{}, contract::kNoiseWorleySearchNames);
+    check(GradNorm{}, contract::kFilterNormNames);
+    check(FilterBandlimit{}, contract::kFilterBandlimitNames);
+    EXPECT_EQ(int(NoiseHash::Perlin256), 2);
+    EXPECT_EQ(int(GradNorm::L1), 2);
+}
+
+// ProfileParams' members by RTL parameter: every parameter reaches its own member.
+TEST(Profile, ParamsByParameter) {
+    const Profile full = loadNamedProfile("full", sourceDir());
+    // The generated defaults are the defaults profile's (full.toml), like pst_pkg's *Default.
+    EXPECT_EQ(profileDifference(Profile{}, full), "");
+    ProfileParams p;
+    for (int i = 0; i < contract::kNumParams; ++i) contract::setParam(p, contract::Param(i), 100 + i);
+    for (int i = 0; i < contract::kNumParams; ++i) EXPECT_EQ(contract::paramValue(p, contract::Param(i)), 100 + i);
+    EXPECT_EQ(p.octaves, 100 + contract::Octaves);
+    EXPECT_EQ(p.grad.fracBits, 100 + contract::GradFrac);
+    EXPECT_EQ(int(p.filterBandlimit), 100 + contract::FilterBandlimit);
+    EXPECT_STREQ(contract::kParamNames[contract::NoiseWorleyOrder], "NoiseWorleyOrder");
+}
+
+// The contract's formulas (contract.h) on reduced: the docs/HARDWARE.md cycle table's row.
+TEST(Profile, FormulasOfReduced) {
+    const Profile p = loadProfile(reducedPath());
+    EXPECT_EQ(p.widthIntBits(), 10);
+    EXPECT_EQ(p.widthBits(), 14);
+    EXPECT_EQ(contract::octave_cycles(p.octaves, p.noiseUnits, p.noiseSteps, int(p.datapath), p.noiseRegs, p.octaveRegs), 32);
+    EXPECT_EQ(contract::quadric_cycles(int(p.datapath), p.quadric.width(), p.coord.width(), p.octaveRegs), 23);
+    EXPECT_EQ(contract::width_cycles(int(p.datapath), int(p.filterNorm), p.log2Clut, p.widthFrac), 16);
+    EXPECT_EQ(contract::colour_cycles(int(p.datapath), p.colourRegs), 6);
+    EXPECT_EQ(p.cyclesPerPixel(), 32);
+    static_assert(contract::w_width(8, 8) == 18, "constexpr");
+}
+
+// A profile argument: a file when it has a '/' or ends in .toml, else a name in rtl/configs.
+TEST(Profile, NameOrFile) {
+    EXPECT_FALSE(isProfileFile("full"));
+    EXPECT_TRUE(isProfileFile("mine.toml"));
+    EXPECT_TRUE(isProfileFile("dir/full"));
+    EXPECT_EQ(profilePath("full", "/src"), "/src/rtl/configs/full.toml");
+    EXPECT_EQ(profilePath("x/mine.toml", "/src"), "x/mine.toml");
+}
+
 TEST(Profile, ReadsReduced) {
     const Profile p = loadProfile(reducedPath());
     EXPECT_EQ(p.name, "reduced");
@@ -62,7 +124,7 @@ TEST(Profile, ReadsReduced) {
     EXPECT_EQ(p.noiseUnits, 1);
     EXPECT_EQ(p.noiseSteps, 4);
     EXPECT_EQ(p.datapath, Datapath::Serial);
-    EXPECT_EQ(p.noise.hash, NoiseHash::Rayshade4096);
+    EXPECT_EQ(p.noise.hash, NoiseHash::Rayshade);
     EXPECT_EQ(p.filterNorm, GradNorm::Euclid);
     EXPECT_EQ(p.coord.intBits, 10);
     EXPECT_EQ(p.coord.fracBits, 12);

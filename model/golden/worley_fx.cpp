@@ -54,7 +54,7 @@ u128 isqrt128(u128 x) {
 
 int worleyDistFrac(const Profile& prof) { return std::max(prof.noiseLatticeFrac, int(contract::kWorleyPointFrac)); }
 
-int worleySearchCubes(const Profile& prof) { return prof.noise.search == WorleySearchKind::Octant ? 8 : 27; }
+int worleySearchCubes(const Profile& prof) { return prof.noiseWorleySearch == NoiseWorleySearch::Octant ? 8 : 27; }
 
 WorleyRomWord worleyRomWord(int entry, int maxPoints) {
     WorleyRomWord w;
@@ -70,7 +70,7 @@ void worleyFx(const Profile& prof, const int lat[3], const int64_t frac[3], cons
     if (prof.noise.basis != NoiseBasis::Worley) throw std::invalid_argument("worleyFx: the profile has no worley unit");
     const int LF = prof.noiseLatticeFrac, OF = prof.noiseOutFrac, NF = OF + prof.noiseGuardBits;
     const int DF = worleyDistFrac(prof), CF = contract::kWorleyCoefFrac, PF = contract::kWorleyPointFrac;
-    const int K = prof.worleyOrder, M = prof.noise.maxPoints, N = worleySearchCubes(prof);
+    const int K = prof.noiseWorleyOrder, M = prof.noiseWorleyPoints, N = worleySearchCubes(prof);
     const auto& P = NoiseTables::get().perm;
 
     int64_t U[3];

@@ -22,13 +22,12 @@ namespace {
 // The test profile reduced_worley, and the full formats with a worley unit (search, points, order).
 Profile reducedWorley() { return loadProfile(sourceDir() + "/sim/test_profiles/reduced_worley.toml"); }
 Profile fullWorley(WorleySearchKind search, int points, int order) {
-    Profile p = loadProfile(sourceDir() + "/rtl/configs/full.toml");
-    p.noise.hash = NoiseHash::Perm256;
-    p.noise.basis = NoiseBasis::Worley;
-    p.noise.search = search;
-    p.noise.maxPoints = points;
-    p.noise.cubes = WorleyCubes::Rom256;
-    p.worleyOrder = order;
+    Profile p = loadNamedProfile("full", sourceDir());
+    p.noiseHash = NoiseHash::Perm256;
+    p.noiseWorleySearch = search == WorleySearchKind::Octant ? NoiseWorleySearch::Octant : NoiseWorleySearch::Cube27;
+    p.noiseWorleyPoints = points;
+    p.noiseWorleyOrder = order;
+    p.noise = hardwareNoise(p);
     return p;
 }
 
@@ -59,19 +58,19 @@ void checkPoint(const Profile& prof, const Point& pt, const double coef[4], doub
     for (int k = 0; k < 4; ++k) {
         creg[k] = fx::quantize(coef[k], contract::kWorleyCoefInt, contract::kWorleyCoefFrac);
         cq[k] = std::ldexp(double(creg[k]), -contract::kWorleyCoefFrac);
-        opt.coef[size_t(k)] = k < prof.worleyOrder ? cq[k] : 0.0;
-        if (k < prof.worleyOrder) sumAbs += std::abs(cq[k]);
+        opt.coef[size_t(k)] = k < prof.noiseWorleyOrder ? cq[k] : 0.0;
+        if (k < prof.noiseWorleyOrder) sumAbs += std::abs(cq[k]);
     }
     int64_t n, g[3];
     WorleyFxTrace tr;
     worleyFx(prof, pt.lat, pt.frac, creg, &n, g, &tr);
-    const WorleyResult ref = worley(pt.pq, prof.worleyOrder, WorleyMetric::Euclid, worleySearchOf(prof.noise));
+    const WorleyResult ref = worley(pt.pq, prof.noiseWorleyOrder, WorleyMetric::Euclid, worleySearchOf(prof.noise));
     glm::dvec3 gref;
     const double nref = worleyBasis(pt.pq, opt, &gref);
     const WorleyFxErrorBound b = worleyFxErrorBound(prof, sumAbs);
     const std::string at = "at " + std::to_string(pt.pq.x) + " " + std::to_string(pt.pq.y) + " " + std::to_string(pt.pq.z);
     const double e = std::ldexp(1.0, -NF);
-    for (int k = 0; k < prof.worleyOrder; ++k) {
+    for (int k = 0; k < prof.noiseWorleyOrder; ++k) {
         const double F = std::ldexp(double(tr.F[k]), -NF);
         // F_fx in (F - e, F]: the floor of the exact square root.
         ASSERT_LE(F, ref.F[k]) << "F" << k + 1 << " " << at;
@@ -106,7 +105,7 @@ void checkProfile(const Profile& prof, uint64_t seed, int count) {
     std::printf("[ worley_fx ] %s (LF %d, NF %d, %s, <= %d points, F1..F%d): worst error / bound: F %.3f, "
                 "grad F %.3f, n %.3f, grad n %.3f\n",
                 prof.name.c_str(), prof.noiseLatticeFrac, prof.noiseOutFrac + prof.noiseGuardBits,
-                toString(prof.noise.search), prof.noise.maxPoints, prof.worleyOrder, worst[0], worst[1], worst[2],
+                toString(prof.noise.search), prof.noise.maxPoints, prof.noiseWorleyOrder, worst[0], worst[1], worst[2],
                 worst[3]);
 }
 
@@ -169,7 +168,7 @@ TEST(WorleyFx, RomWordsAreTheReferenceCubes) {
 }
 
 TEST(WorleyFx, RefusesALatticeNoiseProfile) {
-    const Profile p = loadProfile(sourceDir() + "/rtl/configs/reduced.toml");
+    const Profile p = loadNamedProfile("reduced", sourceDir());
     const int lat[3] = {0, 0, 0};
     const int64_t frac[3] = {0, 0, 0}, coef[4] = {0, 0, 0, 0};
     int64_t n, g[3];

@@ -17,8 +17,11 @@ API (import as `from pstlib import contract`, with scripts/ on sys.path):
   parameters(doc) -> [(Name, int)]     the RTL parameters of a valid profile (enums as indices)
   read_profile(path) -> dict           tomllib-loaded and validated; raises ProfileError whose str()
                                        is "PATH:LINE: FIELD: what is wrong"
-  sv_package(c), sv_checks(c), cpp_header(c), hardware_md_table(c)   the generated texts
+  sv_package(c), sv_checks(c), cpp_header(c), python_formulas(c), hardware_md_table(c)
+                                       the generated texts
   stage_cycles(doc) -> {stage: cycles}  cycles per stage and per pixel of a profile (docs table)
+  formulas       the [formula] functions (w_width, octave_cycles, ...), generated into
+                 scripts/pstlib/formulas.py (also constexpr in contract.h, functions in pst_pkg)
   GENERATED      {relative path: generator} of every generated file
 
 CLI:
@@ -31,13 +34,16 @@ import argparse
 import functools
 import re
 import sys
+import textwrap
 import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 
 try:
+    from . import formulas
     from .paths import ROOT
 except ImportError:        # run as a script (rtl/CMakeLists.txt): scripts/pstlib/ is sys.path[0]
+    import formulas
     from paths import ROOT
 DESCRIPTION = ROOT / "rtl" / "contract.toml"
 SECTION_PREFIX = {"pipeline": "", "noise": "Noise", "filter": "Filter", "formats": ""}
@@ -64,6 +70,11 @@ class Key:
     values: tuple = ()
     enum: tuple = ()
     max_width: int = 0
+    cpp: str = ""             # enum: the C++ type's name when it is not the RTL parameter's
+
+    @property
+    def cpp_type(self) -> str:
+        return self.cpp or self.params[0]
 
     @property
     def field(self) -> str:
@@ -84,6 +95,15 @@ class Constraint:
 
 
 @dataclass
+class Formula:
+    name: str
+    args: list[str]
+    expr: str
+    doc: str
+    tree: tuple = ()          # the parsed expression (parse_formula)
+
+
+@dataclass
 class Contract:
     path: Path
     keys: list[Key]
@@ -95,6 +115,7 @@ class Contract:
     constants: dict             # name -> (value, doc)
     raw: dict = field(repr=False, default_factory=dict)
     defaults: str = ""          # the profile whose values are the RTL parameter defaults
+    formulas: list = field(default_factory=list)   # [Formula], in description order
 
     def key(self, section: str, key: str) -> Key:
         for k in self.keys:
@@ -122,7 +143,7 @@ def load(path: str | Path | None = None) -> Contract:
         for key, spec in schema[section].items():
             doc = spec.get("doc", "")
             if "enum" in spec:
-                keys.append(Key(section, key, "enum", doc, enum=tuple(spec["enum"])))
+                keys.append(Key(section, key, "enum", doc, enum=tuple(spec["enum"]), cpp=spec.get("cpp", "")))
             elif "values" in spec:
                 keys.append(Key(section, key, "values", doc, values=tuple(spec["values"]),
                                 lo=min(spec["values"]), hi=max(spec["values"])))
@@ -140,9 +161,198 @@ def load(path: str | Path | None = None) -> Contract:
             constants[n] = (value, f"{v.get('doc', '')} (= {v['expr']})")
         else:
             constants[n] = (v["value"], v.get("doc", ""))
-    return Contract(path, keys, tuple(schema["format_int"]), tuple(schema["format_frac"]), constraints,
-                    raw["registers"], raw.get("enums", {}), constants, raw,
-                    schema.get("defaults", {}).get("profile", ""))
+    c = Contract(path, keys, tuple(schema["format_int"]), tuple(schema["format_frac"]), constraints,
+                 raw["registers"], raw.get("enums", {}), constants, raw,
+                 schema.get("defaults", {}).get("profile", ""))
+    for n, f in raw.get("formula", {}).items():
+        fm = Formula(n, list(f["args"]), f["expr"], f.get("doc", ""))
+        try:
+            fm.tree = parse_formula(fm.expr, fm.args, c)
+        except ValueError as e:
+            raise ValueError(f"formula.{n}: {e}") from None
+        c.formulas.append(fm)
+    return c
+
+
+# ---------------------------------------------------------------------------------------------
+# Formulas ([formula.NAME]): a small C expression language, parsed once and written out as
+# SystemVerilog, C++ and Python.
+# ---------------------------------------------------------------------------------------------
+_FTOKEN = re.compile(r"\s*(?:(\d+)|([A-Za-z_][A-Za-z0-9_]*)|(&&|\|\||==|!=|<=|>=|<<|>>|[-+*/%<>()!?:,.]))")
+_BINARY = [["||"], ["&&"], ["==", "!="], ["<", "<=", ">", ">="], ["<<", ">>"], ["+", "-"], ["*", "/", "%"]]
+BUILTINS = {"max": 2, "min": 2}
+
+
+def parse_formula(expr: str, args: list[str], c: Contract) -> tuple:
+    """The expression tree: ("num", n) | ("arg", name) | ("const", name) | ("enum", param, member)
+    | ("call", name, [trees]) | ("un", op, t) | ("bin", op, a, b) | ("cond", c, a, b). Names are
+    the args, the constants, enum values and earlier formulas (ValueError otherwise)."""
+    toks, pos, s = [], 0, expr.strip()
+    while pos < len(s):
+        m = _FTOKEN.match(s, pos)
+        if not m or m.end() == pos:
+            raise ValueError(f"cannot read {s[pos:]!r}")
+        toks.append(m.groups())
+        pos = m.end()
+    i = 0
+    enums = c.enum_of_param()
+    known = {f.name: len(f.args) for f in c.formulas}
+
+    def peek(op=None):
+        if i >= len(toks):
+            return None if op else (None, None, None)
+        return toks[i][2] if op else toks[i]
+
+    def take(op):
+        nonlocal i
+        if peek(True) != op:
+            raise ValueError(f"{expr!r}: expected {op!r}")
+        i += 1
+
+    def primary():
+        nonlocal i
+        num, name, op = peek()
+        if num:
+            i += 1
+            return ("num", int(num))
+        if op == "(":
+            i += 1
+            t = cond()
+            take(")")
+            return t
+        if op in ("!", "-"):
+            i += 1
+            return ("un", op, primary())
+        if not name:
+            raise ValueError(f"{expr!r}: unexpected {op!r}")
+        i += 1
+        if peek(True) == ".":
+            i += 1
+            member = peek()[1]
+            i += 1
+            if name not in enums or member not in enums[name].enum:
+                raise ValueError(f"{expr!r}: unknown enum value {name}.{member}")
+            return ("enum", name, member)
+        if peek(True) == "(":
+            i += 1
+            actual = [cond()]
+            while peek(True) == ",":
+                i += 1
+                actual.append(cond())
+            take(")")
+            want = known.get(name, BUILTINS.get(name))
+            if want is None:
+                raise ValueError(f"{expr!r}: unknown function {name} (a formula must come before its uses)")
+            if want != len(actual):
+                raise ValueError(f"{expr!r}: {name} takes {want} arguments")
+            return ("call", name, actual)
+        if name in args:
+            return ("arg", name)
+        if name in c.constants:
+            return ("const", name)
+        raise ValueError(f"{expr!r}: unknown name {name}")
+
+    def binary(level):
+        if level == len(_BINARY):
+            return primary()
+        t = binary(level + 1)
+        while peek(True) in _BINARY[level]:
+            op = peek(True)
+            take(op)
+            t = ("bin", op, t, binary(level + 1))
+        return t
+
+    def cond():
+        t = binary(0)
+        if peek(True) == "?":
+            take("?")
+            a = cond()
+            take(":")
+            return ("cond", t, a, cond())
+        return t
+
+    tree = cond()
+    if i != len(toks):
+        raise ValueError(f"{expr!r}: unexpected {toks[i]}")
+    return tree
+
+
+def cpp_arg(name: str) -> str:
+    """A formula argument as a C++ name: lowerCamel (Log2Clut -> log2Clut), all-caps lowered (QW -> qw)."""
+    return name.lower() if name.isupper() else name[:1].lower() + name[1:]
+
+
+def emit_formula(t: tuple, lang: str, c: Contract) -> str:
+    """A formula tree as "sv" (inside pst_pkg), "cpp" (inside pst::contract) or "py" text,
+    every operation in parentheses (the three languages' precedences differ)."""
+    kind = t[0]
+    if kind == "num":
+        return str(t[1])
+    if kind == "arg":
+        return cpp_arg(t[1]) if lang == "cpp" else t[1]
+    if kind == "const":
+        return {"sv": t[1], "cpp": f"k{t[1]}", "py": t[1]}[lang]
+    if kind == "enum":
+        idx = c.enum_of_param()[t[1]].enum.index(t[2])
+        return f"{t[1]}{camel(t[2])}" if lang == "sv" else str(idx)
+    if kind == "call":
+        name = {"sv": {"max": "max_int", "min": "min_int"}, "cpp": {"max": "max_int", "min": "min_int"}}.get(lang, {}).get(t[1], t[1])
+        return f"{name}({', '.join(emit_formula(a, lang, c) for a in t[2])})"
+    if kind == "un":
+        op = "not " if lang == "py" and t[1] == "!" else t[1]
+        return f"({op}{emit_formula(t[2], lang, c)})"
+    if kind == "bin":
+        op = {"&&": "and", "||": "or", "/": "//"}.get(t[1], t[1]) if lang == "py" else t[1]
+        return f"({emit_formula(t[2], lang, c)} {op} {emit_formula(t[3], lang, c)})"
+    cnd, a, b = (emit_formula(x, lang, c) for x in t[1:])
+    return f"({a} if {cnd} else {b})" if lang == "py" else f"({cnd} ? {a} : {b})"
+
+
+def _strip_parens(s: str) -> str:
+    """Drops one pair of parentheses around the whole text."""
+    if not (s.startswith("(") and s.endswith(")")):
+        return s
+    depth = 0
+    for n, ch in enumerate(s):
+        depth += {"(": 1, ")": -1}.get(ch, 0)
+        if depth == 0 and n < len(s) - 1:
+            return s
+    return s[1:-1]
+
+
+def python_formulas(c: Contract) -> str:
+    """scripts/pstlib/formulas.py: the formulas and the constants they read, as Python."""
+    L = [f'"""{HEADER}', "", "The [formula] functions of rtl/contract.toml (pstlib.contract.formulas).", '"""', ""]
+    used = [n for n in c.constants if any(n in _names(f.tree, "const") for f in c.formulas)]
+    L += [f"{n} = {c.constants[n][0]}" for n in used]
+    for f in c.formulas:
+        L += ["", "", f"def {f.name}({', '.join(f.args)}) -> int:"]
+        if f.doc:
+            doc = textwrap.wrap(f.doc[:1].upper() + f.doc[1:] + ".", 92)
+            L += [f'    """{doc[0]}'] + [f"    {x}" for x in doc[1:]]
+            L[-1] += '"""'
+        L.append(f"    return int({_strip_parens(emit_formula(f.tree, 'py', c))})")
+    return "\n".join(L) + "\n"
+
+
+def _formula_functions(c: Contract):
+    """The formulas of a description as Python functions (python_formulas' text, executed once
+    per description)."""
+    if "_functions" not in c.__dict__:
+        ns: dict = {}
+        exec(compile(python_formulas(c), f"{c.path} [formula]", "exec"), ns)  # noqa: S102 (our own generator)
+        c.__dict__["_functions"] = argparse.Namespace(**{f.name: ns[f.name] for f in c.formulas})
+    return c.__dict__["_functions"]
+
+
+def _names(t: tuple, kind: str) -> set[str]:
+    """The names of `kind` ("const", "call", ...) a tree reads."""
+    out = {t[1]} if t[0] == kind else set()
+    for x in t[1:]:
+        for y in (x if isinstance(x, list) else [x]):
+            if isinstance(y, tuple):
+                out |= _names(y, kind)
+    return out
 
 
 def _tables():
@@ -349,7 +559,8 @@ def _address_text(name: str, r: dict) -> str:
 def sv_package(c: Contract) -> str:
     L = [f"// {HEADER}",
          "// pst_pkg: the hardware contract (rtl/contract.toml) for the RTL: profile enums, the",
-         "// register map, port and probe layouts and the fixed step counts. Referenced as pst_pkg::Name",
+         "// register map, port and probe layouts, the fixed step counts and the derived widths and cycle",
+         "// counts as functions (pst_pkg::w_width(Log2Clut, WidthFrac)). Referenced as pst_pkg::Name",
          "// (Yosys 0.23 reads no `import`). Every file that uses it includes it first (the guard makes",
          "// that once), so any file order works in Verilator and Yosys.",
          "`ifndef PST_PKG_SV", "`define PST_PKG_SV", "`default_nettype none", "", "package pst_pkg;", "",
@@ -391,9 +602,31 @@ def sv_package(c: Contract) -> str:
     L += ["", "  // Fixed facts of the datapath."]
     for name, (v, doc) in c.constants.items():
         L.append(f"  localparam int {name} = {v};  // {doc}")
-    L += ["", "  /* verilator lint_on UNUSEDPARAM */", "", "endpackage", "", "`default_nettype wire",
+    L += ["", "  /* verilator lint_on UNUSEDPARAM */", ""] + sv_functions(c) + ["endpackage", "", "`default_nettype wire",
           "`endif  // PST_PKG_SV", ""]
     return "\n".join(L)
+
+
+def _comment(prefix: str, text: str, width: int = 100, then: str | None = None) -> list[str]:
+    return textwrap.wrap(text, width, initial_indent=prefix, subsequent_indent=prefix if then is None else then)
+
+
+def sv_functions(c: Contract) -> list[str]:
+    """The [formula] functions (Verilog-2001 style assignment to the function name: Yosys 0.23
+    reads no `return` in a function)."""
+    L = _comment("  // ", "Derived widths and cycle counts (rtl/contract.toml [formula]; the same functions are "
+                 "constexpr in model/golden/contract.h and Python in scripts/pstlib/formulas.py). Call them as "
+                 "pst_pkg::w_width(Log2Clut, WidthFrac).")
+    calls = set().union(*(_names(f.tree, "call") for f in c.formulas)) if c.formulas else set()
+    for b in sorted(calls & set(BUILTINS)):
+        op = ">" if b == "max" else "<"
+        L += [f"  function automatic int {b}_int(input int a, input int b);",
+              f"    {b}_int = (a {op} b) ? a : b;", "  endfunction"]
+    for f in c.formulas:
+        L += _comment("  // ", f"{f.name}: {f.doc}") + _comment("  //   = ", f.expr, then="  //     ")
+        L += [f"  function automatic int {f.name}({', '.join(f'input int {a}' for a in f.args)});",
+              f"    {f.name} = {_strip_parens(emit_formula(f.tree, 'sv', c))};", "  endfunction"]
+    return L + [""]
 
 
 def sv_checks(c: Contract) -> str:
@@ -430,8 +663,11 @@ def sv_checks(c: Contract) -> str:
 def cpp_header(c: Contract) -> str:
     L = [f"// {HEADER}",
          "// The hardware contract (rtl/contract.toml) for the golden model, the driver and the harness:",
-         "// profile schema, register map and fixed layouts.",
-         "#pragma once", "", "#include <cstdint>", "", "namespace pst::contract {", ""]
+         "// profile enums and the typed ProfileParams, profile schema, register map, fixed layouts and",
+         "// the derived widths and cycle counts as constexpr functions.",
+         "#pragma once", "", "#include <cstdint>", "#include <string_view>", ""]
+    L += _cpp_types(c)
+    L += ["namespace pst::contract {", ""]
     L.append("// RTL parameters of a profile, in description order (index into a value array).")
     L.append("enum Param : int {")
     for p in c.param_names:
@@ -442,6 +678,18 @@ def cpp_header(c: Contract) -> str:
         if k.kind == "enum":
             names = ", ".join(f'"{e}"' for e in k.enum)
             L.append(f"inline constexpr const char* k{k.params[0]}Names[] = {{{names}}};")
+    L += ["", "// A profile enum's name (\"?\" out of range) and its value by name (false: unknown name)."]
+    for k in c.keys:
+        if k.kind == "enum":
+            T, n = f"::pst::{k.cpp_type}", f"k{k.params[0]}Names"
+            L.append(f"constexpr const char* name({T} v) {{")
+            L.append(f"    return int(v) >= 0 && int(v) < {len(k.enum)} ? {n}[int(v)] : \"?\";")
+            L.append("}")
+            L.append(f"constexpr bool fromName(std::string_view s, {T}* out) {{")
+            L.append(f"    for (int i = 0; i < {len(k.enum)}; ++i)")
+            L += [f"        if (s == {n}[i]) {{", f"            *out = {T}(i);", "            return true;", "        }"]
+            L.append("    return false;")
+            L.append("}")
     L.append("")
     L.append("enum class KeyKind { Range, Values, Enum, Format };")
     L.append("struct KeySpec {")
@@ -496,8 +744,100 @@ def cpp_header(c: Contract) -> str:
     L += ["", "// Fixed facts of the datapath."]
     for name, (v, doc) in c.constants.items():
         L.append(f"inline constexpr int k{name} = {v};  // {doc}")
-    L += ["", "}  // namespace pst::contract", ""]
+    L += [""] + _cpp_params(c) + [""] + _cpp_formulas(c)
+    L += ["}  // namespace pst::contract", ""]
     return "\n".join(L)
+
+
+def _member(k: Key) -> str:
+    """The ProfileParams member of a key: lowerCamel of its RTL parameter (of the key for a
+    format: coord, gradMatrix)."""
+    return cpp_arg(camel(k.key) if k.kind == "format" else k.params[0])
+
+
+def _defaults(c: Contract) -> dict[str, int]:
+    if not c.defaults:
+        return {}
+    with open(c.path.parent.parent / c.defaults, "rb") as f:
+        return dict(parameters(tomllib.load(f), c))
+
+
+def _cpp_types(c: Contract) -> list[str]:
+    """namespace pst: the profile enums as C++ types, FixedFormat and the typed ProfileParams."""
+    L = ["namespace pst {", ""]
+    L += _comment("// ", "Profile enums (the enum keys of rtl/contract.toml): one enum class per key, named "
+                  "after its RTL parameter (or the key's `cpp`), enumerators UpperCamel of the values in the "
+                  "contract's order, so that a value's index is the RTL parameter's value.")
+    for k in c.keys:
+        if k.kind == "enum":
+            L.append(f"enum class {k.cpp_type} : int {{ {', '.join(camel(e) for e in k.enum)} }};  // {k.field}")
+    L += ["",
+          "// A signed two's-complement format: `intBits` integer bits including the sign, `fracBits`",
+          "// fraction bits; value = integer / 2^fracBits.",
+          "struct FixedFormat {",
+          "    int intBits = 0;",
+          "    int fracBits = 0;",
+          "    constexpr int width() const { return intBits + fracBits; }",
+          "};", ""]
+    dflt = _defaults(c)
+    L += _comment("// ", f"Every key of a profile, typed, in description order; the defaults are the profile "
+                  f"{Path(c.defaults).stem}'s ({c.defaults}, as pst_pkg's *Default). contract::paramValue "
+                  "and contract::setParam reach a member by RTL parameter.")
+    L.append("struct ProfileParams {")
+    section = None
+    for k in c.keys:
+        if k.section != section:
+            section = k.section
+            L.append(f"    // [{section}]")
+        L += _comment("    // ", k.doc)
+        m, p = _member(k), k.params[0]
+        if k.kind == "enum":
+            L.append(f"    {k.cpp_type} {m} = {k.cpp_type}::{camel(k.enum[dflt.get(p, 0)])};")
+        elif k.kind == "format":
+            L.append(f"    FixedFormat {m} = {{{dflt.get(p, 0)}, {dflt.get(k.params[1], 0)}}};")
+        else:
+            L.append(f"    int {m} = {dflt.get(p, k.lo)};")
+    L += ["};", "", "}  // namespace pst", ""]
+    return L
+
+
+def _cpp_params(c: Contract) -> list[str]:
+    """Parameter names and the by-parameter access to ProfileParams."""
+    L = ["// RTL parameter names, indexed by Param.",
+         "inline constexpr const char* kParamNames[kNumParams] = {"]
+    L += [f'    "{p}",' for p in c.param_names] + ["};", ""]
+    get, put = [], []
+    for k in c.keys:
+        m = _member(k)
+        if k.kind == "format":
+            for p, part in zip(k.params, ("intBits", "fracBits")):
+                get.append(f"        case {p}: return p.{m}.{part};")
+                put.append(f"        case {p}: p.{m}.{part} = v; break;")
+        elif k.kind == "enum":
+            get.append(f"        case {k.params[0]}: return int(p.{m});")
+            put.append(f"        case {k.params[0]}: p.{m} = ::pst::{k.cpp_type}(v); break;")
+        else:
+            get.append(f"        case {k.params[0]}: return p.{m};")
+            put.append(f"        case {k.params[0]}: p.{m} = v; break;")
+    L += ["// A ProfileParams member by RTL parameter (enums as their index).",
+          "constexpr int paramValue(const ProfileParams& p, Param k) {", "    switch (k) {"] + get
+    L += ["        case kNumParams: break;", "    }", "    return 0;", "}",
+          "constexpr void setParam(ProfileParams& p, Param k, int v) {", "    switch (k) {"] + put
+    L += ["        case kNumParams: break;", "    }", "}"]
+    return L
+
+
+def _cpp_formulas(c: Contract) -> list[str]:
+    L = _comment("// ", "Derived widths and cycle counts (rtl/contract.toml [formula]; the same functions are in "
+                 "pst_pkg and scripts/pstlib/formulas.py).")
+    calls = set().union(*(_names(f.tree, "call") for f in c.formulas)) if c.formulas else set()
+    for b in sorted(calls & set(BUILTINS)):
+        L.append(f"constexpr int {b}_int(int a, int b) {{ return a {'>' if b == 'max' else '<'} b ? a : b; }}")
+    for f in c.formulas:
+        L += _comment("// ", f"{f.name}: {f.doc}") + _comment("//   = ", f.expr, then="//     ")
+        args = ", ".join(f"int {cpp_arg(a)}" for a in f.args)
+        L += [f"constexpr int {f.name}({args}) {{", f"    return {_strip_parens(emit_formula(f.tree, 'cpp', c))};", "}"]
+    return L + [""]
 
 
 MD_BEGIN = "<!-- BEGIN register map: generated by scripts/pstlib/contract.py from rtl/contract.toml -->"
@@ -515,31 +855,25 @@ def hardware_md_table(c: Contract) -> str:
 
 
 def stage_cycles(doc: dict, c: Contract | None = None) -> dict[str, int]:
-    """Cycles a fragment spends in each stage of a (valid) profile: the golden model's
-    quadricSerialSteps / filterWidthSerialSteps (model/golden/arith_fx.cpp, which the arith
-    unit test checks against the RTL) and pst_octave_stage's Cycles, from the contract's
-    constants. The pipeline's clocks per pixel is the largest of them."""
+    """Cycles a fragment spends in each stage of a (valid) profile, from the contract's
+    [formula] functions (scripts/pstlib/formulas.py; the golden model and pst_pkg have the same).
+    The pipeline's clocks per pixel is the largest of them."""
     c = c or load()
-    k = {n: v for n, (v, _) in c.constants.items()}
     v = dict(parameters(doc, c))
-    serial = v["Datapath"] == c.key("pipeline", "datapath").enum.index("serial")
-    euclid = v["FilterNorm"] == c.key("filter", "norm").enum.index("euclid")
+    # The description's own formulas (not the generated file, which may be stale while
+    # --write regenerates it).
+    f = _formula_functions(c)
     qw, cw = v["QuadricInt"] + v["QuadricFrac"], v["CoordInt"] + v["CoordFrac"]
-    ww = v["Log2Clut"] + k["WidthExtraIntBits"] + v["WidthFrac"]
-    # Pipeline registers add latency only, except on the serial datapath (the fragment waits in
-    # [A] for its last pass's noise registers and the term register).
-    regs = v["NoiseRegs"] + (1 if v["OctaveRegs"] >= 1 else 0)
-    octave = v["Octaves"] // v["NoiseUnits"] * v["NoiseSteps"] + (k["SerialOctaveExtraCycles"] + regs if serial else 0)
-    # With the term register (octave_regs >= 1) the serial quadric's product is registered (a
-    # row waits a step for u_r, the last sum one more) and its result passes a register
-    # before the sum (pst_quadric_serial's Regs, pst_octave_stage).
-    qr = 1 if v["OctaveRegs"] >= 1 else 0
-    quadric = (k["SerialRows"] * (k["SerialRows"] + qr + (qw + cw + 2 + qw - 2) // (qw - 1)) + 2 * qr
-               if serial else 1)
-    width = (k["WidthProducts"] + (k["WidthEuclidSquares"] + (ww + 2) // 2 if euclid else 0)) if serial else 1
-    colour = k["ColourSteps"] + v["ColourRegs"] if serial else 1
-    return {"octave": octave, "quadric": quadric, "width": width, "colour": colour,
-            "pixel": max(octave, quadric, width, colour)}
+    dp = v["Datapath"]
+    out = {"octave": f.octave_cycles(v["Octaves"], v["NoiseUnits"], v["NoiseSteps"], dp, v["NoiseRegs"],
+                                            v["OctaveRegs"]),
+           "quadric": f.quadric_cycles(dp, qw, cw, v["OctaveRegs"]),
+           "width": f.width_cycles(dp, v["FilterNorm"], v["Log2Clut"], v["WidthFrac"]),
+           "colour": f.colour_cycles(dp, v["ColourRegs"])}
+    out["pixel"] = f.clocks_per_pixel(v["Octaves"], v["NoiseUnits"], v["NoiseSteps"], dp, v["NoiseRegs"],
+                                             v["OctaveRegs"], qw, cw, v["FilterNorm"], v["Log2Clut"],
+                                             v["WidthFrac"], v["ColourRegs"])
+    return out
 
 
 def cycles_md_table(c: Contract, root: Path) -> str:
@@ -571,6 +905,7 @@ GENERATED = {
     "rtl/pst_pkg.sv": lambda c, cur, root: sv_package(c),
     "rtl/pst_profile_checks.svh": lambda c, cur, root: sv_checks(c),
     "model/golden/contract.h": lambda c, cur, root: cpp_header(c),
+    "scripts/pstlib/formulas.py": lambda c, cur, root: python_formulas(c),
     "docs/HARDWARE.md": _hardware_md,
 }
 

@@ -15,7 +15,7 @@ import numpy as np
 from . import atomic, tomledit
 from .figdata import BUILD_CMD, InputMissing, fmt_db, fmt_pct, load_regress, progress, rel
 from .images import Canvas, draw_box, fit, read_rgb, write_png, zoom_nearest
-from .paths import ROOT
+from .paths import ROOT, profile_path
 from .contract import validate
 
 
@@ -214,7 +214,7 @@ def captions(out, scene, base_path, base, results, crops, w, h, foot):
         md.append(f"| {r['bits']} | {2.0 ** -r['bits']:.3g} | {r['psnr']:.2f} | {r['within']:.2f} | {r['maxlsb']:.0f} | "
                   f"`fig10/coord_frac_{r['bits']}.toml` |")
     regress = out / "regress.json"
-    if regress.exists() and base_path.resolve() == (ROOT / "rtl" / "configs" / "full.toml").resolve():
+    if regress.exists() and base_path.resolve() == profile_path("full").resolve():
         try:
             e = load_regress(regress).get((scene.stem, "full"))
         except InputMissing:

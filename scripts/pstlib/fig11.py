@@ -8,7 +8,7 @@ from . import atomic
 from .figdata import (PAPER_FIGURE, PAPER_ORDER, REGRESS_CMD, InputMissing, fmt_db, fmt_pct, gates_label,
                       load_regress, progress, rel, scene_order)
 from .images import Canvas, fit, read_rgb, write_png
-from .paths import ROOT
+from .paths import ROOT, profile_path
 
 
 def scene_row(out: Path, name: str, runs: dict) -> dict:
@@ -103,7 +103,7 @@ def captions(out: Path, rows: list) -> str:
     md = []
     md.append("# Figure 11: 100,000-gate simulations of Figures 1 through 6\n")
     def describe(name):
-        f = ROOT / "rtl" / "configs" / f"{name}.toml"
+        f = profile_path(name)
         # Clocks per pixel as the RTL runs measured them (the regress entries), not recomputed.
         cpps = [e["cycles_per_pixel"] for r in rows for e in (r["ef"], r["er"])
                 if e and e.get("profile") == name and "cycles_per_pixel" in e]

@@ -1,5 +1,6 @@
 """Tests of pstlib.contract: the profile schema and the generators (run by ctest through pytest)."""
 import copy
+import re
 import tomllib
 
 import pytest
@@ -138,3 +139,60 @@ def test_one_line_edit_changes_generated_files(tmp_path):
     assert "localparam logic [15:0] RegClut = 16'h1800;" in gen["rtl/pst_pkg.sv"]
     assert "kRegClut = 0x1800;" in gen["model/golden/contract.h"]
     assert "| 0x1800 + e |" in gen["docs/HARDWARE.md"]
+
+
+def test_generated_cpp_enums_follow_the_contract():
+    """Every enum key is one `enum class` of contract.h, its enumerators the values in order."""
+    import re
+    text = (ROOT / "model" / "golden" / "contract.h").read_text()
+    found = {m.group(1): [v.strip() for v in m.group(2).split(",")]
+             for m in re.finditer(r"^enum class (\w+) : int \{ ([^}]*) \};", text, re.M)}
+    c = contract.load()
+    for k in c.keys:
+        if k.kind == "enum":
+            assert found[k.cpp_type] == [contract.camel(v) for v in k.enum], k.field
+    assert found["GradNorm"] == ["Euclid", "MaxHalfMin", "L1"]   # filter.norm, cpp = "GradNorm"
+    # ... and the hand-written copies are gone from the reference model's headers.
+    for header in ("noise.h", "texture.h"):
+        body = (ROOT / "model" / header).read_text()
+        for name in ("NoiseInterp", "NoiseCorner", "NoiseHash", "GradNorm"):
+            assert f"enum class {name}" not in body, (header, name)
+
+
+def test_formulas_in_three_languages():
+    c = contract.load()
+    f = {x.name: x for x in c.formulas}
+    # The same tree, written per language (operations in parentheses, ?: as Python's if-else).
+    t = f["octave_cycles"].tree
+    assert "DatapathSerial" in contract.emit_formula(t, "sv", c)
+    assert "kSerialOctaveExtraCycles" in contract.emit_formula(t, "cpp", c)
+    assert " if (Datapath == 1) else 0" in contract.emit_formula(t, "py", c)
+    sv = (ROOT / "rtl" / "pst_pkg.sv").read_text()
+    cpp = (ROOT / "model" / "golden" / "contract.h").read_text()
+    for name in f:
+        assert f"function automatic int {name}(" in sv
+        assert f"constexpr int {name}(" in cpp
+        assert callable(getattr(contract.formulas, name))
+    # Values: W of reduced (log2_clut 8, width_frac 4); the serial units' steps.
+    assert contract.formulas.w_width(8, 4) == 14 and contract.formulas.w_int_bits(8) == 10
+    assert contract.formulas.quadric_serial_steps(15, 22, 1) == 22
+    assert contract.formulas.width_serial_steps(0, 8, 4) == 16 and contract.formulas.width_serial_steps(2, 8, 4) == 6
+
+
+@pytest.mark.parametrize("expr, error", [("Octaves + Nope", "unknown name Nope"),
+                                         ("Datapath == Datapath.fast", "unknown enum value"),
+                                         ("later(Octaves)", "unknown function later"),
+                                         ("max(Octaves)", "max takes 2 arguments"),
+                                         ("(Octaves", "expected ')'")])
+def test_formula_errors(expr, error):
+    with pytest.raises(ValueError, match=re.escape(error)):
+        contract.parse_formula(expr, ["Octaves", "Datapath"], contract.load())
+
+
+def test_formula_precedence_is_c():
+    c = contract.load()
+    for expr, value in [("1 + 2 * 3", 7), ("Octaves - 1 - 1", 3), ("Octaves >= 5 ? 1 : 0", 1),
+                        ("Octaves == 5 && !(Octaves < 2) ? Octaves << 1 : 0", 10), ("7 / 2 + 7 % 2", 4),
+                        ("max(Octaves, 9) + min(1, 2)", 10), ("0 ? 1 : 0 ? 2 : 3", 3)]:
+        py = contract.emit_formula(contract.parse_formula(expr, ["Octaves"], c), "py", c)
+        assert eval(py, {"max": max, "min": min}, {"Octaves": 5}) == value, expr  # noqa: S307

@@ -171,7 +171,7 @@ protected:
     const Profile& P = prof();
     const int CW = P.coord.width(), QW = P.quadric.width(), FW = P.f.width(), GW = P.grad.width();
     const int NW = pst::contract::kNoiseIntBits + P.noiseOutFrac, NGW = pst::contract::kNoiseGradIntBits + P.noiseOutFrac, AW = P.amplitude.width();
-    const int GMW = P.gradMatrix.width(), JW = P.jacobian.width(), WW = pst::widthBits(P);
+    const int GMW = P.gradMatrix.width(), JW = P.jacobian.width(), WW = P.widthBits();
     const int SqW = 2 * WW + 1;
 
     // One clock edge (the serial variants' partial-sum registers).

@@ -85,7 +85,7 @@ public:
     Bench() : ctx_(std::make_unique<VerilatedContext>()), top_(std::make_unique<Vpst_clut_filter>(ctx_.get())), gold_(prof()) {
         const Profile& p = prof();
         fw_ = p.f.width();
-        ww_ = p.widthIntBits() + p.widthFrac;
+        ww_ = p.widthBits();
         top_->clk_i = 0;
         top_->we_i = 0;
         top_->rst_ni = 1;
@@ -199,13 +199,13 @@ void loadTables(Bench& b, std::mt19937_64& rng, int style) {
 
 void specialVectors(Bench& b) {
     const Profile& p = prof();
-    const int N = p.clutSize(), fw = p.f.width(), ww = p.widthIntBits() + p.widthFrac, wf = p.widthFrac;
+    const int N = p.clutSize(), fw = p.f.width(), ww = p.widthBits(), wf = p.widthFrac;
     const int64_t fMin = fx::minSigned(fw), fMax = fx::maxSigned(fw), wMax = fx::maxUnsigned(ww);
     auto fOfU = [&](double u) { return fx::satSigned(i128(std::llround(std::ldexp(u / N, p.f.fracBits))), fw); };
     const int64_t one = int64_t(1) << wf, n = int64_t(N) << wf;
     std::vector<int64_t> ws = {0, 1, one - 1, one, one + 1, 2 * one, 3 * one, n / 2, n - 1, n, n + 1,
                                2 * n, 3 * n, wMax - 1, wMax};
-    for (int k = 1; k < p.log2Clut + 2; ++k) {  // every MIP level boundary
+    for (int k = 1; k < p.widthIntBits(); ++k) {  // every MIP level boundary (W < 2^widthIntBits)
         ws.push_back((int64_t(1) << k << wf) - 1);
         ws.push_back(int64_t(1) << k << wf);
         ws.push_back((int64_t(3) << k << wf) / 2);
@@ -223,7 +223,7 @@ void specialVectors(Bench& b) {
 
 void randomVectors(Bench& b, std::mt19937_64& rng, int count) {
     const Profile& p = prof();
-    const int N = p.clutSize(), fw = p.f.width(), ww = p.widthIntBits() + p.widthFrac;
+    const int N = p.clutSize(), fw = p.f.width(), ww = p.widthBits();
     const int64_t fMin = fx::minSigned(fw), fMax = fx::maxSigned(fw), wMax = fx::maxUnsigned(ww);
     std::uniform_real_distribution<double> U(0.0, 1.0);
     auto pick = [&](int64_t lo, int64_t hi) { return std::uniform_int_distribution<int64_t>(lo, hi)(rng); };

@@ -3,9 +3,11 @@
 // random vectors from a printed seed (PST_SEED=<n> replays). One executable per profile
 // (PST_PROFILE_PATH), optionally with noise parameters overridden (PST_NOISE_OVERRIDES, the
 // same -G overrides the verilated top was built with; see sim/unit/noise.cmake).
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <iterator>
 #include <memory>
 #include <random>
 #include <sstream>
@@ -45,19 +47,11 @@ Profile testProfile() {
         const auto eq = item.find('=');
         const std::string key = item.substr(0, eq);
         const int v = std::stoi(item.substr(eq + 1));
-        // The contract's enum index is the model enum's (profile_test checks the order).
-        if (key == "NoiseInterp") p.noise.interp = NoiseInterp(v);
-        else if (key == "NoiseCorner") p.noise.corner = NoiseCorner(v);
-        else if (key == "NoiseHash") p.noise.hash = NoiseHash(v);
-        else if (key == "NoiseValueFrac") p.noiseValueFrac = v;
-        else if (key == "NoiseLatticeFrac") p.noiseLatticeFrac = v;
-        else if (key == "NoiseOutFrac") p.noiseOutFrac = v;
-        else if (key == "NoiseSteps") p.noiseSteps = v;
-        else if (key == "NoiseGuardBits") p.noiseGuardBits = v;
-        else if (key == "NoiseGradFrac") p.noiseGradFrac = v;
-        else throw std::runtime_error("unknown override " + key);
+        const auto* name = std::find(std::begin(contract::kParamNames), std::end(contract::kParamNames), key);
+        if (name == std::end(contract::kParamNames)) throw std::runtime_error("unknown override " + key);
+        contract::setParam(p, contract::Param(name - std::begin(contract::kParamNames)), v);
     }
-    p.noise.basis = hardwareBasis(p.noise);
+    p.noise = hardwareNoise(p);
 #endif
     return p;
 }

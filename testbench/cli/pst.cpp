@@ -141,9 +141,8 @@ int writeHtmlPage(const std::string& page, std::vector<std::string> args) {
 // model in this build, and the same values as the file that model was built from: a copy of
 // full.toml with other widths, named full.toml, is refused, not run against the full RTL.
 Profile profileByName(const std::string& name, bool rtl = false) {
-    const bool isFile = name.find('/') != std::string::npos || name.find(".toml") != std::string::npos;
-    const std::string built = isFile ? "" : rtlProfilePath(name);
-    Profile p = loadProfile(built.empty() ? profilePath(name, sourceDir()) : built);
+    const std::string built = isProfileFile(name) ? "" : rtlProfilePath(name);
+    Profile p = built.empty() ? loadNamedProfile(name, sourceDir()) : loadProfile(built);
     if (!rtl) return p;
     const std::string verilated = rtlProfilePath(p.name);
     if (verilated.empty()) {
@@ -321,14 +320,14 @@ int runRegress(const std::vector<std::string>& scenes, int size, const HwArgs& h
             // A profile with the fade unit runs every scene with the hardware's bandlimited
             // octaves on (its textures' bandlimit = "isotropic"; the reference renders the same).
             Scene faded;
-            if (p.bandlimit) {
+            if (p.bandlimit()) {
                 faded = scene;
                 for (Texture& t : faded.textures)
                     if (t.bandlimit == Bandlimit::Off) t.bandlimit = Bandlimit::Isotropic;
             }
             HwRenderResult r;
             try {
-                r = renderHardware(p.bandlimit ? faded : scene, p, rtl.get(), ho);
+                r = renderHardware(p.bandlimit() ? faded : scene, p, rtl.get(), ho);
             } catch (const RtlAssertionError& e) {
                 // A failed run like a mismatch: recorded, the next run goes on.
                 const std::string replay = regressReplay(path, size, p.name, hw.sim);

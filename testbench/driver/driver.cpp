@@ -58,7 +58,7 @@ std::pair<uint16_t, uint32_t> controlWrite(const Texture& tex, int filterKind) {
 }
 
 std::string hardwareUnsupported(const Profile& p, const Texture& tex) {
-    if (tex.bandlimit == Bandlimit::Isotropic && !p.bandlimit)
+    if (tex.bandlimit == Bandlimit::Isotropic && !p.bandlimit())
         return "texture '" + tex.name + "': bandlimit: profile '" + p.name +
                "' has no fade unit (filter.bandlimit = \"off\"); use a profile with filter.bandlimit = \"isotropic\" "
                "(e.g. sim/test_profiles/reduced_bandlimit.toml) or render it without --profile";
@@ -94,9 +94,9 @@ std::string hardwareUnsupported(const Profile& p, const Texture& tex) {
         if (n.cell != 0.0) return where + "cell: the worley unit of " + prof + " has no cell term";
         const double cmax = double(1 << (contract::kWorleyCoefInt - 1));
         for (int k = 0; k < 4; ++k) {
-            if (k >= p.worleyOrder && n.coef[k] != 0.0)
+            if (k >= p.noiseWorleyOrder && n.coef[k] != 0.0)
                 return where + "coef: C" + std::to_string(k + 1) + " is not 0; the worley unit of " + prof +
-                       " computes F1..F" + std::to_string(p.worleyOrder) + " (noise.worley_order)";
+                       " computes F1..F" + std::to_string(p.noiseWorleyOrder) + " (noise.worley_order)";
             if (!(std::abs(n.coef[k]) < cmax))
                 return where + "coef: C" + std::to_string(k + 1) + " is outside the coefficient registers' range (-" +
                        std::to_string(int(cmax)) + ", " + std::to_string(int(cmax)) + ")";
@@ -145,9 +145,9 @@ TextureProgram programTexture(const Profile& p, const Texture& tex) {
         for (int k = 0; k < 3; ++k)
             prog.writes.push_back({uint16_t(base + contract::kRegOctaveO + k), word(q(o.offset[k], p.offset))});
         prog.writes.push_back({uint16_t(base + contract::kRegOctaveA), word(q(o.amplitude, p.amplitude))});
-        if (p.bandlimit) prog.writes.push_back({uint16_t(base + contract::kRegOctaveLgm), word(fadeLgNorm(o.M))});
+        if (p.bandlimit()) prog.writes.push_back({uint16_t(base + contract::kRegOctaveLgm), word(fadeLgNorm(o.M))});
     }
-    if (p.bandlimit)
+    if (p.bandlimit())
         for (int k = 0; k < contract::kFadeEntries; ++k)
             prog.writes.push_back({uint16_t(contract::kRegFade + k), uint32_t(fadeTableEntry(tex.noise, k))});
 

@@ -79,7 +79,7 @@ void checkProfile(const Profile& p, uint64_t seed, int textures, int perTexture,
     const double eW = std::ldexp(1.0, -p.widthFrac), N = double(p.clutSize());
     const double fMax = std::ldexp(1.0, p.f.intBits - 1), gMaxFmt = std::ldexp(1.0, p.grad.intBits - 1);
     const double gmMax = std::ldexp(1.0, p.gradMatrix.intBits - 1);
-    const double wMax = double(fx::maxUnsigned(p.widthIntBits() + p.widthFrac));
+    const double wMax = double(fx::maxUnsigned(p.widthBits()));
     const double gNoise = bn.gradMax + bn.grad;  // |g_fx| bound
 
     for (int t = 0; t < textures; ++t) {
@@ -101,7 +101,7 @@ void checkProfile(const Profile& p, uint64_t seed, int textures, int perTexture,
             double sumAbs = 0;
             for (int k = 0; k < 4; ++k) {
                 // sum |C_k| <= 2 keeps |n| <= 2 sqrt(12) < 8, inside Q4.OF (no saturation).
-                tex.noise.coef[size_t(k)] = k < p.worleyOrder ? exactValue(r, cf, std::log2(2.0 / p.worleyOrder)) : 0.0;
+                tex.noise.coef[size_t(k)] = k < p.noiseWorleyOrder ? exactValue(r, cf, std::log2(2.0 / p.noiseWorleyOrder)) : 0.0;
                 sumAbs += std::abs(tex.noise.coef[size_t(k)]);
             }
             const WorleyFxErrorBound wb = worleyFxErrorBound(p, sumAbs);

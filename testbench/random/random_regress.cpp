@@ -131,7 +131,7 @@ Texture randomTexture(RandomStream& r, const Profile& p) {
         const double cmax = 8.0 - 1.0 / 4096.0;
         for (int k = 0; k < 4; ++k) {
             double c = r.chance(0.2) ? 0.0 : r.chance(0.1) ? (r.chance(0.5) ? cmax : -cmax) : (2 * r.uniform() - 1) * cmax;
-            t.noise.coef[size_t(k)] = k < p.worleyOrder ? c : 0.0;
+            t.noise.coef[size_t(k)] = k < p.noiseWorleyOrder ? c : 0.0;
         }
     }
     t.norm = p.filterNorm;
@@ -141,7 +141,7 @@ Texture randomTexture(RandomStream& r, const Profile& p) {
                                         FilterKind::Sat, FilterKind::Box};
     t.filter = kinds[r.range(0, 4)];
     // Bandlimited octaves on a profile with the fade unit (other profiles draw nothing more).
-    if (p.bandlimit) t.bandlimit = r.chance(0.7) ? Bandlimit::Isotropic : Bandlimit::Off;
+    if (p.bandlimit()) t.bandlimit = r.chance(0.7) ? Bandlimit::Isotropic : Bandlimit::Off;
     return t;
 }
 
@@ -251,7 +251,7 @@ RandomRegressResult runRandomRegress(const Profile& p, const std::string& rtlNam
                 writes = prog.writes;
                 programmed = true;
                 // Fade unit: sometimes arbitrary table entries (all FadeBits, above 1.0 too: alpha clamps).
-                if (p.bandlimit && r.chance(0.3))
+                if (p.bandlimit() && r.chance(0.3))
                     for (int k = 0; k < contract::kFadeEntries; ++k)
                         if (r.chance(0.5))
                             writes.push_back({uint16_t(contract::kRegFade + k),

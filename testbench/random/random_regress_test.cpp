@@ -71,7 +71,7 @@ TEST(RandomRegress, FragmentsAndGoldenOutputsReachTheCorners) {
         const Profile p = profile(name);
         RandomStream r(11);
         const int cw = p.coord.width(), jw = p.jacobian.width(), fw = p.f.width(), gw = p.grad.width();
-        const int64_t wmax = fx::maxUnsigned(p.widthIntBits() + p.widthFrac);
+        const int64_t wmax = fx::maxUnsigned(p.widthBits());
         bool sMax = false, sMin = false, lattice = false, jZero = false, jMax = false, jMin = false;
         int fSat = 0, fFree = 0, gSat = 0, wSat = 0, wZero = 0, wMid = 0;
         for (int batch = 0; batch < 60; ++batch) {

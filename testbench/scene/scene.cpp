@@ -27,17 +27,11 @@ struct Ctx {
     bool tables = true;   // false: check the colour maps' keys and values only, build no tables
 
     // "FILE:LINE: FIELD" of node n (":LINE" when the node has a line), a message's prefix.
-    std::string at(const toml::node* n, const std::string& field) const {
-        std::ostringstream os;
-        os << file;
-        if (n && n->source().begin.line > 0) os << ":" << n->source().begin.line;
-        os << ": " << field;
-        return os.str();
-    }
+    std::string at(const toml::node* n, const std::string& field) const { return inputWhere(file, lineOf(n), field); }
 
     [[noreturn]] void fail(const toml::node* n, const std::string& field,
                            const std::string& what) const {
-        throw InputError(at(n, field) + ": " + what);
+        throw inputError(file, lineOf(n), field, what);
     }
 };
 
@@ -261,13 +255,7 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
                                "orientations", "tile_size", "seed", "param", "weights", "sigma"});
         NoiseOptions& no = tex.noise;
         no.basis = getEnum(c, *nt, np, "basis", no.basis, parseNoiseBasis, "rayshade, perlin2002, worley or subband");
-        if (const toml::node* bn = find(*nt, "basis")) {
-            std::ostringstream os;
-            os << c.file;
-            if (bn->source().begin.line > 0) os << ":" << bn->source().begin.line;
-            os << ": " << join(np, "basis");
-            tex.basisSource = os.str();
-        }
+        if (const toml::node* bn = find(*nt, "basis")) tex.basisSource = c.at(bn, join(np, "basis"));
         // Each basis takes only its own keys, so a key that would be ignored is an error.
         for (const char* k : {"interp", "corner", "hash"})
             if (no.basis != NoiseBasis::Rayshade && find(*nt, k))
@@ -332,11 +320,7 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
     {
         const toml::table& ct = requireTable(c, t, path, "colormap");
         const toml::node* sn = find(ct, "size") ? find(ct, "size") : find(t, "colormap");
-        std::ostringstream os;
-        os << c.file;
-        if (sn->source().begin.line > 0) os << ":" << sn->source().begin.line;
-        os << ": " << join(join(path, "colormap"), "size");
-        tex.clutSource = os.str();
+        tex.clutSource = c.at(sn, join(join(path, "colormap"), "size"));
     }
     return tex;
 }
@@ -556,10 +540,7 @@ Animation parseAnimation(const Ctx& c, toml::table& root) {
         const toml::table& tt = *ta->get(i)->as_table();
         checkKeys(c, tt, tp, {"field", "keys"});
         Track tr;
-        std::ostringstream where;
-        where << c.file;
-        if (tt.source().begin.line > 0) where << ":" << tt.source().begin.line;
-        tr.where = where.str();
+        tr.where = inputWhere(c.file, lineOf(&tt));
         const toml::node* fn = find(tt, "field");
         if (!fn) c.fail(&tt, join(tp, "field"), "missing");
         tr.field = getString(c, tt, tp, "field", "");
@@ -727,11 +708,9 @@ Scene parseSceneWith(const Ctx& c, const std::string& text, const std::string& p
                 buildScene(check, r, path, 1, 1);
             } catch (const InputError& e) {
                 const toml::node* kn = root["animation"]["track"][i]["keys"][k].node();
-                std::ostringstream os;
-                os << path;
-                if (kn && kn->source().begin.line > 0) os << ":" << kn->source().begin.line;
-                os << ": animation.track[" << i << "].keys[" << k << "]: " << innerMessage(e.what(), path);
-                throw InputError(os.str());
+                throw inputError(path, lineOf(kn),
+                                 "animation.track[" + std::to_string(i) + "].keys[" + std::to_string(k) + "]",
+                                 innerMessage(e.what(), path));
             }
         }
     sc.animation = std::move(an);

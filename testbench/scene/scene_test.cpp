@@ -237,7 +237,7 @@ colormap = { size = 2, wrap = "mod", interp = "step", ramp = [[0.0, 0, 0, 0], [0
     EXPECT_EQ(t.filter, FilterKind::Box);
     EXPECT_EQ(t.norm, GradNorm::L1);
     EXPECT_EQ(t.noise.interp, NoiseInterp::Linear);
-    EXPECT_EQ(t.noise.corner, NoiseCorner::ValueOnly);
+    EXPECT_EQ(t.noise.corner, NoiseCorner::Value);
     EXPECT_EQ(t.noise.hash, NoiseHash::Perm256);
     EXPECT_EQ(t.clut.entries()[0], glm::dvec4(0, 0, 0, 1));
     EXPECT_EQ(t.clut.entries()[1], glm::dvec4(1, 1, 1, 1));

@@ -97,7 +97,8 @@ def structures(octaves: int, max_cpp: int, base: dict | None = None) -> list:
                     d["pipeline"].update(doc["pipeline"])
                     cpp = cycles_per_pixel(d)
                 else:
-                    cpp = octaves // units * steps + (6 if dp == "serial" else 0)
+                    cpp = contract.formulas.octave_cycles(octaves, units, steps,
+                                                          contract.ENUMS[("pipeline", "datapath")].index(dp), 0, 0)
                 if cpp <= max_cpp:
                     out.append(doc["pipeline"])
     return sorted(out, key=lambda p: (p["noise_units"] * 8 // p["noise_steps"], p["datapath"] == "parallel",

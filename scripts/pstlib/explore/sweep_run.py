@@ -163,7 +163,7 @@ def run(s: SweepSettings) -> int:
     chosen = rtl_subset(rows, base_row, s.knob_list, s.rtl_subset)
     if chosen:
         by = {r["name"]: r for r in rows}
-        named = (ROOT / "rtl" / "configs" / f"{s.base_name}.toml").exists()
+        named = profile_path(s.base_name).exists()
         try:
             rtl = rtl_check(out, {c: (by[c]["profile"], by[c]["profile_sha"]) for c in chosen}, RTL_SIZE,
                             ROOT / "build-sweep", s.jobs, s.base_name if named else "reduced")

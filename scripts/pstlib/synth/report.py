@@ -24,8 +24,9 @@ STAGE_OF = {
 
 
 def clocks_per_pixel(prof: dict) -> int:
-    """The pipeline's clocks per pixel (the slowest stage: pstlib.contract.stage_cycles, the
-    docs' cycle table; model/golden/profile.h cyclesPerPixel for the octave stage)."""
+    """The pipeline's clocks per pixel (the slowest stage: the contract's clocks_per_pixel
+    formula through pstlib.contract.stage_cycles, the docs' cycle table; Profile::cyclesPerPixel
+    in the golden model)."""
     return contract.stage_cycles(prof)["pixel"]
 
 
