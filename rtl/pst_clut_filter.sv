@@ -87,7 +87,7 @@ module pst_clut_filter #(
   parameter int Datapath        = pst_pkg::DatapathDefault,
   parameter int Regs            = 0,
   localparam int FW  = FInt + FFrac,              // f
-  localparam int WW  = Log2Clut + pst_pkg::WidthExtraIntBits + WidthFrac,  // W = w N in entries, < 4N
+  localparam int WW  = pst_pkg::w_width(Log2Clut, WidthFrac),  // W = w N in entries, < 4N
   localparam int CB4 = 4 * ColourBits,            // packed RGBA
   localparam int AB  = pst_pkg::RegAddrBits,
   localparam int DB  = pst_pkg::RegDataBits,

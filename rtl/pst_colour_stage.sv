@@ -23,7 +23,7 @@ module pst_colour_stage #(
   parameter int ColourRegs      = pst_pkg::ColourRegsDefault,
   parameter int SideW           = 1,
   localparam int FW  = FInt + FFrac,
-  localparam int WW  = Log2Clut + pst_pkg::WidthExtraIntBits + WidthFrac,
+  localparam int WW  = pst_pkg::w_width(Log2Clut, WidthFrac),
   localparam int CB4 = 4 * ColourBits,
   localparam int KB  = pst_pkg::RegControlKindWidth
 ) (

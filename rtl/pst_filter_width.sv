@@ -51,7 +51,7 @@ module pst_filter_width #(
   // Derived widths (not profile keys).
   localparam int GW = GradInt + GradFrac,           // one grad_i component
   localparam int JW = JacobianInt + JacobianFrac,   // one j_i entry
-  localparam int WW = Log2Clut + pst_pkg::WidthExtraIntBits + WidthFrac      // W = w N in entries, < 4N
+  localparam int WW = pst_pkg::w_width(Log2Clut, WidthFrac)     // W = w N in entries, < 4N
 ) (
   input  logic            clk_i,    // Serial only: partial-sum registers
   input  logic            rst_ni,
@@ -75,14 +75,13 @@ module pst_filter_width #(
   // Shifted width: room for the left shift and at least one bit above W for the clamp.
   localparam int SW   = (XW + ShL > WW) ? XW + ShL : WW + 1;
   localparam int SqW  = 2 * WW + 1;   // ax^2 + ay^2 <= 2 (2^WW - 1)^2 < 2^(2 WW + 1)
-  // Serial euclid: root digits NIt = ceil(SqW / 2) = WW + 1, two per cycle over NSq cycles.
-  localparam int NIt  = WW + 1;
-  localparam int NSq  = (NIt + 1) / 2;
+  // Serial euclid: root digits ceil(SqW / 2) = WW + 1, two per cycle over NSq cycles.
+  localparam int NSq  = pst_pkg::width_root_steps(WW);   // = (WW + 2) / 2
   localparam bit Euclid = (FilterNorm == pst_pkg::FilterNormEuclid);
   // Serial steps: products 0 .. SqStep - 1, squares SqStep, SqStep + 1, root from RootStep.
   localparam int SqStep   = pst_pkg::WidthProducts;
   localparam int RootStep = SqStep + pst_pkg::WidthEuclidSquares;
-  localparam int NSteps   = (!Serial) ? 1 : Euclid ? RootStep + NSq : pst_pkg::WidthProducts;
+  localparam int NSteps   = (!Serial) ? 1 : pst_pkg::width_serial_steps(FilterNorm, Log2Clut, WidthFrac);
   localparam int LastStep = NSteps - 1;
   localparam int SB = pst_pkg::StepBits;
   // Pipeline registers (parallel): after g, after the squares (or the norm), the rest.

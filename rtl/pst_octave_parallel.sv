@@ -97,13 +97,14 @@ module pst_octave_parallel #(
   output logic [TB-1:0]             pr_q_tag_o
 );
 
-  localparam int Passes   = Octaves / NoiseUnits;
+  localparam int Passes   = pst_pkg::octave_passes(Octaves, NoiseUnits);
   localparam int PassBits = (Passes > 1) ? $clog2(Passes) : 1;
   localparam int XR       = (OctaveRegs >= 2) ? 1 : 0;   // after the transform
   localparam int NR       = NoiseRegs;                    // inside the noise units
-  localparam int MR       = (OctaveRegs >= 1) ? 1 : 0;   // after the term
+  localparam int MR       = pst_pkg::term_regs(OctaveRegs);   // after the term
   localparam int Lat      = XR + NR + MR;
-  localparam int Cycles   = Passes * NoiseSteps;         // a fragment's beats
+  localparam int Cycles   = pst_pkg::octave_cycles(Octaves, NoiseUnits, NoiseSteps, pst_pkg::DatapathParallel,
+                                                 NoiseRegs, OctaveRegs);   // a fragment's beats
   localparam int CycBits  = (Cycles > 1) ? $clog2(Cycles) : 1;
   localparam bit Bl       = (FilterBandlimit == pst_pkg::FilterBandlimitIsotropic);
   localparam int LgW      = $clog2((JW + 1) << pst_pkg::FadeLgFrac) + 1;

@@ -96,11 +96,12 @@ module pst_octave_serial #(
 
   localparam int SR       = pst_pkg::SerialRows;
   localparam int SB       = pst_pkg::StepBits;
-  localparam int Passes   = Octaves / NoiseUnits;
+  localparam int Passes   = pst_pkg::octave_passes(Octaves, NoiseUnits);
   localparam int PassBits = (Passes > 1) ? $clog2(Passes) : 1;
   localparam int NR       = NoiseRegs;
-  localparam int MR       = (OctaveRegs >= 1) ? 1 : 0;
-  localparam int Cycles   = Passes * NoiseSteps + pst_pkg::SerialOctaveExtraCycles + NR + MR;
+  localparam int MR       = pst_pkg::term_regs(OctaveRegs);
+  localparam int Cycles   = pst_pkg::octave_cycles(Octaves, NoiseUnits, NoiseSteps, pst_pkg::DatapathSerial,
+                                                 NoiseRegs, OctaveRegs);
   // The serial quadric needs up to StepMax cycles: a fragment with fewer octave cycles waits
   // for it, so the counter reaches StepMax there.
   localparam int CycMax   = (Cycles < pst_pkg::StepMax + 1) ? pst_pkg::StepMax + 1 : Cycles;

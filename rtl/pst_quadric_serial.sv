@@ -70,9 +70,9 @@ module pst_quadric_serial #(
   localparam int QXW = QW + 2 * CW + 3;
   // u_r in NChunks chunks of L bits (the top one signed, TopW <= L bits), RS steps a row.
   localparam int L      = QW - 1;
-  localparam int NChunks = (UW + L - 1) / L;
+  localparam int NChunks = pst_pkg::quadric_chunks(QW, CW);   // = (UW + L - 1) / L
   localparam int RS     = 3 + Regs + NChunks;   // steps a row (the chunks from e = 3 + Regs)
-  localparam int NSteps = 3 * RS + Regs;
+  localparam int NSteps = pst_pkg::quadric_serial_steps(QW, CW, Regs);   // = 3 RS + Regs
   localparam int TopW   = UW - (NChunks - 1) * L;
   localparam int PW     = CW + QW;   // the product, exact
 

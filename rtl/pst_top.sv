@@ -68,7 +68,7 @@ module pst_top #(
   localparam int JW  = JacobianInt + JacobianFrac,                          // one Jacobian entry
   localparam int FW  = FInt + FFrac,                                        // f
   localparam int GW  = GradInt + GradFrac,                                  // one grad f component
-  localparam int WW  = Log2Clut + pst_pkg::WidthExtraIntBits + WidthFrac,   // W = w N, < 4N
+  localparam int WW  = pst_pkg::w_width(Log2Clut, WidthFrac),   // W = w N, < 4N
   localparam int CB4 = 4 * ColourBits,                                      // packed RGBA
   localparam int TB  = pst_pkg::TagBits, localparam int LF = NoiseLatticeFrac,
   localparam int NW  = pst_pkg::NoiseIntBits + NoiseOutFrac,                // noise value

@@ -25,7 +25,7 @@ module pst_width_stage #(
   parameter int SideW        = 1,
   localparam int GW = GradInt + GradFrac,
   localparam int JW = JacobianInt + JacobianFrac,
-  localparam int WW = Log2Clut + pst_pkg::WidthExtraIntBits + WidthFrac
+  localparam int WW = pst_pkg::w_width(Log2Clut, WidthFrac)
 ) (
   input  logic            clk_i,
   input  logic            rst_ni,
