@@ -82,13 +82,7 @@ foreach(v ${PST_NOISE_VARIANTS})
   target_link_libraries(${target} PRIVATE pst_golden GTest::gtest_main)
   target_include_directories(${target} PRIVATE ${PROJECT_SOURCE_DIR}/sim)
   target_compile_definitions(${target} PRIVATE PST_PROFILE_PATH="${cfg}" PST_NOISE_OVERRIDES="${voverrides}")
-  verilate(${target}
-    SOURCES ${PST_NOISE_UNIT_SOURCES}
-    TOP_MODULE pst_noise_unit_top
-    PREFIX Vpst_noise_unit_top
-    DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/${target}_pst_noise_unit_top
-    VERILATOR_ARGS ${gparams} -Werror-UNOPTFLAT -Wno-fatal --assert -O3 --x-assign fast --x-initial fast
-                   -I${PST_RTL_DIR} +define+PST_ROM_DIR=\"${PST_ROM_DIR}\")
-  add_dependencies(${target} pst_rom_images)
+  pst_verilate(${target} TOP pst_noise_unit_top GPARAMS ${gparams} NO_TRACE NO_COVERAGE
+               DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/${target}_pst_noise_unit_top SOURCES ${PST_NOISE_UNIT_SOURCES})
   gtest_discover_tests(${target} TEST_PREFIX "${vname}." DISCOVERY_TIMEOUT 60)
 endforeach()
