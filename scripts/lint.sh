@@ -4,11 +4,13 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 status=0
+# Every RTL file in rtl/ and its subfolders, the checkers (rtl/sva/) last.
+mapfile -t sources < <(find rtl -name '*.sv' -not -path 'rtl/sva/*' | sort; find rtl/sva -name '*.sv' | sort)
 for cfg in rtl/configs/*.toml sim/test_profiles/*.toml; do
   name=$(basename "$cfg" .toml)
   mapfile -t params < <(/usr/bin/python3 scripts/profile.py "$cfg" --verilator)
   if ! out=$(verilator --lint-only -Wall -Irtl --top-module pst_top \
-        +define+PST_ROM_DIR=\"build/rom\" "${params[@]}" rtl/*.sv rtl/sva/*.sv 2>&1); then
+        +define+PST_ROM_DIR=\"build/rom\" "${params[@]}" "${sources[@]}" 2>&1); then
     status=1
   fi
   if [ -n "$out" ]; then
