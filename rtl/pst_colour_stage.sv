@@ -52,8 +52,9 @@ module pst_colour_stage #(
   logic [SB-1:0] step_q;
   logic          en;     // pst_clut_filter's registers advance
   assign done = !Serial || (step_q == SB'(pst_pkg::ColourSteps - 1 + ColourRegs));
+  logic [SB-1:0] unused_step_next;
   pst_step_counter #(.Width(SB)) u_step (
-    .clk_i, .rst_ni, .valid_i, .done_i (done), .ready_i, .step_o (step_q)
+    .clk_i, .rst_ni, .valid_i, .done_i (done), .ready_i, .step_o (step_q), .step_next_o (unused_step_next)
   );
 
   pst_clut_filter #(

@@ -134,15 +134,8 @@ module pst_octave_serial #(
   pst_pipe_flow #(.Depth(0), .SideW(SideW)) u_flow (
     .clk_i, .rst_ni, .valid_i, .done_i (last_cycle), .ready_o, .side_i, .valid_o, .ready_i, .side_o,
     .adv_o (advance), .move_o (en), .busy_o);
-  always_comb begin
-    cyc_d = cyc_q;
-    if (advance) cyc_d = cyc_q + 1'b1;
-    else if (valid_i && ready_i) cyc_d = '0;
-  end
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) cyc_q <= '0;
-    else cyc_q <= cyc_d;
-  end
+  pst_step_counter #(.Width(CycBits)) u_cyc (
+    .clk_i, .rst_ni, .valid_i, .done_i (last_cycle), .ready_i, .step_o (cyc_q), .step_next_o (cyc_d));
 
   // Quadric: one multiplier stepped by the cycle count, its result complete by the last cycle,
   // where it is added; with MR it passes a register too, so the last cycle comes one cycle

@@ -46,8 +46,9 @@ module pst_width_stage #(
 
   logic                         done;   // W is valid this cycle
   logic [pst_pkg::StepBits-1:0] step_q;
+  logic [pst_pkg::StepBits-1:0] unused_step_next;
   pst_step_counter #(.Width(pst_pkg::StepBits)) u_step (
-    .clk_i, .rst_ni, .valid_i, .done_i (done), .ready_i, .step_o (step_q)
+    .clk_i, .rst_ni, .valid_i, .done_i (done), .ready_i, .step_o (step_q), .step_next_o (unused_step_next)
   );
 
   pst_filter_width #(
