@@ -1,6 +1,6 @@
 // A user-input error: "file:line: field: what is wrong". Callers exit with status 2.
 // inputWhere / inputError write that form for every reader of user files (profiles in
-// model/golden/profile.cpp, scenes in testbench/scene/scene.cpp).
+// model/golden/profile.cpp, scenes in testbench/frontend/scene/scene.cpp).
 #pragma once
 
 #include <stdexcept>

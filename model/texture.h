@@ -116,7 +116,7 @@ double noiseBoxGain(const NoiseOptions& opt, double nu);
 // two edges averaged independently: exact for a separable correlation).
 double octaveMatch(const Octave& o, const NoiseOptions& opt, const glm::dvec3& dsdx, const glm::dvec3& dsdy);
 
-// Bandlimit::Isotropic, the hardware's variant (rtl/pst_octave_fade.sv): each edge's footprint in
+// Bandlimit::Isotropic, the hardware's variant (rtl/octave/pst_octave_fade.sv): each edge's footprint in
 // lattice cells bounded by nu = ||M||_2 footprintNorm(edge) (one per-octave register, lg ||M||_2,
 // instead of |M edge|'s 9 products), clamped to [2^kIsoLgLo, 2^kIsoLgHi] (the fade table's range),
 // and alpha = sqrt(g(nu_x)) sqrt(g(nu_y)), g = noiseBoxGain: the term a alpha n and its gradient

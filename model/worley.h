@@ -81,7 +81,7 @@ struct WorleySearch {
 };
 WorleyResult worley(const glm::dvec3& p, int order, WorleyMetric metric, const WorleySearch& search);
 
-// The hardware's feature points (WorleyCubes::Rom256, rtl/pst_worley.sv). Cube (i, j, k) is
+// The hardware's feature points (WorleyCubes::Rom256, rtl/noise/pst_worley.sv). Cube (i, j, k) is
 // hashed like the noise unit's perm256 lattice hash: X = (i + 576) mod 256 (576 = Rayshade's
 // 1e6 offset mod 4096, as in the hardware's lattice index), h = P[P[P[X] ^ Y] ^ Z] with P the
 // 256 x 8 permutation (NoiseTables::perm). ROM entry h holds the paper's cube (h, 0, 0)

@@ -29,7 +29,7 @@ package pst_pkg;
   localparam int NoiseHashRayshade = 0;
   localparam int NoiseHashPerm256 = 1;
   localparam int NoiseHashPerlin256 = 2;
-  // noise.worley_search: none: the noise unit is the lattice-noise unit above; else a worley unit (basis worley, rtl/pst_worley.sv) searching the 2 x 2 x 2 cubes toward the nearest faces (octant) or the 27 cubes around the home cube (cube27), its cubes' points from the 256-entry feature-point ROM indexed by the perm256 cube hash
+  // noise.worley_search: none: the noise unit is the lattice-noise unit above; else a worley unit (basis worley, rtl/noise/pst_worley.sv) searching the 2 x 2 x 2 cubes toward the nearest faces (octant) or the 27 cubes around the home cube (cube27), its cubes' points from the 256-entry feature-point ROM indexed by the perm256 cube hash
   localparam int NoiseWorleySearchNone = 0;
   localparam int NoiseWorleySearchOctant = 1;
   localparam int NoiseWorleySearchCube27 = 2;

@@ -1,5 +1,5 @@
-// Golden model of stages 3-5 (docs/HARDWARE.md); mirrors rtl/pst_quadric.sv,
-// rtl/pst_octave_term.sv, rtl/pst_filter_width.sv and rtl/pst_isqrt.sv step for step.
+// Golden model of stages 3-5 (docs/HARDWARE.md); mirrors rtl/octave/pst_quadric.sv,
+// rtl/octave/pst_octave_term.sv, rtl/width/pst_filter_width.sv and rtl/common/pst_isqrt.sv step for step.
 //
 // i128 budget. Widths below are signed bit counts of the exact intermediates, with the
 // largest formats profile.cpp accepts (Coord, Jacobian <= 40 bits; Quadric, Amplitude,

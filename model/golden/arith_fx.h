@@ -1,9 +1,9 @@
 // Golden (bit-accurate) model of the arithmetic stages of docs/HARDWARE.md:
-//   stage 3  quadric            rtl/pst_quadric.sv        quadricFx
-//   stage 4  octave term        rtl/pst_octave_term.sv    octaveTermFx
-//            accumulation       rtl/pst_top.sv            accumulateF / accumulateGrad
-//   stage 5  filter width       rtl/pst_filter_width.sv   filterWidthFx
-//            integer sqrt       rtl/pst_isqrt.sv          isqrtFx
+//   stage 3  quadric            rtl/octave/pst_quadric.sv        quadricFx
+//   stage 4  octave term        rtl/octave/pst_octave_term.sv    octaveTermFx
+//            accumulation       rtl/top/pst_top.sv            accumulateF / accumulateGrad
+//   stage 5  filter width       rtl/width/pst_filter_width.sv   filterWidthFx
+//            integer sqrt       rtl/common/pst_isqrt.sv          isqrtFx
 // Same steps and rounding as the RTL, bit for bit. Every value is a sign-extended integer of
 // its format (value = integer / 2^frac); products and sums are exact in fx::i128 (the bit
 // budget of each step is written next to it in arith_fx.cpp).
@@ -33,8 +33,8 @@ void octaveTermFx(const Profile& p, int64_t n, const int64_t g[3], int64_t a, co
 // active octaves' terms (wide enough for 16 terms), saturated once at the end.
 //   accumulateF    = sat_F(q + sum terms)
 //   accumulateGrad = sat_Grad(gradq_k + sum terms_k), one component.
-// Stage 4, bandlimited octaves (filter.bandlimit = isotropic; rtl/pst_fade_lg.sv and
-// rtl/pst_octave_fade.sv). Per pixel, one Jacobian column e (3 x Jacobian):
+// Stage 4, bandlimited octaves (filter.bandlimit = isotropic; rtl/octave/pst_fade_lg.sv and
+// rtl/octave/pst_octave_fade.sv). Per pixel, one Jacobian column e (3 x Jacobian):
 //   v_k = |e_k|, mx = max v_k, r = sum v_k - mx, L = mx + floor(r / 4) + floor(r / 8)  (max + 3/8 (mid + min))
 //   fadeLgFx = lg L with FadeLgFrac fraction bits by Mitchell's approximation: 2^FadeLgFrac
 //   (P - JacobianFrac) + the FadeLgFrac bits below L's leading one (bit P); L = 0 counts as L = 1.
@@ -59,7 +59,7 @@ int64_t accumulateGrad(const Profile& p, int64_t gradq, const std::vector<int64_
 //   W = min(norm, WMax): unsigned, contract::w_int_bits(Log2Clut) integer bits, WidthFrac fraction bits.
 int64_t filterWidthFx(const Profile& p, const int64_t grad[3], const int64_t j[6]);
 
-// floor(sqrt(x)) by the digit-by-digit (restoring) method of rtl/pst_isqrt.sv, two input bits
+// floor(sqrt(x)) by the digit-by-digit (restoring) method of rtl/common/pst_isqrt.sv, two input bits
 // per step from the top. x < 2^126.
 uint64_t isqrtFx(unsigned __int128 x);
 
@@ -68,8 +68,8 @@ uint64_t isqrtFx(unsigned __int128 x);
 int64_t shiftSatSigned(fx::i128 v, int sh, int bits);
 
 // Serial datapath step counts (cycles a fragment spends in the unit; the RTL's, checked by
-// sim/unit/arith_unit_test): contract::quadric_serial_steps (rtl/pst_quadric_serial.sv
-// NSteps) and contract::width_serial_steps (rtl/pst_filter_width.sv NSteps) of the profile.
+// sim/unit/arith_unit_test): contract::quadric_serial_steps (rtl/octave/pst_quadric_serial.sv
+// NSteps) and contract::width_serial_steps (rtl/width/pst_filter_width.sv NSteps) of the profile.
 int quadricSerialSteps(const Profile& p);
 int filterWidthSerialSteps(const Profile& p);
 

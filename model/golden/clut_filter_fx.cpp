@@ -1,4 +1,4 @@
-// Colour-table filter, bit for bit with rtl/pst_clut_filter.sv (conventions in the header and
+// Colour-table filter, bit for bit with rtl/colour/pst_clut_filter.sv (conventions in the header and
 // in the module header), and the driver's table builder.
 #include "clut_filter_fx.h"
 

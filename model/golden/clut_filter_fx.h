@@ -1,5 +1,5 @@
 // Stage 6 of docs/HARDWARE.md, bit for bit: the colour-table filter (paper section 3.3) as
-// rtl/pst_clut_filter.sv computes it, plus the driver-side table builder.
+// rtl/colour/pst_clut_filter.sv computes it, plus the driver-side table builder.
 //
 // Tables (the hardware RAM contents, written through the register port):
 //   clut[e]        e < N: RGBA packed, ColourBits each, R at bit 0                (reg clut + e)
@@ -15,7 +15,7 @@
 // level is within 0.5 LSB of the reference's exact level (rounding level by level would drift
 // by up to k/2 LSB).
 //
-// Filter arithmetic (identical to rtl/pst_clut_filter.sv, which documents it in its header):
+// Filter arithmetic (identical to rtl/colour/pst_clut_filter.sv, which documents it in its header):
 // f is QFInt.FFrac (wrapped to its width), W unsigned with Log2Clut+2 integer and WidthFrac
 // fraction bits (wrapped to its width); u = f N.
 //   P = max(WidthFrac + 1, FFrac - Log2Clut) fraction bits hold u and W/2 exactly;

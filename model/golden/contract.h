@@ -81,9 +81,9 @@ struct ProfileParams {
     // needs >= out_frac + guard_bits)
     int noiseGradFrac = 16;
     // none: the noise unit is the lattice-noise unit above; else a worley unit (basis worley,
-    // rtl/pst_worley.sv) searching the 2 x 2 x 2 cubes toward the nearest faces (octant) or the 27
-    // cubes around the home cube (cube27), its cubes' points from the 256-entry feature-point ROM
-    // indexed by the perm256 cube hash
+    // rtl/noise/pst_worley.sv) searching the 2 x 2 x 2 cubes toward the nearest faces (octant) or
+    // the 27 cubes around the home cube (cube27), its cubes' points from the 256-entry feature-
+    // point ROM indexed by the perm256 cube hash
     NoiseWorleySearch noiseWorleySearch = NoiseWorleySearch::None;
     // worley unit: feature points per cube at most (the ROM's count is Worley's Poisson count
     // clamped to it)

@@ -1,5 +1,5 @@
 // Golden model of the octave transform and the noise unit (docs/HARDWARE.md stages 1 and 2),
-// bit for bit as rtl/pst_octave_transform.sv and rtl/pst_noise.sv (same steps, same floors).
+// bit for bit as rtl/octave/pst_octave_transform.sv and rtl/noise/pst_noise.sv (same steps, same floors).
 //
 // Notation: LF = NoiseLatticeFrac, VF = NoiseValueFrac, OF = NoiseOutFrac,
 // NF = OF + noise.guard_bits (internal node fraction bits), F = noiseGradFloor (NF -
@@ -45,7 +45,7 @@
 //             product; every derivative stays a multiple of 2^F)
 //             four x lerps (corners 2j, 2j+1), two y lerps, one z lerp.
 //   out       n = sat(floor(v to OF), Q4.OF), grad_k = sat(floor(g_k to OF), Q6.OF).
-// Ranges (proved in rtl/pst_noise.sv): |v| <= 3.5 (Q3.NF), |g| < 10.1 (Q5.NF) at every node,
+// Ranges (proved in rtl/noise/pst_noise.sv): |v| <= 3.5 (Q3.NF), |g| < 10.1 (Q5.NF) at every node,
 // so both saturations are no-ops; checked here with exceptions (a design error otherwise).
 #include "noise_fx.h"
 

@@ -1,6 +1,6 @@
 // Golden (bit-accurate) model of pipeline stages 1 and 2 (docs/HARDWARE.md): the octave
-// transform p = M s + o and the noise unit n(p), dn/dp. Mirrors rtl/pst_octave_transform.sv
-// and rtl/pst_noise.sv step for step; the arithmetic is documented in the SV module headers
+// transform p = M s + o and the noise unit n(p), dn/dp. Mirrors rtl/octave/pst_octave_transform.sv
+// and rtl/noise/pst_noise.sv step for step; the arithmetic is documented in the SV module headers
 // and again in noise_fx.cpp. Every value is an integer: a format's value is integer / 2^frac.
 #pragma once
 
@@ -12,10 +12,10 @@ namespace pst {
 
 // Guard bits of the noise unit's internal nodes: corner values, lerp results and their
 // derivatives are held at NoiseOutFrac + noise.guard_bits fraction bits (the profile's key;
-// rtl/pst_noise.sv parameter NoiseGuardBits).
+// rtl/noise/pst_noise.sv parameter NoiseGuardBits).
 inline int noiseNodeFrac(const Profile& p) { return p.noiseOutFrac + p.noiseGuardBits; }
 
-// The floor of the noise unit's derivative lanes (noise.grad_frac; rtl/pst_noise.sv parameter
+// The floor of the noise unit's derivative lanes (noise.grad_frac; rtl/noise/pst_noise.sv parameter
 // NoiseGradFrac): every corner and lerp derivative is a multiple of 2^noiseGradFloor at
 // noiseNodeFrac fraction bits, i.e. it keeps min(grad_frac, node frac) fraction bits. 0 (the
 // default, grad_frac = out_frac + guard_bits) keeps every node bit.

@@ -21,7 +21,7 @@ NoiseOptions hardwareNoise(const ProfileParams& p) {
     n.hash = p.noiseHash;
     n.basis = hardwareBasis(n);
     n.maxPoints = p.noiseWorleyPoints;
-    // A worley unit (rtl/pst_worley.sv) instead of the lattice-noise unit: basis worley, the
+    // A worley unit (rtl/noise/pst_worley.sv) instead of the lattice-noise unit: basis worley, the
     // hardware's search and its 256-entry feature-point ROM, Euclidean distances, no cell term.
     if (p.noiseWorleySearch != NoiseWorleySearch::None) {
         n.basis = NoiseBasis::Worley;

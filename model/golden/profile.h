@@ -14,7 +14,7 @@ namespace pst {
 // How the quadric, filter-width and colour-table units are built (Datapath, generated from
 // rtl/contract.toml pipeline.datapath into contract.h): every product every cycle (Parallel),
 // or one row / one channel per cycle (Serial: fewer multipliers; the octave transform and term
-// rows take 3 + 3 more cycles per pixel, see rtl/pst_octave_stage.sv; needs noise_steps >= 4).
+// rows take 3 + 3 more cycles per pixel, see rtl/octave/pst_octave_stage.sv; needs noise_steps >= 4).
 // The arithmetic is the same bit for bit.
 //
 // A profile: its keys (ProfileParams, generated from rtl/contract.toml into contract.h: one

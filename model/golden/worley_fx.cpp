@@ -1,4 +1,4 @@
-// Golden model of the worley unit, bit for bit as rtl/pst_worley.sv.
+// Golden model of the worley unit, bit for bit as rtl/noise/pst_worley.sv.
 //
 // Notation: LF = NoiseLatticeFrac, OF = NoiseOutFrac, NF = OF + noise.guard_bits,
 // DF = max(LF, WorleyPointFrac = 9), CF = WorleyCoefFrac = 12, K = noise.worley_order,

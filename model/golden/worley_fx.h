@@ -1,4 +1,4 @@
-// Golden (bit-accurate) model of the worley unit (rtl/pst_worley.sv): Worley's cellular basis
+// Golden (bit-accurate) model of the worley unit (rtl/noise/pst_worley.sv): Worley's cellular basis
 // n = sum_k C_k F_k and its gradient in fixed point, the hardware variant of model/worley.h
 // (a fixed cube search, at most noise.worley_points points per cube from a 256-entry
 // feature-point ROM, Euclidean distances). Same steps and floors as the RTL; see worley_fx.cpp.

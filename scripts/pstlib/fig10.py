@@ -21,7 +21,7 @@ from .contract import validate
 
 def profile_for_bits(base_text, base, b, base_path):
     """The base profile with formats.coord.frac = b, plus what must follow (returned as notes):
-    rtl/pst_octave_transform.sv and model/golden/noise_fx.cpp need
+    rtl/octave/pst_octave_transform.sv and model/golden/noise_fx.cpp need
     MatrixFrac + CoordFrac >= NoiseLatticeFrac and >= OffsetFrac. ValueError for a b the
     hardware cannot take."""
     fm, nz = base["formats"], base["noise"]
@@ -196,13 +196,13 @@ def captions(out, scene, base_path, base, results, crops, w, h, foot):
             f"(10th-90th percentile {lo:.2e} - {hi:.2e}), so one coordinate step of 2^-b spans about "
             + ", ".join(f"{2.0 ** -r['bits'] / med:.3g} px at b = {r['bits']}" for r in results) + ".\n")
     if adjusted:
-        md.append("Constraint MatrixFrac + CoordFrac >= NoiseLatticeFrac, OffsetFrac (rtl/pst_octave_transform.sv, "
+        md.append("Constraint MatrixFrac + CoordFrac >= NoiseLatticeFrac, OffsetFrac (rtl/octave/pst_octave_transform.sv, "
                   "model/golden/noise_fx.cpp) forced: " + "; ".join(f"b = {r['bits']}: {', '.join(r['notes'])}"
                                                                    for r in adjusted) + ".\n")
     else:
         fmb = base["formats"]
         need = max(base["noise"]["lattice_frac"], fmb["offset"]["frac"]) - fmb["matrix"]["frac"]
-        md.append(f"No other field had to change: the octave transform (rtl/pst_octave_transform.sv, "
+        md.append(f"No other field had to change: the octave transform (rtl/octave/pst_octave_transform.sv, "
                   f"model/golden/noise_fx.cpp) needs MatrixFrac + CoordFrac >= NoiseLatticeFrac and >= "
                   f"OffsetFrac; with MatrixFrac = {fmb['matrix']['frac']}, NoiseLatticeFrac = "
                   f"{base['noise']['lattice_frac']} and OffsetFrac = {fmb['offset']['frac']} that holds for every "

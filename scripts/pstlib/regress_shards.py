@@ -10,7 +10,7 @@ result like any other), and its JSON and JUnit parse. A shard that was killed, c
 refused its input (exit 2) leaves no done record: the launcher runs it again, alone, and a
 later run of the same command skips every complete shard.
 
-Random chunks: the stream is cut into segments (testbench/random: a fresh RTL model and random
+Random chunks: the stream is cut into segments (testbench/verify/random: a fresh RTL model and random
 gaps and stalls per segment), and `--from K` starts at the segment that holds fragment K. The
 chunks are cut at segment starts (`pst regress --list --random` prints them), so the shards
 together simulate exactly the fragments one process would, each once, with the same inputs."""

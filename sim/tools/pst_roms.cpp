@@ -6,12 +6,12 @@
 //   OUTDIR/value16.memh    267 lines, 4 hex digits: R[i] * 32768 as a 16-bit two's-complement
 //                          number (exact: R = (crc - 32768) / 32768). The RTL and the golden
 //                          model bring it to NoiseValueFrac bits with value16 >>> (15 - frac).
-// and the banks rtl/pst_noise.sv reads (the same entries, split by address):
+// and the banks rtl/noise/pst_noise.sv reads (the same entries, split by address):
 //   OUTDIR/hash4096_even.memh, hash4096_odd.memh   T[2a], T[2a + 1] (2048 lines each)
 //   OUTDIR/perm256_even.memh, perm256_odd.memh     P[2a], P[2a + 1] (128 lines each)
 //   OUTDIR/value16_b<b>.memh, b = 0..3             value16[4j + b], j = 0..66 (67 lines; the
 //                                                  entry past value16[266] is 0, never read)
-// and the worley unit's feature-point ROMs (rtl/pst_worley.sv, model/worley.h worleyRomCube):
+// and the worley unit's feature-point ROMs (rtl/noise/pst_worley.sv, model/worley.h worleyRomCube):
 //   OUTDIR/worley256_p<M>.memh, M = 1..9   256 words of 4 + 24 M bits: [3:0] the cube's count
 //                                          (Poisson, clamped to 1..M), point j's x, y, z bytes
 //                                          at [4 + 24 j + 8 a +: 8] (1 + 6 M hex digits)

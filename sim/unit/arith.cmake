@@ -5,13 +5,13 @@ set(PST_ARITH_UNIT_PARAMS
     CoordInt,CoordFrac,QuadricInt,QuadricFrac,NoiseOutFrac,AmplitudeInt,AmplitudeFrac,GradMatrixInt,GradMatrixFrac,JacobianInt,JacobianFrac,Log2Clut,WidthFrac,FilterNorm,FInt,FFrac,GradInt,GradFrac,OctaveRegs)
 set(PST_ARITH_UNIT_SOURCES
     ${PROJECT_SOURCE_DIR}/sim/unit/pst_arith_unit_top.sv
-    ${PROJECT_SOURCE_DIR}/rtl/pst_quadric.sv
-    ${PROJECT_SOURCE_DIR}/rtl/pst_quadric_serial.sv
-    ${PROJECT_SOURCE_DIR}/rtl/pst_octave_term.sv
-    ${PROJECT_SOURCE_DIR}/rtl/pst_filter_width.sv
-    ${PROJECT_SOURCE_DIR}/rtl/pst_isqrt.sv
-    ${PROJECT_SOURCE_DIR}/rtl/pst_floor_sat.sv
-    ${PROJECT_SOURCE_DIR}/rtl/pst_delay.sv)
+    ${PROJECT_SOURCE_DIR}/rtl/octave/pst_quadric.sv
+    ${PROJECT_SOURCE_DIR}/rtl/octave/pst_quadric_serial.sv
+    ${PROJECT_SOURCE_DIR}/rtl/octave/pst_octave_term.sv
+    ${PROJECT_SOURCE_DIR}/rtl/width/pst_filter_width.sv
+    ${PROJECT_SOURCE_DIR}/rtl/common/pst_isqrt.sv
+    ${PROJECT_SOURCE_DIR}/rtl/common/pst_floor_sat.sv
+    ${PROJECT_SOURCE_DIR}/rtl/common/pst_delay.sv)
 foreach(p ${PST_PROFILES})
   add_executable(arith_unit_${p} ${PROJECT_SOURCE_DIR}/sim/unit/arith_unit_test.cpp)
   target_link_libraries(arith_unit_${p} PRIVATE pst_golden GTest::gtest_main)

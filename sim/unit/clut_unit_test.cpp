@@ -1,4 +1,4 @@
-// Unit test of rtl/pst_clut_filter.sv against the golden model (model/golden/clut_filter_fx.cpp),
+// Unit test of rtl/colour/pst_clut_filter.sv against the golden model (model/golden/clut_filter_fx.cpp),
 // one verilated top per profile: every output bit must match.
 //
 // Per table: random colours (noise, harsh 0/1, ramps) built by the driver's buildClutTables and

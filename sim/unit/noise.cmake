@@ -5,13 +5,13 @@ set(PST_NOISE_UNIT_PARAMS
     CoordInt,CoordFrac,MatrixInt,MatrixFrac,OffsetInt,OffsetFrac,NoiseLatticeFrac,NoiseInterp,NoiseCorner,NoiseHash,NoiseValueFrac,NoiseOutFrac,NoiseSteps,NoiseGuardBits,NoiseGradFrac)
 set(PST_NOISE_UNIT_SOURCES
     ${PROJECT_SOURCE_DIR}/sim/unit/pst_noise_unit_top.sv
-    ${PROJECT_SOURCE_DIR}/rtl/pst_octave_transform.sv
-    ${PROJECT_SOURCE_DIR}/rtl/pst_noise.sv
-    ${PROJECT_SOURCE_DIR}/rtl/pst_noise_weight.sv
-    ${PROJECT_SOURCE_DIR}/rtl/pst_noise_corner.sv
-    ${PROJECT_SOURCE_DIR}/rtl/pst_noise_lerp.sv
-    ${PROJECT_SOURCE_DIR}/rtl/pst_mul_booth.sv
-    ${PROJECT_SOURCE_DIR}/rtl/pst_delay.sv)
+    ${PROJECT_SOURCE_DIR}/rtl/octave/pst_octave_transform.sv
+    ${PROJECT_SOURCE_DIR}/rtl/noise/pst_noise.sv
+    ${PROJECT_SOURCE_DIR}/rtl/noise/pst_noise_weight.sv
+    ${PROJECT_SOURCE_DIR}/rtl/noise/pst_noise_corner.sv
+    ${PROJECT_SOURCE_DIR}/rtl/noise/pst_noise_lerp.sv
+    ${PROJECT_SOURCE_DIR}/rtl/common/pst_mul_booth.sv
+    ${PROJECT_SOURCE_DIR}/rtl/common/pst_delay.sv)
 
 foreach(p ${PST_PROFILES})
   add_executable(noise_unit_${p} ${PROJECT_SOURCE_DIR}/sim/unit/noise_unit_test.cpp)

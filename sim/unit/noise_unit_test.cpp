@@ -1,4 +1,4 @@
-// Unit test of stages 1 and 2 (rtl/pst_octave_transform.sv, rtl/pst_noise.sv) against the
+// Unit test of stages 1 and 2 (rtl/octave/pst_octave_transform.sv, rtl/noise/pst_noise.sv) against the
 // golden model (model/golden/noise_fx.cpp): every output bit, special values first, then
 // random vectors from a printed seed (PST_SEED=<n> replays). One executable per profile
 // (PST_PROFILE_PATH), optionally with noise parameters overridden (PST_NOISE_OVERRIDES, the

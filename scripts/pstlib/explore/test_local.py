@@ -146,6 +146,6 @@ def test_synth_inputs_cover_the_rtl_and_the_synthesis_scripts():
     from pstlib.paths import ROOT
     files = evaluate.synth_inputs()
     names = {p.relative_to(ROOT).as_posix() for p in files if p.is_relative_to(ROOT)}
-    assert {"scripts/synth.py", "scripts/pstlib/synth/flow.py", "rtl/pst_top.sv", "scripts/synth/cells.lib"} <= names
+    assert {"scripts/synth.py", "scripts/pstlib/synth/flow.py", "rtl/top/pst_top.sv", "scripts/synth/cells.lib"} <= names
     assert all((ROOT / n).is_file() for n in names)
     assert "scripts/synth/baseline.json" not in names          # results, not inputs

@@ -200,10 +200,10 @@ def test_flow_inputs_cover_every_input():
     from pstlib.paths import ROOT
     names = {p.relative_to(ROOT).as_posix() for p in inputs.code_files()}
     assert {"scripts/synth.py", "scripts/profile.py", "scripts/pstlib/contract.py", "scripts/pstlib/synth/fanout.py",
-            "scripts/synth/pst.sdc", "rtl/contract.toml", "rtl/pst_top.sv", "rtl/pst_pkg.sv"} <= names
+            "scripts/synth/pst.sdc", "rtl/contract.toml", "rtl/top/pst_top.sv", "rtl/pst_pkg.sv"} <= names
     assert not any(n.rsplit("/", 1)[-1].startswith("test_") for n in names)
     assert not any("/sva/" in n for n in names)
-    assert "rtl/pst_top.sv" not in {p.relative_to(ROOT).as_posix() for p in inputs.code_files(rtl_sv=False)}
+    assert "rtl/top/pst_top.sv" not in {p.relative_to(ROOT).as_posix() for p in inputs.code_files(rtl_sv=False)}
 
 
 def test_digest_follows_content_and_tool_versions(tmp_path):

@@ -61,7 +61,7 @@ module pst_octave_transform #(
   // lattice index mod 4096): the sum is kept modulo 2^KW, KW = AccFrac + LB (exact for those
   // bits; the integer bits above the lattice index are never built).
   localparam int KW = AccFrac + LB;
-  // Each product M s is a Booth product modulo 2^KW (rtl/pst_mul_booth.sv; Yosys 0.23 builds
+  // Each product M s is a Booth product modulo 2^KW (rtl/common/pst_mul_booth.sv; Yosys 0.23 builds
   // only AND arrays).
   // Offset of Rayshade's 1e6 lattice shift modulo 4096.
   localparam logic [LB-1:0] LatticeOffset = LB'(pst_pkg::LatticeOffset);

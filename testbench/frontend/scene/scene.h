@@ -76,7 +76,7 @@ Scene parseScene(const std::string& text, const std::string& path, int width = 0
 
 // Every check of parseScene (keys, values, bounds, every animation key) without building the
 // meshes or the colour tables (what a parse costs): throws the same InputError for a bad file,
-// except the meshes' triangle bound, which needs the meshes. For fuzzing (testbench/fuzz).
+// except the meshes' triangle bound, which needs the meshes. For fuzzing (testbench/verify/fuzz).
 void checkScene(const std::string& text, const std::string& path);
 
 // The scene at sequence time t in [0, 1]: the file with every track's value at t in place of the

@@ -1,4 +1,4 @@
-// One input of each parser under fuzzing (testbench/fuzz): the libFuzzer targets call these, and
+// One input of each parser under fuzzing (testbench/verify/fuzz): the libFuzzer targets call these, and
 // fuzz_corpus_test replays the kept corpora and crash inputs through them. An input must either
 // be accepted or refused with an InputError (`error: FILE:LINE: FIELD: ...`, exit 2 in the CLI);
 // a crash, a sanitizer report or any other exception is a bug.

@@ -1,4 +1,4 @@
-// libFuzzer target: the texture-block parser (testbench/scene checkTexture, `pst eval --texture`).
+// libFuzzer target: the texture-block parser (testbench/frontend/scene checkTexture, `pst eval --texture`).
 #include <cstddef>
 #include <cstdint>
 #include <string>

@@ -77,7 +77,7 @@ std::string hardwareUnsupported(const Profile& p, const Texture& tex) {
                "' (its noise unit computes '" + toString(p.noise.basis) + "'); " + how;
     }
     if (p.noise.basis == NoiseBasis::Worley) {
-        // The worley unit computes one variant (rtl/pst_worley.sv): the scene must ask for it,
+        // The worley unit computes one variant (rtl/noise/pst_worley.sv): the scene must ask for it,
         // so that its reference is the variant the hardware computes.
         const NoiseOptions& n = tex.noise;
         // "FILE:LINE: textures.NAME.noise." (the noise table's line) when the scene named it.

@@ -1,4 +1,4 @@
-// libFuzzer target: the scene-file parser (testbench/scene checkScene: parseScene's checks, no meshes or tables).
+// libFuzzer target: the scene-file parser (testbench/frontend/scene checkScene: parseScene's checks, no meshes or tables).
 #include <cstddef>
 #include <cstdint>
 #include <string>

@@ -1,4 +1,4 @@
-// libFuzzer target: the fragment-file parser (testbench/fragments readFragments).
+// libFuzzer target: the fragment-file parser (testbench/frontend/fragments readFragments).
 #include <cstddef>
 #include <cstdint>
 #include <string>

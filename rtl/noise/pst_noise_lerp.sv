@@ -1,4 +1,4 @@
-// One lerp of the noise unit's interpolation tree (part of rtl/pst_noise.sv, stage 2 of
+// One lerp of the noise unit's interpolation tree (part of rtl/noise/pst_noise.sv, stage 2 of
 // docs/HARDWARE.md), carrying the value and its three derivatives. Combinational.
 // Golden: pst::noiseFx (model/golden/noise_fx.cpp).
 //
@@ -10,13 +10,13 @@
 //   g'_j = L_F(a.g_j, b.g_j)                                   for j != Axis
 //   g'_k = 2^F floor(floor((b.v - a.v) / 2^F) ds / 2^LF) + L_F(a.g_k, b.g_k)   k = Axis
 //   (product rule). The derivative lanes (inputs and outputs) are multiples of 2^F: the
-//   profile's noise.grad_frac (rtl/pst_noise.sv); the own-axis product takes the value
+//   profile's noise.grad_frac (rtl/noise/pst_noise.sv); the own-axis product takes the value
 //   difference floored to 2^F, so it is (VW + 1 - F) bits wide.
 //   NoiseInterp = 0 (scurve), 2 (quintic): the own-axis term needs a (VW+1) x (LF+2) product
 //   (scurve: ds is even and < 2, so (VW+1) x LF and a shift; below).
 //   NoiseInterp = 1 (linear): ds = 1, the own-axis term is b.v - a.v exactly (no multiplier).
 // Ranges: L(x, y) lies between x and y (floor of a product of (y - x) and s in [0, 1)), so
-// |v'| <= 3.5 stays Q3; |g'| <= 1.5 * 6 + 1 < 16 stays Q5 (proof in rtl/pst_noise.sv).
+// |v'| <= 3.5 stays Q3; |g'| <= 1.5 * 6 + 1 < 16 stays Q5 (proof in rtl/noise/pst_noise.sv).
 //
 // Narrow derivative lanes (exact; area only). The caller says what it knows of each input
 // derivative lane k (pst_noise derives it from the corner kind and the lerps done before):
@@ -30,7 +30,7 @@
 // Full: the x lerps' derivative lanes are R (Q1.15 at NodeFrac 20: Hi 21, Lo 5), so their
 // products are 17 x 16 instead of 26 x 16; the y and z lerps' not-yet-own lanes Q1 (Hi 21).
 //
-// Products: radix-4 Booth (rtl/pst_mul_booth.sv; Yosys 0.23 builds only AND arrays): signed
+// Products: radix-4 Booth (rtl/common/pst_mul_booth.sv; Yosys 0.23 builds only AND arrays): signed
 // differences times the unsigned weights.
 //
 // Parameters:

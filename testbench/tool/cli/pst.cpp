@@ -375,7 +375,7 @@ int runRegress(const std::vector<std::string>& scenes, int size, const HwArgs& h
     return failures ? 1 : 0;
 }
 
-// pst regress --random N: constrained-random textures and fragments (testbench/random).
+// pst regress --random N: constrained-random textures and fragments (testbench/verify/random).
 int runRandom(const HwArgs& hw, RandomRegressOptions o, bool quiet, const std::string& outPath,
               const std::string& junitPath) {
     int failures = 0;

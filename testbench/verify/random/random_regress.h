@@ -3,7 +3,7 @@
 //
 // The stream is cut into segments; each segment gets a fresh RTL model (its own random input
 // gaps and output stalls) and a fresh golden model, and is a few batches long. Each batch
-// programs a texture through the driver (testbench/driver: programTexture, or only the
+// programs a texture through the driver (testbench/verify/driver: programTexture, or only the
 // control register, as a driver does for the unfiltered image) and streams K fragments. Every
 // draw comes from the run's seed and the segment's index, so any fragment can be replayed by
 // starting at its segment (RandomRegressOptions::from) and sees the same inputs, gaps and

@@ -1,5 +1,5 @@
-// Replays the fuzzers' kept inputs (testbench/fuzz/corpus/<target>/: the minimized corpora of the
-// libFuzzer runs; testbench/fuzz/regress/<target>/: inputs that once crashed) through the same
+// Replays the fuzzers' kept inputs (testbench/verify/fuzz/corpus/<target>/: the minimized corpora of the
+// libFuzzer runs; testbench/verify/fuzz/regress/<target>/: inputs that once crashed) through the same
 // entry points as the fuzz targets (fuzz_inputs.h), so a parser change that crashes on one of
 // them fails ctest (and the sanitizer build reports memory errors on them). For scene files the
 // check-only parse (checkScene) must also agree with the full parse (parseScene).
@@ -30,7 +30,7 @@ std::string slurp(const fs::path& p) {
 int replay(const std::string& target, const std::function<void(const std::string&)>& run) {
     int n = 0;
     for (const char* kind : {"corpus", "regress"}) {
-        const fs::path dir = fs::path(sourceDir()) / "testbench/fuzz" / kind / target;
+        const fs::path dir = fs::path(sourceDir()) / "testbench/verify/fuzz" / kind / target;
         if (!fs::is_directory(dir)) continue;
         for (const auto& e : fs::directory_iterator(dir)) {
             if (!e.is_regular_file()) continue;

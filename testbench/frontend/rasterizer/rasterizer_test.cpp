@@ -473,7 +473,7 @@ TEST(Rasterizer, FillRuleTiesOnEdgesAndVertex) {
 
 // ---- A full-size frame -------------------------------------------------------------------
 
-// (Timings live in the benchmark, testbench/rasterizer/rasterizer_bench.cpp.)
+// (Timings live in the benchmark, testbench/frontend/rasterizer/rasterizer_bench.cpp.)
 TEST(Rasterizer, TeapotAt512IsFiniteAndFillsTheFrame) {
     Camera teapotCam = makeCamera({0.0, 4.0, 8.0}, {0.2, 1.4, 0.0}, 512, 512);
     Mesh teapot = makeTeapot(6);

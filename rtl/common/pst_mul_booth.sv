@@ -1,4 +1,4 @@
-// A product for the noise datapath (part of rtl/pst_noise.sv's and rtl/pst_octave_transform.sv's
+// A product for the noise datapath (part of rtl/noise/pst_noise.sv's and rtl/octave/pst_octave_transform.sv's
 // arithmetic; docs/HARDWARE.md "Multipliers"): p = a * b mod 2^PW, a signed, b signed or
 // unsigned, as a radix-4 Booth product. Combinational, exact.
 //

@@ -1,4 +1,4 @@
-// One lattice corner of the noise unit (part of rtl/pst_noise.sv, stage 2 of
+// One lattice corner of the noise unit (part of rtl/noise/pst_noise.sv, stage 2 of
 // docs/HARDWARE.md): the corner's value and gradient as a lerp-tree leaf node.
 // Combinational. Golden: pst::noiseFx (model/golden/noise_fx.cpp).
 //
@@ -104,7 +104,7 @@ module pst_noise_corner #(
     assign unused_grad12 = ^{r_i, half_r0};
   end else if (NoiseCorner == pst_pkg::NoiseCornerValueGradient) begin : g_value_gradient
     // R d_k, d_k = u_k - b_k: its bit pattern is {b_k, u_k} (LF + 1 bits signed); a Booth
-    // product (rtl/pst_mul_booth.sv, R recoded: fewer rows than d, 6666 GE a corner in full
+    // product (rtl/common/pst_mul_booth.sv, R recoded: fewer rows than d, 6666 GE a corner in full
     // against 7181 with d recoded) sign-extended to ExW bits (ExW >= RW + LF + 1: exact).
     logic [3*ExW-1:0] prod;  // R[m+1+k] d_k at [k*ExW +: ExW]
     for (genvar k = 0; k < 3; k++) begin : g_axis

@@ -1,4 +1,4 @@
-# Constrained-random regression (testbench/random), included after sim/ (it needs the list of
+# Constrained-random regression (testbench/verify/random), included after sim/ (it needs the list of
 # verilated profiles): PST_RANDOM_FRAGMENTS random fragments per verilated profile in the test
 # suite (ctest label `random`). The long run (README "Verification") is the same command with
 # --random 10000000.
