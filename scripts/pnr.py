@@ -63,16 +63,13 @@ def main(argv=None) -> int:
                         limit=args.limit, only=tuple(args.block), resume=args.resume)
     profile = profile_path(args.profile)
     try:
-        result = flow.place_and_route(profile, opts)
-    except synth_flow.InputError as e:
-        print(f"error: {e}", file=sys.stderr)
-        return 2
-    except (RuntimeError, qflow.FlowError) as e:
-        print(f"error: {profile}: {e}", file=sys.stderr)
-        return 1
+        result, rc = synth_flow.run_command(lambda: flow.place_and_route(profile, opts), profile,
+                                            (RuntimeError, qflow.FlowError))
     except KeyboardInterrupt:
         procs.stop_children()
         return 130
+    if rc:
+        return rc
     print(report.markdown(result))
     if args.update_derate:
         report.write_derate(result, synth_report.DERATE_FILE)

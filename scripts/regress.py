@@ -39,6 +39,7 @@ import time
 
 from pstlib import atomic
 from pstlib import regress_shards as R
+from pstlib import slurm
 from pstlib.paths import ROOT
 from pstlib.explore.local import run_points, say, stop_children
 
@@ -57,12 +58,7 @@ def parse_args(argv):
     ap.add_argument("--from", dest="first", type=int, default=0, metavar="K", help="first fragment index of --random")
     ap.add_argument("--chunk", type=int, default=0, metavar="C", help="random fragments per shard (at least; whole segments)")
     ap.add_argument("--batch", type=int, default=0, help="most fragments per random texture (pst's --batch; default pst's)")
-    ap.add_argument("--jobs", type=int, default=2, help="shards in parallel (local backend)")
-    ap.add_argument("--backend", choices=["local", "slurm"], default="local")
-    ap.add_argument("--partition", help="SLURM partition")
-    ap.add_argument("--account", help="SLURM account")
-    ap.add_argument("--time", dest="time_limit", default="04:00:00", help="SLURM time limit per task")
-    ap.add_argument("--slurm-arg", action="append", default=[], help="extra sbatch argument (repeatable)")
+    slurm.add_backend_args(ap, "04:00:00")
     ap.add_argument("--retries", type=int, default=1, help="re-runs of a shard that left no result")
     ap.add_argument("--shard", action="append", default=[], help="run this shard again (repeatable)")
     ap.add_argument("--timeout", type=float, default=0, help="seconds a local shard may run (0: no limit)")
@@ -140,7 +136,6 @@ def run_local(a, out, todo, attempts):
 
 
 def run_slurm(a, out, todo, attempts):
-    from pstlib import slurm
     for s in todo:
         attempts[s.name] = attempts.get(s.name, 0) + 1
     slurm.run_array(out / "slurm", "pst-regress", [s.name for s in todo],

@@ -58,6 +58,7 @@ import sys
 
 from pstlib.explore.search import KNOB_NAMES
 from pstlib.explore.search_run import run, settings, worker
+from pstlib import slurm
 from pstlib.paths import ROOT
 
 
@@ -80,12 +81,7 @@ def parse_args(argv):
     ap.add_argument("--paper", action="store_true", default=None, help="the paper's scenes in the training set too")
     ap.add_argument("--synth-floor", type=float, default=None,
                     help="points whose worst training PSNR is below this are not synthesized (default: lowest target - 10)")
-    ap.add_argument("--jobs", type=int, default=2, help="points in parallel (local backend)")
-    ap.add_argument("--backend", choices=["local", "slurm"], default="local")
-    ap.add_argument("--partition", help="SLURM partition")
-    ap.add_argument("--account", help="SLURM account")
-    ap.add_argument("--time", dest="time_limit", default="02:00:00", help="SLURM time limit per task")
-    ap.add_argument("--slurm-arg", action="append", default=[], help="extra sbatch argument (repeatable)")
+    slurm.add_backend_args(ap, "02:00:00")
     ap.add_argument("--rtl", type=int, default=None, help="front points per class checked on the RTL (default all)")
     ap.add_argument("--rtl-size", type=int, default=32)
     ap.add_argument("--retry-failed", action="store_true")

@@ -88,14 +88,9 @@ def main(argv=None) -> int:
                         old_basis=not args.no_old_basis, jobs=args.jobs, mem_cache=pathlib.Path(args.mem_cache),
                         keep=args.keep, reuse=args.reuse)
     profile = profile_path(args.profile)
-    try:
-        result = flow.synthesize(profile, opts)
-    except flow.InputError as e:
-        print(f"error: {e}", file=sys.stderr)
-        return 2
-    except RuntimeError as e:
-        print(f"error: {profile}: {e}", file=sys.stderr)
-        return 1
+    result, rc = flow.run_command(lambda: flow.synthesize(profile, opts), profile)
+    if rc:
+        return rc
     if not args.quiet:
         print(report.markdown(result))
     errors = report.signoff_errors(result)

@@ -22,6 +22,17 @@ from .procs import STOP
 POLL_S = 2.0
 
 
+def add_backend_args(ap, time_limit: str) -> None:
+    """The command lines' backend options: --jobs (local workers), --backend, and the SLURM
+    job's --partition, --account, --time (per task, default TIME_LIMIT) and --slurm-arg."""
+    ap.add_argument("--jobs", type=int, default=2, help="workers in parallel (local backend)")
+    ap.add_argument("--backend", choices=["local", "slurm"], default="local")
+    ap.add_argument("--partition", help="SLURM partition")
+    ap.add_argument("--account", help="SLURM account")
+    ap.add_argument("--time", dest="time_limit", default=time_limit, help="SLURM time limit per task")
+    ap.add_argument("--slurm-arg", action="append", default=[], help="extra sbatch argument (repeatable)")
+
+
 def array_script(name: str, n: int, log: str, command: str, partition=None, account=None, time_limit=None,
                  extra=()) -> str:
     """An array job of N tasks (SLURM_ARRAY_TASK_ID 0..N-1), each running COMMAND from the

@@ -28,6 +28,7 @@
 #include "fixed.h"
 #include "verilated_port.h"
 #include "profile.h"
+#include "unit/unit_seed.h"
 
 namespace {
 
@@ -50,21 +51,8 @@ template <typename T>
 int64_t getSigned(const T& p, int lsb, int width) { return pst::port::getSigned(p, lsb, width); }
 
 // --- Profile, seed, random values ------------------------------------------------------------
-const Profile& prof() {
-    static const Profile p = pst::loadProfile(PST_PROFILE_PATH);
-    return p;
-}
-
-uint64_t seed() {
-    static const uint64_t s = [] {
-        const char* e = std::getenv("PST_SEED");
-        const uint64_t v = e ? std::strtoull(e, nullptr, 0) : std::random_device{}() * 0x100000001ull;
-        std::printf("arith_unit[%s]: seed %llu (replay with PST_SEED=%llu)\n", prof().name.c_str(),
-                    (unsigned long long)v, (unsigned long long)v);
-        return v;
-    }();
-    return s;
-}
+using pst::unit::prof;
+uint64_t seed() { return pst::unit::seed("arith_unit"); }
 
 struct Rng {
     std::mt19937_64 g;

@@ -5,11 +5,4 @@
 # PST_CLUT_VECTORS=<n> changes the vector count per table (default 40000; 3 tables).
 set(PST_CLUT_UNIT_PARAMS FInt,FFrac,Log2Clut,ColourBits,WidthFrac,FilterRecipFrac,Datapath)
 set(PST_CLUT_UNIT_SOURCES ${PROJECT_SOURCE_DIR}/rtl/colour/pst_clut_filter.sv)
-foreach(p ${PST_PROFILES})
-  add_executable(clut_unit_${p} ${PROJECT_SOURCE_DIR}/sim/unit/clut_unit_test.cpp)
-  target_link_libraries(clut_unit_${p} PRIVATE pst_golden GTest::gtest_main)
-  target_compile_definitions(clut_unit_${p} PRIVATE PST_PROFILE_PATH="${PROJECT_SOURCE_DIR}/rtl/configs/${p}.toml")
-  pst_verilate(clut_unit_${p} TOP pst_clut_filter PROFILE ${p} PARAMS ${PST_CLUT_UNIT_PARAMS}
-               SOURCES ${PST_CLUT_UNIT_SOURCES})
-  gtest_discover_tests(clut_unit_${p} TEST_PREFIX "${p}." DISCOVERY_TIMEOUT 60)
-endforeach()
+pst_unit_tests(clut_unit TOP pst_clut_filter PARAMS ${PST_CLUT_UNIT_PARAMS} SOURCES ${PST_CLUT_UNIT_SOURCES})

@@ -25,6 +25,7 @@
 #include "contract.h"
 #include "fixed.h"
 #include "profile.h"
+#include "unit/unit_seed.h"
 
 namespace {
 
@@ -58,21 +59,8 @@ uint64_t getPort(const VlWide<N>& p) {
     return uint64_t(p[0]) | (N > 1 ? uint64_t(p[1]) << 32 : 0);
 }
 
-const Profile& prof() {
-    static const Profile p = pst::loadProfile(PST_PROFILE_PATH);
-    return p;
-}
-
-uint64_t seed() {
-    static const uint64_t s = [] {
-        const char* e = std::getenv("PST_SEED");
-        const uint64_t v = e ? std::strtoull(e, nullptr, 0) : std::random_device{}() * 0x100000001ull;
-        std::printf("clut_unit[%s]: seed %llu (replay with PST_SEED=%llu)\n", prof().name.c_str(),
-                    (unsigned long long)v, (unsigned long long)v);
-        return v;
-    }();
-    return s;
-}
+using pst::unit::prof;
+uint64_t seed() { return pst::unit::seed("clut_unit"); }
 
 int vectorsPerTable() {
     const char* e = std::getenv("PST_CLUT_VECTORS");

@@ -3,25 +3,11 @@
 # Seed: PST_SEED=<n> in the environment replays a run (the test prints its seed).
 set(PST_NOISE_UNIT_PARAMS
     CoordInt,CoordFrac,MatrixInt,MatrixFrac,OffsetInt,OffsetFrac,NoiseLatticeFrac,NoiseInterp,NoiseCorner,NoiseHash,NoiseValueFrac,NoiseOutFrac,NoiseSteps,NoiseGuardBits,NoiseGradFrac)
-set(PST_NOISE_UNIT_SOURCES
-    ${PROJECT_SOURCE_DIR}/sim/unit/pst_noise_unit_top.sv
-    ${PROJECT_SOURCE_DIR}/rtl/octave/pst_octave_transform.sv
-    ${PROJECT_SOURCE_DIR}/rtl/noise/pst_noise.sv
-    ${PROJECT_SOURCE_DIR}/rtl/noise/pst_noise_weight.sv
-    ${PROJECT_SOURCE_DIR}/rtl/noise/pst_noise_corner.sv
-    ${PROJECT_SOURCE_DIR}/rtl/noise/pst_noise_lerp.sv
-    ${PROJECT_SOURCE_DIR}/rtl/common/pst_mul_booth.sv
-    ${PROJECT_SOURCE_DIR}/rtl/common/pst_delay.sv)
+# The top and the modules under test; their sub-modules Verilator finds in rtl/ (-y).
+set(PST_NOISE_UNIT_SOURCES ${PROJECT_SOURCE_DIR}/sim/unit/pst_noise_unit_top.sv
+    ${PROJECT_SOURCE_DIR}/rtl/octave/pst_octave_transform.sv ${PROJECT_SOURCE_DIR}/rtl/noise/pst_noise.sv)
 
-foreach(p ${PST_PROFILES})
-  add_executable(noise_unit_${p} ${PROJECT_SOURCE_DIR}/sim/unit/noise_unit_test.cpp)
-  target_link_libraries(noise_unit_${p} PRIVATE pst_golden GTest::gtest_main)
-  target_include_directories(noise_unit_${p} PRIVATE ${PROJECT_SOURCE_DIR}/sim)
-  target_compile_definitions(noise_unit_${p} PRIVATE PST_PROFILE_PATH="${PROJECT_SOURCE_DIR}/rtl/configs/${p}.toml")
-  pst_verilate(noise_unit_${p} TOP pst_noise_unit_top PROFILE ${p} PARAMS ${PST_NOISE_UNIT_PARAMS}
-               SOURCES ${PST_NOISE_UNIT_SOURCES})
-  gtest_discover_tests(noise_unit_${p} TEST_PREFIX "${p}." DISCOVERY_TIMEOUT 60)
-endforeach()
+pst_unit_tests(noise_unit TOP pst_noise_unit_top PARAMS ${PST_NOISE_UNIT_PARAMS} SOURCES ${PST_NOISE_UNIT_SOURCES})
 
 # Variants: a profile's formats with some noise parameters overridden, so that every
 # generate branch of the noise unit is built and compared (the two profiles cover
@@ -56,13 +42,7 @@ foreach(v ${PST_NOISE_VARIANTS})
   list(GET v 1 vprofile)
   list(GET v 2 voverrides)
   set(cfg ${PROJECT_SOURCE_DIR}/rtl/configs/${vprofile}.toml)
-  execute_process(COMMAND /usr/bin/python3 ${PROJECT_SOURCE_DIR}/scripts/profile.py ${cfg} --list --only ${PST_NOISE_UNIT_PARAMS}
-                  OUTPUT_VARIABLE plist RESULT_VARIABLE rc ERROR_VARIABLE err)
-  if(NOT rc EQUAL 0)
-    message(FATAL_ERROR "profile ${cfg}: ${err}")
-  endif()
-  string(STRIP "${plist}" plist)
-  string(REPLACE "\n" ";" plist "${plist}")
+  pst_profile_query(plist ${cfg} --list --only ${PST_NOISE_UNIT_PARAMS})
   string(REPLACE "," ";" ovlist "${voverrides}")
   set(gparams "")
   foreach(line ${plist})
@@ -76,7 +56,6 @@ foreach(v ${PST_NOISE_VARIANTS})
     endforeach()
     list(APPEND gparams -G${pname}=${pvalue})
   endforeach()
-  set_property(DIRECTORY APPEND PROPERTY CMAKE_CONFIGURE_DEPENDS ${cfg})
   set(target noise_unit_${vname})
   add_executable(${target} ${PROJECT_SOURCE_DIR}/sim/unit/noise_unit_test.cpp)
   target_link_libraries(${target} PRIVATE pst_golden GTest::gtest_main)

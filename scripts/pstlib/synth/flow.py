@@ -6,6 +6,7 @@ import dataclasses
 import json
 import pathlib
 import re
+import sys
 import tempfile
 import time
 
@@ -32,6 +33,20 @@ class Options:
     mem_cache: pathlib.Path = ROOT / "out" / "synth" / "memories"
     keep: bool = False
     reuse: bool = False
+
+
+def run_command(step, profile, failures=(RuntimeError,)):
+    """A command line's run of STEP() for PROFILE: (its result, 0), or (None, exit code) after
+    one `error:` line on stderr: 2 for bad input (InputError: nothing written), 1 when the flow
+    failed (FAILURES: a tool, a sign-off check)."""
+    try:
+        return step(), 0
+    except InputError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return None, 2
+    except failures as e:
+        print(f"error: {profile}: {e}", file=sys.stderr)
+        return None, 1
 
 
 def yosys_script(doc: dict, rom_dir, lib, tmp: pathlib.Path, old_basis: bool) -> str:

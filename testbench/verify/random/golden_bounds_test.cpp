@@ -260,7 +260,9 @@ TEST(GoldenBounds, FGradAndWWithinTheFormatsBound) {
                     name.c_str(), st.kept, st.skipped, st.wKept, st.worstF, st.worstG, st.worstW, st.maxErrF,
                     st.maxBoundF);
         EXPECT_GT(st.kept, 20000);
-        if (p.noise.basis != NoiseBasis::Worley) EXPECT_GT(st.wKept, 10000);
+        if (p.noise.basis != NoiseBasis::Worley) {
+            EXPECT_GT(st.wKept, 10000);
+        }
     }
 }
 
