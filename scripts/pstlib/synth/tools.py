@@ -50,7 +50,7 @@ def read_lines(doc: dict, rom_dir, lib) -> list:
     sources = " ".join(str(p) for p in rtl_sources())
     return [f"read_liberty -lib {lib}",
             f"read_verilog -lib {STANDIN_CELLS}",
-            f'read_verilog -sv -D SYNTHESIS -D PST_ROM_DIR="{rom_dir}" {sources}',
+            f'read_verilog -sv -I {ROOT / "rtl"} -D SYNTHESIS -D PST_ROM_DIR="{rom_dir}" {sources}',
             *chparams(doc),
             "chparam -set DebugProbes 0 pst_top"]
 
