@@ -27,7 +27,7 @@ struct AnimateArgs {
     std::string model = "rtl";   // rtl | golden
     SimOptions sim;
     std::function<Profile(const std::string&)> loadProfile;
-    std::function<void(const std::string&, double)> progress;   // (stage, fraction of the whole run)
+    std::function<void(const std::string&, double)> progress;   // (phase, fraction of the whole run)
 };
 
 // Temporal RMS error of a stream against the ground truth between frames k-1 and k: the RMS over

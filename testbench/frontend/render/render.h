@@ -42,7 +42,7 @@ struct RenderOptions {
     uint64_t seed = 1;      // jitter seed of the ground truth
     int threads = 0;        // 0 = all cores
     std::vector<FilterVariant> variants;  // extra filtered images, one per variant
-    // Progress callback (stage name, fraction done); empty = silent.
+    // Progress callback (phase name, fraction done); empty = silent.
     std::function<void(const std::string&, double)> progress;
 };
 

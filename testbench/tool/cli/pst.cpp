@@ -91,18 +91,18 @@ void checkVariants(const Scene& scene, const std::vector<FilterVariant>& variant
                 throw InputError("--variants: " + v.name + ": texture '" + t.name + "': " + why);
 }
 
-// Progress on stderr: one rewritten line on a terminal, a line per stage otherwise.
+// Progress on stderr: one rewritten line on a terminal, a line per phase otherwise.
 std::function<void(const std::string&, double)> progressPrinter(const std::string& name, bool quiet) {
     if (quiet) return {};
     const bool tty = isatty(STDERR_FILENO);
-    return [name, tty, last = std::string()](const std::string& stage, double frac) mutable {
+    return [name, tty, last = std::string()](const std::string& phase, double frac) mutable {
         if (tty) {
-            std::fprintf(stderr, "\r%s: %-6s %5.1f%%", name.c_str(), stage.c_str(), 100.0 * frac);
+            std::fprintf(stderr, "\r%s: %-6s %5.1f%%", name.c_str(), phase.c_str(), 100.0 * frac);
             if (frac >= 1.0) std::fprintf(stderr, "\n");
-        } else if (frac >= 1.0 || stage != last) {
-            if (frac >= 1.0) std::fprintf(stderr, "%s: %s done\n", name.c_str(), stage.c_str());
+        } else if (frac >= 1.0 || phase != last) {
+            if (frac >= 1.0) std::fprintf(stderr, "%s: %s done\n", name.c_str(), phase.c_str());
         }
-        last = stage;
+        last = phase;
     };
 }
 
@@ -1010,7 +1010,7 @@ int main(int argc, char** argv) {
     regress->add_option("--seed", rnd.seed, "Seed of --random")->needs(rndOpt);
     regress->add_option("--from", rnd.from, "Replay --random from the fragment with this index (starts at its segment)")->needs(rndOpt);
     regress->add_option("--batch", rnd.maxBatch, "Most fragments per random texture")->check(CLI::Range(1, 1 << 20))->needs(rndOpt);
-    regress->add_flag("--probes", rnd.probes, "Sample the octave-stage probes in --random (names the first bad stage)")->needs(rndOpt);
+    regress->add_flag("--probes", rnd.probes, "Sample the octave-stage probes in --random (names the first bad unit)")->needs(rndOpt);
     regress->add_flag("-q,--quiet", rndQuiet, "No progress on stderr");
     uint64_t injectAssert = UINT64_MAX;
     regress->add_option("--inject-assert", injectAssert, "Self-test: once fragment I (of --random, or of each scene run) is in "
@@ -1151,8 +1151,8 @@ int main(int argc, char** argv) {
             // One line per frame and model (rewritten in place on a terminal).
             if (!animQuiet)
                 an.progress = [name = fs::path(an.scene).stem().string(), tty = isatty(STDERR_FILENO)](
-                                  const std::string& stage, double frac) {
-                    std::fprintf(stderr, tty ? "\r%s: %-28s %5.1f%%" : "%s: %s %.1f%%\n", name.c_str(), stage.c_str(),
+                                  const std::string& phase, double frac) {
+                    std::fprintf(stderr, tty ? "\r%s: %-28s %5.1f%%" : "%s: %s %.1f%%\n", name.c_str(), phase.c_str(),
                                  100.0 * frac);
                     if (tty && frac >= 1.0) std::fprintf(stderr, "\n");
                 };
