@@ -20,7 +20,7 @@ struct AnimateArgs {
     int threads = 0;
     double fps = 0;              // 0: the scene's [animation] fps
     bool video = true;
-    std::string bandlimit;       // "": as the scene says; else every texture's (off | fade | widen)
+    std::string bandlimit;       // "": as the scene says; else every texture's (parseBandlimit)
     std::string filter;          // "": as the scene says; else every texture's filter kind
     std::vector<FilterVariant> variants;  // extra reference streams (named by the variant)
     std::vector<std::string> profiles;

@@ -28,7 +28,7 @@ struct Image {
 
 // A filter option applied to every texture of a scene (the ground-truth comparison of filters):
 // the filter kind and the bandlimited octaves. Spelled "KIND" or "KIND+BANDLIMIT" (parseVariant),
-// e.g. "sat", "trapezoid", "sat+fade", "trapezoid+widen".
+// e.g. "sat", "trapezoid", "sat+footprint", "trapezoid+isotropic".
 struct FilterVariant {
     std::string name;
     FilterKind filter = FilterKind::Sat;

@@ -52,7 +52,7 @@ struct RenderArgs {
     int size = 0, width = 0, height = 0, truth = 0, threads = 0;
     uint64_t seed = 1;
     bool quiet = false;
-    std::string bandlimit;    // every texture's bandlimit (off | fade | widen; reference model only)
+    std::string bandlimit;    // every texture's bandlimit (parseBandlimit's names)
     std::string filter;       // every texture's filter kind (parseFilterKind's names)
     std::vector<std::string> variants;  // extra filtered images (parseVariant's spellings)
 };
@@ -951,13 +951,15 @@ int main(int argc, char** argv) {
     render->add_option("--seed", ra.seed, "Jitter seed of the ground truth");
     render->add_option("-j,--threads", ra.threads, "Threads (default: all cores)")->check(CLI::Range(0, 256));
     render->add_flag("-q,--quiet", ra.quiet, "No progress on stderr");
-    render->add_option("--bandlimit", ra.bandlimit, "Every texture's bandlimited octaves: off, fade, widen, match or footprint (reference model only)")
-        ->check(CLI::IsMember({"off", "fade", "widen", "match", "footprint", "isotropic", "anisotropic"}));
+    const std::vector<std::string> bandlimitNames{"off", "footprint", "isotropic", "anisotropic"};
+    render->add_option("--bandlimit", ra.bandlimit, "Every texture's bandlimited octaves: off, footprint, isotropic or "
+                       "anisotropic (scenes/README.md)")
+        ->check(CLI::IsMember(bandlimitNames));
     const std::vector<std::string> filterNames{"none", "mip", "mip_linear", "sat", "box", "trapezoid"};
     render->add_option("--filter", ra.filter, "Every texture's filter kind: none, mip, mip_linear, sat, box or trapezoid")
         ->check(CLI::IsMember(filterNames));
     render->add_option("--variants", ra.variants, "Also the filtered image with every texture's filter (and bandlimit) "
-                       "replaced, per KIND[+BANDLIMIT] (e.g. trapezoid sat+fade), compared with the truth (reference only)")
+                       "replaced, per KIND[+BANDLIMIT] (e.g. trapezoid sat+footprint), compared with the truth (reference only)")
         ->delimiter(',');
 
     HwArgs hw;
@@ -1049,8 +1051,9 @@ int main(int argc, char** argv) {
     animate->add_option("-j,--threads", an.threads, "Threads (default: all cores)")->check(CLI::Range(0, 256));
     bool noVideo = false, animQuiet = false;
     animate->add_flag("--no-video", noVideo, "PNG frames and flicker.json only");
-    animate->add_option("--bandlimit", an.bandlimit, "Every texture's bandlimited octaves: off, fade, widen, match or footprint (reference model only)")
-        ->check(CLI::IsMember({"off", "fade", "widen", "match", "footprint", "isotropic", "anisotropic"}));
+    animate->add_option("--bandlimit", an.bandlimit, "Every texture's bandlimited octaves: off, footprint, isotropic or "
+                        "anisotropic (scenes/README.md)")
+        ->check(CLI::IsMember(bandlimitNames));
     animate->add_option("--filter", an.filter, "Every texture's filter kind: none, mip, mip_linear, sat, box or trapezoid")
         ->check(CLI::IsMember(filterNames));
     std::vector<std::string> animVariants;
