@@ -55,16 +55,8 @@ double evalF(const Texture& tex, const glm::dvec3& s, glm::dvec3* gradS) {
     return f;
 }
 
-double octaveFade(const Octave& o, const glm::dvec3& dsdx, const glm::dvec3& dsdy) {
-    const double nu = std::max(glm::length(o.M * dsdx), glm::length(o.M * dsdy));
-    return std::clamp(2.0 - nu / kFadeStart, 0.0, 1.0);
-}
-
 bool parseBandlimit(const std::string& name, Bandlimit* out) {
     if (name == "off") *out = Bandlimit::Off;
-    else if (name == "fade") *out = Bandlimit::Fade;
-    else if (name == "widen") *out = Bandlimit::Widen;
-    else if (name == "match") *out = Bandlimit::Match;
     else if (name == "footprint") *out = Bandlimit::Footprint;
     else if (name == "isotropic") *out = Bandlimit::Isotropic;
     else if (name == "anisotropic") *out = Bandlimit::Anisotropic;
@@ -82,9 +74,6 @@ std::string bandlimitUnsupported(const Texture& tex, Bandlimit b) {
 const char* toString(Bandlimit v) {
     switch (v) {
     case Bandlimit::Off: return "off";
-    case Bandlimit::Fade: return "fade";
-    case Bandlimit::Widen: return "widen";
-    case Bandlimit::Match: return "match";
     case Bandlimit::Footprint: return "footprint";
     case Bandlimit::Isotropic: return "isotropic";
     case Bandlimit::Anisotropic: return "anisotropic";
@@ -186,10 +175,6 @@ double noiseBoxGain(const NoiseOptions& opt, double nu) {
     return table[i] * (1 - t) + table[i + 1] * t;
 }
 
-double octaveMatch(const Octave& o, const NoiseOptions& opt, const glm::dvec3& dsdx, const glm::dvec3& dsdy) {
-    return std::sqrt(noiseBoxGain(opt, glm::length(o.M * dsdx)) * noiseBoxGain(opt, glm::length(o.M * dsdy)));
-}
-
 double spectralNorm(const glm::dmat3& M) {
     // Power iteration on M^T M from each axis (the largest Rayleigh quotient wins).
     const glm::dmat3 A = glm::transpose(M) * M;
@@ -265,7 +250,7 @@ double evalFBandlimited(const Texture& tex, const glm::dvec3& s, const glm::dvec
             f += o.amplitude * subbandNoise(o.M * s + o.offset, tex.noise, kind, o.M * dsdx, o.M * dsdy,
                                             gradS ? &gn : nullptr, &kept);
             if (gradS) g += o.amplitude * (glm::transpose(o.M) * gn);
-            // What the filter removed widens the colour-table filter, as for match.
+            // What the filter removed widens the colour-table filter, as for footprint.
             var += std::pow(o.amplitude * m.sd, 2) * std::max(0.0, 1.0 - kept);
             continue;
         }
@@ -277,22 +262,9 @@ double evalFBandlimited(const Texture& tex, const glm::dvec3& s, const glm::dvec
             var += std::pow(o.amplitude * m.sd, 2) * (1.0 - kept);
             continue;
         }
-        if (tex.bandlimit == Bandlimit::Isotropic) {
-            const double a = o.amplitude * octaveIsotropic(o, tex.noise, dsdx, dsdy);
-            glm::dvec3 gn;
-            f += a * noise(o.M * s + o.offset, tex.noise, gradS ? &gn : nullptr);
-            if (gradS) g += a * (glm::transpose(o.M) * gn);
-            continue;
-        }
-        const double alpha =
-            tex.bandlimit == Bandlimit::Match ? octaveMatch(o, tex.noise, dsdx, dsdy) : octaveFade(o, dsdx, dsdy);
-        f += o.amplitude * (1.0 - alpha) * m.mean;
-        // What the pixel's spread holds: fade/widen the removed part (1 - alpha)(n - mean); match the
-        // in-pixel share of the variance, sigma^2 (1 - alpha^2) (pixel mean's alpha^2 sigma^2 kept).
-        var += tex.bandlimit == Bandlimit::Match ? std::pow(o.amplitude * m.sd, 2) * (1.0 - alpha * alpha)
-                                                 : std::pow(o.amplitude * (1.0 - alpha) * m.sd, 2);
-        if (alpha == 0.0) continue;
-        const double a = o.amplitude * alpha;
+        // Isotropic: the term and its gradient scaled by alpha (off: the point sample).
+        const double a =
+            o.amplitude * (tex.bandlimit == Bandlimit::Isotropic ? octaveIsotropic(o, tex.noise, dsdx, dsdy) : 1.0);
         glm::dvec3 gn;
         f += a * noise(o.M * s + o.offset, tex.noise, gradS ? &gn : nullptr);
         if (gradS) g += a * (glm::transpose(o.M) * gn);
@@ -303,8 +275,7 @@ double evalFBandlimited(const Texture& tex, const glm::dvec3& s, const glm::dvec
 }
 
 bool bandlimitWidens(const Texture& tex) {
-    return tex.bandlimit == Bandlimit::Widen || tex.bandlimit == Bandlimit::Match ||
-           tex.bandlimit == Bandlimit::Footprint || tex.bandlimit == Bandlimit::Anisotropic ||
+    return tex.bandlimit == Bandlimit::Footprint || tex.bandlimit == Bandlimit::Anisotropic ||
            (tex.bandlimit == Bandlimit::Isotropic && tex.noise.basis == NoiseBasis::Subband);
 }
 

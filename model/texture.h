@@ -42,19 +42,19 @@ struct Octave {
 bool parseGradNorm(const std::string& name, GradNorm* out);  // "euclid", "max_half_min", "l1"
 const char* toString(GradNorm v);
 
-// Bandlimited octaves: off (the paper), fade (octaveFade), widen (fade, and the filter width
-// grows to sqrt(w^2 + 12 sigma^2), sigma the faded terms' standard deviation: a box of width
-// sqrt(12) sigma has the variance of what was removed), match (octaveMatch instead of the linear
-// fade: each term keeps the standard deviation the pixel's box average of it has; widened as widen),
-// footprint (match across the footprint's minor edge; along its major edge the term is the mean of
-// up to kFootprintSamples point samples spread over the edge, so it follows the pixel's own average
-// from frame to frame; octaveFootprint), isotropic (the hardware's variant, octaveIsotropic: the
-// term and its gradient scaled by alpha toward 0, no widening). With basis subband, isotropic is
-// the subband filter's isotropic Gaussian (as wide as the footprint's major axis) and anisotropic
-// its eq. 4-7 Gaussian from the footprint's Jacobian (subband.h; anisotropic needs that basis).
+// Bandlimited octaves (scenes/README.md has the measured table): off (the paper), footprint
+// (octaveFootprint: each term keeps the standard deviation the pixel's box average of it has
+// across the footprint's minor edge and is the mean of up to kFootprintSamples point samples along
+// its major edge, so it follows the pixel's own average from frame to frame; the filter width
+// grows to sqrt(w^2 + 12 sigma^2), sigma the removed terms' standard deviation: a box of width
+// sqrt(12) sigma has the variance of what was removed), isotropic (the hardware's variant,
+// octaveIsotropic: the term and its gradient scaled by alpha toward 0, no widening). With basis
+// subband, isotropic is the subband filter's isotropic Gaussian (as wide as the footprint's major
+// axis) and anisotropic its eq. 4-7 Gaussian from the footprint's Jacobian (subband.h;
+// anisotropic needs that basis).
 struct Texture;
-enum class Bandlimit { Off, Fade, Widen, Match, Footprint, Isotropic, Anisotropic };
-// "off", "fade", "widen", "match", "footprint", "isotropic", "anisotropic"
+enum class Bandlimit { Off, Footprint, Isotropic, Anisotropic };
+// "off", "footprint", "isotropic", "anisotropic"
 bool parseBandlimit(const std::string& name, Bandlimit* out);
 const char* toString(Bandlimit v);
 // Why texture tex cannot take bandlimit b ("" if it can): anisotropic needs basis subband.
@@ -74,10 +74,9 @@ struct Texture {
     ColorMap clut;
     FilterKind filter = FilterKind::Sat;
     GradNorm norm = GradNorm::Euclid;
-    // Bandlimited octaves (beyond the paper; reference model only): in shade(), each octave's
-    // term and its share of grad_s f fade toward the basis's mean (0 for rayshade) as the
-    // octave's lattice passes the pixel's Nyquist limit (octaveFade); Widen also widens the
-    // colour-table filter by the faded terms' spread. Point samples (evalF) are unchanged.
+    // Bandlimited octaves (beyond the paper; isotropic also in the hardware): in shade(), each
+    // octave's term and its share of grad_s f as the pixel can show them (evalFBandlimited).
+    // Point samples (evalF) are unchanged.
     Bandlimit bandlimit = Bandlimit::Off;
     // "FILE:LINE: FIELD" of the noise basis in its scene file (set by the parser when the basis
     // is given), so a consumer that cannot do the basis (the hardware profiles) names it.
@@ -97,29 +96,18 @@ struct TextureSample {
 // f and grad_s f only.
 double evalF(const Texture& tex, const glm::dvec3& s, glm::dvec3* gradS = nullptr);
 
-// The weight of octave o in a pixel whose footprint has the Jacobian columns dsdx, dsdy: the
-// octave's lattice (T_i s = M s + o) moves nu = max(|M dsdx|, |M dsdy|) cells per pixel; below
-// kFadeStart cells per pixel the term is kept whole, above 2 kFadeStart it is removed, linear in
-// between. A lattice cell holds about one period of the noise, and Nyquist asks for 2 pixels
-// per period: the term goes between half a cell and one cell per pixel.
-constexpr double kFadeStart = 0.5;
-double octaveFade(const Octave& o, const glm::dvec3& dsdx, const glm::dvec3& dsdy);
-
 // The variance of the basis averaged over a segment nu lattice cells long (random direction and
 // place), over the basis's variance: 1 at nu = 0, about c / nu for large nu. Sampled once per basis
 // at quarter octaves of nu in [1/16, 16] (Monte Carlo: 1024 segments each, 8 points per cell, at
 // least 16) and interpolated in lg nu; 1 below, the last value times 16 / nu above.
 double noiseBoxGain(const NoiseOptions& opt, double nu);
 
-// The variance-matched weight of octave o: sqrt(g(|M dsdx|) g(|M dsdy|)), g = noiseBoxGain, the
-// share of the term's standard deviation that survives the pixel's box average (the footprint's
-// two edges averaged independently: exact for a separable correlation).
-double octaveMatch(const Octave& o, const NoiseOptions& opt, const glm::dvec3& dsdx, const glm::dvec3& dsdy);
-
 // Bandlimit::Isotropic, the hardware's variant (rtl/octave/pst_octave_fade.sv): each edge's footprint in
 // lattice cells bounded by nu = ||M||_2 footprintNorm(edge) (one per-octave register, lg ||M||_2,
 // instead of |M edge|'s 9 products), clamped to [2^kIsoLgLo, 2^kIsoLgHi] (the fade table's range),
-// and alpha = sqrt(g(nu_x)) sqrt(g(nu_y)), g = noiseBoxGain: the term a alpha n and its gradient
+// and alpha = sqrt(g(nu_x)) sqrt(g(nu_y)), g = noiseBoxGain (the share of the term's standard
+// deviation that survives the pixel's box average, the two edges averaged independently): the
+// term a alpha n and its gradient
 // a alpha M^T grad n (toward 0, not toward the basis's mean; no widening).
 constexpr double kIsoLgLo = -3.0, kIsoLgHi = 5.0;
 double octaveIsotropic(const Octave& o, const NoiseOptions& opt, const glm::dvec3& dsdx, const glm::dvec3& dsdy);
@@ -140,15 +128,13 @@ constexpr int kFootprintSamples = 16;
 double octaveFootprint(const Octave& o, const NoiseOptions& opt, const glm::dvec3& s, const glm::dvec3& dsdx,
                        const glm::dvec3& dsdy, glm::dvec3* grad, double* keptVar);
 
-// f and grad_s f with every octave's term a_i n faded by alpha = octaveFade (octaveMatch for
-// Bandlimit::Match) toward the basis's
-// mean, a_i (alpha n + (1 - alpha) mean), its gradient share alpha a_i M^T grad n (the
-// bandlimited texture); fadedSd: the standard deviation of what was removed,
-// sqrt(sum ((1 - alpha) a_i sd)^2).
+// f and grad_s f of the bandlimited texture: every octave's term as tex.bandlimit filters it
+// (octaveFootprint, octaveIsotropic, the subband filters; off: the point sample, as evalF);
+// fadedSd: the standard deviation of what was removed (0 for off and the hardware's isotropic).
 double evalFBandlimited(const Texture& tex, const glm::dvec3& s, const glm::dvec3& dsdx,
                         const glm::dvec3& dsdy, glm::dvec3* gradS = nullptr, double* fadedSd = nullptr);
-// Whether the bandlimit widens the colour-table filter by the removed spread: widen, match,
-// footprint, and the subband basis's filters (isotropic, anisotropic).
+// Whether the bandlimit widens the colour-table filter by the removed spread: footprint and the
+// subband basis's filters (isotropic, anisotropic).
 bool bandlimitWidens(const Texture& tex);
 // The filter width of the bandlimited texture: filterWidth of its gradient, widened by fadedSd
 // when bandlimitWidens.
@@ -163,7 +149,7 @@ double filterWidth(const glm::dvec3& gradS, const glm::dvec3& dsdx, const glm::d
 // what FilterKind::Trapezoid filters over.
 glm::dvec2 footprintWidths(const glm::dvec3& gradS, const glm::dvec3& dsdx, const glm::dvec3& dsdy);
 
-// The footprint widened by the faded terms' spread for Bandlimit::Widen (both widths scaled so
+// The footprint widened by the removed terms' spread when bandlimitWidens (both widths scaled so
 // that wx^2 + wy^2 grows by 12 fadedSd^2, as bandlimitedWidth's euclidean w); unchanged otherwise.
 glm::dvec2 bandlimitedFootprint(const Texture& tex, const glm::dvec2& wxy, double fadedSd);
 

@@ -243,59 +243,25 @@ TEST(Texture, ShadeUsesTheGivenFilter) {
               tex.clut.sample(evalF(tex, s)));
 }
 
-TEST(Texture, OctaveFadeGoesFromHalfACellToOneCellPerPixel) {
-    Octave o;
-    o.M = glm::dmat3(4.0);  // 4 cells per unit
-    const glm::dvec3 tiny(0.01, 0, 0), along(0, 0.1, 0);
-    EXPECT_EQ(octaveFade(o, tiny, tiny), 1.0);                               // 0.04 cells / pixel
-    EXPECT_EQ(octaveFade(o, glm::dvec3(0.125, 0, 0), tiny), 1.0);            // 0.5: still whole
-    EXPECT_DOUBLE_EQ(octaveFade(o, tiny, glm::dvec3(0, 0, 0.1875)), 0.5);     // 0.75: half
-    EXPECT_EQ(octaveFade(o, glm::dvec3(0.25, 0, 0), along), 0.0);            // 1 cell / pixel: gone
-    EXPECT_EQ(octaveFade(o, glm::dvec3(3.0, 0, 0), along), 0.0);
-    o.M = glm::dmat3(4.0, 0, 0, 0, 0.0, 0, 0, 0, 4.0);  // no t frequency: a footprint along t is free
-    EXPECT_EQ(octaveFade(o, glm::dvec3(0, 5.0, 0), glm::dvec3(0, 0, 0.01)), 1.0);
-}
-
-TEST(Texture, BandlimitedIsTheFullTextureForSmallFootprintsAndTheQuadricForLarge) {
+TEST(Texture, BandlimitedOffIsThePointSampleAndFootprintWidensByTheRemovedSpread) {
     Texture tex = testTexture({});
-    const glm::dvec3 s(0.3, -1.2, 2.7);
+    const glm::dvec3 s(0.3, -1.2, 2.7), mid(0.5, 0, 0), midY(0, 0.01, 0);
     glm::dvec3 g, gb;
     const double f = evalF(tex, s, &g);
-    const glm::dvec3 small(1e-4, 0, 0), smallY(0, 1e-4, 0);
-    EXPECT_EQ(evalFBandlimited(tex, s, small, smallY, &gb), f);
+    double sd = -1;
+    EXPECT_EQ(evalFBandlimited(tex, s, mid, midY, &gb, &sd), f);  // off
     EXPECT_EQ(gb, g);
-    // Faded terms go to the basis's mean (about 0 for rayshade), their gradient share to 0.
+    EXPECT_EQ(sd, 0.0);
+    // The basis's moments (rayshade: mean about 0).
     const NoiseMoments m = noiseMoments(tex.noise);
     EXPECT_LT(std::abs(m.mean), 0.05 * m.sd);
     EXPECT_GT(m.sd, 0.0);
-    double sumA = 0;
-    for (const Octave& o : tex.octaves) sumA += o.amplitude;
-    const glm::dvec3 huge(10.0, 0, 0), hugeY(0, 10.0, 0);
-    double sd = -1;
-    EXPECT_NEAR(evalFBandlimited(tex, s, huge, hugeY, &gb, &sd), tex.quadric.value(s) + sumA * m.mean, 1e-12);
-    EXPECT_EQ(gb, tex.quadric.gradient(s));
-    EXPECT_NEAR(sd, std::sqrt([&] { double v = 0; for (const Octave& o : tex.octaves) v += std::pow(o.amplitude * m.sd, 2); return v; }()), 1e-12);
-    // In between: the coarse octave stays, the fine one goes, and shade() follows tex.bandlimit.
-    tex.octaves.resize(2);
-    tex.octaves[0].M = glm::dmat3(1.0);
-    tex.octaves[1].M = glm::dmat3(4.0);
-    Texture first = tex;
-    first.octaves.resize(1);
-    const glm::dvec3 mid(0.5, 0, 0), midY(0, 0.01, 0);
-    ASSERT_EQ(octaveFade(tex.octaves[0], mid, midY), 1.0);
-    ASSERT_EQ(octaveFade(tex.octaves[1], mid, midY), 0.0);
-    const double kept = evalF(first, s, &g) + tex.octaves[1].amplitude * m.mean;
-    EXPECT_NEAR(evalFBandlimited(tex, s, mid, midY, &gb, &sd), kept, 1e-12);
-    EXPECT_DOUBLE_EQ(sd, tex.octaves[1].amplitude * m.sd);
-    EXPECT_NE(evalF(tex, s), evalF(first, s));
-    tex.bandlimit = Bandlimit::Fade;
-    const TextureSample fade = shade(tex, s, mid, midY);
-    EXPECT_NEAR(fade.f, kept, 1e-12);
-    EXPECT_DOUBLE_EQ(fade.filterWidth, filterWidth(gb, mid, midY, tex.norm));
-    // Widen: the box grows to the variance of what was removed, sqrt(w^2 + 12 sd^2).
-    tex.bandlimit = Bandlimit::Widen;
-    EXPECT_DOUBLE_EQ(shade(tex, s, mid, midY).filterWidth,
-                     std::sqrt(fade.filterWidth * fade.filterWidth + 12.0 * sd * sd));
+    // Footprint: the box grows to the variance of what was removed, sqrt(w^2 + 12 sd^2).
+    tex.bandlimit = Bandlimit::Footprint;
+    evalFBandlimited(tex, s, mid, midY, &gb, &sd);
+    EXPECT_GT(sd, 0.0);
+    const double w = filterWidth(gb, mid, midY, tex.norm);
+    EXPECT_DOUBLE_EQ(shade(tex, s, mid, midY).filterWidth, std::sqrt(w * w + 12.0 * sd * sd));
 }
 
 // The variance gain of a box average of the noise: 1 for a point, falling like c / nu for long
@@ -326,27 +292,21 @@ TEST(Texture, NoiseBoxGain) {
         }
         EXPECT_NEAR(noiseBoxGain(opt, nu), s2 / n / (m.sd * m.sd), 0.15 * noiseBoxGain(opt, nu)) << nu;
     }
-    Octave o;
-    o.M = glm::dmat3(2.0);
-    const glm::dvec3 dx(0.5, 0, 0), dy(0, 0, 2.0);
-    EXPECT_NEAR(octaveMatch(o, opt, dx, dy), std::sqrt(noiseBoxGain(opt, 1.0) * noiseBoxGain(opt, 4.0)), 1e-12);
 }
 
-// Match and footprint: the full texture for a vanishing footprint; for a long thin footprint the
-// footprint term is the mean of its samples along the long edge (checked by hand for one octave).
-TEST(Texture, MatchAndFootprintBandlimits) {
+// Footprint: the full texture for a vanishing footprint; for a long thin footprint the term is
+// the mean of its samples along the long edge (checked by hand for one octave).
+TEST(Texture, FootprintBandlimit) {
     Texture tex = testTexture({});
     const glm::dvec3 s(0.3, -1.2, 2.7);
     glm::dvec3 g, gb;
     const double f = evalF(tex, s, &g);
     const glm::dvec3 tiny(1e-9, 0, 0), tinyY(0, 1e-9, 0);
-    for (Bandlimit b : {Bandlimit::Match, Bandlimit::Footprint}) {
-        tex.bandlimit = b;
-        double sd = -1;
-        EXPECT_NEAR(evalFBandlimited(tex, s, tiny, tinyY, &gb, &sd), f, 1e-6) << toString(b);
-        EXPECT_NEAR(glm::length(gb - g), 0.0, 1e-6 * glm::length(g)) << toString(b);
-        EXPECT_LT(sd, 1e-3) << toString(b);
-    }
+    tex.bandlimit = Bandlimit::Footprint;
+    double sd = -1;
+    EXPECT_NEAR(evalFBandlimited(tex, s, tiny, tinyY, &gb, &sd), f, 1e-6);
+    EXPECT_NEAR(glm::length(gb - g), 0.0, 1e-6 * glm::length(g));
+    EXPECT_LT(sd, 1e-3);
     Octave o;
     o.amplitude = 1;
     o.M = glm::dmat3(1.0);

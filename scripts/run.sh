@@ -35,7 +35,7 @@ echo "== animation: seascape fly-in, 24 frames at 64x64 through the reference an
 mkdir -p out/animations
 /usr/bin/python3 scripts/flicker.py out/anim/seascape --md out/animations/flicker.md || rc=1
 echo "== filter options against the ground truth (scenes 64x64, 16x16 truth; sequences 16 frames 48x48, 8x8 truth)"
-VARIANTS=sat,box,trapezoid,sat+fade,sat+widen,sat+match,sat+footprint,sat+isotropic,trapezoid+footprint
+VARIANTS=sat,box,trapezoid,sat+footprint,sat+isotropic,trapezoid+footprint
 stills=()
 for scene in scenes/*.toml; do
   name=$(basename "$scene" .toml)

@@ -44,7 +44,7 @@ public:
 };
 
 // What the octave-stage probes showed for one fragment (per active octave), for the
-// scoreboard's stage localization.
+// scoreboard's unit localization.
 struct ProbeFx {
     int64_t q = 0;
     std::vector<std::array<int, 3>> lat;

@@ -1,4 +1,4 @@
-// Golden model of stages 3-5 (docs/HARDWARE.md); mirrors rtl/octave/pst_quadric.sv,
+// Golden model of units 3-5 (docs/HARDWARE.md); mirrors rtl/octave/pst_quadric.sv,
 // rtl/octave/pst_octave_term.sv, rtl/width/pst_filter_width.sv and rtl/common/pst_isqrt.sv step for step.
 //
 // i128 budget. Widths below are signed bit counts of the exact intermediates, with the

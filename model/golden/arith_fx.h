@@ -1,9 +1,9 @@
-// Golden (bit-accurate) model of the arithmetic stages of docs/HARDWARE.md:
-//   stage 3  quadric            rtl/octave/pst_quadric.sv        quadricFx
-//   stage 4  octave term        rtl/octave/pst_octave_term.sv    octaveTermFx
-//            accumulation       rtl/top/pst_top.sv            accumulateF / accumulateGrad
-//   stage 5  filter width       rtl/width/pst_filter_width.sv   filterWidthFx
-//            integer sqrt       rtl/common/pst_isqrt.sv          isqrtFx
+// Golden (bit-accurate) model of the arithmetic units of docs/HARDWARE.md:
+//   unit 3  quadric          rtl/octave/pst_quadric.sv       quadricFx
+//   unit 4  octave term      rtl/octave/pst_octave_term.sv   octaveTermFx
+//           accumulation     rtl/octave/pst_octave_accum.sv  accumulateF / accumulateGrad
+//   unit 5  filter width     rtl/width/pst_filter_width.sv   filterWidthFx
+//           integer sqrt     rtl/common/pst_isqrt.sv         isqrtFx
 // Same steps and rounding as the RTL, bit for bit. Every value is a sign-extended integer of
 // its format (value = integer / 2^frac); products and sums are exact in fx::i128 (the bit
 // budget of each step is written next to it in arith_fx.cpp).
@@ -17,23 +17,23 @@
 
 namespace pst {
 
-// Stage 3. s: 3 x Coord; coef: A..J of eq. 3 (Quadric format).
+// Unit 3. s: 3 x Coord; coef: A..J of eq. 3 (Quadric format).
 //   v = (Q [s 1])_xyz exact (QuadricFrac + CoordFrac fraction bits),
 //   q = s . v + (D s + G t + I r + J) exact (QuadricFrac + 2 CoordFrac) = eq. 3,
 //   *q = sat_F(floor(q to FFrac)),  gradq[k] = sat_Grad(floor(2 v_k to GradFrac)).
 void quadricFx(const Profile& p, const int64_t s[3], const int64_t coef[10], int64_t* q, int64_t gradq[3]);
 
-// Stage 4, one octave. n: Q4.NoiseOutFrac; g: 3 x Q6.NoiseOutFrac; a: Amplitude;
+// Unit 4, one octave. n: Q4.NoiseOutFrac; g: 3 x Q6.NoiseOutFrac; a: Amplitude;
 // gm: 9 x GradMatrix, row-major GM = a M^T (gm[3 r + c]).
 //   *fterm = sat_F(floor(a n to FFrac)),  gterm[r] = sat_Grad(floor(sum_c gm[3r+c] g[c] to GradFrac)).
 void octaveTermFx(const Profile& p, int64_t n, const int64_t g[3], int64_t a, const int64_t gm[9],
                   int64_t* fterm, int64_t gterm[3]);
 
-// Stage 4, the accumulation (done by the integrator, pst_top): the exact sum of q and the
+// Unit 4, the accumulation (done by the integrator, pst_top): the exact sum of q and the
 // active octaves' terms (wide enough for 16 terms), saturated once at the end.
 //   accumulateF    = sat_F(q + sum terms)
 //   accumulateGrad = sat_Grad(gradq_k + sum terms_k), one component.
-// Stage 4, bandlimited octaves (filter.bandlimit = isotropic; rtl/octave/pst_fade_lg.sv and
+// Unit 4, bandlimited octaves (filter.bandlimit = isotropic; rtl/octave/pst_fade_lg.sv and
 // rtl/octave/pst_octave_fade.sv). Per pixel, one Jacobian column e (3 x Jacobian):
 //   v_k = |e_k|, mx = max v_k, r = sum v_k - mx, L = mx + floor(r / 4) + floor(r / 8)  (max + 3/8 (mid + min))
 //   fadeLgFx = lg L with FadeLgFrac fraction bits by Mitchell's approximation: 2^FadeLgFrac
@@ -49,7 +49,7 @@ int64_t fadeScaleFx(int64_t v, int64_t alpha);
 int64_t accumulateF(const Profile& p, int64_t q, const std::vector<int64_t>& terms);
 int64_t accumulateGrad(const Profile& p, int64_t gradq, const std::vector<int64_t>& terms);
 
-// Stage 5. grad: 3 x Grad; j: 6 x Jacobian (ds/dx, dt/dx, dr/dx, ds/dy, dt/dy, dr/dy).
+// Unit 5. grad: 3 x Grad; j: 6 x Jacobian (ds/dx, dt/dx, dr/dx, ds/dy, dt/dy, dr/dy).
 //   gx = grad . dsdx, gy = grad . dsdy exact (GradFrac + JacobianFrac),
 //   Wx = floor(gx N to WidthFrac) (N = 2^Log2Clut: a shift), Wy likewise,
 //   ax = min(|Wx|, WMax), ay = min(|Wy|, WMax)   (WMax = 2^WW - 1, WW = contract::w_width(Log2Clut, WidthFrac):

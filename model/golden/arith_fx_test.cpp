@@ -1,4 +1,4 @@
-// Tests of the golden arithmetic stages (arith_fx.cpp) against the double reference
+// Tests of the golden arithmetic units (arith_fx.cpp) against the double reference
 // (model/texture.h) on quantized inputs, with error bounds derived from the steps, plus exact
 // identities (eq. 3 expanded), the integer square root, and the saturation cases.
 #include "arith_fx.h"

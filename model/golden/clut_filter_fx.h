@@ -1,4 +1,4 @@
-// Stage 6 of docs/HARDWARE.md, bit for bit: the colour-table filter (paper section 3.3) as
+// Unit 6 of docs/HARDWARE.md, bit for bit: the colour-table filter (paper section 3.3) as
 // rtl/colour/pst_clut_filter.sv computes it, plus the driver-side table builder.
 //
 // Tables (the hardware RAM contents, written through the register port):

@@ -1,16 +1,16 @@
-// Golden model of the octave transform and the noise unit (docs/HARDWARE.md stages 1 and 2),
+// Golden model of the octave transform and the noise unit (docs/HARDWARE.md units 1 and 2),
 // bit for bit as rtl/octave/pst_octave_transform.sv and rtl/noise/pst_noise.sv (same steps, same floors).
 //
 // Notation: LF = NoiseLatticeFrac, VF = NoiseValueFrac, OF = NoiseOutFrac,
 // NF = OF + noise.guard_bits (internal node fraction bits), F = noiseGradFloor (NF -
 // noise.grad_frac when that is > 0, else 0: the derivative lanes' floor). floor = fx::floorShift.
 //
-// Stage 1 (octave transform), per axis r:
+// Unit 1 (octave transform), per axis r:
 //   acc = sum_j M[r][j] s[j] + (o[r] << (MatrixFrac + CoordFrac - OffsetFrac))   exact
 //   p   = floor(acc to LF fraction bits)
 //   u   = p mod 2^LF (unsigned fraction), L = (floor(p / 2^LF) + 576) mod 4096.
 //
-// Stage 2 (noise unit), U = u * 2^LF per axis:
+// Unit 2 (noise unit), U = u * 2^LF per axis:
 //   weights   scurve: u2 = floor(U U / 2^LF); s = floor(u2 (3 2^LF - 2U) / 2^LF);
 //                     ds = 6 (U - u2)            (= 6 u (1 - u), reusing u2: no multiplier)
 //             linear: s = U; ds = 2^LF (ds = 1: the own-axis product is b - a, exact)

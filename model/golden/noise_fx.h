@@ -1,4 +1,4 @@
-// Golden (bit-accurate) model of pipeline stages 1 and 2 (docs/HARDWARE.md): the octave
+// Golden (bit-accurate) model of pipeline units 1 and 2 (docs/HARDWARE.md): the octave
 // transform p = M s + o and the noise unit n(p), dn/dp. Mirrors rtl/octave/pst_octave_transform.sv
 // and rtl/noise/pst_noise.sv step for step; the arithmetic is documented in the SV module headers
 // and again in noise_fx.cpp. Every value is an integer: a format's value is integer / 2^frac.
@@ -23,14 +23,14 @@ inline int noiseGradFloor(const Profile& p) {
     return p.noiseGradFrac < noiseNodeFrac(p) ? noiseNodeFrac(p) - p.noiseGradFrac : 0;
 }
 
-// Stage 1. s: 3 x Coord, M: 9 x Matrix (row-major, M[3 r + c]), o: 3 x Offset, all
+// Unit 1. s: 3 x Coord, M: 9 x Matrix (row-major, M[3 r + c]), o: 3 x Offset, all
 // sign-extended integers of their formats. Out per axis: lat = lattice index after Rayshade's
 // 1e6 offset, mod 4096 (0..4095); frac = the unsigned NoiseLatticeFrac-bit fraction u.
 // Throws std::invalid_argument if MatrixFrac + CoordFrac < NoiseLatticeFrac or < OffsetFrac.
 void octaveTransformFx(const Profile& prof, const int64_t s[3], const int64_t M[9], const int64_t o[3],
                        int lat[3], int64_t frac[3]);
 
-// Stage 2. In: lat (0..4095) and frac (0 .. 2^NoiseLatticeFrac - 1) per axis. Out: n
+// Unit 2. In: lat (0..4095) and frac (0 .. 2^NoiseLatticeFrac - 1) per axis. Out: n
 // (Q4.NoiseOutFrac) and grad = dn/dp (3 x Q6.NoiseOutFrac), as sign-extended integers.
 void noiseFx(const Profile& prof, const int lat[3], const int64_t frac[3], int64_t* n, int64_t grad[3]);
 

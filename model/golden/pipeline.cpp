@@ -11,14 +11,14 @@
 
 namespace pst {
 
-const char* toString(Stage s) {
-    switch (s) {
-        case Stage::Transform: return "octave transform (lattice index, fraction)";
-        case Stage::Noise: return "noise (value, gradient)";
-        case Stage::Quadric: return "quadric (q, grad q)";
-        case Stage::Accumulate: return "octave accumulation (f, grad f)";
-        case Stage::FilterWidth: return "filter width (W)";
-        case Stage::ClutFilter: return "colour-table filter (RGBA)";
+const char* toString(Unit u) {
+    switch (u) {
+        case Unit::Transform: return "octave transform (lattice index, fraction)";
+        case Unit::Noise: return "noise (value, gradient)";
+        case Unit::Quadric: return "quadric (q, grad q)";
+        case Unit::Accumulate: return "octave accumulation (f, grad f)";
+        case Unit::FilterWidth: return "filter width (W)";
+        case Unit::ClutFilter: return "colour-table filter (RGBA)";
         default: return "none";
     }
 }
@@ -72,19 +72,19 @@ void GoldenPipeline::write(uint16_t addr, uint32_t data) {
     clut_->write(addr, data);  // decodes the table ranges itself
 }
 
-PixelFx GoldenPipeline::eval(const FragmentFx& fr, StageTrace* trace) const {
+PixelFx GoldenPipeline::eval(const FragmentFx& fr, UnitTrace* trace) const {
     const Profile& p = profile_;
-    StageTrace local;
-    StageTrace& t = trace ? *trace : local;
-    t = StageTrace();
+    UnitTrace local;
+    UnitTrace& t = trace ? *trace : local;
+    t = UnitTrace();
     t.octaves = std::min(active_, p.octaves);
-    auto bump = [&](Stage s) { return fault_ == s ? 1 : 0; };
+    auto bump = [&](Unit s) { return fault_ == s ? 1 : 0; };
 
-    // Stage 3: quadric (independent of the octaves).
+    // Unit 3: quadric (independent of the octaves).
     quadricFx(p, fr.s, quad_, &t.q, t.gradq);
-    t.q = fx::wrapSigned(t.q + bump(Stage::Quadric), p.f.width());
+    t.q = fx::wrapSigned(t.q + bump(Unit::Quadric), p.f.width());
 
-    // Stages 1, 2, 4: per octave transform, noise, term; then the accumulation.
+    // Units 1, 2, 4: per octave transform, noise, term; then the accumulation.
     fx::i128 fsum = t.q;
     fx::i128 gsum[3] = {t.gradq[0], t.gradq[1], t.gradq[2]};
     // Bandlimited octaves: the footprint's two edges' lg lengths, once per pixel.
@@ -94,13 +94,13 @@ PixelFx GoldenPipeline::eval(const FragmentFx& fr, StageTrace* trace) const {
     for (int i = 0; i < t.octaves; ++i) {
         const Octave& o = oct_[i];
         octaveTransformFx(p, fr.s, o.m, o.o, t.lat[i], t.frac[i]);
-        if (i == 0 && fault_ == Stage::Transform)
+        if (i == 0 && fault_ == Unit::Transform)
             t.frac[i][0] = int64_t(fx::wrapUnsigned(t.frac[i][0] + 1, p.noiseLatticeFrac));
         if (p.noise.basis == NoiseBasis::Worley)
             worleyFx(p, t.lat[i], t.frac[i], worley_, &t.n[i], t.g[i]);
         else
             noiseFx(p, t.lat[i], t.frac[i], &t.n[i], t.g[i]);
-        if (i == 0) t.n[i] += bump(Stage::Noise);
+        if (i == 0) t.n[i] += bump(Unit::Noise);
         octaveTermFx(p, t.n[i], t.g[i], o.a, o.gm, &t.fterm[i], t.gterm[i]);
         t.alpha[i] = fade ? octaveFadeFx(t.lgx, t.lgy, o.lgm, fade_) : int64_t(1) << contract::kFadeFrac;
         t.fterm[i] = fadeScaleFx(t.fterm[i], t.alpha[i]);
@@ -109,16 +109,16 @@ PixelFx GoldenPipeline::eval(const FragmentFx& fr, StageTrace* trace) const {
         for (int k = 0; k < 3; ++k) gsum[k] += t.gterm[i][k];
     }
     t.f = fx::satSigned(fsum, p.f.width());
-    if (fault_ == Stage::Accumulate) t.f = fx::wrapSigned(t.f + 1, p.f.width());
+    if (fault_ == Unit::Accumulate) t.f = fx::wrapSigned(t.f + 1, p.f.width());
     for (int k = 0; k < 3; ++k) t.grad[k] = fx::satSigned(gsum[k], p.grad.width());
 
-    // Stage 5: filter width.
+    // Unit 5: filter width.
     t.w = filterWidthFx(p, t.grad, fr.j);
-    if (fault_ == Stage::FilterWidth) t.w = int64_t(fx::wrapUnsigned(t.w + 1, p.widthBits()));
+    if (fault_ == Unit::FilterWidth) t.w = int64_t(fx::wrapUnsigned(t.w + 1, p.widthBits()));
 
-    // Stage 6: colour-table filter.
+    // Unit 6: colour-table filter.
     t.rgba = clut_->filter(t.f, t.w, (ctrl_ & 1u) != 0, int((ctrl_ >> 1) & 3u));
-    if (fault_ == Stage::ClutFilter) t.rgba ^= 1u;
+    if (fault_ == Unit::ClutFilter) t.rgba ^= 1u;
 
     PixelFx px;
     px.tag = fr.tag;
@@ -129,7 +129,7 @@ PixelFx GoldenPipeline::eval(const FragmentFx& fr, StageTrace* trace) const {
     return px;
 }
 
-std::string StageTrace::describe(const Profile& p) const {
+std::string UnitTrace::describe(const Profile& p) const {
     std::ostringstream os;
     for (int i = 0; i < octaves; ++i) {
         os << "  octave " << i << ": lattice (" << lat[i][0] << ", " << lat[i][1] << ", " << lat[i][2]

@@ -1,6 +1,6 @@
-// The golden model of pst_top: the same register map, the same stages and the same rounding
-// as the RTL (docs/HARDWARE.md), bit for bit. It can return every stage's intermediate values
-// for one fragment, and it can perturb one stage on purpose (to show that the scoreboard
+// The golden model of pst_top: the same register map, the same units and the same rounding
+// as the RTL (docs/HARDWARE.md), bit for bit. It can return every unit's intermediate values
+// for one fragment, and it can perturb one unit on purpose (to show that the scoreboard
 // catches and names it).
 #pragma once
 
@@ -23,27 +23,28 @@ struct FragmentFx {
     int64_t j[6] = {0, 0, 0, 0, 0, 0};  // ds/dx, dt/dx, dr/dx, ds/dy, dt/dy, dr/dy
 };
 
-// The stages of the pipeline, in data-flow order (the scoreboard names the first that differs).
-enum class Stage { Transform, Noise, Quadric, Accumulate, FilterWidth, ClutFilter, Count };
-const char* toString(Stage s);
+// The units of the pipeline (docs/HARDWARE.md "Units"), in data-flow order (the scoreboard names
+// the first that differs).
+enum class Unit { Transform, Noise, Quadric, Accumulate, FilterWidth, ClutFilter, Count };
+const char* toString(Unit u);
 
-struct StageTrace {
+struct UnitTrace {
     static constexpr int kMaxOctaves = contract::kOctavesMax;
     int octaves = 0;                        // active octaves
-    int lat[kMaxOctaves][3] = {};           // stage 1: lattice index (after + LatticeOffset, mod 2^LatticeBits)
-    int64_t frac[kMaxOctaves][3] = {};      // stage 1: lattice fraction
-    int64_t n[kMaxOctaves] = {};            // stage 2: noise value
-    int64_t g[kMaxOctaves][3] = {};         // stage 2: noise gradient
-    int64_t q = 0, gradq[3] = {};           // stage 3
-    int64_t lgx = 0, lgy = 0;               // stage 4, bandlimited octaves: lg |dsdx|, lg |dsdy| (fadeLgFx)
-    int64_t alpha[kMaxOctaves] = {};        // stage 4: the octave's fade (2^FadeFrac = whole)
-    int64_t fterm[kMaxOctaves] = {};        // stage 4 terms (faded)
+    int lat[kMaxOctaves][3] = {};           // unit 1: lattice index (after + LatticeOffset, mod 2^LatticeBits)
+    int64_t frac[kMaxOctaves][3] = {};      // unit 1: lattice fraction
+    int64_t n[kMaxOctaves] = {};            // unit 2: noise value
+    int64_t g[kMaxOctaves][3] = {};         // unit 2: noise gradient
+    int64_t q = 0, gradq[3] = {};           // unit 3
+    int64_t lgx = 0, lgy = 0;               // unit 4, bandlimited octaves: lg |dsdx|, lg |dsdy| (fadeLgFx)
+    int64_t alpha[kMaxOctaves] = {};        // unit 4: the octave's fade (2^FadeFrac = whole)
+    int64_t fterm[kMaxOctaves] = {};        // unit 4 terms (faded)
     int64_t gterm[kMaxOctaves][3] = {};
-    int64_t f = 0, grad[3] = {};            // stage 4 result
-    int64_t w = 0;                          // stage 5: W = w N in entries
-    uint32_t rgba = 0;                      // stage 6: packed RGBA, R at bit 0
+    int64_t f = 0, grad[3] = {};            // unit 4 result
+    int64_t w = 0;                          // unit 5: W = w N in entries
+    uint32_t rgba = 0;                      // unit 6: packed RGBA, R at bit 0
 
-    std::string describe(const Profile& p) const;  // one line per stage, raw and as numbers
+    std::string describe(const Profile& p) const;  // one line per unit, raw and as numbers
 };
 
 // The output of the pipeline for one fragment (what the RTL's output port carries).
@@ -66,14 +67,14 @@ public:
     // A register write (docs/HARDWARE.md register map), as on pst_top's register port.
     void write(uint16_t addr, uint32_t data);
     // The whole pipeline for one fragment.
-    PixelFx eval(const FragmentFx& frag, StageTrace* trace = nullptr) const;
+    PixelFx eval(const FragmentFx& frag, UnitTrace* trace = nullptr) const;
 
-    // Adds one LSB to the named stage's result (Stage::Count = no fault): for scoreboard tests.
-    void injectFault(Stage s) { fault_ = s; }
+    // Adds one LSB to the named unit's result (Unit::Count = no fault): for scoreboard tests.
+    void injectFault(Unit s) { fault_ = s; }
 
 private:
     Profile profile_;
-    Stage fault_ = Stage::Count;
+    Unit fault_ = Unit::Count;
     uint32_t ctrl_ = 0;
     int active_ = 0;
     int64_t quad_[contract::kRegQuadricCount] = {};

@@ -1,4 +1,4 @@
-// pst_colour_stage: the colour-table stage of pst_top (docs/HARDWARE.md stage 6) around
+// pst_colour_stage: the colour-table stage of pst_top (docs/HARDWARE.md unit 6) around
 // pst_clut_filter: RGBA from f and W of the fragment in [C]. Parallel: one cycle. Serial: one
 // channel per cycle (pst_pkg::ColourSteps steps, counted here); the fragment leaves [C] at
 // the last (valid_o), when the next stage takes it. The tables are written through the

@@ -1,5 +1,5 @@
 // pst_floor_sat: a wide exact signed value brought to a narrower fixed-point format, as every
-// stage does with its results: floor to OutFrac fraction bits (an arithmetic shift right; a
+// unit does with its results: floor to OutFrac fraction bits (an arithmetic shift right; a
 // left shift, exact, when the output has more fraction bits), then saturate to OutWidth
 // signed bits. Combinational. Golden model: shiftSatSigned (model/golden/arith_fx.cpp),
 // shiftSatSigned(x, InFrac - OutFrac, OutWidth); unit test: sim/unit/arith_unit_test.cpp.

@@ -1,4 +1,4 @@
-// One lattice corner of the noise unit (part of rtl/noise/pst_noise.sv, stage 2 of
+// One lattice corner of the noise unit (part of rtl/noise/pst_noise.sv, unit 2 of
 // docs/HARDWARE.md): the corner's value and gradient as a lerp-tree leaf node.
 // Combinational. Golden: pst::noiseFx (model/golden/noise_fx.cpp).
 //

@@ -1,4 +1,4 @@
-// One lerp of the noise unit's interpolation tree (part of rtl/noise/pst_noise.sv, stage 2 of
+// One lerp of the noise unit's interpolation tree (part of rtl/noise/pst_noise.sv, unit 2 of
 // docs/HARDWARE.md), carrying the value and its three derivatives. Combinational.
 // Golden: pst::noiseFx (model/golden/noise_fx.cpp).
 //

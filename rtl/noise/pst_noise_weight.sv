@@ -1,4 +1,4 @@
-// Interpolation weight of one axis of the noise unit (part of rtl/noise/pst_noise.sv, stage 2 of
+// Interpolation weight of one axis of the noise unit (part of rtl/noise/pst_noise.sv, unit 2 of
 // docs/HARDWARE.md). Combinational. Golden: pst::noiseFx (model/golden/noise_fx.cpp).
 //
 // In: u, the unsigned NoiseLatticeFrac-bit (LF) fraction of the lattice cell (U = u 2^LF).

@@ -1,4 +1,4 @@
-// Footprint lg (bandlimited octaves, filter.bandlimit = isotropic; docs/HARDWARE.md stage 4):
+// Footprint lg (bandlimited octaves, filter.bandlimit = isotropic; docs/HARDWARE.md unit 4):
 // lg of a Jacobian column's length L (pst_fade_norm), once per pixel, for the fade units
 // (pst_octave_fade); the second half of fadeLgFx in model/golden/arith_fx.cpp (bit for bit).
 // Combinational.

@@ -1,4 +1,4 @@
-// Footprint length (bandlimited octaves, filter.bandlimit = isotropic; docs/HARDWARE.md stage
+// Footprint length (bandlimited octaves, filter.bandlimit = isotropic; docs/HARDWARE.md unit
 // 4): the cheap length of one Jacobian column e, once per pixel, the first half of fadeLgFx in
 // model/golden/arith_fx.cpp (bit for bit); pst_fade_lg takes its lg. Combinational.
 //

@@ -1,5 +1,5 @@
 // pst_fade_pixel: the pixel's part of the octave fade (bandlimited octaves, docs/HARDWARE.md
-// stage 4): the lengths of the pixel's two edges in texture space (pst_fade_norm of the
+// unit 4): the lengths of the pixel's two edges in texture space (pst_fade_norm of the
 // Jacobian's columns ds/dx and ds/dy) and their lg (pst_fade_lg), with LenRegs registers after
 // the lengths and LgRegs after the lg, all enabled by en_i. The lanes' fades
 // (pst_octave_lane) add each octave's lg ||M_i|| to these.

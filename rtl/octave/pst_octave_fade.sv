@@ -1,4 +1,4 @@
-// Octave fade (bandlimited octaves, filter.bandlimit = isotropic; docs/HARDWARE.md stage 4):
+// Octave fade (bandlimited octaves, filter.bandlimit = isotropic; docs/HARDWARE.md unit 4):
 // the weight alpha of one octave's term in one pixel. Combinational. Golden model:
 // octaveFadeFx in model/golden/arith_fx.cpp (bit for bit); the reference's exact form is
 // octaveIsotropic in model/texture.cpp.

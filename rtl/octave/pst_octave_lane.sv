@@ -1,4 +1,4 @@
-// pst_octave_lane: the body of one octave lane (docs/HARDWARE.md stages 2 and 4), combinational,
+// pst_octave_lane: the body of one octave lane (docs/HARDWARE.md units 2 and 4), combinational,
 // in three parts the datapaths register between as their schedules need:
 //   transform  the lattice index and fraction of M_i s + o_i (pst_octave_transform), Rows rows;
 //   fade       the octave's weight alpha from the pixel's lg edge lengths and lg ||M_i||

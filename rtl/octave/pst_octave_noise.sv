@@ -1,4 +1,4 @@
-// pst_octave_noise: the NoiseUnits noise units of the octave stage (docs/HARDWARE.md stage 2),
+// pst_octave_noise: the NoiseUnits noise units of the octave stage (docs/HARDWARE.md unit 2),
 // one per lane: the lattice-noise unit (pst_noise) or, with noise.worley_search, a worley unit
 // (pst_worley); all step together (en_i, valid_i, step_i). Beside each, the probes' copy of its
 // lattice input, delayed by its NoiseRegs registers so that it meets the unit's result.

@@ -1,4 +1,4 @@
-// Octave term (stage 4 of docs/HARDWARE.md, one octave): the contribution a_i n(T_i s) of one
+// Octave term (unit 4 of docs/HARDWARE.md, one octave): the contribution a_i n(T_i s) of one
 // octave to f and a_i M_i^T grad n to grad_s f (eq. 1, 10, 12). Combinational. The sum of q
 // and the active octaves' terms, and its saturation, is done by the integrator (pst_top) at
 // a width that holds every term exactly. Golden model: octaveTermFx in

@@ -1,4 +1,4 @@
-// Stage 1 of the texture pipeline (docs/HARDWARE.md): the octave transform p = M s + o of
+// Unit 1 of the texture pipeline (docs/HARDWARE.md): the octave transform p = M s + o of
 // one noise octave, reduced to what the noise unit needs (lattice index mod 4096 and fraction).
 // Combinational. Golden model: pst::octaveTransformFx (model/golden/noise_fx.cpp).
 //

@@ -1,4 +1,4 @@
-// Quadric (stage 3 of docs/HARDWARE.md): q(s) of eq. 3 and its gradient 2 (Q [s 1])_xyz
+// Quadric (unit 3 of docs/HARDWARE.md): q(s) of eq. 3 and its gradient 2 (Q [s 1])_xyz
 // (eq. 11 with the linear terms D, G, I kept). Combinational when Regs = 0; Regs = 1, 2 put
 // pipeline registers (pst_delay, enabled by en_i) after v and the linear term, then after
 // the three products s_k v_k, so q_o and gradq_o come Regs advances after s_i. Golden model: quadricFx in

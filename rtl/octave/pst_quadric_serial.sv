@@ -1,4 +1,4 @@
-// Quadric on one multiplier (stage 3 of docs/HARDWARE.md, datapath = "serial"): the same
+// Quadric on one multiplier (unit 3 of docs/HARDWARE.md, datapath = "serial"): the same
 // q(s) of eq. 3 and gradient 2 (Q [s 1])_xyz as pst_quadric, bit for bit, from one CW x QW
 // multiplier used over NSteps cycles instead of fifteen multipliers. Golden model: quadricFx
 // in model/golden/arith_fx.cpp (every sum is exact, so the order of its terms and the split of

@@ -1,7 +1,7 @@
 // pst_fade_norm_sva: checker of pst_fade_norm (the footprint length of one Jacobian column):
 // the length is never 0, never below the largest |e_k| and at most 7/4 of it (max + 3/8 of
 // the two others, each <= max); recomputed here from e_i with wider, signed arithmetic.
-// Cover points (combinational: reached by the stage's inputs, valid fragment or not): the
+// Cover points (combinational: reached by the module's inputs, valid fragment or not): the
 // zero column (length clamped to 1), the most negative entry (|e| = 2^(JW-1)), the maximum in
 // each element.
 `include "sva/pst_assert.svh"

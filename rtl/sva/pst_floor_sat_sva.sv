@@ -1,7 +1,7 @@
-// pst_floor_sat_sva: checker of every pst_floor_sat instance (each stage's saturation point):
+// pst_floor_sat_sva: checker of every pst_floor_sat instance (each unit's saturation point):
 // in range the value passes unchanged, out of range the output is the extreme of the input's
 // sign. Cover points per instance: saturated high and saturated low (combinational, so
-// reached by the stage's inputs whether or not they belong to a valid fragment).
+// reached by the unit's inputs whether or not they belong to a valid fragment).
 `include "sva/pst_assert.svh"
 `default_nettype none
 

@@ -1,4 +1,4 @@
-// Filter width (stage 5 of docs/HARDWARE.md): W = |grad_x f| N in colour-table entries
+// Filter width (unit 5 of docs/HARDWARE.md): W = |grad_x f| N in colour-table entries
 // (section 3.2: grad_x f = (grad_s f)^T ds/dx). Golden model: filterWidthFx in
 // model/golden/arith_fx.cpp (same steps, bit for bit). Combinational when Serial = 0; with
 // Serial = 1 the six products take one multiplier over six cycles (step_i = 3 d + k: direction

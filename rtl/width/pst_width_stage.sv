@@ -1,4 +1,4 @@
-// pst_width_stage: the filter-width stage of pst_top (docs/HARDWARE.md stage 5) around
+// pst_width_stage: the filter-width stage of pst_top (docs/HARDWARE.md unit 5) around
 // pst_filter_width: W = |grad_x f| N from grad f and the Jacobian of the fragment in [B].
 // Parallel: one cycle. Serial: the unit's steps (pst_pkg::WidthProducts products, then the
 // euclidean norm's squares and root), counted here; the fragment leaves [B] at the last step

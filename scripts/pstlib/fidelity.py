@@ -67,8 +67,7 @@ def sequence_figures(doc):
 
 
 # The options in the order the tables show them (pst's JSON sorts its keys); others follow as seen.
-ORDER = ["box", "trapezoid", "sat+fade", "sat+widen", "sat+match", "sat+footprint", "sat+isotropic", "trapezoid+widen",
-         "trapezoid+match", "trapezoid+footprint"]
+ORDER = ["box", "trapezoid", "sat+footprint", "sat+isotropic", "trapezoid+footprint", "trapezoid+isotropic"]
 
 
 def columns(rows):
@@ -136,7 +135,7 @@ def markdown(stills, seqs):
         lines += [f"Stills: RMS error against the ground truth ({', '.join(str(t) for t in truth)} samples per pixel), "
                   "PSNR, and the paper's filter's RMS over the option's (> 1x: better than the paper). "
                   "sat = the paper's summed-area table; box = the exact box of the euclidean width; trapezoid = "
-                  "the pixel footprint's shape; +fade / +widen / +match / +footprint = bandlimited octaves (scenes/README.md); +isotropic = the hardware's bandlimited octaves (the reference's exact form of the RTL's option).", "",
+                  "the pixel footprint's shape; +footprint = bandlimited octaves (scenes/README.md); +isotropic = the hardware's bandlimited octaves (the reference's exact form of the RTL's option).", "",
                   "| scene | size | " + " | ".join(cols) + " |", "|" + "---|" * (len(cols) + 2)]
         for s in stills:
             paper = s["rms"][PAPER]

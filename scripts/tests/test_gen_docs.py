@@ -73,7 +73,7 @@ def test_missing_markers_are_an_error(tree):
 
 @pytest.mark.parametrize("lines, want", [
     (["pst_x: does a thing. Then more."], "Does a thing"),
-    (["Stage 2 of the pipeline (docs/HARDWARE.md): the noise unit. Rayshade's"], "Stage 2 of the pipeline "
+    (["Unit 2 of the pipeline (docs/HARDWARE.md): the noise unit. Rayshade's"], "Unit 2 of the pipeline "
                                                                                 "(docs/HARDWARE.md): the noise unit"),
     (["pst_x: Hart et al. 1999 (eq. 3), wiring only:", "", "art"], "Hart et al. 1999 (eq. 3), wiring only"),
     (["pst_x_sva: steps in order (0, 1, .. N - 1), a last", "token. Cover"], "Steps in order (0, 1, .. N - 1), a last token"),

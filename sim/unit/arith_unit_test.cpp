@@ -1,4 +1,4 @@
-// Unit test of the arithmetic stages against the golden model, one verilated top per profile
+// Unit test of the arithmetic units against the golden model, one verilated top per profile
 // (sim/unit/pst_arith_unit_top.sv): pst_quadric vs quadricFx, pst_octave_term vs
 // octaveTermFx, pst_filter_width (the profile's norm and all three) vs filterWidthFx,
 // pst_isqrt vs isqrtFx and floor(sqrt). Every output bit must match.

@@ -1,4 +1,4 @@
-# Unit tests of stages 1 and 2 (pst_octave_transform, pst_noise and its sub-modules) against
+# Unit tests of units 1 and 2 (pst_octave_transform, pst_noise and its sub-modules) against
 # the golden model (model/golden/noise_fx.cpp), bit for bit, one verilated top per profile.
 # Seed: PST_SEED=<n> in the environment replays a run (the test prints its seed).
 set(PST_NOISE_UNIT_PARAMS

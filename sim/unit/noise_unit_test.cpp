@@ -1,4 +1,4 @@
-// Unit test of stages 1 and 2 (rtl/octave/pst_octave_transform.sv, rtl/noise/pst_noise.sv) against the
+// Unit test of units 1 and 2 (rtl/octave/pst_octave_transform.sv, rtl/noise/pst_noise.sv) against the
 // golden model (model/golden/noise_fx.cpp): every output bit, special values first, then
 // random vectors from a printed seed (PST_SEED=<n> replays). One executable per profile
 // (PST_PROFILE_PATH), optionally with noise parameters overridden (PST_NOISE_OVERRIDES, the
@@ -86,7 +86,7 @@ protected:
         rng_.seed(seed_);
     }
 
-    // ---- stage 1 ----
+    // ---- unit 1 ----
     struct OtVector {
         int64_t s[3], M[9], o[3];
     };
@@ -123,7 +123,7 @@ protected:
         return ok;
     }
 
-    // ---- stage 2 ----
+    // ---- unit 2 ----
     bool checkNoise(const int lat[3], const int64_t frac[3]) {
         const int LF = prof_.noiseLatticeFrac, OF = prof_.noiseOutFrac;
         const int NW = contract::kNoiseIntBits + OF, NGW = contract::kNoiseGradIntBits + OF;
@@ -282,7 +282,7 @@ TEST_F(NoiseUnit, NoiseRandom) {
     report("noise random");
 }
 
-// Stage 1 into stage 2 as in the pipeline: texture-like s, M, o; the noise unit gets the
+// Unit 1 into unit 2 as in the pipeline: texture-like s, M, o; the noise unit gets the
 // transform outputs (golden values, checked equal to the RTL transform first).
 TEST_F(NoiseUnit, TransformThenNoise) {
     std::uniform_real_distribution<double> p(-50.0, 50.0), freq(-4.0, 4.0), phase(-100.0, 100.0);

@@ -1,4 +1,4 @@
-// Unit-test top of the arithmetic stages (sim/unit/arith_unit_test.cpp): pst_quadric,
+// Unit-test top of the arithmetic units (sim/unit/arith_unit_test.cpp): pst_quadric,
 // pst_octave_term and pst_filter_width side by side, so that one verilated model per profile
 // tests all three against the golden model (model/golden/arith_fx.cpp). Besides the profile's
 // filter width (fw_w_o, norm FilterNorm) it builds the other two norms too (fw_w_norm_o: one

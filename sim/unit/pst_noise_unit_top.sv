@@ -1,4 +1,4 @@
-// Unit-test top for stages 1 and 2 (sim/unit/noise_unit_test.cpp): an octave transform and a
+// Unit-test top for units 1 and 2 (sim/unit/noise_unit_test.cpp): an octave transform and a
 // noise unit side by side with independent ports, so each is driven with its own vectors
 // (special lattice indices and fractions straight into the noise unit). Combinational.
 `include "pst_pkg.sv"

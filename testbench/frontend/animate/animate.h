@@ -20,14 +20,14 @@ struct AnimateArgs {
     int threads = 0;
     double fps = 0;              // 0: the scene's [animation] fps
     bool video = true;
-    std::string bandlimit;       // "": as the scene says; else every texture's (off | fade | widen)
+    std::string bandlimit;       // "": as the scene says; else every texture's (parseBandlimit)
     std::string filter;          // "": as the scene says; else every texture's filter kind
     std::vector<FilterVariant> variants;  // extra reference streams (named by the variant)
     std::vector<std::string> profiles;
     std::string model = "rtl";   // rtl | golden
     SimOptions sim;
     std::function<Profile(const std::string&)> loadProfile;
-    std::function<void(const std::string&, double)> progress;   // (stage, fraction of the whole run)
+    std::function<void(const std::string&, double)> progress;   // (phase, fraction of the whole run)
 };
 
 // Temporal RMS error of a stream against the ground truth between frames k-1 and k: the RMS over

@@ -116,8 +116,8 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
         res.variants.emplace_back(W, H, 4);
         fillBackground(res.variants.back(), scene.background);
     }
-    auto report = [&](const std::string& stage, double frac) {
-        if (opt.progress) opt.progress(stage, frac);
+    auto report = [&](const std::string& phase, double frac) {
+        if (opt.progress) opt.progress(phase, frac);
     };
 
     // Step 1: rasterize each layer at pixel centres (layer 0 is the z-buffered opaque pass).

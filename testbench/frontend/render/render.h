@@ -28,7 +28,7 @@ struct Image {
 
 // A filter option applied to every texture of a scene (the ground-truth comparison of filters):
 // the filter kind and the bandlimited octaves. Spelled "KIND" or "KIND+BANDLIMIT" (parseVariant),
-// e.g. "sat", "trapezoid", "sat+fade", "trapezoid+widen".
+// e.g. "sat", "trapezoid", "sat+footprint", "trapezoid+isotropic".
 struct FilterVariant {
     std::string name;
     FilterKind filter = FilterKind::Sat;
@@ -42,7 +42,7 @@ struct RenderOptions {
     uint64_t seed = 1;      // jitter seed of the ground truth
     int threads = 0;        // 0 = all cores
     std::vector<FilterVariant> variants;  // extra filtered images, one per variant
-    // Progress callback (stage name, fraction done); empty = silent.
+    // Progress callback (phase name, fraction done); empty = silent.
     std::function<void(const std::string&, double)> progress;
 };
 

@@ -311,7 +311,7 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
                    "every coefficient and cell are 0: the basis would be constant");
     }
     tex.bandlimit = getEnum(c, t, path, "bandlimit", tex.bandlimit, parseBandlimit,
-                            "off, fade, widen, match, footprint, isotropic or anisotropic");
+                            "off, footprint, isotropic or anisotropic");
     if (std::string why = bandlimitUnsupported(tex, tex.bandlimit); !why.empty())
         c.fail(find(t, "bandlimit"), join(path, "bandlimit"), why);
     tex.filter = getEnum(c, t, path, "filter", tex.filter, parseFilterKind, "none, mip, mip_linear, sat, box or trapezoid");

@@ -216,11 +216,11 @@ TEST(Scene, SubbandBasis) {
 TEST(Scene, Bandlimit) {
     std::string text = kMinimal;
     EXPECT_EQ(parseScene(text, "min.toml").textures[0].bandlimit, Bandlimit::Off);
-    text.insert(text.find("colormap ="), "bandlimit = \"widen\"\n");
-    EXPECT_EQ(parseScene(text, "min.toml").textures[0].bandlimit, Bandlimit::Widen);
+    text.insert(text.find("colormap ="), "bandlimit = \"footprint\"\n");
+    EXPECT_EQ(parseScene(text, "min.toml").textures[0].bandlimit, Bandlimit::Footprint);
     std::string bad = kMinimal;
     bad.insert(bad.find("colormap ="), "bandlimit = \"on\"\n");
-    expectError(bad, {"bad.toml:9: textures.t.bandlimit: unknown value 'on' (expected off, fade, widen, match, footprint, isotropic or anisotropic)"});
+    expectError(bad, {"bad.toml:9: textures.t.bandlimit: unknown value 'on' (expected off, footprint, isotropic or anisotropic)"});
 }
 
 TEST(Scene, TextureBlockFile) {

@@ -52,7 +52,7 @@ struct RenderArgs {
     int size = 0, width = 0, height = 0, truth = 0, threads = 0;
     uint64_t seed = 1;
     bool quiet = false;
-    std::string bandlimit;    // every texture's bandlimit (off | fade | widen; reference model only)
+    std::string bandlimit;    // every texture's bandlimit (parseBandlimit's names)
     std::string filter;       // every texture's filter kind (parseFilterKind's names)
     std::vector<std::string> variants;  // extra filtered images (parseVariant's spellings)
 };
@@ -91,18 +91,18 @@ void checkVariants(const Scene& scene, const std::vector<FilterVariant>& variant
                 throw InputError("--variants: " + v.name + ": texture '" + t.name + "': " + why);
 }
 
-// Progress on stderr: one rewritten line on a terminal, a line per stage otherwise.
+// Progress on stderr: one rewritten line on a terminal, a line per phase otherwise.
 std::function<void(const std::string&, double)> progressPrinter(const std::string& name, bool quiet) {
     if (quiet) return {};
     const bool tty = isatty(STDERR_FILENO);
-    return [name, tty, last = std::string()](const std::string& stage, double frac) mutable {
+    return [name, tty, last = std::string()](const std::string& phase, double frac) mutable {
         if (tty) {
-            std::fprintf(stderr, "\r%s: %-6s %5.1f%%", name.c_str(), stage.c_str(), 100.0 * frac);
+            std::fprintf(stderr, "\r%s: %-6s %5.1f%%", name.c_str(), phase.c_str(), 100.0 * frac);
             if (frac >= 1.0) std::fprintf(stderr, "\n");
-        } else if (frac >= 1.0 || stage != last) {
-            if (frac >= 1.0) std::fprintf(stderr, "%s: %s done\n", name.c_str(), stage.c_str());
+        } else if (frac >= 1.0 || phase != last) {
+            if (frac >= 1.0) std::fprintf(stderr, "%s: %s done\n", name.c_str(), phase.c_str());
         }
-        last = stage;
+        last = phase;
     };
 }
 
@@ -951,13 +951,15 @@ int main(int argc, char** argv) {
     render->add_option("--seed", ra.seed, "Jitter seed of the ground truth");
     render->add_option("-j,--threads", ra.threads, "Threads (default: all cores)")->check(CLI::Range(0, 256));
     render->add_flag("-q,--quiet", ra.quiet, "No progress on stderr");
-    render->add_option("--bandlimit", ra.bandlimit, "Every texture's bandlimited octaves: off, fade, widen, match or footprint (reference model only)")
-        ->check(CLI::IsMember({"off", "fade", "widen", "match", "footprint", "isotropic", "anisotropic"}));
+    const std::vector<std::string> bandlimitNames{"off", "footprint", "isotropic", "anisotropic"};
+    render->add_option("--bandlimit", ra.bandlimit, "Every texture's bandlimited octaves: off, footprint, isotropic or "
+                       "anisotropic (scenes/README.md)")
+        ->check(CLI::IsMember(bandlimitNames));
     const std::vector<std::string> filterNames{"none", "mip", "mip_linear", "sat", "box", "trapezoid"};
     render->add_option("--filter", ra.filter, "Every texture's filter kind: none, mip, mip_linear, sat, box or trapezoid")
         ->check(CLI::IsMember(filterNames));
     render->add_option("--variants", ra.variants, "Also the filtered image with every texture's filter (and bandlimit) "
-                       "replaced, per KIND[+BANDLIMIT] (e.g. trapezoid sat+fade), compared with the truth (reference only)")
+                       "replaced, per KIND[+BANDLIMIT] (e.g. trapezoid sat+footprint), compared with the truth (reference only)")
         ->delimiter(',');
 
     HwArgs hw;
@@ -1010,7 +1012,7 @@ int main(int argc, char** argv) {
     regress->add_option("--seed", rnd.seed, "Seed of --random")->needs(rndOpt);
     regress->add_option("--from", rnd.from, "Replay --random from the fragment with this index (starts at its segment)")->needs(rndOpt);
     regress->add_option("--batch", rnd.maxBatch, "Most fragments per random texture")->check(CLI::Range(1, 1 << 20))->needs(rndOpt);
-    regress->add_flag("--probes", rnd.probes, "Sample the octave-stage probes in --random (names the first bad stage)")->needs(rndOpt);
+    regress->add_flag("--probes", rnd.probes, "Sample the octave-stage probes in --random (names the first bad unit)")->needs(rndOpt);
     regress->add_flag("-q,--quiet", rndQuiet, "No progress on stderr");
     uint64_t injectAssert = UINT64_MAX;
     regress->add_option("--inject-assert", injectAssert, "Self-test: once fragment I (of --random, or of each scene run) is in "
@@ -1049,8 +1051,9 @@ int main(int argc, char** argv) {
     animate->add_option("-j,--threads", an.threads, "Threads (default: all cores)")->check(CLI::Range(0, 256));
     bool noVideo = false, animQuiet = false;
     animate->add_flag("--no-video", noVideo, "PNG frames and flicker.json only");
-    animate->add_option("--bandlimit", an.bandlimit, "Every texture's bandlimited octaves: off, fade, widen, match or footprint (reference model only)")
-        ->check(CLI::IsMember({"off", "fade", "widen", "match", "footprint", "isotropic", "anisotropic"}));
+    animate->add_option("--bandlimit", an.bandlimit, "Every texture's bandlimited octaves: off, footprint, isotropic or "
+                        "anisotropic (scenes/README.md)")
+        ->check(CLI::IsMember(bandlimitNames));
     animate->add_option("--filter", an.filter, "Every texture's filter kind: none, mip, mip_linear, sat, box or trapezoid")
         ->check(CLI::IsMember(filterNames));
     std::vector<std::string> animVariants;
@@ -1151,8 +1154,8 @@ int main(int argc, char** argv) {
             // One line per frame and model (rewritten in place on a terminal).
             if (!animQuiet)
                 an.progress = [name = fs::path(an.scene).stem().string(), tty = isatty(STDERR_FILENO)](
-                                  const std::string& stage, double frac) {
-                    std::fprintf(stderr, tty ? "\r%s: %-28s %5.1f%%" : "%s: %s %.1f%%\n", name.c_str(), stage.c_str(),
+                                  const std::string& phase, double frac) {
+                    std::fprintf(stderr, tty ? "\r%s: %-28s %5.1f%%" : "%s: %s %.1f%%\n", name.c_str(), phase.c_str(),
                                  100.0 * frac);
                     if (tty && frac >= 1.0) std::fprintf(stderr, "\n");
                 };

@@ -50,7 +50,7 @@ std::vector<PixelFx> runBatch(GoldenPipeline& golden, RtlModel* rtl, Scoreboard&
     auto tg = Clock::now();
     std::vector<PixelFx> expected(in.size());
     for (size_t i = 0; i < in.size(); ++i) {
-        StageTrace trace;
+        UnitTrace trace;
         expected[i] = golden.eval(in[i], rtl ? &trace : nullptr);
         if (rtl) board.expect(in[i], expected[i], trace);
     }
@@ -137,7 +137,7 @@ HwRenderResult renderHardware(const Scene& scene, const Profile& p, RtlModel* rt
         res.pixels = board.checked();
         res.mismatches = board.mismatches();
         res.scoreboard = board.summary();
-        res.byStage = board.byStage();
+        res.byUnit = board.byUnit();
         res.cycles = rtl->busyCycles() - cycles0;
         res.cyclesPerPixel = res.fragments ? double(res.cycles) / double(res.fragments) : 0.0;
     } else {

@@ -15,9 +15,9 @@
 namespace pst {
 
 struct HwRenderOptions {
-    size_t maxReports = 8;      // first mismatches kept with their stage traces
-    bool probes = true;         // sample the octave-stage probes (names early stages)
-    Stage fault = Stage::Count; // perturb a golden stage on purpose (scoreboard self-test)
+    size_t maxReports = 8;      // first mismatches kept with their unit traces
+    bool probes = true;         // sample the octave-stage probes (names early units)
+    Unit fault = Unit::Count;  // perturb a golden unit on purpose (scoreboard self-test)
     int truthSamples = 0;       // n > 0: also compare with the n x n supersampled ground truth
     std::function<void(const std::string&, double)> progress;
 };
@@ -37,7 +37,7 @@ struct HwRenderResult {
     bool passed = true;       // zero mismatches, nothing lost or out of order
     size_t pixels = 0, mismatches = 0;
     std::string scoreboard;   // the scoreboard's summary
-    std::map<Stage, size_t> byStage;  // mismatches by first differing stage
+    std::map<Unit, size_t> byUnit;    // mismatches by first differing unit
     uint64_t cycles = 0;      // RTL cycles spent streaming (fill and drain included)
     long long fragments = 0;
     double cyclesPerPixel = 0;
@@ -55,7 +55,7 @@ HwRenderResult renderHardware(const Scene& scene, const Profile& profile, RtlMod
 class Scoreboard;
 
 // One batch of fragments through the golden model (its pixels; with an RTL model also the
-// scoreboard's expectations and stage traces) and through the RTL model (each pixel observed by
+// scoreboard's expectations and unit traces) and through the RTL model (each pixel observed by
 // the scoreboard, with the octave-stage probes when `probes`). Adds each model's time to
 // goldenSeconds and rtlSeconds. Returns the pixels to show: the RTL's when it ran, else the
 // golden model's. Used by the scene render and the atlas fill.

@@ -1,6 +1,6 @@
 // The RTL against the golden model, bit for bit: every paper scene through every verilated
 // profile, constrained-random fragments and textures with random stalls, and a scoreboard
-// self-test that perturbs one golden stage at a time.
+// self-test that perturbs one golden unit at a time.
 #include "hwrender.h"
 
 #include <cmath>
@@ -31,7 +31,7 @@ bool runsScene(const Profile& p, const Scene& scene) {
     return true;
 }
 
-// A scene of the profile's basis (the perturbed-stage test's).
+// A scene of the profile's basis (the perturbed-unit test's).
 std::string basisScene(const Profile& p) {
     return p.noise.basis == NoiseBasis::Perlin2002 ? "perlin2002"
            : p.noise.basis == NoiseBasis::Worley   ? "worley"
@@ -133,7 +133,7 @@ TEST_P(EveryProfile, ConstrainedRandomWithStallsMatchesGolden) {
         std::vector<FragmentFx> in;
         for (const auto& r : recs) in.push_back(quantizeFragment(p, uint32_t(total + in.size()), r.s, r.dsdx, r.dsdy));
         for (const auto& f : in) {
-            StageTrace tr;
+            UnitTrace tr;
             PixelFx px = golden.eval(f, &tr);
             board.expect(f, px, tr);
         }
@@ -146,12 +146,12 @@ TEST_P(EveryProfile, ConstrainedRandomWithStallsMatchesGolden) {
     EXPECT_EQ(board.checked(), total);
 }
 
-// The scoreboard catches a perturbed golden stage and names it as the first that differs.
-TEST_P(EveryProfile, ScoreboardNamesAPerturbedStage) {
+// The scoreboard catches a perturbed golden unit and names it as the first that differs.
+TEST_P(EveryProfile, ScoreboardNamesAPerturbedUnit) {
     const Profile p = profile(GetParam());
     Scene scene = loadScene(sourceDir() + "/scenes/" + basisScene(p) + ".toml", 24, 24);
-    for (Stage s : {Stage::Transform, Stage::Noise, Stage::Quadric, Stage::Accumulate, Stage::FilterWidth,
-                    Stage::ClutFilter}) {
+    for (Unit s : {Unit::Transform, Unit::Noise, Unit::Quadric, Unit::Accumulate, Unit::FilterWidth,
+                    Unit::ClutFilter}) {
         SCOPED_TRACE(toString(s));
         auto rtl = makeRtlModel(p.name, {});
         HwRenderOptions ho;
@@ -159,8 +159,8 @@ TEST_P(EveryProfile, ScoreboardNamesAPerturbedStage) {
         HwRenderResult r = renderHardware(scene, p, rtl.get(), ho);
         EXPECT_FALSE(r.passed);
         ASSERT_EQ(r.mismatches, size_t(r.fragments));  // the fault touches every pixel
-        ASSERT_EQ(r.byStage.size(), 1u) << r.scoreboard;
-        EXPECT_EQ(r.byStage.begin()->first, s) << r.scoreboard;
+        ASSERT_EQ(r.byUnit.size(), 1u) << r.scoreboard;
+        EXPECT_EQ(r.byUnit.begin()->first, s) << r.scoreboard;
     }
 }
 

@@ -9,10 +9,10 @@
 // not part of the error, except GM = a M^T, which the driver rounds on its own (GradMatrix).
 // Samples whose reference values come near a saturation point are skipped (counted).
 //
-// Derivation (e_X = 2^-XFrac; every product and sum inside a stage is exact, docs/HARDWARE.md):
+// Derivation (e_X = 2^-XFrac; every product and sum inside a unit is exact, docs/HARDWARE.md):
 //
 //   f = sat_F(q_fx + sum_i fterm_i), no saturation for the kept samples.
-//   q_fx = floor(q to FFrac) of the exact q (stage 3):          q - e_F < q_fx <= q.
+//   q_fx = floor(q to FFrac) of the exact q (unit 3):           q - e_F < q_fx <= q.
 //   p_i = M_i s + o_i exact; the transform floors it to LF bits: 0 <= p_i - p_q < e_LF per axis,
 //     and p_q stays in p's lattice cell (cell walls are integers, on the LF grid).
 //   noise: |n_fx(p_q) - n(p_q)| <= Bv, |g_fx - grad n(p_q)|_k <= Bg (noiseFxErrorBound,
@@ -210,7 +210,7 @@ void checkProfile(const Profile& p, uint64_t seed, int textures, int perTexture,
                 bG[k] = boundG[k] + 1e-12 * (1 + gMag);
                 const double errG = std::abs(fx::toDouble(px.grad[k], p.grad.fracBits) - gRef[k]);
                 if (errG > bG[k] && std::getenv("PST_BOUNDS_DEBUG")) {
-                    StageTrace tr;
+                    UnitTrace tr;
                     golden.eval(in, &tr);
                     std::printf("k %d gradq %.9g ref %.9g\n", k, fx::toDouble(tr.gradq[k], p.grad.fracBits), tex.quadric.gradient(s)[k]);
                     for (int i = 0; i < tr.octaves; ++i) {

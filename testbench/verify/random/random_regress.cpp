@@ -266,8 +266,8 @@ RandomRegressResult runRandomRegress(const Profile& p, const std::string& rtlNam
             const auto tg = Clock::now();
             for (const auto& [a, d] : writes) golden.write(a, d);
             for (const FragmentFx& f : frags) {
-                if (o.fault != Stage::Count) golden.injectFault(f.tag >= o.faultFrom ? o.fault : Stage::Count);
-                StageTrace trace;
+                if (o.fault != Unit::Count) golden.injectFault(f.tag >= o.faultFrom ? o.fault : Unit::Count);
+                UnitTrace trace;
                 const PixelFx px = golden.eval(f, &trace);
                 board.expect(f, px, trace);
             }
@@ -311,7 +311,7 @@ RandomRegressResult runRandomRegress(const Profile& p, const std::string& rtlNam
             res.passed = false;
             res.mismatches += board.mismatches();
             for (const Mismatch& m : board.reports())   // pixels out before it that differed
-                res.firstBad = std::min<uint64_t>(res.firstBad, m.stage == Stage::Count ? m.got.tag : m.input.tag);
+                res.firstBad = std::min<uint64_t>(res.firstBad, m.unit == Unit::Count ? m.got.tag : m.input.tag);
             res.replayFragments = segEnd - res.firstBad;
             res.report += segmentName() + assertion;
             break;
@@ -320,7 +320,7 @@ RandomRegressResult runRandomRegress(const Profile& p, const std::string& rtlNam
             res.passed = false;
             res.mismatches += board.mismatches() + board.lost() + board.unexpected();
             for (const Mismatch& m : board.reports())
-                res.firstBad = std::min<uint64_t>(res.firstBad, m.stage == Stage::Count ? m.got.tag : m.input.tag);
+                res.firstBad = std::min<uint64_t>(res.firstBad, m.unit == Unit::Count ? m.got.tag : m.input.tag);
             res.report += segmentName() + board.summary();
             break;  // the first failing segment is enough; replay it with --from
         }

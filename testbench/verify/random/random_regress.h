@@ -55,8 +55,8 @@ struct RandomRegressOptions {
     int batchesPerSegment = 8;     // textures per RTL model instance
     double maxGapRate = 0.5;       // each segment draws its gap and stall rates in [0, max]
     double maxStallRate = 0.5;
-    bool probes = false;           // sample the octave-stage probes (names the first bad stage)
-    Stage fault = Stage::Count;    // self-test: perturb this golden stage ...
+    bool probes = false;           // sample the octave-stage probes (names the first bad unit)
+    Unit fault = Unit::Count;      // self-test: perturb this golden unit ...
     uint64_t faultFrom = 0;        // ... from this fragment index on
     uint64_t injectAssert = UINT64_MAX;  // self-test: once this fragment is in the RTL, the driver
                                    // writes a register while the pipeline is busy (an assertion fires)

@@ -1,6 +1,6 @@
 // The constrained-random regression: its generators reach what they promise (every filter kind
 // and wrap, 0..Octaves octaves, saturated f, grad and W, lattice planes, zero and extreme
-// Jacobians), a seed replays, and a perturbed golden stage is caught at the right fragment,
+// Jacobians), a seed replays, and a perturbed golden unit is caught at the right fragment,
 // also when replayed alone.
 #include "random_regress.h"
 
@@ -137,7 +137,7 @@ TEST(RandomRegress, SegmentStartsAreConsistent) {
     EXPECT_GE(segmentStart(o, 149999), starts.back());
 }
 
-// The regression can fail: a perturbed golden stage from fragment X on is reported at X, and
+// The regression can fail: a perturbed golden unit from fragment X on is reported at X, and
 // replaying from X alone reports X again.
 TEST(RandomRegress, PerturbedGoldenIsCaughtAtItsFragmentAndReplays) {
     const std::string name = rtlProfiles().back();
@@ -151,7 +151,7 @@ TEST(RandomRegress, PerturbedGoldenIsCaughtAtItsFragmentAndReplays) {
     EXPECT_EQ(clean.fragments, 6000u);
     EXPECT_GT(clean.textures, 10u);
 
-    o.fault = Stage::Accumulate;
+    o.fault = Unit::Accumulate;
     o.faultFrom = 4321;
     const RandomRegressResult bad = runRandomRegress(p, name, o);
     EXPECT_FALSE(bad.passed);

@@ -5,23 +5,23 @@
 
 namespace pst {
 
-void Scoreboard::expect(const FragmentFx& in, const PixelFx& golden, const StageTrace& trace) {
+void Scoreboard::expect(const FragmentFx& in, const PixelFx& golden, const UnitTrace& trace) {
     queue_.push_back({in, golden, trace});
 }
 
-Stage Scoreboard::locate(const Pending& e, const PixelFx& got, const ProbeFx* probe,
+Unit Scoreboard::locate(const Pending& e, const PixelFx& got, const ProbeFx* probe,
                          std::string* detail) const {
     std::ostringstream os;
-    const StageTrace& t = e.trace;
+    const UnitTrace& t = e.trace;
     if (probe) {
-        // Stages 1-3 from the probes, octave by octave.
+        // Units 1-3 from the probes, octave by octave.
         for (int i = 0; i < t.octaves && i < int(probe->n.size()); ++i) {
             for (int k = 0; k < 3; ++k)
                 if (probe->lat[i][k] != t.lat[i][k] || probe->frac[i][k] != t.frac[i][k]) {
                     os << "octave " << i << " axis " << k << ": lattice/frac rtl " << probe->lat[i][k] << "/"
                        << probe->frac[i][k] << " golden " << t.lat[i][k] << "/" << t.frac[i][k];
                     *detail = os.str();
-                    return Stage::Transform;
+                    return Unit::Transform;
                 }
         }
         for (int i = 0; i < t.octaves && i < int(probe->n.size()); ++i) {
@@ -32,13 +32,13 @@ Stage Scoreboard::locate(const Pending& e, const PixelFx& got, const ProbeFx* pr
                    << probe->g[i][0] << ", " << probe->g[i][1] << ", " << probe->g[i][2] << ") golden (" << t.g[i][0]
                    << ", " << t.g[i][1] << ", " << t.g[i][2] << ")";
                 *detail = os.str();
-                return Stage::Noise;
+                return Unit::Noise;
             }
         }
         if (probe->q != t.q) {
             os << "q rtl " << probe->q << " golden " << t.q;
             *detail = os.str();
-            return Stage::Quadric;
+            return Unit::Quadric;
         }
     }
     const PixelFx& x = e.golden;
@@ -46,20 +46,20 @@ Stage Scoreboard::locate(const Pending& e, const PixelFx& got, const ProbeFx* pr
         os << "f rtl " << got.f << " golden " << x.f << ", grad rtl (" << got.grad[0] << ", " << got.grad[1] << ", "
            << got.grad[2] << ") golden (" << x.grad[0] << ", " << x.grad[1] << ", " << x.grad[2] << ")";
         *detail = os.str();
-        return Stage::Accumulate;
+        return Unit::Accumulate;
     }
     if (got.w != x.w) {
         os << "W rtl " << got.w << " golden " << x.w;
         *detail = os.str();
-        return Stage::FilterWidth;
+        return Unit::FilterWidth;
     }
     if (got.rgba != x.rgba) {
         char buf[96];
         std::snprintf(buf, sizeof buf, "RGBA rtl 0x%08x golden 0x%08x", got.rgba, x.rgba);
         *detail = buf;
-        return Stage::ClutFilter;
+        return Unit::ClutFilter;
     }
-    return Stage::Count;  // every stage value and output agrees
+    return Unit::Count;  // every unit's value and output agrees
 }
 
 void Scoreboard::observe(const PixelFx& got, const ProbeFx* probe) {
@@ -78,15 +78,15 @@ void Scoreboard::observe(const PixelFx& got, const ProbeFx* probe) {
     Pending e = std::move(queue_.front());
     queue_.pop_front();
     ++checked_;
-    // Every probed stage value and every output field must agree, bit for bit.
+    // Every probed unit value and every output field must agree, bit for bit.
     Mismatch m;
-    m.stage = locate(e, got, probe, &m.detail);
-    if (m.stage == Stage::Count) return;
+    m.unit = locate(e, got, probe, &m.detail);
+    if (m.unit == Unit::Count) return;
     ++mismatches_;
     m.input = e.in;
     m.expected = e.golden;
     m.got = got;
-    ++byStage_[m.stage];
+    ++byUnit_[m.unit];
     if (reports_.size() < maxReports_) {
         m.detail += "\n" + e.trace.describe(p_);
         reports_.push_back(m);
@@ -102,11 +102,11 @@ std::string Scoreboard::summary() const {
     std::ostringstream os;
     os << (passed() ? "PASSED" : "FAILED") << ": " << checked_ << " pixels checked, " << mismatches_
        << " mismatches, " << lost_ << " lost, " << unexpected_ << " out of order or unknown\n";
-    for (const auto& [stage, n] : byStage_) os << "  first differing stage " << toString(stage) << ": " << n << "\n";
+    for (const auto& [unit, n] : byUnit_) os << "  first differing unit " << toString(unit) << ": " << n << "\n";
     for (const auto& m : reports_) {
         os << "  pixel " << m.input.tag << " s (" << m.input.s[0] << ", " << m.input.s[1] << ", " << m.input.s[2]
            << ") J (" << m.input.j[0] << ", " << m.input.j[1] << ", " << m.input.j[2] << ", " << m.input.j[3] << ", "
-           << m.input.j[4] << ", " << m.input.j[5] << "): " << toString(m.stage) << ": " << m.detail << "\n";
+           << m.input.j[4] << ", " << m.input.j[5] << "): unit " << toString(m.unit) << ": " << m.detail << "\n";
     }
     return os.str();
 }

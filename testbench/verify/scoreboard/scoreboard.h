@@ -1,7 +1,7 @@
 // The scoreboard: every pixel the RTL puts out is checked against the golden model, bit for
 // bit, in order (after Vortex's unit-test scoreboards: queued by ID, first mismatches printed
-// with their inputs). A mismatch names the first pipeline stage whose value differs, using the
-// octave-stage probes of the RTL and the golden model's stage trace.
+// with their inputs). A mismatch names the first unit (docs/HARDWARE.md "Units") whose value
+// differs, using the octave-stage probes of the RTL and the golden model's unit trace.
 #pragma once
 
 #include <cstdint>
@@ -18,7 +18,7 @@ namespace pst {
 struct Mismatch {
     FragmentFx input;
     PixelFx expected, got;
-    Stage stage = Stage::Count;   // first stage that differs
+    Unit unit = Unit::Count;      // first unit that differs
     std::string detail;           // the differing values
 };
 
@@ -27,7 +27,7 @@ public:
     explicit Scoreboard(const Profile& p, size_t maxReports = 8) : p_(p), maxReports_(maxReports) {}
 
     // The golden result for a fragment about to be sent (queued in order).
-    void expect(const FragmentFx& in, const PixelFx& golden, const StageTrace& trace);
+    void expect(const FragmentFx& in, const PixelFx& golden, const UnitTrace& trace);
     // A pixel from the RTL; `probe` is what the octave-stage probes showed for its tag.
     void observe(const PixelFx& got, const ProbeFx* probe);
     // Everything still queued is lost.
@@ -39,24 +39,24 @@ public:
     size_t unexpected() const { return unexpected_; }   // duplicated, reordered or unknown tags
     bool passed() const { return mismatches_ == 0 && lost_ == 0 && unexpected_ == 0; }
     const std::vector<Mismatch>& reports() const { return reports_; }
-    // Counts per first-differing stage.
-    const std::map<Stage, size_t>& byStage() const { return byStage_; }
+    // Counts per first-differing unit.
+    const std::map<Unit, size_t>& byUnit() const { return byUnit_; }
     std::string summary() const;
 
 private:
     struct Pending {
         FragmentFx in;
         PixelFx golden;
-        StageTrace trace;
+        UnitTrace trace;
     };
-    // The first stage whose value differs, Stage::Count if none.
-    Stage locate(const Pending& e, const PixelFx& got, const ProbeFx* probe, std::string* detail) const;
+    // The first unit whose value differs, Unit::Count if none.
+    Unit locate(const Pending& e, const PixelFx& got, const ProbeFx* probe, std::string* detail) const;
 
     Profile p_;
     size_t maxReports_;
     std::deque<Pending> queue_;
     std::vector<Mismatch> reports_;
-    std::map<Stage, size_t> byStage_;
+    std::map<Unit, size_t> byUnit_;
     size_t checked_ = 0, mismatches_ = 0, lost_ = 0, unexpected_ = 0;
 };
 
