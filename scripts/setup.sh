@@ -17,6 +17,7 @@ PACKAGES=(
   lcov                            # scripts/coverage.sh: genhtml
   libtinyobjloader-dev libmetis-dev # pst atlas: OBJ meshes (mesh = "obj"), the multiresolution atlas's partition
   libfftw3-dev libeigen3-dev       # model/subband: spectral noise tiles (FFT), least-squares weights
+  z3 python3-z3                    # scripts/mul_proof.py: the multiplier forms' proof (with Yosys's ABC)
 )
 # scripts/pnr.py (place and route, not part of the test suite): `scripts/setup.sh --pnr` adds
 # qflow and its OSU 0.18 um technology (graywolf, qrouter, magic, netgen-lvs come with it) and

@@ -25,8 +25,19 @@ configure_file(${CMAKE_CURRENT_SOURCE_DIR}/rtl_registry.cpp.in ${CMAKE_CURRENT_B
 add_library(pst_rtl STATIC ${PST_RTL_GEN_SOURCES} ${CMAKE_CURRENT_BINARY_DIR}/rtl_registry.cpp)
 target_include_directories(pst_rtl PUBLIC ${CMAKE_CURRENT_SOURCE_DIR})
 target_link_libraries(pst_rtl PUBLIC pst_golden)
+# pst_mul_booth's simulation form (one `*` for the Booth rows; full simulates about 11x faster)
+# in the named and test profiles, for whose every multiplier width scripts/mul_proof.py proves
+# the two forms equal (ctest mul_proof); extra profiles (sweep points) keep the synthesis form.
+# The unit tests (sim/unit) always verilate the synthesis form against the golden model.
+option(PST_SIM_MUL "Verilate the named and test profiles with pst_mul_booth's proven simulation form" ON)
 foreach(p ${PST_ALL_PROFILES})
-  # 8 fast and 8 slow unity files: full's 160 MB of C++ in 16 compile jobs of 5-11 MB; a
-  # small profile fills one or two of them (sim/tools/verilate.py --min-bytes)
-  pst_verilate(pst_rtl TOP pst_top PROFILE ${p} PREFIX Vpst_top_${p} SLOTS 8 SOURCES ${PST_RTL_SOURCES})
+  set(defines "")
+  get_filename_component(dir ${PST_PROFILE_FILE_${p}} DIRECTORY)
+  if(PST_SIM_MUL AND (dir STREQUAL "${PROJECT_SOURCE_DIR}/rtl/configs" OR dir STREQUAL "${PROJECT_SOURCE_DIR}/sim/test_profiles"))
+    set(defines PST_MUL_BEHAVIOURAL)
+  endif()
+  # 8 fast and 8 slow unity files: full's C++ in 16 compile jobs; a small profile fills one or
+  # two of them (sim/tools/verilate.py --min-bytes)
+  pst_verilate(pst_rtl TOP pst_top PROFILE ${p} PREFIX Vpst_top_${p} SLOTS 8 SOURCES ${PST_RTL_SOURCES}
+               DEFINES ${defines})
 endforeach()

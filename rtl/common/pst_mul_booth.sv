@@ -27,6 +27,16 @@
 //   a_i [AW-1:0]  signed
 //   b_i [BW-1:0]  signed (BSigned) or unsigned
 //   p_o [PW-1:0]  a b mod 2^PW
+//
+// Two forms of the same function, chosen by a define:
+//   (default)              the synthesis form above, what Yosys and every gate figure see;
+//   PST_MUL_BEHAVIOURAL    the simulation form, one `*` (Verilator evaluates it as one machine
+//                          multiply instead of D rows of muxes and adds).
+// scripts/mul_proof.py proves the two equal for every (AW, BW, BSigned, PW) the profiles
+// instantiate (ctest mul_proof): the synthesis form equals the digit form
+// sim/formal/pst_mul_digits.sv bit for bit (ABC's combinational equivalence check), and the
+// digit form equals a b as polynomials in a and the bits of b (Z3's sum-of-monomials normal
+// form: sum_i d_i a 4^i with d_i = b_{2i-1} + b_{2i} - 2 b_{2i+1}).
 `include "pst_pkg.sv"
 `default_nettype none
 
@@ -41,6 +51,20 @@ module pst_mul_booth #(
   output logic [PW-1:0] p_o
 );
 
+`ifdef PST_MUL_BEHAVIOURAL
+  // Simulation form: a and b extended to PW bits (a by its sign, b by its sign or by zeros).
+  localparam int XA = PW > AW ? PW : AW;
+  localparam int XB = PW > BW ? PW : BW;
+  logic [XA-1:0] ax;
+  logic [XB-1:0] bxw;
+  assign ax = XA'($signed(a_i));
+  if (BSigned) begin : g_bs_sim
+    assign bxw = XB'($signed(b_i));
+  end else begin : g_bu_sim
+    assign bxw = XB'(b_i);
+  end
+  assign p_o = PW'(ax * bxw);
+`else
   // Digits of b: signed b needs ceil(BW / 2) digits, unsigned b one more bit (a zero sign).
   localparam int EW = BSigned ? BW : BW + 1;   // b as a signed number
   localparam int D = (EW + 1) / 2;
@@ -92,6 +116,7 @@ module pst_mul_booth #(
     p_o = K + negs;
     for (int i = 0; i < D; i++) p_o = p_o + rows[i*PW +: PW];
   end
+`endif
 
 endmodule
 

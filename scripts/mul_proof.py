@@ -1,0 +1,78 @@
+#!/usr/bin/python3
+"""Proves pst_mul_booth's simulation form (one `*`, what the verilated regression models use)
+equal to its synthesis form (radix-4 Booth rows, what Yosys and the gate figures see) for every
+width the profiles instantiate (scripts/pstlib/mulproof.py says how: ABC and Z3 through the
+digit form sim/formal/pst_mul_digits.sv).
+
+    scripts/mul_proof.py [PROFILE ...] [--width AW,BW,BSIGNED,PW] [--jobs N] [--out DIR]
+
+Default: every named profile (rtl/configs/) and test profile (sim/test_profiles/), the ones the
+harness verilates with the simulation form. Writes DIR/mul_proof.json; exit 1 when a width is
+not proven, 2 on bad input."""
+import argparse
+import concurrent.futures
+import json
+import pathlib
+import sys
+import tempfile
+
+from pstlib import atomic, mulproof
+from pstlib.paths import CONFIGS, ROOT, profile_path
+
+
+def parse_width(text: str) -> mulproof.Width:
+    try:
+        aw, bw, bs, pw = (int(x) for x in text.split(","))
+    except ValueError:
+        raise argparse.ArgumentTypeError(f"'{text}': want AW,BW,BSIGNED,PW (integers)") from None
+    if not (1 <= aw <= 64 and 1 <= bw <= 64 and bs in (0, 1) and 1 <= pw <= 128):
+        raise argparse.ArgumentTypeError(f"'{text}': AW, BW in 1..64, BSIGNED 0 or 1, PW in 1..128")
+    return mulproof.Width(aw, bw, bs, pw)
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("profiles", nargs="*", help="profiles (names or files; default every named and test profile)")
+    ap.add_argument("--width", action="append", type=parse_width, default=[],
+                    help="prove this width only (repeatable), no profile elaborated")
+    ap.add_argument("--jobs", type=int, default=2)
+    ap.add_argument("--rom-dir", default=str(ROOT / "build" / "rom"))
+    ap.add_argument("--out", default=str(ROOT / "out" / "mul_proof"))
+    a = ap.parse_args(argv)
+    if a.jobs < 1:
+        print("error: --jobs: must be >= 1", file=sys.stderr)
+        return 2
+    widths = {w: [] for w in a.width}
+    if not a.width:
+        files = [profile_path(p) for p in a.profiles] or (sorted(CONFIGS.glob("*.toml"))
+                                                          + sorted((ROOT / "sim" / "test_profiles").glob("*.toml")))
+        for f in files:
+            if not f.is_file():
+                print(f"error: {f}: no such profile", file=sys.stderr)
+                return 2
+        with tempfile.TemporaryDirectory(prefix="mulproof-") as tmp:
+            for f in files:
+                for w in mulproof.instantiated(f, a.rom_dir, pathlib.Path(tmp) / f.stem):
+                    widths.setdefault(w, []).append(f.stem)
+    with tempfile.TemporaryDirectory(prefix="mulproof-") as tmp:
+        with concurrent.futures.ProcessPoolExecutor(a.jobs) as pool:   # Z3 keeps one context per process
+            futs = {w: pool.submit(mulproof.prove, w, pathlib.Path(tmp) / f"w{i}") for i, w in enumerate(sorted(widths))}
+            results = {w: f.result() for w, f in futs.items()}
+    rows = [{"aw": w.aw, "bw": w.bw, "bsigned": w.bsigned, "pw": w.pw, "profiles": sorted(set(widths[w])), **r}
+            for w, r in results.items()]
+    out = pathlib.Path(a.out)
+    out.mkdir(parents=True, exist_ok=True)
+    atomic.write_text(out / "mul_proof.json", json.dumps({"widths": rows}, indent=1) + "\n")
+    print("| AW x BW -> PW | Q1 Booth = digits (ABC) | Q2 digits = a b (Z3) | Q3 | Q0 sim = a b | s | profiles |")
+    print("|---|---|---|---|---|---:|---|")
+    for w, r in results.items():
+        yes = {True: "proven", False: "NOT proven"}
+        print(f"| {w} | {yes[r['Q1']]} | {yes[r['Q2']]} | {yes[r['Q3']]} | {yes[r['Q0']]} | {r['seconds']} | "
+              f"{', '.join(sorted(set(widths[w])))} |")
+    bad = [str(w) for w, r in results.items() if not r["proven"]]
+    print(f"{len(results) - len(bad)} of {len(results)} widths proven" + (f"; NOT: {', '.join(bad)}" if bad else ""))
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
