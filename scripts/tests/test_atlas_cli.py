@@ -216,10 +216,11 @@ def test_open_mesh_accepted_and_counted(tmp_path, mip):
 
 # The atlas render's quality (ctest atlas_quality, label atlas): at a 1024 x 1024 atlas the
 # bilinear render's RMS against the 4 x 4 truth stays within 1.5x of the per-pixel render's,
-# on the paper's teapot and torus and the planet's sphere (measured 1.30, 1.37, 1.05 for length).
-@pytest.mark.parametrize("name", ["wood_teapot", "wood_torus", "planet"])
+# on the paper's teapot and torus, the planet's sphere and the chess-king cross with its slivers
+# (measured 1.32, 1.37, 1.05, 1.40 for length).
+@pytest.mark.parametrize("name", ["wood_teapot", "wood_torus", "planet", "atlas/king"])
 def test_quality_atlas_render_within_1_5x_of_per_pixel(tmp_path, name):
-    out = tmp_path / name
+    out = tmp_path / pathlib.Path(name).name
     rc, _, err = pst("atlas", ROOT / "scenes" / f"{name}.toml", "--atlas", "length", "--size", 1024, "--image", 256,
                      "--truth", 4, "-o", out, "-q")
     assert rc == 0, err
