@@ -8,7 +8,6 @@ set(PST_ARITH_UNIT_SOURCES
     ${PROJECT_SOURCE_DIR}/rtl/octave/pst_quadric.sv
     ${PROJECT_SOURCE_DIR}/rtl/octave/pst_quadric_serial.sv
     ${PROJECT_SOURCE_DIR}/rtl/octave/pst_octave_term.sv
-    ${PROJECT_SOURCE_DIR}/rtl/common/pst_mul_booth.sv
     ${PROJECT_SOURCE_DIR}/rtl/width/pst_filter_width.sv
     ${PROJECT_SOURCE_DIR}/rtl/common/pst_isqrt.sv
     ${PROJECT_SOURCE_DIR}/rtl/common/pst_floor_sat.sv

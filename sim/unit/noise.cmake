@@ -10,8 +10,6 @@ set(PST_NOISE_UNIT_SOURCES
     ${PROJECT_SOURCE_DIR}/rtl/noise/pst_noise_weight.sv
     ${PROJECT_SOURCE_DIR}/rtl/noise/pst_noise_corner.sv
     ${PROJECT_SOURCE_DIR}/rtl/noise/pst_noise_lerp.sv
-    ${PROJECT_SOURCE_DIR}/rtl/noise/pst_noise_hash_rom.sv
-    ${PROJECT_SOURCE_DIR}/rtl/noise/pst_noise_value_rom.sv
     ${PROJECT_SOURCE_DIR}/rtl/common/pst_mul_booth.sv
     ${PROJECT_SOURCE_DIR}/rtl/common/pst_delay.sv)
 
