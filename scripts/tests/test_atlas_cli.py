@@ -102,6 +102,9 @@ def test_rtl_fill_bit_exact_with_gaps_and_stalls(tmp_path, kind):
     hw = j["hardware"]
     assert hw["passed"] and hw["mismatches"] == 0
     assert hw["texels"] > 0 and hw["cycles"] >= hw["texels"]
+    if hw["fmax_mhz"]:  # a profile of scripts/synth/baseline.json: also its time after layout
+        assert 0 < hw["fmax_layout_mhz"] < hw["fmax_mhz"]
+        assert hw["fill_ms_at_layout_fmax"] > hw["fill_ms_at_fmax"]
     assert j["seams"]["nearest"] == 0 and j["seams"]["bilinear"] == 0
     assert j["seams"]["standard_bilinear"] > 0
     for f in ["atlas.png", "atlas_rtl.png", "render_nearest.png", "render_bilinear.png", "scale.png", "atlas.md"]:
