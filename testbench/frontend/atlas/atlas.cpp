@@ -170,7 +170,10 @@ void Atlas::placeCharts() {
 }
 
 glm::ivec2 Atlas::cellSize(int legs) const {
-    if (mipCell > 0) return {mipCell, mipCell};
+    if (mipCell > 0) {
+        const int side = legs + (options.seamFree ? 2 + 2 * margin(options) : 0);  // a power of two
+        return {side, side};
+    }
     if (!options.seamFree) return {legs, legs};
     return {legs + 2 + 2 * margin(options), legs + 1};
 }

@@ -74,7 +74,7 @@ struct Atlas {
     std::vector<Chart> charts;      // one per triangle, same order
     double eq3Edge = 0;             // eq. (3): the pair edge a = H / ceil(sqrt(M / 2)) texels, no overscan
     int stripCount = 0;
-    int mipCell = 0;                // multiresolution atlas (multires.h): the a x a pair cell; 0 = strips
+    int mipCell = 0;                // multiresolution atlas (multires.h): the largest a x a pair cell; 0 = strips
 
     int size() const { return options.size; }
     glm::ivec2 cellSize(int legs) const;  // a pair cell with legs L (width, height)

@@ -50,19 +50,21 @@ std::vector<std::array<int, 2>> pairTriangles(const std::vector<std::vector<int>
     return pairs;
 }
 
-// Splits `items` (vertices of graph g) into 4 parts of at most `cap` each: METIS k-way on the
-// induced subgraph (contiguous parts asked for), then vertices moved out of parts over capacity
-// (to an adjacent part with room when there is one).
-std::array<std::vector<int>, 4> split4(const std::vector<int>& items, const std::vector<std::vector<int>>& g, size_t cap) {
+// Splits `items` (vertices of graph g) into 4 parts of at most `cap` vertices each: METIS
+// k-way on the induced subgraph, balancing the vertex weights `vwgt` (one per item; contiguous
+// parts asked for), then vertices moved out of parts over capacity, one at a time to an adjacent part with
+// room, and if none is adjacent, the rest in order into the first part with room.
+std::array<std::vector<int>, 4> split4(const std::vector<int>& items, const std::vector<std::vector<int>>& g,
+                                       const std::vector<idx_t>& vwgt, size_t cap) {
     std::array<std::vector<int>, 4> parts;
     const idx_t n = idx_t(items.size());
     std::vector<idx_t> part(items.size(), 0);
+    std::map<int, idx_t> local;
+    for (idx_t i = 0; i < n; ++i) local[items[size_t(i)]] = i;
     if (n <= 4) {
         for (idx_t i = 0; i < n; ++i) part[size_t(i)] = i;
     } else {
-        std::map<int, idx_t> local;
-        for (idx_t i = 0; i < n; ++i) local[items[size_t(i)]] = i;
-        std::vector<idx_t> xadj{0}, adj;
+        std::vector<idx_t> xadj{0}, adj, weights(vwgt);
         for (int v : items) {
             for (int u : g[size_t(v)])
                 if (auto it = local.find(u); it != local.end()) adj.push_back(it->second);
@@ -90,51 +92,134 @@ std::array<std::vector<int>, 4> split4(const std::vector<int>& items, const std:
         options[METIS_OPTION_UFACTOR] = 1;  // 0.1 % imbalance
         options[METIS_OPTION_SEED] = 1;
         int rc = adj.empty() ? METIS_ERROR
-                             : METIS_PartGraphKway(&nv, &ncon, xadj.data(), adj.data(), nullptr, nullptr, nullptr, &nparts,
-                                                   nullptr, nullptr, options, &objval, part.data());
+                             : METIS_PartGraphKway(&nv, &ncon, xadj.data(), adj.data(), weights.data(), nullptr,
+                                                   nullptr, &nparts, nullptr, nullptr, options, &objval, part.data());
         if (rc != METIS_OK)
             for (idx_t i = 0; i < n; ++i) part[size_t(i)] = idx_t(size_t(i) * 4 / size_t(n));
-        // Balance: the quadrants hold `cap` pairs each.
-        std::array<size_t, 4> count{};
-        for (idx_t p : part) ++count[size_t(p)];
-        for (int over = 0; over < 4; ++over)
-            while (count[size_t(over)] > cap) {
-                // A vertex of `over` next to a part with room, else any vertex of `over`.
-                idx_t pick = -1, to = -1;
-                for (idx_t i = 0; i < n && pick < 0; ++i) {
-                    if (part[size_t(i)] != over) continue;
-                    for (int u : g[size_t(items[size_t(i)])])
-                        if (auto it = local.find(u); it != local.end() && count[size_t(part[size_t(it->second)])] < cap) {
-                            pick = i, to = part[size_t(it->second)];
-                            break;
-                        }
-                }
-                if (pick < 0) {
-                    for (idx_t i = 0; i < n && pick < 0; ++i)
-                        if (part[size_t(i)] == over) pick = i;
-                    for (int q = 0; q < 4; ++q)
-                        if (count[size_t(q)] < cap) to = q;
-                }
-                part[size_t(pick)] = to;
-                --count[size_t(over)];
-                ++count[size_t(to)];
-            }
     }
+    // Capacity: each quadrant holds `cap` cells.
+    std::array<size_t, 4> count{};
+    for (idx_t p : part) ++count[size_t(p)];
+    for (int over = 0; over < 4; ++over)
+        while (count[size_t(over)] > cap) {
+            // A vertex of `over` next to a part with room, else any vertex of `over`.
+            idx_t pick = -1, to = -1;
+            for (idx_t i = 0; i < n && pick < 0; ++i) {
+                if (part[size_t(i)] != over) continue;
+                for (int u : g[size_t(items[size_t(i)])])
+                    if (auto it = local.find(u); it != local.end() && count[size_t(part[size_t(it->second)])] < cap) {
+                        pick = i, to = part[size_t(it->second)];
+                        break;
+                    }
+            }
+            if (pick < 0) {
+                for (idx_t i = 0; i < n && pick < 0; ++i)
+                    if (part[size_t(i)] == over) pick = i;
+                for (int q = 0; q < 4; ++q)
+                    if (count[size_t(q)] < cap) to = q;
+            }
+            part[size_t(pick)] = to;
+            --count[size_t(over)];
+            ++count[size_t(to)];
+        }
     for (idx_t i = 0; i < n; ++i) parts[size_t(part[size_t(i)])].push_back(items[size_t(i)]);
     return parts;
 }
 
-// Places the pairs of `items` in the side x side block of cells at (x0, y0) (cells).
-void placeQuadtree(const std::vector<int>& items, const std::vector<std::vector<int>>& pairGraph, int x0, int y0,
-                   int side, std::vector<glm::ivec2>& cellOf) {
-    if (items.empty()) return;
-    if (side == 1) {
-        cellOf[size_t(items[0])] = {x0, y0};
-        return;
+// The quadtree placement (section 4.3) of the pairs: their graph, each pair's cell side, the
+// side its weight asks for (k w_p + pad, section 4.2; empty for the uniform atlas, whose cells
+// are fixed), the smallest cell, and where each pair's cell lands.
+struct Quadtree {
+    const std::vector<std::vector<int>>& graph;
+    std::vector<int>& cell;
+    const std::vector<double>& target;
+    int minCell = 1;
+    std::vector<glm::ivec2> origin;
+
+    // Resizes the non-uniform cells of one quadrant's pairs to its side x side texels: the most
+    // over-sized (cell over target) halved while they overflow it, then the most under-sized
+    // doubled while they fit. The partition decides which pairs share a quadrant, and the cells
+    // follow, so a quadrant never holds pairs from elsewhere on the surface.
+    void fit(const std::vector<int>& items, int side) {
+        long long load = 0;
+        for (int p : items) {
+            cell[size_t(p)] = std::min(cell[size_t(p)], side);
+            load += (long long)cell[size_t(p)] * cell[size_t(p)];
+        }
+        const long long cap = (long long)side * side;
+        auto ratio = [&](int p) { return cell[size_t(p)] / target[size_t(p)]; };
+        while (load > cap) {
+            int pick = -1;
+            for (int p : items)
+                if (cell[size_t(p)] > minCell && (pick < 0 || ratio(p) > ratio(pick))) pick = p;
+            const long long c = cell[size_t(pick)];
+            cell[size_t(pick)] /= 2;
+            load -= 3 * c * c / 4;
+        }
+        for (;;) {
+            int pick = -1;
+            for (int p : items) {
+                const long long c = cell[size_t(p)];
+                if (2 * c <= side && load + 3 * c * c <= cap && (pick < 0 || ratio(p) < ratio(pick))) pick = p;
+            }
+            if (pick < 0) break;
+            const long long c = cell[size_t(pick)];
+            cell[size_t(pick)] *= 2;
+            load += 3 * c * c;
+        }
     }
-    const int h = side / 2;
-    const auto parts = split4(items, pairGraph, size_t(h) * size_t(h));
-    for (int q = 0; q < 4; ++q) placeQuadtree(parts[size_t(q)], pairGraph, x0 + (q % 2) * h, y0 + (q / 2) * h, h, cellOf);
+
+    // Places `items` in the side x side block at (x0, y0): a pair alone takes the block's corner,
+    // more are split into the four quadrants (METIS balancing the cells' texels).
+    void place(const std::vector<int>& items, int x0, int y0, int side) {
+        if (items.empty()) return;
+        if (items.size() == 1) {
+            origin[size_t(items[0])] = {x0, y0};
+            return;
+        }
+        const int h = side / 2;
+        std::vector<idx_t> vwgt(items.size(), 1);
+        if (!target.empty())
+            for (size_t i = 0; i < items.size(); ++i)
+                vwgt[i] = idx_t((long long)cell[size_t(items[i])] * cell[size_t(items[i])] / minCell / minCell);
+        const int unit = target.empty() ? cell[size_t(items[0])] : minCell;
+        const auto parts = split4(items, graph, vwgt, size_t(h / unit) * size_t(h / unit));
+        for (int q = 0; q < 4; ++q) {
+            if (!target.empty()) fit(parts[size_t(q)], h);
+            place(parts[size_t(q)], x0 + (q % 2) * h, y0 + (q / 2) * h, h);
+        }
+    }
+};
+
+// The non-uniform multiresolution atlas's pair cells before placement (section 4.2's weighting
+// with section 4.3's power-of-two cells): pair p gets the largest power of two a_p <= k w_p + pad
+// (legs near k w_p) within [minCell, H], for the largest scale k whose cells' texels sum to at
+// most H^2. Returns the targets k w_p + pad; the quadtree then fits the cells quadrant by
+// quadrant (Quadtree::fit).
+std::vector<double> weightedCells(const std::vector<double>& w, int H, int pad, int minCell, std::vector<int>& cell) {
+    const long long H2 = (long long)H * H;
+    auto sideFor = [&](double k, double wt) {
+        const double target = k * wt + pad;
+        int c = minCell;
+        while (c * 2 <= H && c * 2 <= target) c *= 2;
+        return c;
+    };
+    auto texels = [&](double k) {
+        long long sum = 0;
+        for (double wt : w) sum += (long long)sideFor(k, wt) * sideFor(k, wt);
+        return sum;
+    };
+    const double wMin = *std::min_element(w.begin(), w.end());
+    double lo = 0.0, hi = 2.0 * H / wMin;
+    for (int it = 0; it < 60; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        if (texels(mid) <= H2) lo = mid;
+        else hi = mid;
+    }
+    std::vector<double> target(w.size());
+    cell.resize(w.size());
+    for (size_t p = 0; p < w.size(); ++p) cell[p] = sideFor(lo, w[p]), target[p] = lo * w[p] + pad;
+    return target;
 }
 
 bool isPow2(int v) { return v > 0 && (v & (v - 1)) == 0; }
@@ -187,7 +272,6 @@ std::vector<std::vector<int>> dualGraph(const std::vector<AtlasTriangle>& tris) 
 }
 
 Atlas buildMultiresAtlas(std::vector<AtlasTriangle> tris, const AtlasOptions& opt) {
-    if (opt.kind != AtlasKind::Uniform) throw InputError("--atlas: the multiresolution atlas (--mip) is uniform");
     if (!isPow2(opt.size))
         throw InputError("--size: " + std::to_string(opt.size) + " is not a power of two (the MIP levels halve it)");
     if (tris.empty()) throw InputError("--size: no triangles to place");
@@ -222,20 +306,43 @@ Atlas buildMultiresAtlas(std::vector<AtlasTriangle> tris, const AtlasOptions& op
             if (old.x[size_t(i)] == A.x[1]) B.x[2] = old.x[size_t(i)], B.s[2] = old.s[size_t(i)];
         }
     }
-    // The pair cell a: the largest power of two with (H / a)^2 >= P cells and legs >= kMinLegs.
+    // Pair cells are a x a texels, a a power of two, legs a - pad inside (seam-free: the
+    // overscan and the bilinear border; the standard layout's charts fill the cell).
     const int m = opt.magnification == Magnification::Bilinear ? 1 : 0;
-    int cell = opt.size;
-    while (cell > 1 && (long long)(opt.size / cell) * (opt.size / cell) < P) cell /= 2;
-    const int legs = opt.seamFree ? cell - 2 - 2 * m : cell;
+    const int pad = opt.seamFree ? 2 + 2 * m : 0;
     int minCell = 1;
-    while (minCell < kMinLegs + 2 + 2 * m) minCell *= 2;
-    const long long minCellPairs = minCell > opt.size ? 0 : (long long)(opt.size / minCell) * (opt.size / minCell);
-    if ((long long)(opt.size / cell) * (opt.size / cell) < P || legs < kMinLegs)
+    while (minCell < kMinLegs + pad) minCell *= 2;
+    const long long H2 = (long long)opt.size * opt.size;
+    if (minCell > opt.size || (long long)P * minCell * minCell > H2) {
+        const long long held = minCell > opt.size ? 0 : H2 / ((long long)minCell * minCell);
         throw InputError("--size: " + std::to_string(a.triangles.size()) + " triangles (" + std::to_string(P) +
                          " pairs) do not fit a " + std::to_string(opt.size) + " x " + std::to_string(opt.size) +
-                         " multiresolution atlas (it holds " + std::to_string(minCellPairs) + " pairs in " +
+                         " multiresolution atlas (it holds " + std::to_string(held) + " pairs in " +
                          std::to_string(minCell) + " x " + std::to_string(minCell) + " cells)");
-    a.mipCell = cell;
+    }
+    std::vector<int> cell(static_cast<size_t>(P));
+    std::vector<double> target;  // non-uniform: the side each pair's weight asks for
+    if (opt.kind == AtlasKind::Uniform) {
+        // Section 4.3: the largest power of two a with (H / a)^2 >= P cells.
+        int c = opt.size;
+        while ((long long)(opt.size / c) * (opt.size / c) < P) c /= 2;
+        std::fill(cell.begin(), cell.end(), c);
+    } else {
+        // Section 4.2's weights on pairs: the RMS of the pair's sqrt(area) or longest edge.
+        std::vector<double> w(static_cast<size_t>(P));
+        for (int p = 0; p < P; ++p) {
+            double sum2 = 0;
+            int count = 0;
+            for (int t : pairs[size_t(p)])
+                if (t >= 0) {
+                    const AtlasTriangle& tr = a.triangles[size_t(t)];
+                    const double wt = opt.kind == AtlasKind::Area ? std::sqrt(tr.area()) : tr.longestEdge();
+                    sum2 += wt * wt, ++count;
+                }
+            w[size_t(p)] = std::sqrt(sum2 / count);
+        }
+        target = weightedCells(w, opt.size, pad, minCell, cell);
+    }
     // The pairs' graph: adjacent when any of their triangles are.
     std::vector<int> pairOf(a.triangles.size());
     for (int p = 0; p < P; ++p)
@@ -251,15 +358,18 @@ Atlas buildMultiresAtlas(std::vector<AtlasTriangle> tris, const AtlasOptions& op
     }
     std::vector<int> all(static_cast<size_t>(P));
     std::iota(all.begin(), all.end(), 0);
-    std::vector<glm::ivec2> cellOf(static_cast<size_t>(P));
-    placeQuadtree(all, pg, 0, 0, opt.size / cell, cellOf);
+    Quadtree tree{pg, cell, target, minCell, std::vector<glm::ivec2>(static_cast<size_t>(P))};
+    if (!target.empty()) tree.fit(all, opt.size);
+    tree.place(all, 0, 0, opt.size);
+    const std::vector<glm::ivec2>& origin = tree.origin;
+    a.mipCell = *std::max_element(cell.begin(), cell.end());
     for (int p = 0; p < P; ++p)
         for (int k = 0; k < 2; ++k) {
             const int t = pairs[size_t(p)][size_t(k)];
             if (t < 0) continue;
             Chart& c = a.charts[size_t(t)];
-            c.legs = legs;
-            c.cell = cellOf[size_t(p)] * cell;
+            c.legs = cell[size_t(p)] - pad;
+            c.cell = origin[size_t(p)];
             c.second = k == 1;
         }
     a.stripCount = 0;

@@ -1,8 +1,13 @@
-// The multiresolution uniform mesh atlas (section 4.3): triangles paired across shared edges,
-// the pairs' dual graph partitioned hierarchically into a balanced quadtree with METIS (the
+// The multiresolution mesh atlas (section 4.3): triangles paired across shared edges, the pairs'
+// dual graph partitioned hierarchically into a balanced quadtree with METIS (the
 // multiconstraint partitioner the paper cites), and each quadtree node placed in its quadrant
 // of the atlas, so that a MIP texel at level l (a 2^l x 2^l block) averages only triangles that
 // are neighbours on the surface, up to the level the partition keeps contiguous.
+//
+// Uniform: every pair in an a x a cell (section 4.3 as written). Area- and length-weighted
+// (section 4.2's weights carried over): each pair's cell a power of two sized by its weight, and
+// the quadtree balances the cells' texels instead of their count (METIS vertex weights), so a
+// node holds either one pair's cell or whole cells of neighbouring smaller pairs.
 #pragma once
 
 #include <vector>
@@ -30,9 +35,10 @@ MeshEdges meshEdges(const std::vector<AtlasTriangle>& triangles);
 // Throws InputError ("--mip: ...") for an edge shared by more than two triangles.
 std::vector<std::vector<int>> dualGraph(const std::vector<AtlasTriangle>& triangles);
 
-// Builds the multiresolution atlas (options.kind must be Uniform, options.size a power of two;
-// InputError "--size: ..." / "--atlas: ..." otherwise). Pair cells are a x a texels, a a power of
-// two; charts are seam-free for options.magnification inside them (legs a - 2 - 2m).
+// Builds the multiresolution atlas of options.kind (options.size a power of two; InputError
+// "--size: ..." otherwise, or when the pairs do not fit at the smallest cell). Pair cells are
+// a x a texels, a a power of two (one a for Uniform, per pair for Area and Length); charts are
+// seam-free for options.magnification inside them (legs a - 2 - 2m).
 Atlas buildMultiresAtlas(std::vector<AtlasTriangle> triangles, const AtlasOptions& options);
 
 // MIP levels of a filled atlas, 5 channels: RGBA and the written share w of the texel. Level 0

@@ -678,6 +678,19 @@ double baselineFmax(const std::string& profile) {
     return p.contains("fmax_mhz") && p["fmax_mhz"].is_number() ? p["fmax_mhz"].get<double>() : 0;
 }
 
+// The profile's Fmax after layout (MHz): the routed profile's post-route figure, any other
+// profile's pre-layout Fmax times the routed blocks' worst ratio (scripts/synth/layout_derate.json,
+// as docs/HARDWARE.md's silicon table); 0 without it.
+double layoutFmax(const std::string& profile, double preLayout) {
+    std::ifstream in(sourceDir() + "/scripts/synth/layout_derate.json");
+    if (!in) return 0;
+    const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+    if (j.is_discarded()) return 0;
+    if (j.value("profile", "") == profile && j.contains("post_route_fmax_mhz") && j["post_route_fmax_mhz"].is_number())
+        return j["post_route_fmax_mhz"].get<double>();
+    return j.contains("ratio") && j["ratio"].is_number() ? preLayout * j["ratio"].get<double>() : 0;
+}
+
 int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
     AtlasOptions ao;
     if (!parseAtlasKind(a.kind, &ao.kind)) throw InputError("--atlas: '" + a.kind + "' is not uniform, area or length");
@@ -774,7 +787,9 @@ int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
     if (a.mip) {
         const double dT = compareRgb(tri.image, pp.truth).rmsError;
         j["rms_vs_truth"]["atlas_trilinear"] = dT;
-        j["mip"] = {{"cell", atlas.mipCell}, {"levels", mixing.size()}, {"mixing_texels", mixing}};
+        int minCell = atlas.mipCell;
+        for (const Chart& c : atlas.charts) minCell = std::min(minCell, atlas.cellSize(c.legs).x);
+        j["mip"] = {{"cell", atlas.mipCell}, {"cell_min", minCell}, {"levels", mixing.size()}, {"mixing_texels", mixing}};
     }
     j["fill"] = {{"texels", fill.texels}, {"reference_seconds", fill.referenceSeconds}};
     std::ostringstream line;
@@ -801,6 +816,11 @@ int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
             f["stall_rate"] = hw.sim.outputStallRate;
             f["fmax_mhz"] = fmax > 0 ? nlohmann::json(fmax) : nlohmann::json(nullptr);
             f["fill_ms_at_fmax"] = fmax > 0 ? nlohmann::json(double(fill.cycles) / (fmax * 1e3)) : nlohmann::json(nullptr);
+            const double fmaxLayout = fmax > 0 ? layoutFmax(prof->name, fmax) : 0;
+            if (fmaxLayout > 0) {
+                f["fmax_layout_mhz"] = fmaxLayout;
+                f["fill_ms_at_layout_fmax"] = double(fill.cycles) / (fmaxLayout * 1e3);
+            }
             // Carr and Hart's Table 3: host synthesis rates (Hz) of 1 and 4 octaves at this size.
             const std::map<int, std::pair<double, double>> table3 = {{256, {9.09, 6.25}}, {512, {2.56, 1.82}},
                                                                      {1024, {0.72, 0.40}}};
@@ -894,6 +914,9 @@ int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
         md << "\nFill through " << prof->name << " RTL: " << fill.texels << " texels, " << fill.cycles << " cycles, "
            << fill.mismatches << " mismatches" << (j["hardware"]["fill_ms_at_fmax"].is_null() ? std::string()
                : ", " + j["hardware"]["fill_ms_at_fmax"].dump() + " ms at " + j["hardware"]["fmax_mhz"].dump() + " MHz")
+           << (j["hardware"].contains("fill_ms_at_layout_fmax")
+               ? ", " + j["hardware"]["fill_ms_at_layout_fmax"].dump() + " ms at " + j["hardware"]["fmax_layout_mhz"].dump() +
+                     " MHz after layout" : std::string())
            << ".\n";
     if (j.contains("hardware") && j["hardware"].contains("paper_table3_host_hz") && j["hardware"].contains("fill_hz_at_fmax"))
         md << "Fill rate " << j["hardware"]["fill_hz_at_fmax"].get<double>() << " Hz; the paper's host (Table 3) at "
@@ -1067,8 +1090,8 @@ int main(int argc, char** argv) {
     atlasCmd->add_option("scene", at.scene, "Scene file (its layer-0 objects)")->required()->check(CLI::ExistingFile);
     atlasCmd->add_option("--atlas", at.kind, "Atlas kind: uniform, area or length (Carr and Hart section 4)");
     atlasCmd->add_option("--size", at.size, "Atlas resolution H (H x H texels)")->check(CLI::Range(2, 4096));
-    atlasCmd->add_flag("--mip", at.mip, "Multiresolution uniform atlas (section 4.3, METIS quadtree; --size a power of two) "
-                       "and a trilinear render");
+    atlasCmd->add_flag("--mip", at.mip, "Multiresolution atlas of the --atlas kind (section 4.3, METIS quadtree; power-of-two "
+                       "cells, per pair for area and length; --size a power of two) and a trilinear render");
     atlasCmd->add_option("--turntable", at.turntable, "Also N views turning about the target: the atlas render's "
                          "flicker against the per-pixel render's (temporal RMS vs the truth)")->check(CLI::Range(2, 720));
     atlasCmd->add_option("--magnification", at.magnification, "Seam-free for: nearest or bilinear (default bilinear)");
