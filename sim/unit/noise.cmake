@@ -8,8 +8,10 @@ set(PST_NOISE_UNIT_SOURCES
     ${PROJECT_SOURCE_DIR}/rtl/octave/pst_octave_transform.sv
     ${PROJECT_SOURCE_DIR}/rtl/noise/pst_noise.sv
     ${PROJECT_SOURCE_DIR}/rtl/noise/pst_noise_weight.sv
+    ${PROJECT_SOURCE_DIR}/rtl/noise/pst_noise_hash.sv
     ${PROJECT_SOURCE_DIR}/rtl/noise/pst_noise_corner.sv
     ${PROJECT_SOURCE_DIR}/rtl/noise/pst_noise_lerp.sv
+    ${PROJECT_SOURCE_DIR}/rtl/noise/pst_noise_tree.sv
     ${PROJECT_SOURCE_DIR}/rtl/common/pst_mul_booth.sv
     ${PROJECT_SOURCE_DIR}/rtl/common/pst_delay.sv)
 
