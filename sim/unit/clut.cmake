@@ -4,7 +4,8 @@
 # profile. Seed: PST_SEED=<n> in the environment replays a run (the test prints its seed);
 # PST_CLUT_VECTORS=<n> changes the vector count per table (default 40000; 3 tables).
 set(PST_CLUT_UNIT_PARAMS FInt,FFrac,Log2Clut,ColourBits,WidthFrac,FilterRecipFrac,Datapath)
-set(PST_CLUT_UNIT_SOURCES ${PROJECT_SOURCE_DIR}/rtl/colour/pst_clut_filter.sv)
+set(PST_CLUT_UNIT_SOURCES ${PROJECT_SOURCE_DIR}/rtl/colour/pst_clut_filter.sv
+    ${PROJECT_SOURCE_DIR}/rtl/colour/pst_clut_channel.sv ${PROJECT_SOURCE_DIR}/rtl/common/pst_delay.sv)
 foreach(p ${PST_PROFILES})
   add_executable(clut_unit_${p} ${PROJECT_SOURCE_DIR}/sim/unit/clut_unit_test.cpp)
   target_link_libraries(clut_unit_${p} PRIVATE pst_golden GTest::gtest_main)
