@@ -46,11 +46,11 @@ def chparams(doc: dict) -> list:
 
 def read_lines(doc: dict, rom_dir, lib) -> list:
     """Read the cell library (port directions), the memory stand-ins and the RTL with the
-    profile's parameters (debug probes off)."""
+    profile's parameters (debug probes off); `include`s (pst_pkg.sv, *.svh) come from rtl/."""
     sources = " ".join(str(p) for p in rtl_sources())
     return [f"read_liberty -lib {lib}",
             f"read_verilog -lib {STANDIN_CELLS}",
-            f'read_verilog -sv -D SYNTHESIS -D PST_ROM_DIR="{rom_dir}" {sources}',
+            f'read_verilog -sv -I {ROOT / "rtl"} -D SYNTHESIS -D PST_ROM_DIR="{rom_dir}" {sources}',
             *chparams(doc),
             "chparam -set DebugProbes 0 pst_top"]
 
