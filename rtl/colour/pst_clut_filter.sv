@@ -129,18 +129,11 @@ module pst_clut_filter #(
   localparam int IW        = EW - P;                 // lo, hi, signed
   localparam int CountBits = Log2Clut + 3;           // count <= ceil(W) <= 4N
   localparam int SatBits   = ColourBits + Log2Clut;  // csat[N-1] <= N (2^CB - 1)
-  localparam int SumBits   = ColourBits + Log2Clut + 2;  // sum <= count (2^CB - 1) < 4N 2^CB
   localparam int RecipBits = FilterRecipFrac + 1;    // recip[1] = 2^RF
-  localparam int ProdBits  = SumBits + RecipBits;    // sum * recip, exact
-  localparam int QBits     = ProdBits - FilterRecipFrac + 1;  // rounded quotient (+1: carry)
   localparam int TFrac     = Log2Clut - 1 + WidthFrac;  // blend weight: W / 2^Lw - 1, exact for Lw < Log2Clut
-  localparam int AccW      = ColourBits + TFrac + 2;   // a 2^TFrac + (b - a) t, signed
   localparam int LW        = $clog2(Log2Clut + 2);      // level / leading-one index 0..Log2Clut+1
   localparam int RomDepth  = 4 * N + 1;                // recip[0..4N]
-  localparam logic [CB-1:0] MaxC = {CB{1'b1}};
   // Filter kinds (control register) and the serial channel steps.
-  localparam logic [KB-1:0] KindNone       = KB'(pst_pkg::FilterKindNone);
-  localparam logic [KB-1:0] KindMip        = KB'(pst_pkg::FilterKindMip);
   localparam logic [KB-1:0] KindMipBlended = KB'(pst_pkg::FilterKindMipBlended);
   localparam logic [KB-1:0] KindSat        = KB'(pst_pkg::FilterKindSat);
   localparam logic [SB-1:0] LastStep       = SB'(pst_pkg::ColourSteps - 1 + Regs);
@@ -296,8 +289,8 @@ module pst_clut_filter #(
   assign recip = recip_rom[count];
 
   // ---------------------------------------------------------------------------------------
-  // Per channel: MIP blend, SAT sum and division, output select. Lanes = 4 (parallel, lane =
-  // channel) or 1 (serial, channel = step_i).
+  // Per channel (pst_clut_channel): MIP blend, SAT sum and division, output select. Lanes = 4
+  // (parallel, lane = channel) or 1 (serial, channel = step_i).
   // ---------------------------------------------------------------------------------------
   localparam int Lanes = (Datapath == pst_pkg::DatapathParallel) ? pst_pkg::ColourSteps : 1;
   logic [Lanes*CB-1:0] lane_out;
@@ -325,75 +318,41 @@ module pst_clut_filter #(
   );
 
   for (genvar l = 0; l < Lanes; l++) begin : g_ch
-    logic [1:0]              ch;      // the channel of this lane
-    logic [CB-1:0]           ca, cb, first, last, entry;
-    logic [SatBits-1:0]      sh, sl, sn;
-    logic signed [CB:0]      d;       // b - a
-    logic signed [AccW-1:0]  acc;     // a 2^TFrac + (b - a) t + 2^(TFrac-1)
-    logic [CB-1:0]           mip_ch;
-    logic [SumBits-1:0]      sum_mod, sum_cl, sum;
-    logic [ProdBits-1:0]     prod;
-    logic [QBits-1:0]        quo;
-    logic [CB-1:0]           mean;    // <= 2^CB - 1: a mean of CB-bit entries
-    logic [CB-1:0]           div_ch, sat_ch, out_ch;
-
-    assign ch    = (Datapath == pst_pkg::DatapathParallel) ? 2'(l) : 2'(step_i);
-    // Reads (before the first register): the entries of this channel.
-    logic [CB-1:0]      ca_d, cb_d, first_d, last_d, entry_d, entry_1, entry_2;
-    logic [SatBits-1:0] sh_d, sl_d, sn_d;
-    assign ca_d    = CB'(lev_a >> (ch * CB));
-    assign cb_d    = CB'(lev_b >> (ch * CB));
-    assign first_d = CB'(clut_first >> (ch * CB));
-    assign last_d  = CB'(clut_last >> (ch * CB));
-    assign entry_d = CB'(clut_e >> (ch * CB));
-    // SAT reads: csat at the high end (hidx), the low end (lo mod N) and N-1.
-    assign sh_d    = sat_q[{hidx, ch}];
-    assign sl_d    = sat_q[{lm, ch}];
-    assign sn_d    = sat_q[{Log2Clut'(N - 1), ch}];
-    pst_delay #(.Width(5*CB + 3*SatBits), .Depth(R0)) u_r0 (
-      .clk_i, .rst_ni, .en_i, .d_i ({ca_d, cb_d, first_d, last_d, entry_d, sh_d, sl_d, sn_d}),
-      .q_o ({ca, cb, first, last, entry_1, sh, sl, sn})
+    logic [1:0] ch;   // the channel of this lane
+    assign ch = (Datapath == pst_pkg::DatapathParallel) ? 2'(l) : 2'(step_i);
+    // The reads of this channel (before the first register); SAT: csat at the high end
+    // (hidx), the low end (lo mod N) and N-1.
+    pst_clut_channel #(
+      .Log2Clut        (Log2Clut),
+      .ColourBits      (ColourBits),
+      .WidthFrac       (WidthFrac),
+      .FilterRecipFrac (FilterRecipFrac),
+      .Regs            (Regs)
+    ) u_channel (
+      .clk_i, .rst_ni, .en_i,
+      .a_i           (CB'(lev_a >> (ch * CB))),
+      .b_i           (CB'(lev_b >> (ch * CB))),
+      .first_i       (CB'(clut_first >> (ch * CB))),
+      .last_i        (CB'(clut_last >> (ch * CB))),
+      .entry_i       (CB'(clut_e >> (ch * CB))),
+      .sh_i          (sat_q[{hidx, ch}]),
+      .sl_i          (sat_q[{lm, ch}]),
+      .sn_i          (sat_q[{Log2Clut'(N - 1), ch}]),
+      .t_1_i         (t_1),
+      .nb_1_i        (nb_1),
+      .na_1_i        (na_1),
+      .clamp_1_i     (clamp_1),
+      .mod_wrap_1_i  (mod_wrap_1),
+      .lo_neg_1_i    (lo_neg_1),
+      .recip_2_i     (recip_2),
+      .clamp_2_i     (clamp_2),
+      .w_ge_n_2_i    (w_ge_n_2),
+      .cl_entry_2_i  (cl_entry_2),
+      .count0_2_i    (count0_2),
+      .mip_point_2_i (mip_point_2),
+      .kind_2_i      (kind_2),
+      .ch_o          (lane_out[l*CB +: CB])
     );
-
-    // MIP: round half up of lerp(a, b, t); the result lies between a and b.
-    assign d      = $signed({1'b0, cb}) - $signed({1'b0, ca});
-    assign acc    = ($signed(AccW'(ca)) <<< TFrac) + AccW'(d) * $signed(AccW'(t_1)) +
-                    $signed(AccW'(1) <<< (TFrac - 1));
-
-    // SAT sums (all terms non-negative; see the header).
-    assign sum_mod = SumBits'(sh) + (mod_wrap_1 ? SumBits'(sn) : '0) - SumBits'(sl);
-    assign sum_cl  = SumBits'(nb_1) * SumBits'(first) + SumBits'(sh) -
-                     (lo_neg_1 ? '0 : SumBits'(sl)) + SumBits'(na_1) * SumBits'(last);
-    logic [CB-1:0]      mip_d, mean_d;
-    logic [SumBits-1:0] sum_d;
-    assign mip_d  = CB'(acc >>> TFrac);
-    assign sum_d  = clamp_1 ? sum_cl : sum_mod;
-    assign mean_d = CB'(((SatBits + 1)'(sn) + (SatBits + 1)'(N / 2)) >> Log2Clut);
-    pst_delay #(.Width(3*CB + SumBits), .Depth(R1)) u_r1 (
-      .clk_i, .rst_ni, .en_i, .d_i ({mip_d, mean_d, entry_1, sum_d}), .q_o ({mip_ch, mean, entry_2, sum})
-    );
-    assign entry = entry_2;
-
-    assign prod   = ProdBits'(sum) * ProdBits'(recip_2);
-    assign quo    = QBits'((prod + (ProdBits'(1) << (RF - 1))) >> RF);
-    assign div_ch = (quo > QBits'(MaxC)) ? MaxC : quo[CB-1:0];
-
-    always_comb begin
-      if (!clamp_2 && w_ge_n_2) begin
-        sat_ch = mean;
-      end else if (clamp_2 ? cl_entry_2 : count0_2) begin
-        sat_ch = entry;
-      end else begin
-        sat_ch = div_ch;
-      end
-      unique case (kind_2)
-        KindNone:                out_ch = entry;
-        KindMip, KindMipBlended: out_ch = mip_point_2 ? entry : mip_ch;
-        default:                 out_ch = sat_ch;
-      endcase
-    end
-
-    assign lane_out[l*CB +: CB] = out_ch;
   end
 
   if (Datapath == pst_pkg::DatapathParallel) begin : g_out_par

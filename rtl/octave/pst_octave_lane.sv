@@ -14,20 +14,13 @@
 //   LgW              width of lgx_i, lgy_i (pst_fade_lg's lg_o).
 //   <Format>Int/Frac the profile's number formats (pst_top's header).
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_octave_lane #(
-  parameter int Rows = 3, parameter int FilterBandlimit = pst_pkg::FilterBandlimitDefault,
+  parameter int Rows = 3,
   parameter int LgW = 9,
-  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault,
-  parameter int NoiseOutFrac = pst_pkg::NoiseOutFracDefault,
-  parameter int CoordInt = pst_pkg::CoordIntDefault, parameter int CoordFrac = pst_pkg::CoordFracDefault,
-  parameter int MatrixInt = pst_pkg::MatrixIntDefault, parameter int MatrixFrac = pst_pkg::MatrixFracDefault,
-  parameter int OffsetInt = pst_pkg::OffsetIntDefault, parameter int OffsetFrac = pst_pkg::OffsetFracDefault,
-  parameter int AmplitudeInt = pst_pkg::AmplitudeIntDefault, parameter int AmplitudeFrac = pst_pkg::AmplitudeFracDefault,
-  parameter int GradMatrixInt = pst_pkg::GradMatrixIntDefault, parameter int GradMatrixFrac = pst_pkg::GradMatrixFracDefault,
-  parameter int FInt = pst_pkg::FIntDefault, parameter int FFrac = pst_pkg::FFracDefault,
-  parameter int GradInt = pst_pkg::GradIntDefault, parameter int GradFrac = pst_pkg::GradFracDefault,
+  `PST_LANE_PARAMS,
   localparam int CW  = CoordInt + CoordFrac,
   localparam int MW  = MatrixInt + MatrixFrac,
   localparam int OW  = OffsetInt + OffsetFrac,

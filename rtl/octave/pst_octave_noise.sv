@@ -6,18 +6,15 @@
 // Parameters: the profile's noise keys (pst_top's header); DebugProbes = 0 ties the probe
 // outputs to zero.
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_octave_noise #(
   parameter int NoiseUnits = pst_pkg::NoiseUnitsDefault,
-  parameter int NoiseInterp = pst_pkg::NoiseInterpDefault, parameter int NoiseCorner = pst_pkg::NoiseCornerDefault,
-  parameter int NoiseHash = pst_pkg::NoiseHashDefault, parameter int NoiseValueFrac = pst_pkg::NoiseValueFracDefault,
-  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault, parameter int NoiseOutFrac = pst_pkg::NoiseOutFracDefault,
-  parameter int NoiseSteps = pst_pkg::NoiseStepsDefault, parameter int NoiseGuardBits = pst_pkg::NoiseGuardBitsDefault,
-  parameter int NoiseGradFrac = pst_pkg::NoiseGradFracDefault, parameter int NoiseRegs = pst_pkg::NoiseRegsDefault,
-  parameter int NoiseWorleySearch = pst_pkg::NoiseWorleySearchDefault,
-  parameter int NoiseWorleyPoints = pst_pkg::NoiseWorleyPointsDefault,
-  parameter int NoiseWorleyOrder = pst_pkg::NoiseWorleyOrderDefault,
+  `PST_NOISE_PARAMS,
+  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault,
+  parameter int NoiseOutFrac = pst_pkg::NoiseOutFracDefault,
+  parameter int NoiseSteps = pst_pkg::NoiseStepsDefault, parameter int NoiseRegs = pst_pkg::NoiseRegsDefault,
   parameter bit DebugProbes = 1'b1,
   localparam int LF  = NoiseLatticeFrac,
   localparam int NW  = pst_pkg::NoiseIntBits + NoiseOutFrac,

@@ -14,22 +14,12 @@
 // Parameters: pst_octave_stage's (the profile's formats and registers); DebugProbes = 0 ties
 // the pr_* outputs to zero.
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_octave_serial #(
-  parameter int Octaves = pst_pkg::OctavesDefault, parameter int NoiseUnits = pst_pkg::NoiseUnitsDefault,
-  parameter int NoiseSteps = pst_pkg::NoiseStepsDefault, parameter int NoiseRegs = pst_pkg::NoiseRegsDefault,
-  parameter int OctaveRegs = pst_pkg::OctaveRegsDefault, parameter int FilterBandlimit = pst_pkg::FilterBandlimitDefault,
-  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault, parameter int NoiseOutFrac = pst_pkg::NoiseOutFracDefault,
-  parameter int CoordInt = pst_pkg::CoordIntDefault, parameter int CoordFrac = pst_pkg::CoordFracDefault,
-  parameter int MatrixInt = pst_pkg::MatrixIntDefault, parameter int MatrixFrac = pst_pkg::MatrixFracDefault,
-  parameter int OffsetInt = pst_pkg::OffsetIntDefault, parameter int OffsetFrac = pst_pkg::OffsetFracDefault,
-  parameter int AmplitudeInt = pst_pkg::AmplitudeIntDefault, parameter int AmplitudeFrac = pst_pkg::AmplitudeFracDefault,
-  parameter int GradMatrixInt = pst_pkg::GradMatrixIntDefault, parameter int GradMatrixFrac = pst_pkg::GradMatrixFracDefault,
-  parameter int QuadricInt = pst_pkg::QuadricIntDefault, parameter int QuadricFrac = pst_pkg::QuadricFracDefault,
-  parameter int FInt = pst_pkg::FIntDefault, parameter int FFrac = pst_pkg::FFracDefault,
-  parameter int GradInt = pst_pkg::GradIntDefault, parameter int GradFrac = pst_pkg::GradFracDefault,
-  parameter int JacobianInt = pst_pkg::JacobianIntDefault, parameter int JacobianFrac = pst_pkg::JacobianFracDefault,
+  `PST_OCTAVE_PARAMS,
+  `PST_LANE_PARAMS,
   parameter int SideW = pst_pkg::TagBits, parameter bit DebugProbes = 1'b1,
   localparam int CW  = CoordInt + CoordFrac,
   localparam int MW  = MatrixInt + MatrixFrac,
@@ -226,12 +216,7 @@ module pst_octave_serial #(
     logic [FW-1:0]    fterm_raw, fterm_d;
     logic [GW-1:0]    gterm_raw;
     logic [3*GW-1:0]  gterm_d;
-    pst_octave_lane #(
-      .Rows(1), .FilterBandlimit(FilterBandlimit), .LgW(LgW), .NoiseLatticeFrac(NoiseLatticeFrac),
-      .NoiseOutFrac(NoiseOutFrac), .CoordInt(CoordInt), .CoordFrac(CoordFrac), .MatrixInt(MatrixInt),
-      .MatrixFrac(MatrixFrac), .OffsetInt(OffsetInt), .OffsetFrac(OffsetFrac), .AmplitudeInt(AmplitudeInt),
-      .AmplitudeFrac(AmplitudeFrac), .GradMatrixInt(GradMatrixInt), .GradMatrixFrac(GradMatrixFrac),
-      .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
+    pst_octave_lane #(.Rows(1), .LgW(LgW), `PST_LANE_PASS
     ) u_lane (
       .s_i (s_i), .m_i (m_row), .o_i (o_row), .lat_o (lat_r), .frac_o (frac_r),
       .bl_i (bl_i), .lgx_i (lgx), .lgy_i (lgy), .lgm_i (lgm_t_d), .fade_i (fade_i), .alpha_o (alpha_d),

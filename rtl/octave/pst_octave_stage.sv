@@ -14,30 +14,14 @@
 // Registers (pst_regs, flat): quad_i A..J; oct_*_i octave i's M, o, a, GM, lg ||M|| at block i;
 // bl_i, fade_i: control.bandlimit and the fade table.
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_octave_stage #(
-  parameter int Octaves = pst_pkg::OctavesDefault, parameter int NoiseUnits = pst_pkg::NoiseUnitsDefault,
-  parameter int Datapath = pst_pkg::DatapathDefault, parameter int NoiseSteps = pst_pkg::NoiseStepsDefault,
-  parameter int NoiseInterp = pst_pkg::NoiseInterpDefault, parameter int NoiseCorner = pst_pkg::NoiseCornerDefault,
-  parameter int NoiseHash = pst_pkg::NoiseHashDefault, parameter int NoiseValueFrac = pst_pkg::NoiseValueFracDefault,
-  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault, parameter int NoiseOutFrac = pst_pkg::NoiseOutFracDefault,
-  parameter int NoiseGuardBits = pst_pkg::NoiseGuardBitsDefault,
-  parameter int NoiseGradFrac = pst_pkg::NoiseGradFracDefault,           // lattice units only
-  parameter int NoiseWorleySearch = pst_pkg::NoiseWorleySearchDefault,   // not none: worley units
-  parameter int NoiseWorleyPoints = pst_pkg::NoiseWorleyPointsDefault,
-  parameter int NoiseWorleyOrder = pst_pkg::NoiseWorleyOrderDefault,
-  parameter int CoordInt = pst_pkg::CoordIntDefault, parameter int CoordFrac = pst_pkg::CoordFracDefault,
-  parameter int MatrixInt = pst_pkg::MatrixIntDefault, parameter int MatrixFrac = pst_pkg::MatrixFracDefault,
-  parameter int OffsetInt = pst_pkg::OffsetIntDefault, parameter int OffsetFrac = pst_pkg::OffsetFracDefault,
-  parameter int AmplitudeInt = pst_pkg::AmplitudeIntDefault, parameter int AmplitudeFrac = pst_pkg::AmplitudeFracDefault,
-  parameter int GradMatrixInt = pst_pkg::GradMatrixIntDefault, parameter int GradMatrixFrac = pst_pkg::GradMatrixFracDefault,
-  parameter int QuadricInt = pst_pkg::QuadricIntDefault, parameter int QuadricFrac = pst_pkg::QuadricFracDefault,
-  parameter int FInt = pst_pkg::FIntDefault, parameter int FFrac = pst_pkg::FFracDefault,
-  parameter int GradInt = pst_pkg::GradIntDefault, parameter int GradFrac = pst_pkg::GradFracDefault,
-  parameter int JacobianInt = pst_pkg::JacobianIntDefault, parameter int JacobianFrac = pst_pkg::JacobianFracDefault,
-  parameter int FilterBandlimit = pst_pkg::FilterBandlimitDefault,
-  parameter int NoiseRegs = pst_pkg::NoiseRegsDefault, parameter int OctaveRegs = pst_pkg::OctaveRegsDefault,
+  `PST_OCTAVE_PARAMS,
+  `PST_LANE_PARAMS,
+  `PST_NOISE_PARAMS,
+  parameter int Datapath = pst_pkg::DatapathDefault,
   parameter int SideW = pst_pkg::TagBits,   // side_i: the tag at its low TagBits, the Jacobian above
   parameter bit DebugProbes = 1'b1,
   localparam int CW  = CoordInt + CoordFrac,
@@ -116,15 +100,7 @@ module pst_octave_stage #(
   logic [TB-1:0]               pr_tag, pr_q_tag;
 
   if (Serial) begin : g_serial
-    pst_octave_serial #(
-      .Octaves(Octaves), .NoiseUnits(NoiseUnits), .NoiseSteps(NoiseSteps), .NoiseRegs(NoiseRegs),
-      .OctaveRegs(OctaveRegs), .FilterBandlimit(FilterBandlimit), .NoiseLatticeFrac(NoiseLatticeFrac),
-      .NoiseOutFrac(NoiseOutFrac), .CoordInt(CoordInt), .CoordFrac(CoordFrac), .MatrixInt(MatrixInt),
-      .MatrixFrac(MatrixFrac), .OffsetInt(OffsetInt), .OffsetFrac(OffsetFrac), .AmplitudeInt(AmplitudeInt),
-      .AmplitudeFrac(AmplitudeFrac), .GradMatrixInt(GradMatrixInt), .GradMatrixFrac(GradMatrixFrac),
-      .QuadricInt(QuadricInt), .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt),
-      .GradFrac(GradFrac), .JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac), .SideW(SideW),
-      .DebugProbes(DebugProbes)
+    pst_octave_serial #(`PST_OCTAVE_PASS, `PST_LANE_PASS, .SideW(SideW), .DebugProbes(DebugProbes)
     ) u_datapath (
       .clk_i, .rst_ni, .valid_i, .ready_o, .s_i, .side_i, .valid_o, .ready_i, .side_o, .busy_o,
       .active_i, .quad_i, .oct_m_i, .oct_o_i, .oct_a_i, .oct_gm_i, .oct_lgm_i, .bl_i, .fade_i,
@@ -135,15 +111,7 @@ module pst_octave_stage #(
       .pr_q_tag_o (pr_q_tag)
     );
   end else begin : g_parallel
-    pst_octave_parallel #(
-      .Octaves(Octaves), .NoiseUnits(NoiseUnits), .NoiseSteps(NoiseSteps), .NoiseRegs(NoiseRegs),
-      .OctaveRegs(OctaveRegs), .FilterBandlimit(FilterBandlimit), .NoiseLatticeFrac(NoiseLatticeFrac),
-      .NoiseOutFrac(NoiseOutFrac), .CoordInt(CoordInt), .CoordFrac(CoordFrac), .MatrixInt(MatrixInt),
-      .MatrixFrac(MatrixFrac), .OffsetInt(OffsetInt), .OffsetFrac(OffsetFrac), .AmplitudeInt(AmplitudeInt),
-      .AmplitudeFrac(AmplitudeFrac), .GradMatrixInt(GradMatrixInt), .GradMatrixFrac(GradMatrixFrac),
-      .QuadricInt(QuadricInt), .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt),
-      .GradFrac(GradFrac), .JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac), .SideW(SideW),
-      .DebugProbes(DebugProbes)
+    pst_octave_parallel #(`PST_OCTAVE_PASS, `PST_LANE_PASS, .SideW(SideW), .DebugProbes(DebugProbes)
     ) u_datapath (
       .clk_i, .rst_ni, .valid_i, .ready_o, .s_i, .side_i, .valid_o, .ready_i, .side_o, .busy_o,
       .active_i, .quad_i, .oct_m_i, .oct_o_i, .oct_a_i, .oct_gm_i, .oct_lgm_i, .bl_i, .fade_i,
@@ -159,12 +127,8 @@ module pst_octave_stage #(
 
   logic [NoiseUnits*LTW-1:0]  pr_lat;
   logic [NoiseUnits*3*LF-1:0] pr_frac;
-  pst_octave_noise #(
-    .NoiseUnits(NoiseUnits), .NoiseInterp(NoiseInterp), .NoiseCorner(NoiseCorner), .NoiseHash(NoiseHash),
-    .NoiseValueFrac(NoiseValueFrac), .NoiseLatticeFrac(NoiseLatticeFrac), .NoiseOutFrac(NoiseOutFrac),
-    .NoiseSteps(NoiseSteps), .NoiseGuardBits(NoiseGuardBits), .NoiseGradFrac(NoiseGradFrac),
-    .NoiseRegs(NoiseRegs), .NoiseWorleySearch(NoiseWorleySearch), .NoiseWorleyPoints(NoiseWorleyPoints),
-    .NoiseWorleyOrder(NoiseWorleyOrder), .DebugProbes(DebugProbes)
+  pst_octave_noise #(`PST_NOISE_PASS, .NoiseUnits(NoiseUnits), .NoiseLatticeFrac(NoiseLatticeFrac),
+    .NoiseOutFrac(NoiseOutFrac), .NoiseSteps(NoiseSteps), .NoiseRegs(NoiseRegs), .DebugProbes(DebugProbes)
   ) u_noise (
     .clk_i, .rst_ni, .en_i (nz_en), .valid_i (nz_valid), .step_i (nz_step), .lat_i (nz_lat),
     .frac_i (nz_frac), .worley_c_i, .last_o (nz_last), .n_o (nz_n), .g_o (nz_g),

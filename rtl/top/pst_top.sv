@@ -35,33 +35,11 @@
 // Register writes (reg_we_i) are legal only while idle_o is high: the driver drains the
 // pipeline before it changes the texture, as a driver between two objects would.
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_top #(
-  parameter int Octaves = pst_pkg::OctavesDefault, parameter int NoiseUnits = pst_pkg::NoiseUnitsDefault,
-  parameter int NoiseSteps = pst_pkg::NoiseStepsDefault, parameter int Datapath = pst_pkg::DatapathDefault,
-  parameter int Log2Clut = pst_pkg::Log2ClutDefault, parameter int ColourBits = pst_pkg::ColourBitsDefault,
-  parameter int NoiseInterp = pst_pkg::NoiseInterpDefault, parameter int NoiseCorner = pst_pkg::NoiseCornerDefault,
-  parameter int NoiseHash = pst_pkg::NoiseHashDefault, parameter int NoiseValueFrac = pst_pkg::NoiseValueFracDefault,
-  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault, parameter int NoiseOutFrac = pst_pkg::NoiseOutFracDefault,
-  parameter int NoiseGuardBits = pst_pkg::NoiseGuardBitsDefault,
-  parameter int NoiseGradFrac = pst_pkg::NoiseGradFracDefault,
-  parameter int NoiseWorleySearch = pst_pkg::NoiseWorleySearchDefault,
-  parameter int NoiseWorleyPoints = pst_pkg::NoiseWorleyPointsDefault,
-  parameter int NoiseWorleyOrder = pst_pkg::NoiseWorleyOrderDefault, parameter int FilterNorm = pst_pkg::FilterNormDefault,
-  parameter int FilterRecipFrac = pst_pkg::FilterRecipFracDefault, parameter int WidthFrac = pst_pkg::WidthFracDefault,
-  parameter int FilterBandlimit = pst_pkg::FilterBandlimitDefault,
-  parameter int CoordInt = pst_pkg::CoordIntDefault, parameter int CoordFrac = pst_pkg::CoordFracDefault,
-  parameter int JacobianInt = pst_pkg::JacobianIntDefault, parameter int JacobianFrac = pst_pkg::JacobianFracDefault,
-  parameter int MatrixInt = pst_pkg::MatrixIntDefault, parameter int MatrixFrac = pst_pkg::MatrixFracDefault,
-  parameter int OffsetInt = pst_pkg::OffsetIntDefault, parameter int OffsetFrac = pst_pkg::OffsetFracDefault,
-  parameter int AmplitudeInt = pst_pkg::AmplitudeIntDefault, parameter int AmplitudeFrac = pst_pkg::AmplitudeFracDefault,
-  parameter int GradMatrixInt = pst_pkg::GradMatrixIntDefault, parameter int GradMatrixFrac = pst_pkg::GradMatrixFracDefault,
-  parameter int QuadricInt = pst_pkg::QuadricIntDefault, parameter int QuadricFrac = pst_pkg::QuadricFracDefault,
-  parameter int FInt = pst_pkg::FIntDefault, parameter int FFrac = pst_pkg::FFracDefault,
-  parameter int GradInt = pst_pkg::GradIntDefault, parameter int GradFrac = pst_pkg::GradFracDefault,
-  parameter int NoiseRegs = pst_pkg::NoiseRegsDefault, parameter int OctaveRegs = pst_pkg::OctaveRegsDefault,
-  parameter int WidthRegs = pst_pkg::WidthRegsDefault, parameter int ColourRegs = pst_pkg::ColourRegsDefault,
+  `PST_PROFILE_PARAMS,
   parameter bit DebugProbes = 1'b1,
   // Derived widths (not profile keys).
   localparam int CW  = CoordInt + CoordFrac,                                // one coordinate
@@ -160,18 +138,8 @@ module pst_top #(
   pst_pipe_reg #(.Width($bits(a_d)), .Skid(Skid)) u_reg_a (.clk_i, .rst_ni, .valid_i (frag_valid_i),
     .ready_o (frag_ready_o), .data_i (a_d), .valid_o (a_valid), .ready_i (a_ready), .data_o (a_q));
 
-  pst_octave_stage #(.Octaves(Octaves), .NoiseUnits(NoiseUnits), .Datapath(Datapath),
-    .NoiseInterp(NoiseInterp), .NoiseCorner(NoiseCorner), .NoiseHash(NoiseHash),
-    .NoiseValueFrac(NoiseValueFrac), .NoiseLatticeFrac(NoiseLatticeFrac), .NoiseOutFrac(NoiseOutFrac),
-    .NoiseSteps(NoiseSteps), .NoiseGuardBits(NoiseGuardBits), .NoiseGradFrac(NoiseGradFrac),
-    .NoiseWorleySearch(NoiseWorleySearch),
-    .NoiseWorleyPoints(NoiseWorleyPoints), .NoiseWorleyOrder(NoiseWorleyOrder), .CoordInt(CoordInt), .CoordFrac(CoordFrac),
-    .MatrixInt(MatrixInt), .MatrixFrac(MatrixFrac), .OffsetInt(OffsetInt), .OffsetFrac(OffsetFrac),
-    .AmplitudeInt(AmplitudeInt), .AmplitudeFrac(AmplitudeFrac), .GradMatrixInt(GradMatrixInt),
-    .GradMatrixFrac(GradMatrixFrac), .QuadricInt(QuadricInt), .QuadricFrac(QuadricFrac), .FInt(FInt),
-    .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac), .NoiseRegs(NoiseRegs),
-    .OctaveRegs(OctaveRegs), .JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac),
-    .FilterBandlimit(FilterBandlimit), .SideW(6*JW + TB), .DebugProbes(DebugProbes)
+  pst_octave_stage #(`PST_OCTAVE_PASS, `PST_LANE_PASS, `PST_NOISE_PASS, .Datapath(Datapath),
+    .SideW(6*JW + TB), .DebugProbes(DebugProbes)
   ) u_octave (.clk_i, .rst_ni, .valid_i (a_valid), .ready_o (a_ready), .s_i (a_q.s),
     .side_i ({a_q.j, a_q.tag}), .valid_o (b_in_valid), .ready_i (b_in_ready), .f_o (b_d.f),
     .grad_o (b_d.grad), .side_o ({b_d.j, b_d.tag}), .busy_o (octave_busy),

@@ -3,7 +3,7 @@
 
 One description, read here, is the profile schema of every script and the source of the
 generated files each other side uses (rtl/pst_pkg.sv, rtl/pst_profile_checks.svh,
-model/golden/contract.h, the register table of docs/HARDWARE.md).
+rtl/pst_params.svh, model/golden/contract.h, the register table of docs/HARDWARE.md).
 
 API (import as `from pstlib import contract`, with scripts/ on sys.path):
   load(path=None) -> Contract          the description (cached; default rtl/contract.toml)
@@ -17,7 +17,7 @@ API (import as `from pstlib import contract`, with scripts/ on sys.path):
   parameters(doc) -> [(Name, int)]     the RTL parameters of a valid profile (enums as indices)
   read_profile(path) -> dict           tomllib-loaded and validated; raises ProfileError whose str()
                                        is "PATH:LINE: FIELD: what is wrong"
-  sv_package(c), sv_checks(c), cpp_header(c), python_formulas(c), hardware_md_table(c)
+  sv_package(c), sv_checks(c), sv_params(c), cpp_header(c), python_formulas(c), hardware_md_table(c)
                                        the generated texts
   stage_cycles(doc) -> {stage: cycles}  cycles per stage and per pixel of a profile (docs table)
   formulas       the [formula] functions (w_width, octave_cycles, ...), generated into
@@ -660,6 +660,47 @@ def sv_checks(c: Contract) -> str:
     return "\n".join(L)
 
 
+def param_groups(c: Contract) -> list[tuple[str, str, list[str]]]:
+    """(NAME, doc, [parameter]) per [rtl_params] group, then PROFILE (every parameter); a
+    ValueError names a parameter the schema lacks or one two groups share."""
+    known, seen, out = set(c.param_names), {}, []
+    for g, spec in c.raw.get("rtl_params", {}).items():
+        for p in spec["params"]:
+            if p not in known:
+                raise ValueError(f"rtl_params.{g}: {p} is not a profile parameter")
+            if p in seen:
+                raise ValueError(f"rtl_params.{g}: {p} is in rtl_params.{seen[p]} too")
+            seen[p] = g
+        out.append((g.upper(), spec.get("doc", ""), list(spec["params"])))
+    return out + [("PROFILE", "every profile parameter, in schema order (pst_top; declaration only)",
+                   c.param_names)]
+
+
+def sv_params(c: Contract) -> str:
+    """rtl/pst_params.svh: per parameter group, a declaration macro and a pass-through macro
+    (Yosys 0.23 takes no struct parameter, so a group travels as a list)."""
+    L = [f"// {HEADER}",
+         "// pst_params: the profile's parameter groups (rtl/contract.toml [rtl_params]) as macros, so that",
+         "// a module passing a group on declares it once: `PST_<GROUP>_PARAMS in its #( ... ) declares",
+         "// `parameter int P = pst_pkg::PDefault` per parameter, `PST_<GROUP>_PASS in an instance's",
+         "// #( ... ) passes `.P(P)`; add a comma when more parameters follow. Include after pst_pkg.sv.",
+         "// Read by the Verilator lint and build and by Yosys 0.23 (read_verilog -sv), which takes no",
+         "// struct parameter that could otherwise carry a group.",
+         "`ifndef PST_PARAMS_SVH", "`define PST_PARAMS_SVH", ""]
+    for name, doc, params in param_groups(c):
+        L += _comment("// ", f"{name}: {doc}.")
+        decl = [f"  parameter int {p} = pst_pkg::{p}Default" for p in params]
+        L.append(f"`define PST_{name}_PARAMS \\")
+        L += [d + (", \\" if i + 1 < len(decl) else "") for i, d in enumerate(decl)]
+        if name != "PROFILE":   # pst_top passes groups on, not the whole profile
+            rows = textwrap.wrap(", ".join(f".{p}({p})" for p in params), 92, break_on_hyphens=False)
+            L.append(f"`define PST_{name}_PASS \\")
+            L += [f"  {r}" + (" \\" if i + 1 < len(rows) else "") for i, r in enumerate(rows)]
+        L.append("")
+    L += ["`endif  // PST_PARAMS_SVH", ""]
+    return "\n".join(L)
+
+
 def cpp_header(c: Contract) -> str:
     L = [f"// {HEADER}",
          "// The hardware contract (rtl/contract.toml) for the golden model, the driver and the harness:",
@@ -904,6 +945,7 @@ def _hardware_md(c: Contract, current: str, root: Path = ROOT) -> str:
 GENERATED = {
     "rtl/pst_pkg.sv": lambda c, cur, root: sv_package(c),
     "rtl/pst_profile_checks.svh": lambda c, cur, root: sv_checks(c),
+    "rtl/pst_params.svh": lambda c, cur, root: sv_params(c),
     "model/golden/contract.h": lambda c, cur, root: cpp_header(c),
     "scripts/pstlib/formulas.py": lambda c, cur, root: python_formulas(c),
     "docs/HARDWARE.md": _hardware_md,

@@ -46,7 +46,7 @@ def chparams(doc: dict) -> list:
 
 def read_lines(doc: dict, rom_dir, lib) -> list:
     """Read the cell library (port directions), the memory stand-ins and the RTL with the
-    profile's parameters (debug probes off)."""
+    profile's parameters (debug probes off); `include`s (pst_pkg.sv, *.svh) come from rtl/."""
     sources = " ".join(str(p) for p in rtl_sources())
     return [f"read_liberty -lib {lib}",
             f"read_verilog -lib {STANDIN_CELLS}",
