@@ -1,5 +1,5 @@
 // pst_clut_channel: one channel of the colour-table filter (part of rtl/colour/pst_clut_filter.sv,
-// stage 6 of docs/HARDWARE.md): the MIP blend, the SAT sum and its division, and the output
+// unit 6 of docs/HARDWARE.md): the MIP blend, the SAT sum and its division, and the output
 // select, from the table entries pst_clut_filter read for this channel.
 // Golden: model/golden/clut_filter_fx.cpp (the same steps, bit for bit).
 //

@@ -1,4 +1,4 @@
-// pst_clut_filter: stage 6 of docs/HARDWARE.md, the colour-table filter of Hart et al. 1999
+// pst_clut_filter: unit 6 of docs/HARDWARE.md, the colour-table filter of Hart et al. 1999
 // section 3.3 (colour-table MIP map, summed-area colour table eq. 13-15 with every edge case).
 // Mirrored bit for bit by model/golden/clut_filter_fx.cpp; the double reference whose
 // semantics this approximates is model/colormap.cpp (filterSat, filterMip).

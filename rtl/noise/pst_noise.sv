@@ -1,4 +1,4 @@
-// pst_noise: the noise unit (docs/HARDWARE.md stage 2). Rayshade's Noise3
+// pst_noise: the noise unit (docs/HARDWARE.md unit 2). Rayshade's Noise3
 // (value-plus-gradient lattice noise) and its analytic gradient in fixed point, with the
 // cheaper variants as parameters. Combinational when NoiseRegs = 0, else a pipeline (below).
 // Golden: pst::noiseFx

@@ -1,4 +1,4 @@
-// pst_noise_hash: the noise unit's hash chain (part of rtl/noise/pst_noise.sv, stage 2 of
+// pst_noise_hash: the noise unit's hash chain (part of rtl/noise/pst_noise.sv, unit 2 of
 // docs/HARDWARE.md, step 2 and pipeline boundary b0): the corner indices of the lattice cell
 // and the chained table lookups that give each corner of the step its hash h3.
 // Golden: pst::noiseFx (model/golden/noise_fx.cpp); model/noise.cpp's noiseHash.

@@ -1,4 +1,4 @@
-// pst_noise_tree: the noise unit's interpolation tree (part of rtl/noise/pst_noise.sv, stage 2
+// pst_noise_tree: the noise unit's interpolation tree (part of rtl/noise/pst_noise.sv, unit 2
 // of docs/HARDWARE.md, steps 5 and the pipeline boundaries b2..b5): the registers after the
 // corners, the lerps inside a step and the serial lerps across steps, down to the root node.
 // Golden: pst::noiseFx (model/golden/noise_fx.cpp).

@@ -1,4 +1,4 @@
-// pst_octave_stage: the octave stage of pst_top, [A] -> [B] (docs/HARDWARE.md stages 1-4): the
+// pst_octave_stage: the octave stage of pst_top, [A] -> [B] (docs/HARDWARE.md units 1-4): the
 // quadric and NoiseUnits octave lanes (octave transform, noise, octave term) over Passes =
 // Octaves / NoiseUnits passes, their terms accumulated and saturated to f and grad f. Wiring of
 //   pst_octave_parallel or pst_octave_serial  the datapath (Datapath): its cycle count and

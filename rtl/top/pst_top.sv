@@ -75,7 +75,7 @@ module pst_top #(
   output logic [WW-1:0]                  out_w_o,
   // Debug probes of the octave stage (a pass's noise results with its tag and lattice input,
   // when they leave the noise units; q with its tag when the fragment leaves the stage): the
-  // harness samples them every cycle so the scoreboard can name the first stage that differs.
+  // harness samples them every cycle so the scoreboard can name the first unit that differs.
   // Tied to zero when DebugProbes = 0 (synthesis).
   output logic                           probe_valid_o,
   output logic [TB-1:0]                  probe_tag_o,
