@@ -6,12 +6,15 @@ Area model (scripts/synth.py writes it into every report):
 - ROM: one copy per read port (replication: a cell-built ROM has no storage to share), each
   copy the memory's content and one read port synthesized to OSU018 cells (ABC area mapping).
   A mask ROM of 1999 would be denser: the figure is an upper bound.
-- RAM: a compiled single-port SRAM per read port (written together), from a per-bit model:
+- RAM: what the RTL builds, a register file with asynchronous reads (the colour-table, summed-
+  area and MIP tables of pst_clut_filter): built from OSU018 flip-flops, the RAM measured here
+  (256 x 32, Yosys + OSU018, this flow) costs FLOP_RAM_UM2_PER_BIT (storage and write port) +
+  FLOP_RAM_UM2_PER_BIT_PORT per read port (its multiplexer): the figure in the total. Reported
+  beside it, what a compiled SRAM would cost if the reads were registered (an SRAM macro reads
+  on a clock edge; the RTL does not): one single-port macro per read port, from a per-bit model,
   SRAM_BITCELL_UM2 (the 6T bit cell of GlobalFoundries' published 180 nm SRAM macros,
   gf180mcu_fd_ip_sram datasheets: 13.5 um^2) over SRAM_ARRAY_EFFICIENCY (0.5: decoders, sense
   amplifiers and I/O as much again as the array; an assumption, not a datasheet figure).
-  Built from OSU018 flip-flops instead, the RAM measured here (256 x 32, Yosys + OSU018, this
-  flow) costs FLOP_RAM_UM2_PER_BIT + FLOP_RAM_UM2_PER_BIT_PORT per read port: reported beside.
   Read delay: RAM_NS_PER_ADDRESS_BIT per address bit (the flip-flop RAM's 1.652 ns over 8
   address bits, measured here by OpenSTA), the stand-in delay in the design's timing.
 """
@@ -27,11 +30,12 @@ RAM_NS_PER_ADDRESS_BIT = 1.652 / 8
 
 
 def ram_model(mem: dict) -> dict:
-    """Area (SRAM macros, one per read port), flip-flop alternative and read delay of a RAM."""
+    """Area of a RAM as the RTL builds it (flip-flop register file, asynchronous reads), the
+    SRAM-macro alternative (one per read port, registered reads) and the read delay."""
     bits = mem["size"] * mem["width"]
     p = mem["read_ports"]
-    return {"area_um2": p * bits * SRAM_BITCELL_UM2 / SRAM_ARRAY_EFFICIENCY,
-            "flop_area_um2": bits * (FLOP_RAM_UM2_PER_BIT + p * FLOP_RAM_UM2_PER_BIT_PORT),
+    return {"area_um2": bits * (FLOP_RAM_UM2_PER_BIT + p * FLOP_RAM_UM2_PER_BIT_PORT),
+            "sram_area_um2": p * bits * SRAM_BITCELL_UM2 / SRAM_ARRAY_EFFICIENCY,
             "delay_ns": round(mem["abits"] * RAM_NS_PER_ADDRESS_BIT, 3)}
 
 

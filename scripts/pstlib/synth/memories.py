@@ -98,9 +98,9 @@ def memory_rows(mems: list, mem_syn: dict, instances: dict, lib: pathlib.Path, g
                  "synth_area_um2": round(rec["area_um2"]), "synth_cells": rec["cells"],
                  "synth_flip_flops": rec["flip_flops"], "stand_in": liberty.standin_cell_name(i),
                  "model": "cell-built ROM, one copy per read port" if memarea.is_rom(m) else
-                          "SRAM macro per read port (13.5 um^2 bit cell / 0.5)"}
+                          "flip-flop register file, asynchronous reads (as the RTL builds it)"}
         if not memarea.is_rom(m):
-            entry["flop_ram_ge"] = round(n * memarea.ram_model(m)["flop_area_um2"] / ge)
+            entry["sram_macro_ge"] = round(n * memarea.ram_model(m)["sram_area_um2"] / ge)
         if memarea.is_rom(m) and m["read_ports"] > 1:
             # The noise unit's tables are banked in the RTL already (hash even/odd, value
             # table by address mod 4: each bank is a memory of its own here), so the

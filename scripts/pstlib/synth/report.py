@@ -265,15 +265,17 @@ def markdown(r: dict) -> str:
     md.append("")
     md += ["Memories (scripts/pstlib/memarea.py): each distinct ROM synthesized alone to OSU018 cells with "
            "one read port and counted once per read port (replication; a 1999 mask ROM would be denser: an "
-           "upper bound); delay address to data by OpenSTA (BUFX2-driven address, 0.02 pF load). RAMs: one "
-           "SRAM macro per read port, 13.5 um^2 per bit (the 6T cell of GlobalFoundries' published 180 nm "
-           "SRAM macros) over an assumed 0.5 array efficiency; built from OSU018 flip-flops instead they "
-           "cost the last column (fit to a 256 x 32 RAM synthesized here). The delays are the stand-in "
-           "cells' in the design's timing.\n",
-           "| memory | kind | instances | words x bits | read / write ports | bits | GE each (all ports) | GE | delay ns | flip-flop RAM GE |",
+           "upper bound); delay address to data by OpenSTA (BUFX2-driven address, 0.02 pF load). RAMs: "
+           "what the RTL builds, register files of OSU018 flip-flops with asynchronous reads (fit to a "
+           "256 x 32 RAM synthesized here: storage and write port, plus a read multiplexer per port); "
+           "the last column is what SRAM macros would cost if the reads were registered (one per read "
+           "port, 13.5 um^2 per bit, the 6T cell of GlobalFoundries' published 180 nm SRAM macros, over "
+           "an assumed 0.5 array efficiency), not in the total. The delays are the stand-in cells' in "
+           "the design's timing.\n",
+           "| memory | kind | instances | words x bits | read / write ports | bits | GE each (all ports) | GE | delay ns | SRAM macros GE (registered reads) |",
            "|---|---|---:|---|---|---:|---:|---:|---:|---:|"]
     for m in r["memories"]:
-        flop = f"{m['flop_ram_ge']:,}" if m.get("flop_ram_ge") is not None else "-"
+        flop = f"{m['sram_macro_ge']:,}" if m.get("sram_macro_ge") is not None else "-"
         md.append(f"| {m['module']}.{m['memory']} | {m['kind']} | {m['instances']} | {m['size']} x {m['width']} | "
                   f"{m['read_ports']} / {m['write_ports']} | {m['instances'] * m['bits_each']:,} | {m['ge_each']:,} | "
                   f"{m['ge']:,} | {m['delay_ns']:.2f} | {flop} |")
