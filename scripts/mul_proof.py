@@ -50,9 +50,11 @@ def main(argv=None) -> int:
             if not f.is_file():
                 print(f"error: {f}: no such profile", file=sys.stderr)
                 return 2
-        with tempfile.TemporaryDirectory(prefix="mulproof-") as tmp:
-            for f in files:
-                for w in mulproof.instantiated(f, a.rom_dir, pathlib.Path(tmp) / f.stem):
+        with tempfile.TemporaryDirectory(prefix="mulproof-") as tmp, \
+                concurrent.futures.ProcessPoolExecutor(a.jobs) as pool:
+            found = {f: pool.submit(mulproof.instantiated, f, a.rom_dir, pathlib.Path(tmp) / f.stem) for f in files}
+            for f, fut in found.items():
+                for w in fut.result():
                     widths.setdefault(w, []).append(f.stem)
     with tempfile.TemporaryDirectory(prefix="mulproof-") as tmp:
         with concurrent.futures.ProcessPoolExecutor(a.jobs) as pool:   # Z3 keeps one context per process
