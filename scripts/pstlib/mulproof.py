@@ -51,8 +51,7 @@ def instantiated(profile: pathlib.Path, rom_dir, tmp: pathlib.Path) -> set:
     doc = contract.read_profile(profile)
     tmp.mkdir(parents=True, exist_ok=True)
     out = tmp / "hier.json"
-    rtl = [line for line in tools.read_lines(doc, rom_dir, "") if not line.startswith("read_liberty")]
-    tools.run_yosys("\n".join(rtl + [
+    tools.run_yosys("\n".join(tools.read_lines(doc, rom_dir) + [
         "hierarchy -top pst_top", "proc", f"write_json {out}"]), tmp, "hier")
     mods = json.loads(out.read_text())["modules"]
     return {Width(*(int(m["parameter_default_values"][k], 2) for k in PARAMS))

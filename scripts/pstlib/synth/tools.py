@@ -44,11 +44,11 @@ def chparams(doc: dict) -> list:
     return [f"chparam -set {n} {v} pst_top" for n, v in contract.parameters(doc)]
 
 
-def read_lines(doc: dict, rom_dir, lib) -> list:
+def read_lines(doc: dict, rom_dir, lib=None) -> list:
     """Read the cell library (port directions), the memory stand-ins and the RTL with the
     profile's parameters (debug probes off); `include`s (pst_pkg.sv, *.svh) come from rtl/."""
     sources = " ".join(str(p) for p in rtl_sources())
-    return [f"read_liberty -lib {lib}",
+    return [*([f"read_liberty -lib {lib}"] if lib else []),   # none: elaboration only
             f"read_verilog -lib {STANDIN_CELLS}",
             f'read_verilog -sv -I {ROOT / "rtl"} -D SYNTHESIS -D PST_ROM_DIR="{rom_dir}" {sources}',
             *chparams(doc),
