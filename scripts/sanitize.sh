@@ -15,7 +15,7 @@ scripts/setup.sh >/dev/null
 B=build-asan
 NAMED=${PST_SANITIZE_PROFILES-}
 TESTP=${PST_SANITIZE_TEST_PROFILES:-serial_short}
-cmake -S . -B $B -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPST_SANITIZE=ON "-DPST_PROFILES=${NAMED// /;}" \
+cmake -S . -B $B -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DPST_SANITIZE=ON -DPST_SIM_ASSERT=ON "-DPST_PROFILES=${NAMED// /;}" \
       "-DPST_TEST_PROFILES=${TESTP// /;}" >/dev/null
 # The RTL runs below use the first verilated profile.
 P=$(echo $NAMED ${TESTP/all/serial_short} | awk '{print $1}')

@@ -72,6 +72,9 @@ public:
 std::unique_ptr<RtlModel> makeRtlModel(const std::string& profile, const SimOptions& options = {});
 // The profiles compiled into this build.
 std::vector<std::string> rtlProfiles();
+// Those verilated with every assertion (the checked flavour: the test profiles always, the named
+// ones with -DPST_SIM_ASSERT=ON); the others fail only on a mismatch with the golden model.
+std::vector<std::string> rtlAssertedProfiles();
 // The profile file a verilated profile was built from ("" if `name` is not one of them).
 std::string rtlProfilePath(const std::string& name);
 

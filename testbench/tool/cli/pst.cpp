@@ -277,6 +277,12 @@ int runHardwareRender(const RenderArgs& a, const HwArgs& hw) {
     return rc;
 }
 
+// Whether this build verilated `profile` with its assertions (the checked flavour).
+bool asserted(const std::string& profile) {
+    const std::vector<std::string> a = rtlAssertedProfiles();
+    return std::find(a.begin(), a.end(), profile) != a.end();
+}
+
 // The command that runs one scene x profile of a regression again, with the same inputs, gaps and stalls.
 std::string regressReplay(const std::string& scene, int size, const std::string& profile, const SimOptions& so) {
     std::ostringstream os;
@@ -418,6 +424,7 @@ int runRandom(const HwArgs& hw, RandomRegressOptions o, bool quiet, const std::s
                        {"mismatches", r.mismatches},
                        {"first_bad", r.firstBad == UINT64_MAX ? nlohmann::json(nullptr) : nlohmann::json(r.firstBad)},
                        {"assertion", r.assertion ? nlohmann::json({{"cycle", r.assertionCycle}}) : nlohmann::json(nullptr)},
+                       {"assertions_verilated", asserted(name)},
                        {"replay", replay.empty() ? nlohmann::json(nullptr) : nlohmann::json(replay)},
                        {"cycles_per_pixel", r.fragments ? double(r.cycles) / double(r.fragments) : 0.0},
                        {"cycles", r.cycles},
@@ -437,6 +444,9 @@ int runRandom(const HwArgs& hw, RandomRegressOptions o, bool quiet, const std::s
             if (!replay.empty())
                 std::cout << "first " << what << ": seed " << o.seed << ", fragment " << r.firstBad
                           << "; replay alone: " << replay << "\n";
+            if (!asserted(name))
+                std::cout << "(" << name << " is verilated here without assertions; a build configured with "
+                          << "-DPST_SIM_ASSERT=ON replays it with them)\n";
         } else {
             cases.push_back(jc);
         }

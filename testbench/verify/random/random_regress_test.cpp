@@ -169,8 +169,11 @@ TEST(RandomRegress, PerturbedGoldenIsCaughtAtItsFragmentAndReplays) {
 // A failed RTL assertion is a failed run, not a crash: the testbench writes a register while
 // the pipeline is busy (a protocol violation), Verilator's $error fires in pst_top's checker,
 // the run stops at that segment with the fragment named, and the replay fires it again.
+// On a profile verilated with its assertions (every test profile is).
 TEST(RandomRegress, FailedAssertionIsAFailedRunThatReplays) {
-    const std::string name = rtlProfiles().back();
+    const std::vector<std::string> asserted = rtlAssertedProfiles();
+    ASSERT_FALSE(asserted.empty()) << "no profile of this build is verilated with assertions";
+    const std::string name = asserted.back();
     const Profile p = profile(name);
     RandomRegressOptions o;
     o.seed = 3;
