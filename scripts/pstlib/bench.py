@@ -17,7 +17,8 @@ def scene_row(run: dict) -> dict:
     return {"profile": run["profile"], "input": f"{pathlib.Path(run['scene']).stem} {run['width']}x{run['height']}",
             "pixels": px, "cycles": run["cycles"], "rtl_cycles_per_s": _rate(run["cycles"], sec["rtl"]),
             "rtl_pixels_per_s": rtl, "golden_pixels_per_s": golden,
-            "rtl_over_golden": rtl / golden if golden else 0.0}
+            "rtl_over_golden": rtl / golden if golden else 0.0,
+            "assertions": run.get("assertions_verilated")}
 
 
 def random_row(run: dict) -> dict:
@@ -27,16 +28,18 @@ def random_row(run: dict) -> dict:
     return {"profile": run["profile"], "input": f"random {px} seed {run['seed']}", "pixels": px,
             "cycles": run["cycles"], "rtl_cycles_per_s": _rate(run["cycles"], run["rtl_seconds"]),
             "rtl_pixels_per_s": rtl, "golden_pixels_per_s": golden,
-            "rtl_over_golden": rtl / golden if golden else 0.0}
+            "rtl_over_golden": rtl / golden if golden else 0.0,
+            "assertions": run.get("assertions_verilated")}
 
 
 def table(rows: list) -> str:
     """Markdown table of the rows (ratio as 1/x of the golden model)."""
-    out = ["| profile | input | RTL cycles/s | RTL pixels/s | golden pixels/s | RTL / golden |",
-           "|---|---|---:|---:|---:|---:|"]
+    out = ["| profile | assertions | input | RTL cycles/s | RTL pixels/s | golden pixels/s | RTL / golden |",
+           "|---|---|---|---:|---:|---:|---:|"]
     for r in rows:
         ratio = f"1/{1 / r['rtl_over_golden']:.1f}" if r["rtl_over_golden"] > 0 else "-"
-        out.append(f"| {r['profile']} | {r['input']} | {r['rtl_cycles_per_s']:,.0f} | {r['rtl_pixels_per_s']:,.0f} | "
+        flavour = {True: "yes", False: "no"}.get(r.get("assertions"), "?")
+        out.append(f"| {r['profile']} | {flavour} | {r['input']} | {r['rtl_cycles_per_s']:,.0f} | {r['rtl_pixels_per_s']:,.0f} | "
                    f"{r['golden_pixels_per_s']:,.0f} | {ratio} |")
     return "\n".join(out) + "\n"
 

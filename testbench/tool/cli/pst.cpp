@@ -191,6 +191,12 @@ void checkTracePath(const std::string& trace) {
     if (fs::is_directory(trace)) throw InputError("--trace: '" + trace + "' is a folder, not a file");
 }
 
+// Whether this build verilated `profile` with its assertions (the checked flavour).
+bool asserted(const std::string& profile) {
+    const std::vector<std::string> a = rtlAssertedProfiles();
+    return std::find(a.begin(), a.end(), profile) != a.end();
+}
+
 nlohmann::json hwJson(const std::string& scene, const Profile& p, const std::string& model,
                       const HwRenderResult& r, int w, int h) {
     nlohmann::json j;
@@ -205,6 +211,7 @@ nlohmann::json hwJson(const std::string& scene, const Profile& p, const std::str
     j["pixels_checked"] = r.pixels;
     j["cycles"] = r.cycles;
     j["cycles_per_pixel"] = r.cyclesPerPixel;
+    j["assertions_verilated"] = asserted(p.name);
     j["seconds"] = {{"rtl", r.rtlSeconds}, {"golden", r.goldenSeconds}, {"reference", r.referenceSeconds}};
     auto rate = [&](double sec) { return sec > 0 ? double(r.fragments) / sec : 0.0; };
     j["pixels_per_second"] = {{"rtl", rate(r.rtlSeconds)}, {"golden", rate(r.goldenSeconds)},
@@ -275,12 +282,6 @@ int runHardwareRender(const RenderArgs& a, const HwArgs& hw) {
     }
     if (!hw.html.empty()) rc = std::max(rc, writeHtmlPage(hw.html, pageArgs));
     return rc;
-}
-
-// Whether this build verilated `profile` with its assertions (the checked flavour).
-bool asserted(const std::string& profile) {
-    const std::vector<std::string> a = rtlAssertedProfiles();
-    return std::find(a.begin(), a.end(), profile) != a.end();
 }
 
 // The command that runs one scene x profile of a regression again, with the same inputs, gaps and stalls.
