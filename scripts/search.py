@@ -12,7 +12,8 @@ Per clocks-per-pixel class C (a point belongs to C when its clocks per pixel are
 walk with backtracking (scripts/pstlib/explore/search.py says how and why) starts from a profile that
 meets the targets and moves, one knob at a time but choosing among all knobs at every step, to
 the cheaper neighbour of least logic area that still has worst training PSNR >= the target
-(and Fmax >= --fmax when given: scripts/synth.py with OpenSTA on those candidates only).
+(and Fmax >= --fmax when given: scripts/synth.py with OpenSTA on those candidates only, the
+Fmax derated by the routed profile's post-route / pre-layout ratio where there is one).
 --max-loss DB adds the texture-by-texture rule: every training scene within DB of the
 class's start profile (the worst scene alone hides a step colour map or a mod wrap that a
 cut spoils); the walk's merit is then GE saved per dB lost on the scene that loses most.
@@ -68,7 +69,8 @@ def parse_args(argv):
     ap.add_argument("--psnr", help="target worst training PSNR, dB (one value or CLASS=DB,...; default 40)")
     ap.add_argument("--max-loss", help="texture by texture: every training scene within this many dB of the "
                     "class's start profile (one value or CLASS=DB,...; default: no such bound)")
-    ap.add_argument("--fmax", type=float, default=0.0, help="target Fmax, MHz (0: no constraint)")
+    ap.add_argument("--fmax", type=float, default=0.0, help="target Fmax, MHz (0: no constraint); met by the Fmax derated from the routed profile "
+                    "(scripts/synth/layout_derate.json) where the silicon flow gives one, else the pre-layout Fmax")
     ap.add_argument("--start", help="start profile per class, CLASS=PROFILE,... (default 1=full,4=full,32=reduced)")
     ap.add_argument("--knobs", help=f"comma-separated, default all: {','.join(KNOB_NAMES)}")
     ap.add_argument("--budget", type=int, help="points per class walk (default 40)")

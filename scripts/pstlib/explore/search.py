@@ -159,14 +159,22 @@ def _sdesc(s: dict) -> str:
     return f"{s['octaves']}oct/{s['noise_units']}u/{s['noise_steps']}st/{s['datapath']}"
 
 
+def timing_fmax(r: dict):
+    """The Fmax a point's clock target is judged by: the pre-layout Fmax derated by the routed
+    profile's post-route / pre-layout ratio (scripts/synth/layout_derate.json) when the silicon
+    flow gave one, else the pre-layout Fmax; None when the point was not timed."""
+    d = r.get("fmax_derated_mhz")
+    return d if d is not None else r.get("fmax_mhz")
+
+
 def feasible(r: dict, t) -> bool:
     """A result meets the targets (worst PSNR on the training set, clocks per pixel, Fmax when
-    asked, and with t.max_loss every training scene within that many dB of t.ref's PSNR)."""
+    asked (the derated Fmax where there is one: timing_fmax), and with t.max_loss every training scene within that many dB of t.ref's PSNR)."""
     if r.get("status") != "ok" or r.get("train_worst") is None:
         return False
     if r["train_worst"] < t.psnr or r["cpp"] > t.cpp:
         return False
-    if t.fmax > 0 and (r.get("fmax_mhz") is None or r["fmax_mhz"] < t.fmax):
+    if t.fmax > 0 and (timing_fmax(r) is None or timing_fmax(r) < t.fmax):
         return False
     if t.max_loss is not None and t.ref is not None and not passes(scene_loss(t.ref, r.get("train") or {}), t.max_loss):
         return False

@@ -30,7 +30,7 @@ def losses(r: dict, start) -> dict:
 
 
 COLUMNS = ["class", "name", "cpp", "logic_ge", "train_worst", "train_mean", "valid_worst", "valid_mean",
-           "train_loss", "valid_loss", "valid_loss_scene", "valid_pass", "rtl", "fmax_mhz", "move"]
+           "train_loss", "valid_loss", "valid_loss_scene", "valid_pass", "rtl", "fmax_mhz", "fmax_derated_mhz", "move"]
 
 
 def _fmt(v):
@@ -49,7 +49,8 @@ def front_rows(fr: dict, rtl: dict) -> list:
                         "train_loss": r.get("train_loss"), "valid_loss": r.get("valid_loss"),
                         "valid_loss_scene": r.get("valid_loss_scene"), "valid_pass": r.get("valid_pass"),
                         "rtl": (rtl.get(r["name"]) or {}).get("summary"),
-                        "fmax_mhz": r.get("fmax_mhz"), "move": r.get("move")})
+                        "fmax_mhz": r.get("fmax_mhz"), "fmax_derated_mhz": r.get("fmax_derated_mhz"),
+                        "move": r.get("move")})
     return out
 
 

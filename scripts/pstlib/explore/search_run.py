@@ -246,7 +246,8 @@ def make_fmax(s: SearchSettings):
                 say(f"    {p.name}: synthesis failed: {tail(str(e), 3)}")
                 return dict(r, fmax_mhz=None)
         syn = json.loads(sj.read_text())
-        return store.put(p.name, dict(r, fmax_mhz=syn.get("fmax_mhz"), memory_ge=syn.get("memory_ge"),
+        return store.put(p.name, dict(r, fmax_mhz=syn.get("fmax_mhz"), fmax_derated_mhz=syn.get("fmax_derated_mhz"),
+                                      memory_ge=syn.get("memory_ge"),
                                       synth_logic_ge=syn.get("logic_ge")))
     return fmax_of
 

@@ -261,6 +261,16 @@ def test_fmax_is_asked_only_of_feasible_candidates_and_enforced():
     assert len(asked) == len(set(asked)) and start.name in asked
 
 
+def test_the_clock_target_is_judged_by_the_derated_fmax_where_there_is_one():
+    ok = {"status": "ok", "train_worst": 60.0, "cpp": 1}
+    t = S.Targets(55.0, 1, 100.0)
+    assert S.feasible(dict(ok, fmax_mhz=120.0), t)
+    assert not S.feasible(dict(ok, fmax_mhz=120.0, fmax_derated_mhz=95.0), t)   # meets it only before layout
+    assert S.feasible(dict(ok, fmax_mhz=120.0, fmax_derated_mhz=110.0), t)
+    assert not S.feasible(dict(ok), t)                                           # not timed
+    assert S.timing_fmax(dict(ok, fmax_mhz=120.0, fmax_derated_mhz=None)) == 120.0
+
+
 def test_a_point_is_evaluated_once_and_resumed(tmp_path):
     calls = tmp_path / "calls.txt"
     pst = tmp_path / "pst"
