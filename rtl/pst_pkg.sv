@@ -33,6 +33,11 @@ package pst_pkg;
   localparam int NoiseWorleySearchNone = 0;
   localparam int NoiseWorleySearchOctant = 1;
   localparam int NoiseWorleySearchCube27 = 2;
+  // noise.subband: none: no subband unit; else a subband unit (basis subband, rtl/noise/pst_subband.sv) in place of the lattice-noise unit: Goldberg et al.'s band-limited noise as bilinear, periodic lookups of a 2^SubbandTileLog2-square tile ROM (the isotropic sum of the octave's subbands, SubbandValueBits signed bits) on the two lattice axes named (the scene's noise.param), one corner per noise step
+  localparam int NoiseSubbandNone = 0;
+  localparam int NoiseSubbandXy = 1;
+  localparam int NoiseSubbandXz = 2;
+  localparam int NoiseSubbandYz = 3;
   // filter.norm: |grad_x f|: euclid (sqrt), max + min / 2, |gx| + |gy|
   localparam int FilterNormEuclid = 0;
   localparam int FilterNormMaxHalfMin = 1;
@@ -101,6 +106,7 @@ package pst_pkg;
   localparam int NoiseWorleySearchDefault = NoiseWorleySearchNone;
   localparam int NoiseWorleyPointsDefault = 4;
   localparam int NoiseWorleyOrderDefault = 2;
+  localparam int NoiseSubbandDefault = NoiseSubbandNone;
   localparam int FilterNormDefault = FilterNormEuclid;
   localparam int FilterRecipFracDefault = 18;
   localparam int FilterBandlimitDefault = FilterBandlimitOff;
@@ -195,6 +201,12 @@ package pst_pkg;
   localparam int WorleyCountBits = 4;  // worley unit: bits of a cube's point count in the feature-point ROM
   localparam int WorleyCoefInt = 4;  // worley unit: integer bits (with sign) of the coefficients C_k
   localparam int WorleyCoefFrac = 12;  // worley unit: fraction bits of the coefficients C_k
+  localparam int SubbandTileLog2 = 6;  // subband unit: the tile ROM is 2^SubbandTileLog2 x 2^SubbandTileLog2 words (64 x 64: the reference's 256 x 256 centre-scale tile sampled every 4th pixel, which loses nothing: the band ends at pi/8 rad per reference pixel, pi/2 per ROM pixel)
+  localparam int SubbandPeriodLog2 = 4;  // subband unit: the tile repeats every 2^SubbandPeriodLog2 noise units (the reference's 256-pixel tile at 16 pixels per unit)
+  localparam int SubbandValueBits = 8;  // subband unit: bits of a tile word (signed)
+  localparam int SubbandValueFrac = 7;  // subband unit: fraction bits of a tile word (Q1.7: the tile, scaled to Rayshade noise's standard deviation 0.255, stays inside +-0.82)
+  localparam int SubbandSeed = 1;  // subband unit: the seed of the reference tiles the ROM holds (scene key noise.seed)
+  localparam int SubbandRefTile = 256;  // subband unit: the size of the reference tiles the ROM is sampled from (scene key noise.tile_size)
   localparam int FadeEntries = 32;  // fade table entries (registers.fade), a quarter octave of nu each
   localparam int FadeFrac = 8;  // fraction bits of a fade table entry and of alpha (1.0 = 2^FadeFrac)
   localparam int FadeBits = 9;  // bits of a fade table entry (unsigned, up to 1.0) (= FadeFrac + 1)

@@ -17,6 +17,7 @@ enum class NoiseInterp : int { Scurve, Linear, Quintic };  // noise.interp
 enum class NoiseCorner : int { ValueGradient, Value, Grad12 };  // noise.corner
 enum class NoiseHash : int { Rayshade, Perm256, Perlin256 };  // noise.hash
 enum class NoiseWorleySearch : int { None, Octant, Cube27 };  // noise.worley_search
+enum class NoiseSubband : int { None, Xy, Xz, Yz };  // noise.subband
 enum class GradNorm : int { Euclid, MaxHalfMin, L1 };  // filter.norm
 enum class FilterBandlimit : int { Off, Isotropic };  // filter.bandlimit
 
@@ -90,6 +91,12 @@ struct ProfileParams {
     int noiseWorleyPoints = 4;
     // worley unit: F1 .. F_order computed (coefficients C_k of higher k must be 0)
     int noiseWorleyOrder = 2;
+    // none: no subband unit; else a subband unit (basis subband, rtl/noise/pst_subband.sv) in place
+    // of the lattice-noise unit: Goldberg et al.'s band-limited noise as bilinear, periodic lookups
+    // of a 2^SubbandTileLog2-square tile ROM (the isotropic sum of the octave's subbands,
+    // SubbandValueBits signed bits) on the two lattice axes named (the scene's noise.param), one
+    // corner per noise step
+    NoiseSubband noiseSubband = NoiseSubband::None;
     // [filter]
     // |grad_x f|: euclid (sqrt), max + min / 2, |gx| + |gy|
     GradNorm filterNorm = GradNorm::Euclid;
@@ -150,6 +157,7 @@ enum Param : int {
     NoiseWorleySearch,
     NoiseWorleyPoints,
     NoiseWorleyOrder,
+    NoiseSubband,
     FilterNorm,
     FilterRecipFrac,
     FilterBandlimit,
@@ -181,6 +189,7 @@ inline constexpr const char* kNoiseInterpNames[] = {"scurve", "linear", "quintic
 inline constexpr const char* kNoiseCornerNames[] = {"value_gradient", "value", "grad12"};
 inline constexpr const char* kNoiseHashNames[] = {"rayshade", "perm256", "perlin256"};
 inline constexpr const char* kNoiseWorleySearchNames[] = {"none", "octant", "cube27"};
+inline constexpr const char* kNoiseSubbandNames[] = {"none", "xy", "xz", "yz"};
 inline constexpr const char* kFilterNormNames[] = {"euclid", "max_half_min", "l1"};
 inline constexpr const char* kFilterBandlimitNames[] = {"off", "isotropic"};
 
@@ -236,6 +245,17 @@ constexpr bool fromName(std::string_view s, ::pst::NoiseWorleySearch* out) {
     for (int i = 0; i < 3; ++i)
         if (s == kNoiseWorleySearchNames[i]) {
             *out = ::pst::NoiseWorleySearch(i);
+            return true;
+        }
+    return false;
+}
+constexpr const char* name(::pst::NoiseSubband v) {
+    return int(v) >= 0 && int(v) < 4 ? kNoiseSubbandNames[int(v)] : "?";
+}
+constexpr bool fromName(std::string_view s, ::pst::NoiseSubband* out) {
+    for (int i = 0; i < 4; ++i)
+        if (s == kNoiseSubbandNames[i]) {
+            *out = ::pst::NoiseSubband(i);
             return true;
         }
     return false;
@@ -317,6 +337,7 @@ inline constexpr KeySpec kSchema[] = {
     {"noise", "worley_search", KeyKind::Enum, NoiseWorleySearch, 0, 2, {}, 3, kNoiseWorleySearchNames, 0},
     {"noise", "worley_points", KeyKind::Range, NoiseWorleyPoints, 1, 9, {}, 0, nullptr, 0},
     {"noise", "worley_order", KeyKind::Range, NoiseWorleyOrder, 1, 4, {}, 0, nullptr, 0},
+    {"noise", "subband", KeyKind::Enum, NoiseSubband, 0, 3, {}, 4, kNoiseSubbandNames, 0},
     {"filter", "norm", KeyKind::Enum, FilterNorm, 0, 2, {}, 3, kFilterNormNames, 0},
     {"filter", "recip_frac", KeyKind::Range, FilterRecipFrac, 4, 24, {}, 0, nullptr, 0},
     {"filter", "bandlimit", KeyKind::Enum, FilterBandlimit, 0, 1, {}, 2, kFilterBandlimitNames, 0},
@@ -351,6 +372,12 @@ inline constexpr Constraint kConstraints[] = {
      [](const int* v) { return v[NoiseWorleySearch] == 0 || v[NoiseHash] == 1; }},
     {"noise.grad_frac", "must be at least noise.out_frac + noise.guard_bits with a worley unit (noise.worley_search): it has no derivative lanes to floor",
      [](const int* v) { return v[NoiseWorleySearch] == 0 || v[NoiseGradFrac] >= v[NoiseOutFrac] + v[NoiseGuardBits]; }},
+    {"noise.subband", "must be none with a worley unit (noise.worley_search): a profile has one kind of noise unit",
+     [](const int* v) { return v[NoiseSubband] == 0 || v[NoiseWorleySearch] == 0; }},
+    {"noise.lattice_frac", "must be more than 2 (SubbandTileLog2 - SubbandPeriodLog2) with a subband unit (noise.subband): the bilinear weights are the bits below the tile pixel",
+     [](const int* v) { return v[NoiseSubband] == 0 || v[NoiseLatticeFrac] > 2; }},
+    {"noise.grad_frac", "must be at least noise.out_frac + noise.guard_bits with a subband unit (noise.subband): it has no derivative lanes to floor",
+     [](const int* v) { return v[NoiseSubband] == 0 || v[NoiseGradFrac] >= v[NoiseOutFrac] + v[NoiseGuardBits]; }},
     {"noise.lattice_frac", "must be at least 2 with interp quintic (its derivative 30 u^2 (1 - u)^2 must stay below 4, pst_noise_weight)",
      [](const int* v) { return v[NoiseInterp] != 2 || v[NoiseLatticeFrac] >= 2; }},
     {"noise.lattice_frac", "must be at most formats.matrix.frac + formats.coord.frac (pst_octave_transform)",
@@ -422,6 +449,12 @@ inline constexpr int kWorleyPointBytes = 8;  // worley unit: bits of one positio
 inline constexpr int kWorleyCountBits = 4;  // worley unit: bits of a cube's point count in the feature-point ROM
 inline constexpr int kWorleyCoefInt = 4;  // worley unit: integer bits (with sign) of the coefficients C_k
 inline constexpr int kWorleyCoefFrac = 12;  // worley unit: fraction bits of the coefficients C_k
+inline constexpr int kSubbandTileLog2 = 6;  // subband unit: the tile ROM is 2^SubbandTileLog2 x 2^SubbandTileLog2 words (64 x 64: the reference's 256 x 256 centre-scale tile sampled every 4th pixel, which loses nothing: the band ends at pi/8 rad per reference pixel, pi/2 per ROM pixel)
+inline constexpr int kSubbandPeriodLog2 = 4;  // subband unit: the tile repeats every 2^SubbandPeriodLog2 noise units (the reference's 256-pixel tile at 16 pixels per unit)
+inline constexpr int kSubbandValueBits = 8;  // subband unit: bits of a tile word (signed)
+inline constexpr int kSubbandValueFrac = 7;  // subband unit: fraction bits of a tile word (Q1.7: the tile, scaled to Rayshade noise's standard deviation 0.255, stays inside +-0.82)
+inline constexpr int kSubbandSeed = 1;  // subband unit: the seed of the reference tiles the ROM holds (scene key noise.seed)
+inline constexpr int kSubbandRefTile = 256;  // subband unit: the size of the reference tiles the ROM is sampled from (scene key noise.tile_size)
 inline constexpr int kFadeEntries = 32;  // fade table entries (registers.fade), a quarter octave of nu each
 inline constexpr int kFadeFrac = 8;  // fraction bits of a fade table entry and of alpha (1.0 = 2^FadeFrac)
 inline constexpr int kFadeBits = 9;  // bits of a fade table entry (unsigned, up to 1.0) (= FadeFrac + 1)
@@ -453,6 +486,7 @@ inline constexpr const char* kParamNames[kNumParams] = {
     "NoiseWorleySearch",
     "NoiseWorleyPoints",
     "NoiseWorleyOrder",
+    "NoiseSubband",
     "FilterNorm",
     "FilterRecipFrac",
     "FilterBandlimit",
@@ -501,6 +535,7 @@ constexpr int paramValue(const ProfileParams& p, Param k) {
         case NoiseWorleySearch: return int(p.noiseWorleySearch);
         case NoiseWorleyPoints: return p.noiseWorleyPoints;
         case NoiseWorleyOrder: return p.noiseWorleyOrder;
+        case NoiseSubband: return int(p.noiseSubband);
         case FilterNorm: return int(p.filterNorm);
         case FilterRecipFrac: return p.filterRecipFrac;
         case FilterBandlimit: return int(p.filterBandlimit);
@@ -550,6 +585,7 @@ constexpr void setParam(ProfileParams& p, Param k, int v) {
         case NoiseWorleySearch: p.noiseWorleySearch = ::pst::NoiseWorleySearch(v); break;
         case NoiseWorleyPoints: p.noiseWorleyPoints = v; break;
         case NoiseWorleyOrder: p.noiseWorleyOrder = v; break;
+        case NoiseSubband: p.noiseSubband = ::pst::NoiseSubband(v); break;
         case FilterNorm: p.filterNorm = ::pst::GradNorm(v); break;
         case FilterRecipFrac: p.filterRecipFrac = v; break;
         case FilterBandlimit: p.filterBandlimit = ::pst::FilterBandlimit(v); break;

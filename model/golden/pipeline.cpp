@@ -7,6 +7,7 @@
 #include "contract.h"
 #include "fixed.h"
 #include "noise_fx.h"
+#include "subband_fx.h"
 #include "worley_fx.h"
 
 namespace pst {
@@ -98,6 +99,8 @@ PixelFx GoldenPipeline::eval(const FragmentFx& fr, UnitTrace* trace) const {
             t.frac[i][0] = int64_t(fx::wrapUnsigned(t.frac[i][0] + 1, p.noiseLatticeFrac));
         if (p.noise.basis == NoiseBasis::Worley)
             worleyFx(p, t.lat[i], t.frac[i], worley_, &t.n[i], t.g[i]);
+        else if (p.noise.basis == NoiseBasis::Subband)
+            subbandFx(p, t.lat[i], t.frac[i], &t.n[i], t.g[i]);
         else
             noiseFx(p, t.lat[i], t.frac[i], &t.n[i], t.g[i]);
         if (i == 0) t.n[i] += bump(Unit::Noise);

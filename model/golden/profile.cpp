@@ -29,6 +29,18 @@ NoiseOptions hardwareNoise(const ProfileParams& p) {
         n.cubes = WorleyCubes::Rom256;
         n.metric = WorleyMetric::Euclid;
     }
+    // A subband unit (rtl/noise/pst_subband.sv): basis subband on the profile's plane, the tiles
+    // its ROM is sampled from (seed, size), point sampled (the scene's orientations do not change
+    // the isotropic sum the ROM holds).
+    if (p.noiseSubband != NoiseSubband::None) {
+        n.basis = NoiseBasis::Subband;
+        n.param = p.noiseSubband == NoiseSubband::Xy   ? SubbandParam::XY
+                  : p.noiseSubband == NoiseSubband::Xz ? SubbandParam::XZ
+                                                       : SubbandParam::YZ;
+        n.tileSize = contract::kSubbandRefTile;
+        n.seed = uint32_t(contract::kSubbandSeed);
+        n.orientations = 4;
+    }
     return n;
 }
 namespace {

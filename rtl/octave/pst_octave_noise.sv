@@ -1,6 +1,7 @@
 // pst_octave_noise: the NoiseUnits noise units of the octave stage (docs/HARDWARE.md unit 2),
 // one per lane: the lattice-noise unit (pst_noise) or, with noise.worley_search, a worley unit
-// (pst_worley); all step together (en_i, valid_i, step_i). Beside each, the probes' copy of its
+// (pst_worley), or with noise.subband a subband unit (pst_subband); all step together (en_i,
+// valid_i, step_i). Beside each, the probes' copy of its
 // lattice input, delayed by its NoiseRegs registers so that it meets the unit's result.
 //
 // Parameters: the profile's noise keys (pst_top's header); DebugProbes = 0 ties the probe
@@ -39,7 +40,18 @@ module pst_octave_noise #(
 
   for (genvar u = 0; u < NoiseUnits; u++) begin : g_unit
     logic unit_valid;
-    if (NoiseWorleySearch == pst_pkg::NoiseWorleySearchNone) begin : g_lattice
+    if (NoiseSubband != pst_pkg::NoiseSubbandNone) begin : g_subband
+      pst_subband #(
+        .NoiseLatticeFrac(NoiseLatticeFrac), .NoiseOutFrac(NoiseOutFrac), .NoiseSteps(NoiseSteps),
+        .NoiseRegs(NoiseRegs), .NoiseSubband(NoiseSubband)
+      ) u_noise (
+        .clk_i, .rst_ni, .en_i, .valid_i, .step_i, .lat_i (lat_i[u*LTW +: LTW]),
+        .frac_i (frac_i[u*3*LF +: 3*LF]), .valid_o (unit_valid), .last_o (last_o[u]),
+        .n_o (n_o[u*NW +: NW]), .grad_o (g_o[u*3*NGW +: 3*NGW])
+      );
+      logic unused_wc;
+      assign unused_wc = ^worley_c_i;
+    end else if (NoiseWorleySearch == pst_pkg::NoiseWorleySearchNone) begin : g_lattice
       pst_noise #(
         .NoiseInterp(NoiseInterp), .NoiseCorner(NoiseCorner), .NoiseHash(NoiseHash),
         .NoiseValueFrac(NoiseValueFrac), .NoiseLatticeFrac(NoiseLatticeFrac),

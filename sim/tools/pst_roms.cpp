@@ -15,6 +15,9 @@
 //   OUTDIR/worley256_p<M>.memh, M = 1..9   256 words of 4 + 24 M bits: [3:0] the cube's count
 //                                          (Poisson, clamped to 1..M), point j's x, y, z bytes
 //                                          at [4 + 24 j + 8 a +: 8] (1 + 6 M hex digits)
+// and the subband unit's tile (rtl/noise/pst_subband.sv, model/golden/subband_fx.h):
+//   OUTDIR/subband64.memh                  4096 words of SubbandValueBits (two's complement),
+//                                          word y 64 + x the tile at pixel (x, y)
 // Each file is written to a temporary name and renamed, so a reader never sees half a file.
 #include <cmath>
 #include <cstdint>
@@ -26,6 +29,7 @@
 
 #include "noise.h"
 #include "perlin2002.h"
+#include "subband_fx.h"
 #include "worley.h"
 
 namespace {
@@ -132,6 +136,14 @@ int main(int argc, char** argv) {
         std::filesystem::rename(path + ".tmp", path, rec);
         ok = ok && !rec;
         if (!ok) std::fprintf(stderr, "pst_roms: cannot write %s\n", path.c_str());
+    }
+    // The subband unit's tile (rtl/noise/pst_subband.sv): SubbandValueBits-bit two's complement
+    // words, y 2^SubbandTileLog2 + x (model/golden/subband_fx.h subbandRomWord).
+    {
+        const int vb = pst::contract::kSubbandValueBits;
+        ok = ok && writeMemh(dir, "subband64.memh", pst::kSubbandRomWords, (vb + 3) / 4, [&](int i) {
+            return uint32_t(pst::subbandRomWord(i)) & uint32_t((uint64_t(1) << vb) - 1);
+        });
     }
     return ok ? 0 : 1;
 }

@@ -102,6 +102,24 @@ std::string hardwareUnsupported(const Profile& p, const Texture& tex) {
                        std::to_string(int(cmax)) + ", " + std::to_string(int(cmax)) + ")";
         }
     }
+    if (p.noise.basis == NoiseBasis::Subband) {
+        // The subband unit samples one tile (rtl/noise/pst_subband.sv): the scene must ask for the
+        // tiles its ROM is sampled from, on its plane, so that its reference is what the hardware
+        // computes (the isotropic sum of a scale does not depend on the orientations).
+        const NoiseOptions& n = tex.noise;
+        const std::string src = tex.basisSource;
+        const std::string where = src.size() > 5 && src.compare(src.size() - 5, 5, "basis") == 0
+                                      ? src.substr(0, src.size() - 5)
+                                      : "texture '" + tex.name + "': noise.";
+        const std::string prof = "profile '" + p.name + "'";
+        if (n.param != p.noise.param)
+            return where + "param: '" + toString(n.param) + "'; the subband unit of " + prof + " samples the plane '" +
+                   toString(p.noise.param) + "' (noise.subband)";
+        if (n.tileSize != p.noise.tileSize || n.seed != p.noise.seed)
+            return where + "tile_size/seed: " + std::to_string(n.tileSize) + ", " + std::to_string(n.seed) +
+                   "; the subband unit of " + prof + " holds the tile of tile_size " + std::to_string(p.noise.tileSize) +
+                   ", seed " + std::to_string(p.noise.seed) + " (write these in the scene)";
+    }
     if (tex.clut.size() != p.clutSize())
         return (tex.clutSource.empty() ? "texture '" + tex.name + "': colormap.size" : tex.clutSource) + ": " +
                std::to_string(tex.clut.size()) + " entries; profile '" + p.name + "' has a " +
