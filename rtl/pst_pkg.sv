@@ -42,7 +42,7 @@ package pst_pkg;
   localparam int FilterNormEuclid = 0;
   localparam int FilterNormMaxHalfMin = 1;
   localparam int FilterNormL1 = 2;
-  // filter.bandlimit: bandlimited octaves (beyond the paper): isotropic builds the fade unit (pst_octave_fade: per octave alpha = h(lg ||M|| + lg |dsdx|) h(lg ||M|| + lg |dsdy|) from a driver-written table, scaling the octave term and its gradient; enabled per texture by control.bandlimit); off builds none
+  // filter.bandlimit: bandlimited octaves (beyond the paper): isotropic builds the fade unit (pst_octave_fade: per octave alpha = h(lg ||M|| + lg |dsdx|) h(lg ||M|| + lg |dsdy|) from a driver-written table, fading the octave term toward its mean (register fm) and its gradient toward 0; enabled per texture by control.bandlimit); off builds none
   localparam int FilterBandlimitOff = 0;
   localparam int FilterBandlimitIsotropic = 1;
 
@@ -150,7 +150,7 @@ package pst_pkg;
   // 0x0040: fade table entry k (filter.bandlimit profiles): h = sqrt(g(nu)) at lg nu = -FadeLgLo + (k + 1/2) / 4, unsigned FadeBits (1.0 = 2^FadeFrac); alpha is clamped to 1.0
   localparam logic [15:0] RegFade = 16'h0040;
   localparam int RegFadeCount = 32;
-  // 0x0100 + 32 i + k: octave i: k = 0..8 M row-major (Matrix), 9..11 o (Offset), 12 a (Amplitude), 13..21 GM = a M^T row-major (GradMatrix), 22 lg ||M||_2 (signed, FadeLgFrac fraction bits, FadeLgBits; filter.bandlimit profiles)
+  // 0x0100 + 32 i + k: octave i: k = 0..8 M row-major (Matrix), 9..11 o (Offset), 12 a (Amplitude), 13..21 GM = a M^T row-major (GradMatrix), 22 lg ||M||_2 (signed, FadeLgFrac fraction bits, FadeLgBits; filter.bandlimit profiles), 23 fm = a mean(n), the octave term's mean the fade goes to (signed, F format; filter.bandlimit profiles)
   localparam logic [15:0] RegOctave = 16'h0100;
   localparam int RegOctaveStride = 32;
   localparam int RegOctaveM = 0;
@@ -163,6 +163,8 @@ package pst_pkg;
   localparam int RegOctaveGmCount = 9;
   localparam int RegOctaveLgm = 22;
   localparam int RegOctaveLgmCount = 1;
+  localparam int RegOctaveFm = 23;
+  localparam int RegOctaveFmCount = 1;
   // 0x0020: worley unit: coefficient C_k, k = 0..3 (n = sum C_k F_{k+1}), signed Q(WorleyCoefInt).(WorleyCoefFrac)
   localparam logic [15:0] RegWorley = 16'h0020;
   localparam int RegWorleyCount = 4;

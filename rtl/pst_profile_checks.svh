@@ -70,6 +70,8 @@ initial begin
     else $fatal(1, "noise.lattice_frac: must be at most formats.matrix.frac + formats.coord.frac (pst_octave_transform)");
   assert (MatrixFrac + CoordFrac >= OffsetFrac)
     else $fatal(1, "formats.offset: frac must be at most formats.matrix.frac + formats.coord.frac (pst_octave_transform)");
+  assert (FilterBandlimit == pst_pkg::FilterBandlimitOff || FInt + FFrac <= 32)
+    else $fatal(1, "formats.f: int + frac must be at most 32 with the fade unit (filter.bandlimit): the octave's term mean (register field fm) is an F value");
   assert (Log2Clut - 1 + WidthFrac >= 1)
     else $fatal(1, "formats.width_frac: must be at least 2 - pipeline.log2_clut (pst_clut_filter)");
   assert (QuadricInt + QuadricFrac >= 2)

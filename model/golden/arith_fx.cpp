@@ -120,6 +120,13 @@ int64_t octaveFadeFx(int64_t lgx, int64_t lgy, int64_t lgm, const int64_t table[
 
 int64_t fadeScaleFx(int64_t v, int64_t alpha) { return int64_t((i128(v) * alpha) >> contract::kFadeFrac); }
 
+int64_t fadeToMeanFx(const Profile& p, int64_t fterm, int64_t fm, int64_t alpha) {
+    // fm + alpha (fterm - fm): the fade toward the term's mean, not toward 0 (a basis whose mean is
+    // not 0, worley's, would otherwise lose its mean with the fade). The difference needs FW + 1
+    // bits; the result, a convex combination floored, at most 1 LSB outside F: saturated.
+    return fx::satSigned(i128(fadeScaleFx(fterm - fm, alpha)) + fm, p.f.width());
+}
+
 int64_t accumulateF(const Profile& p, int64_t q, const std::vector<int64_t>& terms) {
     i128 sum = q;
     for (int64_t t : terms) sum += t;

@@ -104,8 +104,8 @@ struct ProfileParams {
     int filterRecipFrac = 18;
     // bandlimited octaves (beyond the paper): isotropic builds the fade unit (pst_octave_fade: per
     // octave alpha = h(lg ||M|| + lg |dsdx|) h(lg ||M|| + lg |dsdy|) from a driver-written table,
-    // scaling the octave term and its gradient; enabled per texture by control.bandlimit); off
-    // builds none
+    // fading the octave term toward its mean (register fm) and its gradient toward 0; enabled per
+    // texture by control.bandlimit); off builds none
     FilterBandlimit filterBandlimit = FilterBandlimit::Off;
     // [formats]
     // s, t, r
@@ -384,6 +384,8 @@ inline constexpr Constraint kConstraints[] = {
      [](const int* v) { return v[MatrixFrac] + v[CoordFrac] >= v[NoiseLatticeFrac]; }},
     {"formats.offset", "frac must be at most formats.matrix.frac + formats.coord.frac (pst_octave_transform)",
      [](const int* v) { return v[MatrixFrac] + v[CoordFrac] >= v[OffsetFrac]; }},
+    {"formats.f", "int + frac must be at most 32 with the fade unit (filter.bandlimit): the octave's term mean (register field fm) is an F value",
+     [](const int* v) { return v[FilterBandlimit] == 0 || v[FInt] + v[FFrac] <= 32; }},
     {"formats.width_frac", "must be at least 2 - pipeline.log2_clut (pst_clut_filter)",
      [](const int* v) { return v[Log2Clut] - 1 + v[WidthFrac] >= 1; }},
     {"formats.quadric", "int + frac must be at least 2 (pst_quadric_serial)",
@@ -407,7 +409,7 @@ inline constexpr int kRegQuadricCount = 10;
 // 0x0040: fade table entry k (filter.bandlimit profiles): h = sqrt(g(nu)) at lg nu = -FadeLgLo + (k + 1/2) / 4, unsigned FadeBits (1.0 = 2^FadeFrac); alpha is clamped to 1.0
 inline constexpr uint16_t kRegFade = 0x0040;
 inline constexpr int kRegFadeCount = 32;
-// 0x0100 + 32 i + k: octave i: k = 0..8 M row-major (Matrix), 9..11 o (Offset), 12 a (Amplitude), 13..21 GM = a M^T row-major (GradMatrix), 22 lg ||M||_2 (signed, FadeLgFrac fraction bits, FadeLgBits; filter.bandlimit profiles)
+// 0x0100 + 32 i + k: octave i: k = 0..8 M row-major (Matrix), 9..11 o (Offset), 12 a (Amplitude), 13..21 GM = a M^T row-major (GradMatrix), 22 lg ||M||_2 (signed, FadeLgFrac fraction bits, FadeLgBits; filter.bandlimit profiles), 23 fm = a mean(n), the octave term's mean the fade goes to (signed, F format; filter.bandlimit profiles)
 inline constexpr uint16_t kRegOctave = 0x0100;
 inline constexpr int kRegOctaveStride = 32;
 inline constexpr int kRegOctaveM = 0, kRegOctaveMCount = 9;
@@ -415,6 +417,7 @@ inline constexpr int kRegOctaveO = 9, kRegOctaveOCount = 3;
 inline constexpr int kRegOctaveA = 12, kRegOctaveACount = 1;
 inline constexpr int kRegOctaveGm = 13, kRegOctaveGmCount = 9;
 inline constexpr int kRegOctaveLgm = 22, kRegOctaveLgmCount = 1;
+inline constexpr int kRegOctaveFm = 23, kRegOctaveFmCount = 1;
 // 0x0020: worley unit: coefficient C_k, k = 0..3 (n = sum C_k F_{k+1}), signed Q(WorleyCoefInt).(WorleyCoefFrac)
 inline constexpr uint16_t kRegWorley = 0x0020;
 inline constexpr int kRegWorleyCount = 4;

@@ -69,6 +69,8 @@ void GoldenPipeline::write(uint16_t addr, uint32_t data) {
             o.gm[k - c::kRegOctaveGm] = fx::wrapSigned(data, p.gradMatrix.width());
         else if (k == c::kRegOctaveLgm && p.bandlimit())
             o.lgm = fx::wrapSigned(data, c::kFadeLgBits);
+        else if (k == c::kRegOctaveFm && p.bandlimit())
+            o.fm = fx::wrapSigned(data, p.f.width());
     }
     clut_->write(addr, data);  // decodes the table ranges itself
 }
@@ -106,7 +108,7 @@ PixelFx GoldenPipeline::eval(const FragmentFx& fr, UnitTrace* trace) const {
         if (i == 0) t.n[i] += bump(Unit::Noise);
         octaveTermFx(p, t.n[i], t.g[i], o.a, o.gm, &t.fterm[i], t.gterm[i]);
         t.alpha[i] = fade ? octaveFadeFx(t.lgx, t.lgy, o.lgm, fade_) : int64_t(1) << contract::kFadeFrac;
-        t.fterm[i] = fadeScaleFx(t.fterm[i], t.alpha[i]);
+        t.fterm[i] = fadeToMeanFx(p, t.fterm[i], o.fm, t.alpha[i]);
         for (int k = 0; k < 3; ++k) t.gterm[i][k] = fadeScaleFx(t.gterm[i][k], t.alpha[i]);
         fsum += t.fterm[i];
         for (int k = 0; k < 3; ++k) gsum[k] += t.gterm[i][k];

@@ -59,6 +59,7 @@ module pst_octave_serial #(
   input  logic [Octaves*AW-1:0]     oct_a_i,
   input  logic [Octaves*9*GMW-1:0]  oct_gm_i,
   input  logic [Octaves*LMW-1:0]    oct_lgm_i,
+  input  logic [Octaves*FW-1:0]     oct_fm_i,
   input  logic                      bl_i,
   input  logic [pst_pkg::FadeEntries*FB-1:0] fade_i,
   // The noise units (lane u at [u*W +: W])
@@ -178,12 +179,14 @@ module pst_octave_serial #(
     logic [OW-1:0]    o_row, o_row_d;
     logic [3*GMW-1:0] gm_row, gm_row_d;
     logic [AW-1:0]    a_t, a_t_d;
+    logic [FW-1:0]    fm_t, fm_t_d;
     logic [LMW-1:0]   lgm_t_d;
     always_comb begin
       m_row_d  = '0;
       o_row_d  = '0;
       gm_row_d = '0;
       a_t_d    = '0;
+      fm_t_d   = '0;
       lgm_t_d  = '0;
       for (int p = 0; p < Passes; p++) begin
         for (int r = 0; r < SR; r++) begin
@@ -197,6 +200,7 @@ module pst_octave_serial #(
         end
         if (32'(sch_next.tpass) == p) begin
           a_t_d   = oct_a_i[(p * NoiseUnits + u)*AW +: AW];
+          fm_t_d  = oct_fm_i[(p * NoiseUnits + u)*FW +: FW];
           lgm_t_d = oct_lgm_i[(p * NoiseUnits + u)*LMW +: LMW];
         end
       end
@@ -206,6 +210,7 @@ module pst_octave_serial #(
       o_row  <= o_row_d;
       gm_row <= gm_row_d;
       a_t    <= a_t_d;
+      fm_t   <= fm_t_d;
     end
 
     logic [LB-1:0]    lat_r;      // the transform's row xrow: lattice index and fraction
@@ -220,7 +225,7 @@ module pst_octave_serial #(
     ) u_lane (
       .s_i (s_i), .m_i (m_row), .o_i (o_row), .lat_o (lat_r), .frac_o (frac_r),
       .bl_i (bl_i), .lgx_i (lgx), .lgy_i (lgy), .lgm_i (lgm_t_d), .fade_i (fade_i), .alpha_o (alpha_d),
-      .n_i (n_q), .g_i (g_q), .a_i (a_t), .gm_i (gm_row), .alpha_i (alpha_t), .fterm_o (fterm_raw),
+      .n_i (n_q), .g_i (g_q), .a_i (a_t), .gm_i (gm_row), .alpha_i (alpha_t), .fm_i (fm_t), .fterm_o (fterm_raw),
       .gterm_o (gterm_raw)
     );
     // The term pass's fade, registered with its operands.

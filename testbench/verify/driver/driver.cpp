@@ -163,7 +163,12 @@ TextureProgram programTexture(const Profile& p, const Texture& tex) {
         for (int k = 0; k < 3; ++k)
             prog.writes.push_back({uint16_t(base + contract::kRegOctaveO + k), word(q(o.offset[k], p.offset))});
         prog.writes.push_back({uint16_t(base + contract::kRegOctaveA), word(q(o.amplitude, p.amplitude))});
-        if (p.bandlimit()) prog.writes.push_back({uint16_t(base + contract::kRegOctaveLgm), word(fadeLgNorm(o.M))});
+        if (p.bandlimit()) {
+            prog.writes.push_back({uint16_t(base + contract::kRegOctaveLgm), word(fadeLgNorm(o.M))});
+            // The term's mean a mean(n), where the fade takes the term (not 0: worley's mean is not 0).
+            prog.writes.push_back({uint16_t(base + contract::kRegOctaveFm),
+                                   word(q(o.amplitude * noiseMoments(tex.noise).mean, p.f))});
+        }
     }
     if (p.bandlimit())
         for (int k = 0; k < contract::kFadeEntries; ++k)
