@@ -65,13 +65,14 @@
   parameter int NoiseWorleySearch = pst_pkg::NoiseWorleySearchDefault, \
   parameter int NoiseWorleyPoints = pst_pkg::NoiseWorleyPointsDefault, \
   parameter int NoiseWorleyOrder = pst_pkg::NoiseWorleyOrderDefault, \
-  parameter int NoiseSubband = pst_pkg::NoiseSubbandDefault
+  parameter int NoiseSubband = pst_pkg::NoiseSubbandDefault, \
+  parameter int NoiseSubbandOrientations = pst_pkg::NoiseSubbandOrientationsDefault
 `define PST_NOISE_PASS \
   .NoiseInterp(NoiseInterp), .NoiseCorner(NoiseCorner), .NoiseHash(NoiseHash), \
   .NoiseValueFrac(NoiseValueFrac), .NoiseGuardBits(NoiseGuardBits), \
   .NoiseGradFrac(NoiseGradFrac), .NoiseWorleySearch(NoiseWorleySearch), \
   .NoiseWorleyPoints(NoiseWorleyPoints), .NoiseWorleyOrder(NoiseWorleyOrder), \
-  .NoiseSubband(NoiseSubband)
+  .NoiseSubband(NoiseSubband), .NoiseSubbandOrientations(NoiseSubbandOrientations)
 
 // PROFILE: every profile parameter, in schema order (pst_top; declaration only).
 `define PST_PROFILE_PARAMS \
@@ -97,6 +98,7 @@
   parameter int NoiseWorleyPoints = pst_pkg::NoiseWorleyPointsDefault, \
   parameter int NoiseWorleyOrder = pst_pkg::NoiseWorleyOrderDefault, \
   parameter int NoiseSubband = pst_pkg::NoiseSubbandDefault, \
+  parameter int NoiseSubbandOrientations = pst_pkg::NoiseSubbandOrientationsDefault, \
   parameter int FilterNorm = pst_pkg::FilterNormDefault, \
   parameter int FilterRecipFrac = pst_pkg::FilterRecipFracDefault, \
   parameter int FilterBandlimit = pst_pkg::FilterBandlimitDefault, \

@@ -79,6 +79,8 @@ package pst_pkg;
   localparam int NoiseWorleyPointsMax = 9;
   localparam int NoiseWorleyOrderMin = 1;
   localparam int NoiseWorleyOrderMax = 4;
+  localparam int NoiseSubbandOrientationsMin = 0;
+  localparam int NoiseSubbandOrientationsMax = 8;
   localparam int FilterRecipFracMin = 4;
   localparam int FilterRecipFracMax = 24;
   localparam int WidthFracMin = 0;
@@ -107,6 +109,7 @@ package pst_pkg;
   localparam int NoiseWorleyPointsDefault = 4;
   localparam int NoiseWorleyOrderDefault = 2;
   localparam int NoiseSubbandDefault = NoiseSubbandNone;
+  localparam int NoiseSubbandOrientationsDefault = 0;
   localparam int FilterNormDefault = FilterNormEuclid;
   localparam int FilterRecipFracDefault = 18;
   localparam int FilterBandlimitDefault = FilterBandlimitOff;
@@ -207,6 +210,7 @@ package pst_pkg;
   localparam int SubbandPeriodLog2 = 4;  // subband unit: the tile repeats every 2^SubbandPeriodLog2 noise units (the reference's 256-pixel tile at 16 pixels per unit)
   localparam int SubbandValueBits = 8;  // subband unit: bits of a tile word (signed)
   localparam int SubbandValueFrac = 7;  // subband unit: fraction bits of a tile word (Q1.7: the tile, scaled to Rayshade noise's standard deviation 0.255, stays inside +-0.82)
+  localparam int SubbandDirFrac = 8;  // subband unit's filter: fraction bits of the orientations' direction constants round(2^8 cos(pi i / K)), round(2^8 sin(pi i / K))
   localparam int SubbandSeed = 1;  // subband unit: the seed of the reference tiles the ROM holds (scene key noise.seed)
   localparam int SubbandRefTile = 256;  // subband unit: the size of the reference tiles the ROM is sampled from (scene key noise.tile_size)
   localparam int FadeEntries = 32;  // fade table entries (registers.fade), a quarter octave of nu each

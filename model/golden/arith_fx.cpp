@@ -98,6 +98,12 @@ int64_t fadeLgFx(const Profile& p, const int64_t e[3]) {
         sum += v[k];
     }
     const uint64_t r = sum - mx, len = std::max<uint64_t>(1, mx + (r >> 2) + (r >> 3));  // < 2^JW
+    return mitchellLgFx(p, len);
+}
+
+int64_t mitchellLgFx(const Profile& p, uint64_t len) {
+    namespace c = contract;
+    len = std::max<uint64_t>(1, len);
     int lead = 63;
     while (!((len >> lead) & 1u)) --lead;
     // The FadeLgFrac bits below the leading one (zeros shifted in below bit 0).

@@ -97,6 +97,13 @@ struct ProfileParams {
     // SubbandValueBits signed bits) on the two lattice axes named (the scene's noise.param), one
     // corner per noise step
     NoiseSubband noiseSubband = NoiseSubband::None;
+    // subband unit: 0: one tile, the isotropic sum of the octave's subbands (every lambda_i = 1); 4
+    // or 8: K oriented tiles and the anisotropic filter of eq. 4-7, per pixel and octave lambda_i =
+    // h(|c_i . J_x| ||M||) h(|c_i . J_y| ||M||) (c_i the orientation's direction, J the Jacobian's
+    // columns on the plane, h the fade table: exp(-sigma^2 pi^2 nu^2 / 2)) when control.bandlimit
+    // is set, n = sum_i lambda_i n_i; needs the fade unit's table and lg ||M|| (filter.bandlimit =
+    // isotropic; the term is not faded) and the serial datapath
+    int noiseSubbandOrientations = 0;
     // [filter]
     // |grad_x f|: euclid (sqrt), max + min / 2, |gx| + |gy|
     GradNorm filterNorm = GradNorm::Euclid;
@@ -158,6 +165,7 @@ enum Param : int {
     NoiseWorleyPoints,
     NoiseWorleyOrder,
     NoiseSubband,
+    NoiseSubbandOrientations,
     FilterNorm,
     FilterRecipFrac,
     FilterBandlimit,
@@ -313,6 +321,7 @@ inline constexpr int kNoiseGuardBitsMin = 1, kNoiseGuardBitsMax = 8;
 inline constexpr int kNoiseGradFracMin = 1, kNoiseGradFracMax = 32;
 inline constexpr int kNoiseWorleyPointsMin = 1, kNoiseWorleyPointsMax = 9;
 inline constexpr int kNoiseWorleyOrderMin = 1, kNoiseWorleyOrderMax = 4;
+inline constexpr int kNoiseSubbandOrientationsMin = 0, kNoiseSubbandOrientationsMax = 8;
 inline constexpr int kFilterRecipFracMin = 4, kFilterRecipFracMax = 24;
 inline constexpr int kWidthFracMin = 0, kWidthFracMax = 24;
 inline constexpr KeySpec kSchema[] = {
@@ -338,6 +347,7 @@ inline constexpr KeySpec kSchema[] = {
     {"noise", "worley_points", KeyKind::Range, NoiseWorleyPoints, 1, 9, {}, 0, nullptr, 0},
     {"noise", "worley_order", KeyKind::Range, NoiseWorleyOrder, 1, 4, {}, 0, nullptr, 0},
     {"noise", "subband", KeyKind::Enum, NoiseSubband, 0, 3, {}, 4, kNoiseSubbandNames, 0},
+    {"noise", "subband_orientations", KeyKind::Values, NoiseSubbandOrientations, 0, 8, {0, 4, 8}, 3, nullptr, 0},
     {"filter", "norm", KeyKind::Enum, FilterNorm, 0, 2, {}, 3, kFilterNormNames, 0},
     {"filter", "recip_frac", KeyKind::Range, FilterRecipFrac, 4, 24, {}, 0, nullptr, 0},
     {"filter", "bandlimit", KeyKind::Enum, FilterBandlimit, 0, 1, {}, 2, kFilterBandlimitNames, 0},
@@ -376,6 +386,10 @@ inline constexpr Constraint kConstraints[] = {
      [](const int* v) { return v[NoiseSubband] == 0 || v[NoiseWorleySearch] == 0; }},
     {"noise.lattice_frac", "must be more than 2 (SubbandTileLog2 - SubbandPeriodLog2) with a subband unit (noise.subband): the bilinear weights are the bits below the tile pixel",
      [](const int* v) { return v[NoiseSubband] == 0 || v[NoiseLatticeFrac] > 2; }},
+    {"noise.subband_orientations", "must be 0 without a subband unit (noise.subband = none)",
+     [](const int* v) { return v[NoiseSubbandOrientations] == 0 || v[NoiseSubband] != 0; }},
+    {"noise.subband_orientations", "4 or 8 needs filter.bandlimit = isotropic (its weights' table and lg ||M||) and pipeline.datapath = serial",
+     [](const int* v) { return v[NoiseSubbandOrientations] == 0 || ( v[FilterBandlimit] == 1 && v[Datapath] == 1 ); }},
     {"noise.grad_frac", "must be at least noise.out_frac + noise.guard_bits with a subband unit (noise.subband): it has no derivative lanes to floor",
      [](const int* v) { return v[NoiseSubband] == 0 || v[NoiseGradFrac] >= v[NoiseOutFrac] + v[NoiseGuardBits]; }},
     {"noise.lattice_frac", "must be at least 2 with interp quintic (its derivative 30 u^2 (1 - u)^2 must stay below 4, pst_noise_weight)",
@@ -456,6 +470,7 @@ inline constexpr int kSubbandTileLog2 = 6;  // subband unit: the tile ROM is 2^S
 inline constexpr int kSubbandPeriodLog2 = 4;  // subband unit: the tile repeats every 2^SubbandPeriodLog2 noise units (the reference's 256-pixel tile at 16 pixels per unit)
 inline constexpr int kSubbandValueBits = 8;  // subband unit: bits of a tile word (signed)
 inline constexpr int kSubbandValueFrac = 7;  // subband unit: fraction bits of a tile word (Q1.7: the tile, scaled to Rayshade noise's standard deviation 0.255, stays inside +-0.82)
+inline constexpr int kSubbandDirFrac = 8;  // subband unit's filter: fraction bits of the orientations' direction constants round(2^8 cos(pi i / K)), round(2^8 sin(pi i / K))
 inline constexpr int kSubbandSeed = 1;  // subband unit: the seed of the reference tiles the ROM holds (scene key noise.seed)
 inline constexpr int kSubbandRefTile = 256;  // subband unit: the size of the reference tiles the ROM is sampled from (scene key noise.tile_size)
 inline constexpr int kFadeEntries = 32;  // fade table entries (registers.fade), a quarter octave of nu each
@@ -490,6 +505,7 @@ inline constexpr const char* kParamNames[kNumParams] = {
     "NoiseWorleyPoints",
     "NoiseWorleyOrder",
     "NoiseSubband",
+    "NoiseSubbandOrientations",
     "FilterNorm",
     "FilterRecipFrac",
     "FilterBandlimit",
@@ -539,6 +555,7 @@ constexpr int paramValue(const ProfileParams& p, Param k) {
         case NoiseWorleyPoints: return p.noiseWorleyPoints;
         case NoiseWorleyOrder: return p.noiseWorleyOrder;
         case NoiseSubband: return int(p.noiseSubband);
+        case NoiseSubbandOrientations: return p.noiseSubbandOrientations;
         case FilterNorm: return int(p.filterNorm);
         case FilterRecipFrac: return p.filterRecipFrac;
         case FilterBandlimit: return int(p.filterBandlimit);
@@ -589,6 +606,7 @@ constexpr void setParam(ProfileParams& p, Param k, int v) {
         case NoiseWorleyPoints: p.noiseWorleyPoints = v; break;
         case NoiseWorleyOrder: p.noiseWorleyOrder = v; break;
         case NoiseSubband: p.noiseSubband = ::pst::NoiseSubband(v); break;
+        case NoiseSubbandOrientations: p.noiseSubbandOrientations = v; break;
         case FilterNorm: p.filterNorm = ::pst::GradNorm(v); break;
         case FilterRecipFrac: p.filterRecipFrac = v; break;
         case FilterBandlimit: p.filterBandlimit = ::pst::FilterBandlimit(v); break;

@@ -30,8 +30,9 @@ NoiseOptions hardwareNoise(const ProfileParams& p) {
         n.metric = WorleyMetric::Euclid;
     }
     // A subband unit (rtl/noise/pst_subband.sv): basis subband on the profile's plane, the tiles
-    // its ROM is sampled from (seed, size), point sampled (the scene's orientations do not change
-    // the isotropic sum the ROM holds).
+    // its ROM is sampled from (seed, size); with noise.subband_orientations K its K orientations
+    // and the heuristic weights of eq. 4 (without, any orientations: the isotropic sum the ROM
+    // holds does not depend on them).
     if (p.noiseSubband != NoiseSubband::None) {
         n.basis = NoiseBasis::Subband;
         n.param = p.noiseSubband == NoiseSubband::Xy   ? SubbandParam::XY
@@ -39,7 +40,8 @@ NoiseOptions hardwareNoise(const ProfileParams& p) {
                                                        : SubbandParam::YZ;
         n.tileSize = contract::kSubbandRefTile;
         n.seed = uint32_t(contract::kSubbandSeed);
-        n.orientations = 4;
+        n.orientations = p.noiseSubbandOrientations == 0 ? 4 : p.noiseSubbandOrientations;
+        n.weights = SubbandWeights::Heuristic;
     }
     return n;
 }

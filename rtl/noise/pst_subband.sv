@@ -1,23 +1,27 @@
 // The subband unit: the anisotropic-noise basis of Goldberg, Zwicker, Durand 2008 (model/subband.h)
 // as the hardware samples it, in place of the lattice-noise unit (pst_noise) when the profile's
-// noise.subband is not none: the isotropic band-limited sum of one octave's subbands (eq. 7 with
-// every lambda_ij = 1) read from a tile ROM by bilinear, periodic lookups on two lattice axes, one
-// corner per noise step. Same ports and token timing as pst_noise. Golden: pst::subbandFx
-// (model/golden/subband_fx.cpp, same steps and floors); its double reference is
-// pst::subbandRomReference (the bilinear lookup of the unrounded tile).
+// noise.subband is not none: one octave's subbands read from a tile ROM by bilinear, periodic
+// lookups on two lattice axes, one corner per noise step; the isotropic sum (K = 0, eq. 7 with
+// every lambda_ij = 1) or K = 4, 8 oriented tiles weighted by the pixel's lambda_i (eq. 7 with
+// the anisotropic filter's weights, pst_subband_pixel and pst_octave_fade in
+// pst_octave_serial). Same ports and token timing as pst_noise, plus lam_i. Golden:
+// pst::subbandFx (model/golden/subband_fx.cpp, same steps and floors); its double reference is
+// pst::subbandRomReference (the bilinear lookup of the unrounded tiles).
 //
 // Notation: LF = NoiseLatticeFrac, OF = NoiseOutFrac, TL = SubbandTileLog2, UB = TL -
 // SubbandPeriodLog2 (ROM pixels per noise unit 2^UB), WF = LF - UB, VB / VF = SubbandValueBits /
-// SubbandValueFrac, (A0, A1) the plane's lattice axes (xy: 0, 1; xz: 0, 2; yz: 1, 2).
+// SubbandValueFrac, (A0, A1) the plane's lattice axes (xy: 0, 1; xz: 0, 2; yz: 1, 2), K =
+// NoiseSubbandOrientations, FF = FadeFrac (the weights' fraction bits), VF' = VF (K = 0) or VF + FF.
 //
 // 1. Tile pixel per in-plane axis a: x_a = {lat_a mod 2^(TL - UB), frac_a >> WF} (TL bits), the
 //    weight's fraction w_a = frac_a mod 2^WF.
 // 2. Corners c = cx + 2 cy: step j reads corners j CPS .. j CPS + CPS - 1, CPS = ceil(4 /
 //    NoiseSteps) (one per step on the reduced schedule; the later steps' slots are off): ROM
-//    word v_c at {(x_A1 + cy) mod 2^TL, (x_A0 + cx) mod 2^TL}, weights u_0 = 2^WF - w, u_1 = w.
+//    word at {(x_A1 + cy) mod 2^TL, (x_A0 + cx) mod 2^TL}: K = 0 its value v_c; K = 4, 8 its K
+//    values v_c,i, v_c = sum_i lambda_i v_c,i (exact); weights u_0 = 2^WF - w, u_1 = w.
 // 3. Exact sums, held across the steps (step 0 starts from 0):
 //    V += v_c u_cx(w_A0) u_cy(w_A1), Gx += +-v_c u_cy(w_A1) (+ for cx = 1), Gy += +-v_c u_cx(w_A0).
-// 4. n = sat(floor(V / 2^(VF + 2 WF - OF)), Q4.OF); grad_A0 = sat(floor(Gx / 2^(VF + WF - UB -
+// 4. n = sat(floor(V / 2^(VF' + 2 WF - OF)), Q4.OF); grad_A0 = sat(floor(Gx / 2^(VF' + WF - UB -
 //    OF)), Q6.OF) (2^UB ROM pixels per noise unit), grad_A1 from Gy, the third axis 0.
 //
 // Pipeline (NoiseRegs): a register at b0 after the sums (the first), the others at the output;
@@ -25,8 +29,10 @@
 // The held sums store at every valid advance (steps come on consecutive advances).
 //
 // Parameters: NoiseLatticeFrac, NoiseOutFrac, NoiseSteps, NoiseRegs (the profile's noise keys),
-// NoiseSubband (the plane: pst_pkg::NoiseSubbandXy, Xz or Yz).
-// Ports: pst_noise's.
+// NoiseSubband (the plane: pst_pkg::NoiseSubbandXy, Xz or Yz), NoiseSubbandOrientations (K: 0,
+// 4 or 8).
+// Ports: pst_noise's; lam_i [max(1, K)*FadeBits-1:0] the weights lambda_i (i at [i*FadeBits +:
+// FadeBits], unsigned, 1.0 = 2^FadeFrac; unused for K = 0), steady over an evaluation's steps.
 `include "pst_pkg.sv"
 `default_nettype none
 
@@ -40,7 +46,10 @@ module pst_subband #(
   parameter int NoiseSteps       = pst_pkg::NoiseStepsDefault,
   parameter int NoiseRegs        = pst_pkg::NoiseRegsDefault,
   parameter int NoiseSubband     = pst_pkg::NoiseSubbandXz,
+  parameter int NoiseSubbandOrientations = 0,
   localparam int LF  = NoiseLatticeFrac,
+  localparam int KT  = (NoiseSubbandOrientations == 0) ? 1 : NoiseSubbandOrientations,  // tiles
+  localparam int FB  = pst_pkg::FadeBits,
   localparam int OF  = NoiseOutFrac,
   localparam int NW  = pst_pkg::NoiseIntBits + NoiseOutFrac,
   localparam int NGW = pst_pkg::NoiseGradIntBits + NoiseOutFrac,
@@ -53,6 +62,7 @@ module pst_subband #(
   input  logic [2:0]         step_i,
   input  logic [pst_pkg::LatticeWidth-1:0] lat_i,
   input  logic [3*LF-1:0]    frac_i,
+  input  logic [KT*FB-1:0]   lam_i,
   output logic               valid_o,
   output logic               last_o,
   output logic signed [NW-1:0]  n_o,
@@ -64,19 +74,29 @@ module pst_subband #(
   localparam int UB  = TL - PL;
   localparam int WF  = LF - UB;
   localparam int VB  = pst_pkg::SubbandValueBits;
-  localparam int VF  = pst_pkg::SubbandValueFrac;
+  localparam int K   = NoiseSubbandOrientations;
+  localparam int VF  = pst_pkg::SubbandValueFrac + ((K == 0) ? 0 : pst_pkg::FadeFrac);
+  localparam int CVW = (K == 0) ? VB : VB + FB + 4;  // a corner's value: sum of K <= 8 products
   localparam int A0  = (NoiseSubband == pst_pkg::NoiseSubbandYz) ? 1 : 0;
   localparam int A1  = (NoiseSubband == pst_pkg::NoiseSubbandXy) ? 1 : 2;
   localparam int A2  = 3 - A0 - A1;                 // the axis outside the plane
   localparam int CPS = (4 + NoiseSteps - 1) / NoiseSteps;
   localparam int UW  = WF + 1;                      // a weight u (unsigned, <= 2^WF)
-  localparam int VW  = VB + 2 * UW + 2;             // V (signed): 4 products v u u
-  localparam int GW  = VB + UW + 2;                 // Gx, Gy (signed): 4 products +-v u
+  localparam int VW  = CVW + 2 * UW + 2;            // V (signed): 4 products v u u
+  localparam int GW  = CVW + UW + 2;                // Gx, Gy (signed): 4 products +-v u
   localparam int SUMW = VW + 2 * GW;                // the held sums {Gy, Gx, V}
+  // |V| <= 2^VBE: a convex combination of corners of |v| <= KT 2^(VB-1) (2^FadeFrac) (pst_subband_sva).
+  localparam int VBE = VB - 1 + 2 * WF + ((K == 0) ? 0 : pst_pkg::FadeFrac + $clog2(KT));
 
   // ---- ROM -------------------------------------------------------------------------------
-  logic [VB-1:0] tile [1 << (2*TL)];
-  initial $readmemh({`PST_ROM_DIR, "/subband64.memh"}, tile);
+  logic [KT*VB-1:0] tile [1 << (2*TL)];
+  if (K == 0) begin : g_rom_iso
+    initial $readmemh({`PST_ROM_DIR, "/subband64.memh"}, tile);
+  end else if (K == 4) begin : g_rom_k4
+    initial $readmemh({`PST_ROM_DIR, "/subband64_k4.memh"}, tile);
+  end else begin : g_rom_k8
+    initial $readmemh({`PST_ROM_DIR, "/subband64_k8.memh"}, tile);
+  end
 
   // ---- 1. tile pixel and weights -------------------------------------------------------------
   logic [TL-1:0] x0, x1;
@@ -92,7 +112,8 @@ module pst_subband #(
   always_comb begin
     logic signed [VW-1:0] v_acc;
     logic signed [GW-1:0] gx_acc, gy_acc;
-    logic signed [VB-1:0] v;
+    logic signed [CVW-1:0] v;
+    logic [KT*VB-1:0]      word;
     logic [UW-1:0]        ux, uy;
     logic [TL-1:0]        cx_addr, cy_addr;
     int                   c;
@@ -103,7 +124,15 @@ module pst_subband #(
       corner_on[i] = c < 4;
       cx_addr = x0 + TL'(c & 1);
       cy_addr = x1 + TL'((c >> 1) & 1);
-      v  = tile[{cy_addr, cx_addr}];
+      word = tile[{cy_addr, cx_addr}];
+      if (K == 0) begin
+        v = CVW'($signed(word[VB-1:0]));
+      end else begin
+        // The corner's weighted sum of its K words (eq. 7), exact.
+        v = '0;
+        for (int t = 0; t < KT; t++)
+          v = v + CVW'($signed(word[t*VB +: VB])) * CVW'($signed({1'b0, lam_i[t*FB +: FB]}));
+      end
       ux = ((c & 1) != 0) ? UW'(w0) : UW'(1 << WF) - UW'(w0);
       uy = ((c & 2) != 0) ? UW'(w1) : UW'(1 << WF) - UW'(w1);
       if (corner_on[i]) begin
@@ -159,7 +188,7 @@ module pst_subband #(
 
   logic unused_in;   // lattice bits above the period, the third axis, the token's step
   assign unused_in = ^{sum_in, lat_i[A0*LB + PL +: LB - PL], lat_i[A1*LB + PL +: LB - PL],
-                       lat_i[A2*LB +: LB], frac_i[A2*LF +: LF]};
+                       lat_i[A2*LB +: LB], frac_i[A2*LF +: LF], (K == 0) ? lam_i : '0};
 
   // Assertions
 `ifndef SYNTHESIS
@@ -167,6 +196,7 @@ module pst_subband #(
     if (NoiseSubband == pst_pkg::NoiseSubbandNone) $error("pst_subband: NoiseSubband is none");
     if (WF < 1) $error("pst_subband: NoiseLatticeFrac must exceed SubbandTileLog2 - SubbandPeriodLog2");
     if (NoiseRegs < 0 || NoiseRegs > 6) $error("pst_subband: NoiseRegs must be 0..6");
+    if (K != 0 && K != 4 && K != 8) $error("pst_subband: NoiseSubbandOrientations must be 0, 4 or 8");
   end
 `endif
 

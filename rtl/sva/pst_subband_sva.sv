@@ -1,7 +1,8 @@
 // pst_subband_sva: checker of pst_subband (the subband unit): steps in range and in order (0, 1,
 // .. NoiseSteps - 1 on consecutive valid advances, as pst_noise), a last token only with a valid
 // one, the in-plane tile pixel inside the tile, and the value sum V inside the bilinear bound:
-// |V| <= 2^(VB-1) 2^(2 WF) (a convex combination of the words, at 2 WF weight bits). Cover
+// |V| <= 2^VBE (a convex combination of the corners' values, each at most K 2^(VB-1) with
+// weights of at most 1.0; pst_subband's VBE). Cover
 // points: each step entering; a held token; the tile's wrap-around (a corner at the tile's
 // last pixel in both axes, so that its neighbours are at pixel 0).
 `include "sva/pst_assert.svh"
@@ -10,8 +11,7 @@
 module pst_subband_sva #(
   parameter int NoiseSteps = 1,
   parameter int TL   = 1,
-  parameter int WF   = 1,
-  parameter int VB   = 1,
+  parameter int VBE  = 1,
   parameter int VW   = 1,
   parameter int SUMW = 1
 ) (
@@ -33,12 +33,12 @@ module pst_subband_sva #(
     else if (en_i && valid_i) next_q <= (32'(step_i) == NoiseSteps - 1) ? 3'd0 : step_i + 3'd1;
   end
 
-  // |V| of the sums so far: a partial convex combination, so at most the largest word times
-  // the weights' total 2^(2 WF).
+  // |V| of the sums so far: a partial convex combination, so at most the largest corner value
+  // times the weights' total 2^(2 WF).
   logic signed [VW-1:0] v;
   logic                 v_bounded;
   assign v = sum_out[0 +: VW];
-  assign v_bounded = (v <= $signed(VW'(1) <<< (VB - 1 + 2 * WF))) && (v >= -($signed(VW'(1) <<< (VB - 1 + 2 * WF))));
+  assign v_bounded = (v <= $signed(VW'(1) <<< VBE)) && (v >= -($signed(VW'(1) <<< VBE)));
 
   logic unused_bits;
   assign unused_bits = ^sum_out[SUMW-1:VW];
@@ -55,6 +55,6 @@ module pst_subband_sva #(
   `PST_COVER(TileWrap, en_i && valid_i && x0 == '1 && x1 == '1)
 endmodule
 
-bind pst_subband pst_subband_sva #(.NoiseSteps(NoiseSteps), .TL(TL), .WF(WF), .VB(VB), .VW(VW), .SUMW(SUMW)) u_sva (.*);
+bind pst_subband pst_subband_sva #(.NoiseSteps(NoiseSteps), .TL(TL), .VBE(VBE), .VW(VW), .SUMW(SUMW)) u_sva (.*);
 
 `default_nettype wire

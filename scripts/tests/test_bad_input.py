@@ -365,3 +365,38 @@ def test_12_subband_scene_on_the_unit(tmp_path, noise, pattern):
     out = tmp_path / "out"
     refused(["render", s, "--profile", prof, "--model", "golden", "--size", 8, "-o", out, "-q"],
             re.escape(str(s)) + r":\d+: " + pattern, [out])
+
+
+# The subband unit's anisotropic filter (noise.subband_orientations, test profile reduced_subband_k8):
+# the key's values and what it needs, and scenes that ask for another filter than the unit's.
+def test_12_subband_orientations_key(tmp_path):
+    out = tmp_path / "out"
+    sub = lambda t: t.replace('subband = "none"', 'subband = "xz"')
+    for name, edit, pattern in [
+        ("bad_k", lambda t: sub(t).replace("subband_orientations = 0", "subband_orientations = 6"),
+         r"noise\.subband_orientations: "),
+        ("bad_nounit", lambda t: t.replace("subband_orientations = 0", "subband_orientations = 4"),
+         r"noise\.subband_orientations: must be 0 without a subband unit"),
+        ("bad_nofade", lambda t: sub(t).replace("subband_orientations = 0", "subband_orientations = 8"),
+         r"noise\.subband_orientations: 4 or 8 needs filter\.bandlimit = isotropic"),
+    ]:
+        bad = profile_copy(tmp_path, name, edit, src="reduced")
+        refused(["render", scene(tmp_path), "--profile", bad, "--model", "golden", "-o", out, "-q"],
+                re.escape(str(bad)) + r":\d+: " + pattern, [out])
+
+
+@pytest.mark.parametrize("noise,bandlimit,pattern", [
+    ('{ basis = "subband", param = "xz", orientations = 4 }', "anisotropic",
+     r":\d+: textures\.t\.noise\.orientations: 4; the subband unit of profile 'reduced_subband_k8' holds 8 oriented tiles"),
+    ('{ basis = "subband", param = "xz", orientations = 8, weights = "least_squares" }', "anisotropic",
+     r":\d+: textures\.t\.noise\.weights: the subband unit of profile 'reduced_subband_k8' computes the heuristic weights"),
+    ('{ basis = "subband", param = "xz", orientations = 8 }', "isotropic",
+     r"texture 't': bandlimit: 'isotropic'; the subband unit of profile 'reduced_subband_k8' filters with its "
+     r"anisotropic weights"),
+])
+def test_12_subband_filter_scene_on_the_unit(tmp_path, noise, bandlimit, pattern):
+    s = subband_scene(tmp_path, noise, bandlimit)
+    prof = ROOT / "sim" / "test_profiles" / "reduced_subband_k8.toml"
+    out = tmp_path / "out"
+    refused(["render", s, "--profile", prof, "--model", "golden", "--size", 8, "-o", out, "-q"],
+            (re.escape(str(s)) if pattern.startswith(":") else "") + pattern, [out])

@@ -142,6 +142,11 @@ Texture randomTexture(RandomStream& r, const Profile& p) {
     t.filter = kinds[r.range(0, 4)];
     // Bandlimited octaves on a profile with the fade unit (other profiles draw nothing more).
     if (p.bandlimit()) t.bandlimit = r.chance(0.7) ? Bandlimit::Isotropic : Bandlimit::Off;
+    // A subband unit with its anisotropic filter: its weights instead, of a random sigma.
+    if (p.noise.basis == NoiseBasis::Subband && p.noiseSubbandOrientations != 0) {
+        if (t.bandlimit == Bandlimit::Isotropic) t.bandlimit = Bandlimit::Anisotropic;
+        t.noise.sigma = std::exp2(r.uniform(-3.0, 2.0));
+    }
     return t;
 }
 
