@@ -24,9 +24,10 @@
 // 4. n = sat(floor(V / 2^(VF' + 2 WF - OF)), Q4.OF); grad_A0 = sat(floor(Gx / 2^(VF' + WF - UB -
 //    OF)), Q6.OF) (2^UB ROM pixels per noise unit), grad_A1 from Gy, the third axis 0.
 //
-// Pipeline (NoiseRegs): a register at b0 after the sums (the first), the others at the output;
-// the result of the last step comes NoiseRegs advances (en_i) after its input, as pst_noise's.
-// The held sums store at every valid advance (steps come on consecutive advances).
+// Pipeline (NoiseRegs): a register at b0 between the step's corner values (the ROM read and the
+// weighted sums) and the bilinear sums (the first), the others at the output; the result of the
+// last step comes NoiseRegs advances (en_i) after its input, as pst_noise's. The held sums store
+// at every valid advance of b0's token (steps come on consecutive advances).
 //
 // Parameters: NoiseLatticeFrac, NoiseOutFrac, NoiseSteps, NoiseRegs (the profile's noise keys),
 // NoiseSubband (the plane: pst_pkg::NoiseSubbandXy, Xz or Yz), NoiseSubbandOrientations (K: 0,
@@ -106,22 +107,15 @@ module pst_subband #(
   assign w0 = frac_i[A0*LF +: WF];
   assign w1 = frac_i[A1*LF +: WF];
 
-  // ---- 2-3. this step's corners and the sums ------------------------------------------------
-  logic [SUMW-1:0] held_q, sum_in, sum_out;
-  logic [CPS-1:0]  corner_on;
+  // ---- 2. this step's corners: the ROM words and (K = 4, 8) their weighted sums --------------
+  logic [CPS*CVW-1:0] cv_a;   // slot i: corner step_i CPS + i (a slot past corner 3 is off in step 3)
   always_comb begin
-    logic signed [VW-1:0] v_acc;
-    logic signed [GW-1:0] gx_acc, gy_acc;
     logic signed [CVW-1:0] v;
     logic [KT*VB-1:0]      word;
-    logic [UW-1:0]        ux, uy;
-    logic [TL-1:0]        cx_addr, cy_addr;
-    int                   c;
-    sum_in = (step_i == 3'd0) ? '0 : held_q;
-    {gy_acc, gx_acc, v_acc} = sum_in;
+    logic [TL-1:0]         cx_addr, cy_addr;
+    int                    c;
     for (int i = 0; i < CPS; i++) begin
       c = 32'(step_i) * CPS + i;
-      corner_on[i] = c < 4;
       cx_addr = x0 + TL'(c & 1);
       cy_addr = x1 + TL'((c >> 1) & 1);
       word = tile[{cy_addr, cx_addr}];
@@ -133,9 +127,38 @@ module pst_subband #(
         for (int t = 0; t < KT; t++)
           v = v + CVW'($signed(word[t*VB +: VB])) * CVW'($signed({1'b0, lam_i[t*FB +: FB]}));
       end
-      ux = ((c & 1) != 0) ? UW'(w0) : UW'(1 << WF) - UW'(w0);
-      uy = ((c & 2) != 0) ? UW'(w1) : UW'(1 << WF) - UW'(w1);
-      if (corner_on[i]) begin
+      cv_a[i*CVW +: CVW] = v;
+    end
+  end
+
+  // Boundary b0 (the first pipeline register): the step's corner values, the bilinear weights'
+  // fractions and the token; the sums are formed after it.
+  localparam int R0 = (NoiseRegs >= 1) ? 1 : 0;
+  localparam int RO = NoiseRegs - R0;
+  logic [CPS*CVW-1:0] cv_b;
+  logic [WF-1:0]      w0_b, w1_b;
+  logic [3:0]         tok_b;
+  pst_delay #(.Width(CPS*CVW + 2*WF), .Depth(R0)) u_b0 (
+    .clk_i, .rst_ni, .en_i, .d_i ({cv_a, w1, w0}), .q_o ({cv_b, w1_b, w0_b}));
+  pst_delay #(.Width(4), .Depth(R0), .Reset(1'b1)) u_b0_tok (
+    .clk_i, .rst_ni, .en_i, .d_i ({valid_i, step_i}), .q_o (tok_b));
+
+  // ---- 3. the sums, held across the steps ----------------------------------------------------
+  logic [SUMW-1:0] held_q, sum_in, sum_out;
+  always_comb begin
+    logic signed [VW-1:0]  v_acc;
+    logic signed [GW-1:0]  gx_acc, gy_acc;
+    logic signed [CVW-1:0] v;
+    logic [UW-1:0]         ux, uy;
+    int                    c;
+    sum_in = (tok_b[2:0] == 3'd0) ? '0 : held_q;
+    {gy_acc, gx_acc, v_acc} = sum_in;
+    for (int i = 0; i < CPS; i++) begin
+      c = 32'(tok_b[2:0]) * CPS + i;
+      v  = cv_b[i*CVW +: CVW];
+      ux = ((c & 1) != 0) ? UW'(w0_b) : UW'(1 << WF) - UW'(w0_b);
+      uy = ((c & 2) != 0) ? UW'(w1_b) : UW'(1 << WF) - UW'(w1_b);
+      if (c < 4) begin
         v_acc = v_acc + VW'(v) * VW'($signed({1'b0, ux})) * VW'($signed({1'b0, uy}));
         if ((c & 1) != 0) gx_acc = gx_acc + GW'(v) * GW'($signed({1'b0, uy}));
         else              gx_acc = gx_acc - GW'(v) * GW'($signed({1'b0, uy}));
@@ -147,18 +170,10 @@ module pst_subband #(
   end
   always_ff @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) held_q <= '0;
-    else if (en_i && valid_i) held_q <= sum_out;
+    else if (en_i && tok_b[3]) held_q <= sum_out;
   end
-
-  // Boundary b0 (the first pipeline register): the sums and the token.
-  localparam int R0 = (NoiseRegs >= 1) ? 1 : 0;
-  localparam int RO = NoiseRegs - R0;
   logic [SUMW-1:0] sum_b;
-  logic [3:0]      tok_b;
-  pst_delay #(.Width(SUMW), .Depth(R0)) u_b0 (
-    .clk_i, .rst_ni, .en_i, .d_i (sum_out), .q_o (sum_b));
-  pst_delay #(.Width(4), .Depth(R0), .Reset(1'b1)) u_b0_tok (
-    .clk_i, .rst_ni, .en_i, .d_i ({valid_i, step_i}), .q_o (tok_b));
+  assign sum_b = sum_out;
 
   // ---- 4. floor and saturate -------------------------------------------------------------------
   logic [NW-1:0]  n_b;

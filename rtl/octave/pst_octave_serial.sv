@@ -169,8 +169,9 @@ module pst_octave_serial #(
   // The subband unit's filter (noise.subband_orientations K = 4, 8): the pixel's lg edges along
   // the K orientations (pst_subband_pixel, registered like the fade's, free-running), per lane the
   // weights of the next cycle's noise pass from its lg ||M|| and the fade table (pst_octave_fade
-  // per orientation), registered: the first noise step (cycle SR = 3) finds them (the pixel's lg
-  // are registered from cycle 2). The table is then the weights', not a fade of the term.
+  // per orientation), registered as the fragment moves on: the first noise step (cycle SR = 3)
+  // finds them (the pixel's lg are registered from cycle 2). The table is then the weights', not
+  // a fade of the term.
   localparam int SK = NoiseSubbandOrientations;
   localparam bit Aniso = (NoiseSubband != pst_pkg::NoiseSubbandNone) && (SK != 0);
   logic [2*(Aniso ? SK : 1)*LgW-1:0] sb_lg;
@@ -205,11 +206,16 @@ module pst_octave_serial #(
     logic [AW-1:0]    a_t, a_t_d;
     logic [FW-1:0]    fm_t, fm_t_d;
     logic [LMW-1:0]   lgm_t_d;
-    logic [LMW-1:0]   lgm_n_d;    // the next cycle's noise pass's lg ||M|| (the subband filter)
+    // The noise pass of the next cycle from this cycle's (registered) schedule, so that the
+    // weights' path does not start at the stall: the pass after this one at a pass's last step,
+    // else this one (pass 0 before the first step).
+    logic [PassBits-1:0] lam_pass;
+    assign lam_pass = !sch.noise_on ? '0 : (32'(sch.nstep) == NoiseSteps - 1) ? sch.npass + 1'b1 : sch.npass;
+    logic [LMW-1:0]   lgm_n_d;    // that pass's lg ||M|| (the subband filter)
     always_comb begin
       lgm_n_d = '0;
       for (int p = 0; p < Passes; p++) begin
-        if (32'(sch_next.npass) == p) lgm_n_d = oct_lgm_i[(p * NoiseUnits + u)*LMW +: LMW];
+        if (32'(lam_pass) == p) lgm_n_d = oct_lgm_i[(p * NoiseUnits + u)*LMW +: LMW];
       end
     end
     if (Aniso) begin : g_sb_lam
@@ -219,7 +225,11 @@ module pst_octave_serial #(
           .en_i (bl_i), .lgx_i (sb_lg[i*LgW +: LgW]), .lgy_i (sb_lg[(SK + i)*LgW +: LgW]), .lgm_i (lgm_n_d),
           .table_i (fade_i), .alpha_o (lam_d[i*FB +: FB]));
       end
-      always_ff @(posedge clk_i) lam_q <= lam_d;
+      // Loaded as the fragment moves on (en), so it holds the next cycle's pass's weights.
+      always_ff @(posedge clk_i or negedge rst_ni) begin
+        if (!rst_ni) lam_q <= '0;
+        else if (en) lam_q <= lam_d;
+      end
       assign nz_lam_o[u*SLW +: SLW] = lam_q;
     end else begin : g_no_sb_lam
       for (genvar i = 0; i < SLW / FB; i++) begin : g_one

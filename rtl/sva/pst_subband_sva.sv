@@ -24,7 +24,8 @@ module pst_subband_sva #(
   input logic            last_o,
   input logic [TL-1:0]   x0,
   input logic [TL-1:0]   x1,
-  input logic [SUMW-1:0] sum_out
+  input logic [SUMW-1:0] sum_out,
+  input logic [3:0]      tok_b
 );
   // The step the next valid advance must carry.
   logic [2:0] next_q;
@@ -41,12 +42,12 @@ module pst_subband_sva #(
   assign v_bounded = (v <= $signed(VW'(1) <<< VBE)) && (v >= -($signed(VW'(1) <<< VBE)));
 
   logic unused_bits;
-  assign unused_bits = ^sum_out[SUMW-1:VW];
+  assign unused_bits = ^{sum_out[SUMW-1:VW], tok_b[2:0]};
 
   `PST_ASSERT(StepInRange, valid_i |-> (32'(step_i) < NoiseSteps))
   `PST_ASSERT(StepsInOrder, (en_i && valid_i) |-> (step_i == next_q))
   `PST_ASSERT(LastIsValid, last_o |-> valid_o)
-  `PST_ASSERT(ValueBounded, valid_i |-> v_bounded)
+  `PST_ASSERT(ValueBounded, tok_b[3] |-> v_bounded)
   `PST_ASSERT_KNOWN(ValidKnown, {valid_o, last_o})
   for (genvar j = 0; j < NoiseSteps; j++) begin : g_step
     `PST_COVER(Step, en_i && valid_i && 32'(step_i) == j)

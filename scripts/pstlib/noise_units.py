@@ -5,7 +5,7 @@ from pathlib import Path
 
 SOURCE = Path("scripts/synth/noise_units.json")
 FIELDS = ("unit", "profile", "unit_logic_ge", "unit_rom_ge", "unit_rom_bits", "logic_ge", "memory_ge",
-          "fmax_mhz", "clocks_per_pixel", "scene", "still_rms_sat", "still_rms_unfiltered", "flicker_rtl",
+          "fmax_mhz", "clocks_per_pixel", "scene", "still_rms_hw", "still_rms_unfiltered", "flicker_rtl",
           "flicker_best_hw", "flicker_best_hw_option")
 
 
@@ -30,11 +30,11 @@ def _flicker(u) -> str:
 
 def markdown(units: list) -> str:
     L = ["| unit (profile) | unit logic GE | unit ROM GE (bits) | pipeline logic / memory GE | Fmax pre-layout | "
-         "clocks / pixel | still RMS vs truth: SAT / unfiltered (scene) | fly-in flicker, unfiltered / RTL |",
+         "clocks / pixel | still RMS vs truth: the unit's image / unfiltered (scene) | fly-in flicker, unfiltered / RTL |",
          "|---|---:|---:|---:|---:|---:|---|---|"]
     for u in units:
         L.append(f"| {u['unit']} (`{u['profile']}`) | {u['unit_logic_ge']:,} | {u['unit_rom_ge']:,} "
                  f"({u['unit_rom_bits']:,}) | {u['logic_ge']:,} / {u['memory_ge']:,} | {u['fmax_mhz']:.1f} MHz | "
-                 f"{u['clocks_per_pixel']} | {u['still_rms_sat']:.4f} / {u['still_rms_unfiltered']:.4f} "
+                 f"{u['clocks_per_pixel']} | {u['still_rms_hw']:.4f} / {u['still_rms_unfiltered']:.4f} "
                  f"({u['scene']}) | {_flicker(u)} |")
     return "\n".join(L) + "\n"
