@@ -311,6 +311,16 @@ void subbandFilterLeastSquares(int K, const glm::dmat2& J, double* lambda, doubl
 
 // ---- The basis ------------------------------------------------------------------------------
 
+double subbandCentreScale(const SubbandTiles& t) {
+    // subbandNoise's gamma^T C gamma with gamma = 1 on the centre scale (the same sum, in the
+    // same order).
+    const int K = t.K, count = t.count(), jc = kSubbandCentreScale;
+    double var = 0;
+    for (int a = jc * K; a < (jc + 1) * K; ++a)
+        for (int b = jc * K; b < (jc + 1) * K; ++b) var += t.gram[size_t(a) * count + b];
+    return var > 0 ? rayshadeSd() / std::sqrt(var) : 0.0;
+}
+
 namespace {
 // (u, v) in noise units at p, and the 2 x 3 derivative DP (rows du/dp, dv/dp) along the assumed
 // surface; T the distortion (isometric surface coordinates to (u, v)).

@@ -62,6 +62,11 @@ struct SubbandTiles {
     double lookupIso(int j, const glm::dvec2& p, glm::dvec2* grad) const;
 };
 
+// The factor subbandNoise scales the undistorted, unfiltered basis by (the isotropic sum of the
+// centre scale, kSubbandCentreScale, to Rayshade noise's standard deviation): sd_R / sqrt(var),
+// var the sum of the centre scale's Gram entries.
+double subbandCentreScale(const SubbandTiles& t);
+
 // Built once per (seed, K, size) and cached (thread-safe). K is 4 or 8; size a power of two in
 // [kSubbandMinTile, kSubbandMaxTile] (std::invalid_argument otherwise).
 const SubbandTiles& subbandTiles(int K, int size, uint64_t seed);

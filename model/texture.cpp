@@ -262,11 +262,12 @@ double evalFBandlimited(const Texture& tex, const glm::dvec3& s, const glm::dvec
             var += std::pow(o.amplitude * m.sd, 2) * (1.0 - kept);
             continue;
         }
-        // Isotropic: the term and its gradient scaled by alpha (off: the point sample).
-        const double a =
-            o.amplitude * (tex.bandlimit == Bandlimit::Isotropic ? octaveIsotropic(o, tex.noise, dsdx, dsdy) : 1.0);
+        // Isotropic: the term faded toward its mean by alpha, its gradient toward 0 (off: the
+        // point sample). A basis whose mean is not 0 (worley) keeps its mean as the octave fades.
+        const double alpha = tex.bandlimit == Bandlimit::Isotropic ? octaveIsotropic(o, tex.noise, dsdx, dsdy) : 1.0;
+        const double a = o.amplitude * alpha;
         glm::dvec3 gn;
-        f += a * noise(o.M * s + o.offset, tex.noise, gradS ? &gn : nullptr);
+        f += a * noise(o.M * s + o.offset, tex.noise, gradS ? &gn : nullptr) + o.amplitude * (1.0 - alpha) * m.mean;
         if (gradS) g += a * (glm::transpose(o.M) * gn);
     }
     if (gradS) *gradS = g;

@@ -389,17 +389,19 @@ TEST(Texture, IsotropicBandlimitBoundsEachEdgeAndScalesTermAndGradient) {
     // Above the table (2^5 cells) the fade stops falling.
     EXPECT_DOUBLE_EQ(octaveIsotropic(o1, tex.noise, glm::dvec3(100, 0, 0), tinyY),
                      octaveIsotropic(o1, tex.noise, glm::dvec3(4, 0, 0), tinyY));
-    // f and grad: each term a alpha n, a alpha M^T grad n (toward 0, no widening).
+    // f and grad: each term a (mean + alpha (n - mean)) (toward the basis's mean), a alpha M^T
+    // grad n (toward 0), no widening.
     tex.bandlimit = Bandlimit::Isotropic;
     glm::dvec3 gb;
     double sd = -1;
     const double fb = evalFBandlimited(tex, s, ex, ey, &gb, &sd);
     double f = tex.quadric.value(s);
     glm::dvec3 g = tex.quadric.gradient(s);
+    const double mean = noiseMoments(tex.noise).mean;
     for (const Octave& o : tex.octaves) {
         glm::dvec3 gn;
-        const double a = o.amplitude * octaveIsotropic(o, tex.noise, ex, ey);
-        f += a * noise(o.M * s + o.offset, tex.noise, &gn);
+        const double alpha = octaveIsotropic(o, tex.noise, ex, ey), a = o.amplitude * alpha;
+        f += o.amplitude * (mean + alpha * (noise(o.M * s + o.offset, tex.noise, &gn) - mean));
         g += a * (glm::transpose(o.M) * gn);
     }
     EXPECT_DOUBLE_EQ(fb, f);
@@ -410,6 +412,24 @@ TEST(Texture, IsotropicBandlimitBoundsEachEdgeAndScalesTermAndGradient) {
     ASSERT_TRUE(parseBandlimit("isotropic", &b));
     EXPECT_EQ(b, Bandlimit::Isotropic);
     EXPECT_STREQ(toString(b), "isotropic");
+}
+
+// A basis whose mean is not 0 (worley's F1, 0.35): a fully faded octave leaves its mean, not 0.
+TEST(Texture, IsotropicBandlimitFadesToTheBasissMean) {
+    Texture tex = testTexture({});
+    tex.noise.basis = NoiseBasis::Worley;
+    tex.octaves.resize(1);
+    tex.octaves[0].M = glm::dmat3(8.0);
+    tex.octaves[0].amplitude = 0.5;
+    tex.bandlimit = Bandlimit::Isotropic;
+    const glm::dvec3 s(0.3, -1.2, 2.7), big(100, 0, 0), bigY(0, 100, 0);
+    const double alpha = octaveIsotropic(tex.octaves[0], tex.noise, big, bigY);
+    const double mean = noiseMoments(tex.noise).mean;
+    ASSERT_GT(mean, 0.3);
+    ASSERT_LT(alpha, 0.05);
+    const double f = evalFBandlimited(tex, s, big, bigY, nullptr, nullptr) - tex.quadric.value(s);
+    EXPECT_NEAR(f, 0.5 * mean, 0.5 * alpha * 2.0);  // |n - mean| < 2 for F1
+    EXPECT_GT(f, 0.5 * mean * 0.8);
 }
 
 }  // namespace

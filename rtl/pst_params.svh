@@ -64,12 +64,15 @@
   parameter int NoiseGradFrac = pst_pkg::NoiseGradFracDefault, \
   parameter int NoiseWorleySearch = pst_pkg::NoiseWorleySearchDefault, \
   parameter int NoiseWorleyPoints = pst_pkg::NoiseWorleyPointsDefault, \
-  parameter int NoiseWorleyOrder = pst_pkg::NoiseWorleyOrderDefault
+  parameter int NoiseWorleyOrder = pst_pkg::NoiseWorleyOrderDefault, \
+  parameter int NoiseSubband = pst_pkg::NoiseSubbandDefault, \
+  parameter int NoiseSubbandOrientations = pst_pkg::NoiseSubbandOrientationsDefault
 `define PST_NOISE_PASS \
   .NoiseInterp(NoiseInterp), .NoiseCorner(NoiseCorner), .NoiseHash(NoiseHash), \
   .NoiseValueFrac(NoiseValueFrac), .NoiseGuardBits(NoiseGuardBits), \
   .NoiseGradFrac(NoiseGradFrac), .NoiseWorleySearch(NoiseWorleySearch), \
-  .NoiseWorleyPoints(NoiseWorleyPoints), .NoiseWorleyOrder(NoiseWorleyOrder)
+  .NoiseWorleyPoints(NoiseWorleyPoints), .NoiseWorleyOrder(NoiseWorleyOrder), \
+  .NoiseSubband(NoiseSubband), .NoiseSubbandOrientations(NoiseSubbandOrientations)
 
 // PROFILE: every profile parameter, in schema order (pst_top; declaration only).
 `define PST_PROFILE_PARAMS \
@@ -94,6 +97,8 @@
   parameter int NoiseWorleySearch = pst_pkg::NoiseWorleySearchDefault, \
   parameter int NoiseWorleyPoints = pst_pkg::NoiseWorleyPointsDefault, \
   parameter int NoiseWorleyOrder = pst_pkg::NoiseWorleyOrderDefault, \
+  parameter int NoiseSubband = pst_pkg::NoiseSubbandDefault, \
+  parameter int NoiseSubbandOrientations = pst_pkg::NoiseSubbandOrientationsDefault, \
   parameter int FilterNorm = pst_pkg::FilterNormDefault, \
   parameter int FilterRecipFrac = pst_pkg::FilterRecipFracDefault, \
   parameter int FilterBandlimit = pst_pkg::FilterBandlimitDefault, \

@@ -33,11 +33,16 @@ package pst_pkg;
   localparam int NoiseWorleySearchNone = 0;
   localparam int NoiseWorleySearchOctant = 1;
   localparam int NoiseWorleySearchCube27 = 2;
+  // noise.subband: none: no subband unit; else a subband unit (basis subband, rtl/noise/pst_subband.sv) in place of the lattice-noise unit: Goldberg et al.'s band-limited noise as bilinear, periodic lookups of a 2^SubbandTileLog2-square tile ROM (the isotropic sum of the octave's subbands, SubbandValueBits signed bits) on the two lattice axes named (the scene's noise.param), one corner per noise step
+  localparam int NoiseSubbandNone = 0;
+  localparam int NoiseSubbandXy = 1;
+  localparam int NoiseSubbandXz = 2;
+  localparam int NoiseSubbandYz = 3;
   // filter.norm: |grad_x f|: euclid (sqrt), max + min / 2, |gx| + |gy|
   localparam int FilterNormEuclid = 0;
   localparam int FilterNormMaxHalfMin = 1;
   localparam int FilterNormL1 = 2;
-  // filter.bandlimit: bandlimited octaves (beyond the paper): isotropic builds the fade unit (pst_octave_fade: per octave alpha = h(lg ||M|| + lg |dsdx|) h(lg ||M|| + lg |dsdy|) from a driver-written table, scaling the octave term and its gradient; enabled per texture by control.bandlimit); off builds none
+  // filter.bandlimit: bandlimited octaves (beyond the paper): isotropic builds the fade unit (pst_octave_fade: per octave alpha = h(lg ||M|| + lg |dsdx|) h(lg ||M|| + lg |dsdy|) from a driver-written table, fading the octave term toward its mean (register fm) and its gradient toward 0; enabled per texture by control.bandlimit); off builds none
   localparam int FilterBandlimitOff = 0;
   localparam int FilterBandlimitIsotropic = 1;
 
@@ -74,6 +79,8 @@ package pst_pkg;
   localparam int NoiseWorleyPointsMax = 9;
   localparam int NoiseWorleyOrderMin = 1;
   localparam int NoiseWorleyOrderMax = 4;
+  localparam int NoiseSubbandOrientationsMin = 0;
+  localparam int NoiseSubbandOrientationsMax = 8;
   localparam int FilterRecipFracMin = 4;
   localparam int FilterRecipFracMax = 24;
   localparam int WidthFracMin = 0;
@@ -101,6 +108,8 @@ package pst_pkg;
   localparam int NoiseWorleySearchDefault = NoiseWorleySearchNone;
   localparam int NoiseWorleyPointsDefault = 4;
   localparam int NoiseWorleyOrderDefault = 2;
+  localparam int NoiseSubbandDefault = NoiseSubbandNone;
+  localparam int NoiseSubbandOrientationsDefault = 0;
   localparam int FilterNormDefault = FilterNormEuclid;
   localparam int FilterRecipFracDefault = 18;
   localparam int FilterBandlimitDefault = FilterBandlimitOff;
@@ -144,7 +153,7 @@ package pst_pkg;
   // 0x0040: fade table entry k (filter.bandlimit profiles): h = sqrt(g(nu)) at lg nu = -FadeLgLo + (k + 1/2) / 4, unsigned FadeBits (1.0 = 2^FadeFrac); alpha is clamped to 1.0
   localparam logic [15:0] RegFade = 16'h0040;
   localparam int RegFadeCount = 32;
-  // 0x0100 + 32 i + k: octave i: k = 0..8 M row-major (Matrix), 9..11 o (Offset), 12 a (Amplitude), 13..21 GM = a M^T row-major (GradMatrix), 22 lg ||M||_2 (signed, FadeLgFrac fraction bits, FadeLgBits; filter.bandlimit profiles)
+  // 0x0100 + 32 i + k: octave i: k = 0..8 M row-major (Matrix), 9..11 o (Offset), 12 a (Amplitude), 13..21 GM = a M^T row-major (GradMatrix), 22 lg ||M||_2 (signed, FadeLgFrac fraction bits, FadeLgBits; filter.bandlimit profiles), 23 fm = a mean(n), the octave term's mean the fade goes to (signed, F format; filter.bandlimit profiles)
   localparam logic [15:0] RegOctave = 16'h0100;
   localparam int RegOctaveStride = 32;
   localparam int RegOctaveM = 0;
@@ -157,6 +166,8 @@ package pst_pkg;
   localparam int RegOctaveGmCount = 9;
   localparam int RegOctaveLgm = 22;
   localparam int RegOctaveLgmCount = 1;
+  localparam int RegOctaveFm = 23;
+  localparam int RegOctaveFmCount = 1;
   // 0x0020: worley unit: coefficient C_k, k = 0..3 (n = sum C_k F_{k+1}), signed Q(WorleyCoefInt).(WorleyCoefFrac)
   localparam logic [15:0] RegWorley = 16'h0020;
   localparam int RegWorleyCount = 4;
@@ -195,6 +206,13 @@ package pst_pkg;
   localparam int WorleyCountBits = 4;  // worley unit: bits of a cube's point count in the feature-point ROM
   localparam int WorleyCoefInt = 4;  // worley unit: integer bits (with sign) of the coefficients C_k
   localparam int WorleyCoefFrac = 12;  // worley unit: fraction bits of the coefficients C_k
+  localparam int SubbandTileLog2 = 6;  // subband unit: the tile ROM is 2^SubbandTileLog2 x 2^SubbandTileLog2 words (64 x 64: the reference's 256 x 256 centre-scale tile sampled every 4th pixel, which loses nothing: the band ends at pi/8 rad per reference pixel, pi/2 per ROM pixel)
+  localparam int SubbandPeriodLog2 = 4;  // subband unit: the tile repeats every 2^SubbandPeriodLog2 noise units (the reference's 256-pixel tile at 16 pixels per unit)
+  localparam int SubbandValueBits = 8;  // subband unit: bits of a tile word (signed)
+  localparam int SubbandValueFrac = 7;  // subband unit: fraction bits of a tile word (Q1.7: the tile, scaled to Rayshade noise's standard deviation 0.255, stays inside +-0.82)
+  localparam int SubbandDirFrac = 8;  // subband unit's filter: fraction bits of the orientations' direction constants round(2^8 cos(pi i / K)), round(2^8 sin(pi i / K))
+  localparam int SubbandSeed = 1;  // subband unit: the seed of the reference tiles the ROM holds (scene key noise.seed)
+  localparam int SubbandRefTile = 256;  // subband unit: the size of the reference tiles the ROM is sampled from (scene key noise.tile_size)
   localparam int FadeEntries = 32;  // fade table entries (registers.fade), a quarter octave of nu each
   localparam int FadeFrac = 8;  // fraction bits of a fade table entry and of alpha (1.0 = 2^FadeFrac)
   localparam int FadeBits = 9;  // bits of a fade table entry (unsigned, up to 1.0) (= FadeFrac + 1)

@@ -23,6 +23,8 @@ initial begin
   assert (NoiseWorleySearch >= 0 && NoiseWorleySearch < 3) else $fatal(1, "noise.worley_search: unknown value");
   assert (NoiseWorleyPoints >= 1 && NoiseWorleyPoints <= 9) else $fatal(1, "noise.worley_points: must be in [1, 9]");
   assert (NoiseWorleyOrder >= 1 && NoiseWorleyOrder <= 4) else $fatal(1, "noise.worley_order: must be in [1, 4]");
+  assert (NoiseSubband >= 0 && NoiseSubband < 4) else $fatal(1, "noise.subband: unknown value");
+  assert (NoiseSubbandOrientations == 0 || NoiseSubbandOrientations == 4 || NoiseSubbandOrientations == 8) else $fatal(1, "noise.subband_orientations: must be one of 0, 4, 8");
   assert (FilterNorm >= 0 && FilterNorm < 3) else $fatal(1, "filter.norm: unknown value");
   assert (FilterRecipFrac >= 4 && FilterRecipFrac <= 24) else $fatal(1, "filter.recip_frac: must be in [4, 24]");
   assert (FilterBandlimit >= 0 && FilterBandlimit < 2) else $fatal(1, "filter.bandlimit: unknown value");
@@ -57,12 +59,24 @@ initial begin
     else $fatal(1, "noise.hash: must be perm256 with a worley unit (noise.worley_search): it hashes the cubes");
   assert (NoiseWorleySearch == pst_pkg::NoiseWorleySearchNone || NoiseGradFrac >= NoiseOutFrac + NoiseGuardBits)
     else $fatal(1, "noise.grad_frac: must be at least noise.out_frac + noise.guard_bits with a worley unit (noise.worley_search): it has no derivative lanes to floor");
+  assert (NoiseSubband == pst_pkg::NoiseSubbandNone || NoiseWorleySearch == pst_pkg::NoiseWorleySearchNone)
+    else $fatal(1, "noise.subband: must be none with a worley unit (noise.worley_search): a profile has one kind of noise unit");
+  assert (NoiseSubband == pst_pkg::NoiseSubbandNone || NoiseLatticeFrac > 2)
+    else $fatal(1, "noise.lattice_frac: must be more than 2 (SubbandTileLog2 - SubbandPeriodLog2) with a subband unit (noise.subband): the bilinear weights are the bits below the tile pixel");
+  assert (NoiseSubbandOrientations == 0 || NoiseSubband != pst_pkg::NoiseSubbandNone)
+    else $fatal(1, "noise.subband_orientations: must be 0 without a subband unit (noise.subband = none)");
+  assert (NoiseSubbandOrientations == 0 || ( FilterBandlimit == pst_pkg::FilterBandlimitIsotropic && Datapath == pst_pkg::DatapathSerial ))
+    else $fatal(1, "noise.subband_orientations: 4 or 8 needs filter.bandlimit = isotropic (its weights' table and lg ||M||) and pipeline.datapath = serial");
+  assert (NoiseSubband == pst_pkg::NoiseSubbandNone || NoiseGradFrac >= NoiseOutFrac + NoiseGuardBits)
+    else $fatal(1, "noise.grad_frac: must be at least noise.out_frac + noise.guard_bits with a subband unit (noise.subband): it has no derivative lanes to floor");
   assert (NoiseInterp != pst_pkg::NoiseInterpQuintic || NoiseLatticeFrac >= 2)
     else $fatal(1, "noise.lattice_frac: must be at least 2 with interp quintic (its derivative 30 u^2 (1 - u)^2 must stay below 4, pst_noise_weight)");
   assert (MatrixFrac + CoordFrac >= NoiseLatticeFrac)
     else $fatal(1, "noise.lattice_frac: must be at most formats.matrix.frac + formats.coord.frac (pst_octave_transform)");
   assert (MatrixFrac + CoordFrac >= OffsetFrac)
     else $fatal(1, "formats.offset: frac must be at most formats.matrix.frac + formats.coord.frac (pst_octave_transform)");
+  assert (FilterBandlimit == pst_pkg::FilterBandlimitOff || FInt + FFrac <= 32)
+    else $fatal(1, "formats.f: int + frac must be at most 32 with the fade unit (filter.bandlimit): the octave's term mean (register field fm) is an F value");
   assert (Log2Clut - 1 + WidthFrac >= 1)
     else $fatal(1, "formats.width_frac: must be at least 2 - pipeline.log2_clut (pst_clut_filter)");
   assert (QuadricInt + QuadricFrac >= 2)

@@ -7,11 +7,13 @@ and `<!-- NAME end -->` (pstlib/docgen.py):
                         block-gates     logic GE per block and profile
                         stage-timing    critical path per stage and profile
                         layout-derate   post-route / pre-layout Fmax per routed block
+                        noise-units     the noise units' silicon and quality (pstlib/noise_units.py)
                         (and the register map and cycle tables of scripts/pstlib/contract.py)
   docs/ARCHITECTURE.md  rtl-modules     every file under rtl/ with what its header comment says
 
 Sources: scripts/synth/baseline.json (scripts/check_baseline.py --update or --add after a
-synthesis), scripts/synth/layout_derate.json (scripts/pnr.py --update-derate), rtl/**/*.sv{,h}
+synthesis), scripts/synth/layout_derate.json (scripts/pnr.py --update-derate),
+scripts/synth/noise_units.json (by hand from scripts/synth.py and scripts/fidelity.py runs), rtl/**/*.sv{,h}
 and rtl/contract.toml with rtl/configs.
 
     scripts/gen_docs.py --write            # rewrite the stale sections
@@ -26,7 +28,7 @@ import json
 import sys
 from pathlib import Path
 
-from pstlib import contract, docgen, rtl_modules, silicon_table
+from pstlib import contract, docgen, noise_units, rtl_modules, silicon_table
 from pstlib.docgen import Section
 from pstlib.paths import ROOT
 
@@ -75,6 +77,7 @@ SECTIONS = [
     Section("docs/HARDWARE.md", "block-gates", lambda root: silicon_table.blocks_markdown(baseline_profiles(root))),
     Section("docs/HARDWARE.md", "stage-timing", lambda root: silicon_table.stages_markdown(baseline_profiles(root))),
     Section("docs/HARDWARE.md", "layout-derate", derate_markdown),
+    Section("docs/HARDWARE.md", "noise-units", lambda root: noise_units.markdown(noise_units.load(root))),
     Section("docs/ARCHITECTURE.md", "rtl-modules", rtl_modules.markdown),
 ]
 

@@ -98,6 +98,12 @@ int64_t fadeLgFx(const Profile& p, const int64_t e[3]) {
         sum += v[k];
     }
     const uint64_t r = sum - mx, len = std::max<uint64_t>(1, mx + (r >> 2) + (r >> 3));  // < 2^JW
+    return mitchellLgFx(p, len);
+}
+
+int64_t mitchellLgFx(const Profile& p, uint64_t len) {
+    namespace c = contract;
+    len = std::max<uint64_t>(1, len);
     int lead = 63;
     while (!((len >> lead) & 1u)) --lead;
     // The FadeLgFrac bits below the leading one (zeros shifted in below bit 0).
@@ -119,6 +125,13 @@ int64_t octaveFadeFx(int64_t lgx, int64_t lgy, int64_t lgm, const int64_t table[
 }
 
 int64_t fadeScaleFx(int64_t v, int64_t alpha) { return int64_t((i128(v) * alpha) >> contract::kFadeFrac); }
+
+int64_t fadeToMeanFx(const Profile& p, int64_t fterm, int64_t fm, int64_t alpha) {
+    // fm + alpha (fterm - fm): the fade toward the term's mean, not toward 0 (a basis whose mean is
+    // not 0, worley's, would otherwise lose its mean with the fade). The difference needs FW + 1
+    // bits; the result, a convex combination floored, at most 1 LSB outside F: saturated.
+    return fx::satSigned(i128(fadeScaleFx(fterm - fm, alpha)) + fm, p.f.width());
+}
 
 int64_t accumulateF(const Profile& p, int64_t q, const std::vector<int64_t>& terms) {
     i128 sum = q;

@@ -39,10 +39,17 @@ void octaveTermFx(const Profile& p, int64_t n, const int64_t g[3], int64_t a, co
 //   fadeLgFx = lg L with FadeLgFrac fraction bits by Mitchell's approximation: 2^FadeLgFrac
 //   (P - JacobianFrac) + the FadeLgFrac bits below L's leading one (bit P); L = 0 counts as L = 1.
 int64_t fadeLgFx(const Profile& p, const int64_t e[3]);
+// Its second half: lg L of a length L (JacobianFrac fraction bits; 0 counts as 1) by Mitchell's
+// approximation, FadeLgFrac fraction bits (rtl/octave/pst_fade_lg.sv).
+int64_t mitchellLgFx(const Profile& p, uint64_t len);
 // Per octave: lg nu_x = lgx + lgm (lgm = lg ||M||_2, the octave's register), idx_x = clamp(floor((lg nu_x
 //   + FadeLgLo) 4), 0, FadeEntries - 1) (a quarter octave per entry), likewise y;
 //   alpha = min(floor(table[idx_x] table[idx_y] / 2^FadeFrac), 2^FadeFrac)  (FadeFrac fraction bits).
 int64_t octaveFadeFx(int64_t lgx, int64_t lgy, int64_t lgm, const int64_t table[contract::kFadeEntries]);
+// The octave term faded toward its mean fm (the octave's register, a mean(n) in the F format):
+// sat_F(floor((fterm - fm) alpha / 2^FadeFrac) + fm) (rtl/octave/pst_octave_term.sv). alpha = 1.0
+// gives fterm; fm = 0 gives fadeScaleFx(fterm, alpha).
+int64_t fadeToMeanFx(const Profile& p, int64_t fterm, int64_t fm, int64_t alpha);
 // The faded term: floor(v alpha / 2^FadeFrac) (|result| <= |v|: no saturation).
 int64_t fadeScaleFx(int64_t v, int64_t alpha);
 

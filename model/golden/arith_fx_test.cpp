@@ -463,6 +463,23 @@ TEST(ArithFx, FadeWithinBoundOfReferenceIsotropic) {
     }
 }
 
+// The fade toward the term's mean: the term at alpha = 1, the mean at alpha = 0, fadeScaleFx with
+// mean 0, halfway between (floored) at 1/2, saturated at the format's ends.
+TEST(ArithFx, FadeGoesToTheTermsMean) {
+    const Profile p = load("reduced");
+    const int64_t one = int64_t(1) << contract::kFadeFrac;
+    const int64_t hi = fx::maxSigned(p.f.width()), lo = fx::minSigned(p.f.width());
+    for (int64_t f : {int64_t(-3000), int64_t(0), int64_t(77), hi, lo})
+        for (int64_t m : {int64_t(-1418), int64_t(0), int64_t(1418), hi, lo}) {
+            EXPECT_EQ(fadeToMeanFx(p, f, m, one), f) << f << " " << m;
+            EXPECT_EQ(fadeToMeanFx(p, f, m, 0), m) << f << " " << m;
+            if (m == 0) EXPECT_EQ(fadeToMeanFx(p, f, 0, one / 4), fadeScaleFx(f, one / 4));
+            const int64_t d = f - m, half = (d >= 0 ? d : d - 1) / 2;  // floor(d / 2)
+            EXPECT_EQ(fadeToMeanFx(p, f, m, one / 2), std::clamp(m + half, lo, hi)) << f << " " << m;
+        }
+    EXPECT_EQ(fadeToMeanFx(p, lo, hi, 1), lo + ((hi - lo) * 255 >> 8) + 0);  // 255/256 of the way to hi
+}
+
 // fadeLgFx on exact powers of two and Mitchell's mantissa.
 TEST(ArithFx, FadeLgIsMitchellsLog) {
     const Profile p = load("reduced");

@@ -17,6 +17,7 @@ enum class NoiseInterp : int { Scurve, Linear, Quintic };  // noise.interp
 enum class NoiseCorner : int { ValueGradient, Value, Grad12 };  // noise.corner
 enum class NoiseHash : int { Rayshade, Perm256, Perlin256 };  // noise.hash
 enum class NoiseWorleySearch : int { None, Octant, Cube27 };  // noise.worley_search
+enum class NoiseSubband : int { None, Xy, Xz, Yz };  // noise.subband
 enum class GradNorm : int { Euclid, MaxHalfMin, L1 };  // filter.norm
 enum class FilterBandlimit : int { Off, Isotropic };  // filter.bandlimit
 
@@ -90,6 +91,19 @@ struct ProfileParams {
     int noiseWorleyPoints = 4;
     // worley unit: F1 .. F_order computed (coefficients C_k of higher k must be 0)
     int noiseWorleyOrder = 2;
+    // none: no subband unit; else a subband unit (basis subband, rtl/noise/pst_subband.sv) in place
+    // of the lattice-noise unit: Goldberg et al.'s band-limited noise as bilinear, periodic lookups
+    // of a 2^SubbandTileLog2-square tile ROM (the isotropic sum of the octave's subbands,
+    // SubbandValueBits signed bits) on the two lattice axes named (the scene's noise.param), one
+    // corner per noise step
+    NoiseSubband noiseSubband = NoiseSubband::None;
+    // subband unit: 0: one tile, the isotropic sum of the octave's subbands (every lambda_i = 1); 4
+    // or 8: K oriented tiles and the anisotropic filter of eq. 4-7, per pixel and octave lambda_i =
+    // h(|c_i . J_x| ||M||) h(|c_i . J_y| ||M||) (c_i the orientation's direction, J the Jacobian's
+    // columns on the plane, h the fade table: exp(-sigma^2 pi^2 nu^2 / 2)) when control.bandlimit
+    // is set, n = sum_i lambda_i n_i; needs the fade unit's table and lg ||M|| (filter.bandlimit =
+    // isotropic; the term is not faded) and the serial datapath
+    int noiseSubbandOrientations = 0;
     // [filter]
     // |grad_x f|: euclid (sqrt), max + min / 2, |gx| + |gy|
     GradNorm filterNorm = GradNorm::Euclid;
@@ -97,8 +111,8 @@ struct ProfileParams {
     int filterRecipFrac = 18;
     // bandlimited octaves (beyond the paper): isotropic builds the fade unit (pst_octave_fade: per
     // octave alpha = h(lg ||M|| + lg |dsdx|) h(lg ||M|| + lg |dsdy|) from a driver-written table,
-    // scaling the octave term and its gradient; enabled per texture by control.bandlimit); off
-    // builds none
+    // fading the octave term toward its mean (register fm) and its gradient toward 0; enabled per
+    // texture by control.bandlimit); off builds none
     FilterBandlimit filterBandlimit = FilterBandlimit::Off;
     // [formats]
     // s, t, r
@@ -150,6 +164,8 @@ enum Param : int {
     NoiseWorleySearch,
     NoiseWorleyPoints,
     NoiseWorleyOrder,
+    NoiseSubband,
+    NoiseSubbandOrientations,
     FilterNorm,
     FilterRecipFrac,
     FilterBandlimit,
@@ -181,6 +197,7 @@ inline constexpr const char* kNoiseInterpNames[] = {"scurve", "linear", "quintic
 inline constexpr const char* kNoiseCornerNames[] = {"value_gradient", "value", "grad12"};
 inline constexpr const char* kNoiseHashNames[] = {"rayshade", "perm256", "perlin256"};
 inline constexpr const char* kNoiseWorleySearchNames[] = {"none", "octant", "cube27"};
+inline constexpr const char* kNoiseSubbandNames[] = {"none", "xy", "xz", "yz"};
 inline constexpr const char* kFilterNormNames[] = {"euclid", "max_half_min", "l1"};
 inline constexpr const char* kFilterBandlimitNames[] = {"off", "isotropic"};
 
@@ -240,6 +257,17 @@ constexpr bool fromName(std::string_view s, ::pst::NoiseWorleySearch* out) {
         }
     return false;
 }
+constexpr const char* name(::pst::NoiseSubband v) {
+    return int(v) >= 0 && int(v) < 4 ? kNoiseSubbandNames[int(v)] : "?";
+}
+constexpr bool fromName(std::string_view s, ::pst::NoiseSubband* out) {
+    for (int i = 0; i < 4; ++i)
+        if (s == kNoiseSubbandNames[i]) {
+            *out = ::pst::NoiseSubband(i);
+            return true;
+        }
+    return false;
+}
 constexpr const char* name(::pst::GradNorm v) {
     return int(v) >= 0 && int(v) < 3 ? kFilterNormNames[int(v)] : "?";
 }
@@ -293,6 +321,7 @@ inline constexpr int kNoiseGuardBitsMin = 1, kNoiseGuardBitsMax = 8;
 inline constexpr int kNoiseGradFracMin = 1, kNoiseGradFracMax = 32;
 inline constexpr int kNoiseWorleyPointsMin = 1, kNoiseWorleyPointsMax = 9;
 inline constexpr int kNoiseWorleyOrderMin = 1, kNoiseWorleyOrderMax = 4;
+inline constexpr int kNoiseSubbandOrientationsMin = 0, kNoiseSubbandOrientationsMax = 8;
 inline constexpr int kFilterRecipFracMin = 4, kFilterRecipFracMax = 24;
 inline constexpr int kWidthFracMin = 0, kWidthFracMax = 24;
 inline constexpr KeySpec kSchema[] = {
@@ -317,6 +346,8 @@ inline constexpr KeySpec kSchema[] = {
     {"noise", "worley_search", KeyKind::Enum, NoiseWorleySearch, 0, 2, {}, 3, kNoiseWorleySearchNames, 0},
     {"noise", "worley_points", KeyKind::Range, NoiseWorleyPoints, 1, 9, {}, 0, nullptr, 0},
     {"noise", "worley_order", KeyKind::Range, NoiseWorleyOrder, 1, 4, {}, 0, nullptr, 0},
+    {"noise", "subband", KeyKind::Enum, NoiseSubband, 0, 3, {}, 4, kNoiseSubbandNames, 0},
+    {"noise", "subband_orientations", KeyKind::Values, NoiseSubbandOrientations, 0, 8, {0, 4, 8}, 3, nullptr, 0},
     {"filter", "norm", KeyKind::Enum, FilterNorm, 0, 2, {}, 3, kFilterNormNames, 0},
     {"filter", "recip_frac", KeyKind::Range, FilterRecipFrac, 4, 24, {}, 0, nullptr, 0},
     {"filter", "bandlimit", KeyKind::Enum, FilterBandlimit, 0, 1, {}, 2, kFilterBandlimitNames, 0},
@@ -351,12 +382,24 @@ inline constexpr Constraint kConstraints[] = {
      [](const int* v) { return v[NoiseWorleySearch] == 0 || v[NoiseHash] == 1; }},
     {"noise.grad_frac", "must be at least noise.out_frac + noise.guard_bits with a worley unit (noise.worley_search): it has no derivative lanes to floor",
      [](const int* v) { return v[NoiseWorleySearch] == 0 || v[NoiseGradFrac] >= v[NoiseOutFrac] + v[NoiseGuardBits]; }},
+    {"noise.subband", "must be none with a worley unit (noise.worley_search): a profile has one kind of noise unit",
+     [](const int* v) { return v[NoiseSubband] == 0 || v[NoiseWorleySearch] == 0; }},
+    {"noise.lattice_frac", "must be more than 2 (SubbandTileLog2 - SubbandPeriodLog2) with a subband unit (noise.subband): the bilinear weights are the bits below the tile pixel",
+     [](const int* v) { return v[NoiseSubband] == 0 || v[NoiseLatticeFrac] > 2; }},
+    {"noise.subband_orientations", "must be 0 without a subband unit (noise.subband = none)",
+     [](const int* v) { return v[NoiseSubbandOrientations] == 0 || v[NoiseSubband] != 0; }},
+    {"noise.subband_orientations", "4 or 8 needs filter.bandlimit = isotropic (its weights' table and lg ||M||) and pipeline.datapath = serial",
+     [](const int* v) { return v[NoiseSubbandOrientations] == 0 || ( v[FilterBandlimit] == 1 && v[Datapath] == 1 ); }},
+    {"noise.grad_frac", "must be at least noise.out_frac + noise.guard_bits with a subband unit (noise.subband): it has no derivative lanes to floor",
+     [](const int* v) { return v[NoiseSubband] == 0 || v[NoiseGradFrac] >= v[NoiseOutFrac] + v[NoiseGuardBits]; }},
     {"noise.lattice_frac", "must be at least 2 with interp quintic (its derivative 30 u^2 (1 - u)^2 must stay below 4, pst_noise_weight)",
      [](const int* v) { return v[NoiseInterp] != 2 || v[NoiseLatticeFrac] >= 2; }},
     {"noise.lattice_frac", "must be at most formats.matrix.frac + formats.coord.frac (pst_octave_transform)",
      [](const int* v) { return v[MatrixFrac] + v[CoordFrac] >= v[NoiseLatticeFrac]; }},
     {"formats.offset", "frac must be at most formats.matrix.frac + formats.coord.frac (pst_octave_transform)",
      [](const int* v) { return v[MatrixFrac] + v[CoordFrac] >= v[OffsetFrac]; }},
+    {"formats.f", "int + frac must be at most 32 with the fade unit (filter.bandlimit): the octave's term mean (register field fm) is an F value",
+     [](const int* v) { return v[FilterBandlimit] == 0 || v[FInt] + v[FFrac] <= 32; }},
     {"formats.width_frac", "must be at least 2 - pipeline.log2_clut (pst_clut_filter)",
      [](const int* v) { return v[Log2Clut] - 1 + v[WidthFrac] >= 1; }},
     {"formats.quadric", "int + frac must be at least 2 (pst_quadric_serial)",
@@ -380,7 +423,7 @@ inline constexpr int kRegQuadricCount = 10;
 // 0x0040: fade table entry k (filter.bandlimit profiles): h = sqrt(g(nu)) at lg nu = -FadeLgLo + (k + 1/2) / 4, unsigned FadeBits (1.0 = 2^FadeFrac); alpha is clamped to 1.0
 inline constexpr uint16_t kRegFade = 0x0040;
 inline constexpr int kRegFadeCount = 32;
-// 0x0100 + 32 i + k: octave i: k = 0..8 M row-major (Matrix), 9..11 o (Offset), 12 a (Amplitude), 13..21 GM = a M^T row-major (GradMatrix), 22 lg ||M||_2 (signed, FadeLgFrac fraction bits, FadeLgBits; filter.bandlimit profiles)
+// 0x0100 + 32 i + k: octave i: k = 0..8 M row-major (Matrix), 9..11 o (Offset), 12 a (Amplitude), 13..21 GM = a M^T row-major (GradMatrix), 22 lg ||M||_2 (signed, FadeLgFrac fraction bits, FadeLgBits; filter.bandlimit profiles), 23 fm = a mean(n), the octave term's mean the fade goes to (signed, F format; filter.bandlimit profiles)
 inline constexpr uint16_t kRegOctave = 0x0100;
 inline constexpr int kRegOctaveStride = 32;
 inline constexpr int kRegOctaveM = 0, kRegOctaveMCount = 9;
@@ -388,6 +431,7 @@ inline constexpr int kRegOctaveO = 9, kRegOctaveOCount = 3;
 inline constexpr int kRegOctaveA = 12, kRegOctaveACount = 1;
 inline constexpr int kRegOctaveGm = 13, kRegOctaveGmCount = 9;
 inline constexpr int kRegOctaveLgm = 22, kRegOctaveLgmCount = 1;
+inline constexpr int kRegOctaveFm = 23, kRegOctaveFmCount = 1;
 // 0x0020: worley unit: coefficient C_k, k = 0..3 (n = sum C_k F_{k+1}), signed Q(WorleyCoefInt).(WorleyCoefFrac)
 inline constexpr uint16_t kRegWorley = 0x0020;
 inline constexpr int kRegWorleyCount = 4;
@@ -422,6 +466,13 @@ inline constexpr int kWorleyPointBytes = 8;  // worley unit: bits of one positio
 inline constexpr int kWorleyCountBits = 4;  // worley unit: bits of a cube's point count in the feature-point ROM
 inline constexpr int kWorleyCoefInt = 4;  // worley unit: integer bits (with sign) of the coefficients C_k
 inline constexpr int kWorleyCoefFrac = 12;  // worley unit: fraction bits of the coefficients C_k
+inline constexpr int kSubbandTileLog2 = 6;  // subband unit: the tile ROM is 2^SubbandTileLog2 x 2^SubbandTileLog2 words (64 x 64: the reference's 256 x 256 centre-scale tile sampled every 4th pixel, which loses nothing: the band ends at pi/8 rad per reference pixel, pi/2 per ROM pixel)
+inline constexpr int kSubbandPeriodLog2 = 4;  // subband unit: the tile repeats every 2^SubbandPeriodLog2 noise units (the reference's 256-pixel tile at 16 pixels per unit)
+inline constexpr int kSubbandValueBits = 8;  // subband unit: bits of a tile word (signed)
+inline constexpr int kSubbandValueFrac = 7;  // subband unit: fraction bits of a tile word (Q1.7: the tile, scaled to Rayshade noise's standard deviation 0.255, stays inside +-0.82)
+inline constexpr int kSubbandDirFrac = 8;  // subband unit's filter: fraction bits of the orientations' direction constants round(2^8 cos(pi i / K)), round(2^8 sin(pi i / K))
+inline constexpr int kSubbandSeed = 1;  // subband unit: the seed of the reference tiles the ROM holds (scene key noise.seed)
+inline constexpr int kSubbandRefTile = 256;  // subband unit: the size of the reference tiles the ROM is sampled from (scene key noise.tile_size)
 inline constexpr int kFadeEntries = 32;  // fade table entries (registers.fade), a quarter octave of nu each
 inline constexpr int kFadeFrac = 8;  // fraction bits of a fade table entry and of alpha (1.0 = 2^FadeFrac)
 inline constexpr int kFadeBits = 9;  // bits of a fade table entry (unsigned, up to 1.0) (= FadeFrac + 1)
@@ -453,6 +504,8 @@ inline constexpr const char* kParamNames[kNumParams] = {
     "NoiseWorleySearch",
     "NoiseWorleyPoints",
     "NoiseWorleyOrder",
+    "NoiseSubband",
+    "NoiseSubbandOrientations",
     "FilterNorm",
     "FilterRecipFrac",
     "FilterBandlimit",
@@ -501,6 +554,8 @@ constexpr int paramValue(const ProfileParams& p, Param k) {
         case NoiseWorleySearch: return int(p.noiseWorleySearch);
         case NoiseWorleyPoints: return p.noiseWorleyPoints;
         case NoiseWorleyOrder: return p.noiseWorleyOrder;
+        case NoiseSubband: return int(p.noiseSubband);
+        case NoiseSubbandOrientations: return p.noiseSubbandOrientations;
         case FilterNorm: return int(p.filterNorm);
         case FilterRecipFrac: return p.filterRecipFrac;
         case FilterBandlimit: return int(p.filterBandlimit);
@@ -550,6 +605,8 @@ constexpr void setParam(ProfileParams& p, Param k, int v) {
         case NoiseWorleySearch: p.noiseWorleySearch = ::pst::NoiseWorleySearch(v); break;
         case NoiseWorleyPoints: p.noiseWorleyPoints = v; break;
         case NoiseWorleyOrder: p.noiseWorleyOrder = v; break;
+        case NoiseSubband: p.noiseSubband = ::pst::NoiseSubband(v); break;
+        case NoiseSubbandOrientations: p.noiseSubbandOrientations = v; break;
         case FilterNorm: p.filterNorm = ::pst::GradNorm(v); break;
         case FilterRecipFrac: p.filterRecipFrac = v; break;
         case FilterBandlimit: p.filterBandlimit = ::pst::FilterBandlimit(v); break;

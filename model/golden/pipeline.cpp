@@ -7,6 +7,7 @@
 #include "contract.h"
 #include "fixed.h"
 #include "noise_fx.h"
+#include "subband_fx.h"
 #include "worley_fx.h"
 
 namespace pst {
@@ -68,6 +69,8 @@ void GoldenPipeline::write(uint16_t addr, uint32_t data) {
             o.gm[k - c::kRegOctaveGm] = fx::wrapSigned(data, p.gradMatrix.width());
         else if (k == c::kRegOctaveLgm && p.bandlimit())
             o.lgm = fx::wrapSigned(data, c::kFadeLgBits);
+        else if (k == c::kRegOctaveFm && p.bandlimit())
+            o.fm = fx::wrapSigned(data, p.f.width());
     }
     clut_->write(addr, data);  // decodes the table ranges itself
 }
@@ -91,6 +94,11 @@ PixelFx GoldenPipeline::eval(const FragmentFx& fr, UnitTrace* trace) const {
     const bool fade = p.bandlimit() && ((ctrl_ >> contract::kRegControlBandlimitLsb) & 1u);
     t.lgx = fadeLgFx(p, fr.j);
     t.lgy = fadeLgFx(p, fr.j + 3);
+    // The subband unit's filter (noise.subband_orientations 4, 8): the pixel's lg edges along the
+    // orientations, per octave the weights from the fade table, which then does not fade the term.
+    const bool aniso = p.noise.basis == NoiseBasis::Subband && subbandOrientations(p) != 0;
+    int64_t sbLg[16] = {};
+    if (aniso) subbandPixelLgFx(p, fr.j, sbLg);
     for (int i = 0; i < t.octaves; ++i) {
         const Octave& o = oct_[i];
         octaveTransformFx(p, fr.s, o.m, o.o, t.lat[i], t.frac[i]);
@@ -98,12 +106,18 @@ PixelFx GoldenPipeline::eval(const FragmentFx& fr, UnitTrace* trace) const {
             t.frac[i][0] = int64_t(fx::wrapUnsigned(t.frac[i][0] + 1, p.noiseLatticeFrac));
         if (p.noise.basis == NoiseBasis::Worley)
             worleyFx(p, t.lat[i], t.frac[i], worley_, &t.n[i], t.g[i]);
+        else if (p.noise.basis == NoiseBasis::Subband) {
+            int64_t lambda[8];
+            for (int64_t& l : lambda) l = int64_t(1) << contract::kFadeFrac;
+            if (aniso && fade) subbandLambdaFx(p, sbLg, o.lgm, fade_, lambda);
+            subbandFx(p, t.lat[i], t.frac[i], lambda, &t.n[i], t.g[i]);
+        }
         else
             noiseFx(p, t.lat[i], t.frac[i], &t.n[i], t.g[i]);
         if (i == 0) t.n[i] += bump(Unit::Noise);
         octaveTermFx(p, t.n[i], t.g[i], o.a, o.gm, &t.fterm[i], t.gterm[i]);
-        t.alpha[i] = fade ? octaveFadeFx(t.lgx, t.lgy, o.lgm, fade_) : int64_t(1) << contract::kFadeFrac;
-        t.fterm[i] = fadeScaleFx(t.fterm[i], t.alpha[i]);
+        t.alpha[i] = fade && !aniso ? octaveFadeFx(t.lgx, t.lgy, o.lgm, fade_) : int64_t(1) << contract::kFadeFrac;
+        t.fterm[i] = fadeToMeanFx(p, t.fterm[i], o.fm, t.alpha[i]);
         for (int k = 0; k < 3; ++k) t.gterm[i][k] = fadeScaleFx(t.gterm[i][k], t.alpha[i]);
         fsum += t.fterm[i];
         for (int k = 0; k < 3; ++k) gsum[k] += t.gterm[i][k];

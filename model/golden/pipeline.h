@@ -81,7 +81,7 @@ private:
     int64_t worley_[contract::kRegWorleyCount] = {};  // the worley unit's C_k
     struct Octave {
         int64_t m[contract::kRegOctaveMCount] = {}, o[contract::kRegOctaveOCount] = {}, a = 0,
-                gm[contract::kRegOctaveGmCount] = {}, lgm = 0;
+                gm[contract::kRegOctaveGmCount] = {}, lgm = 0, fm = 0;
     };
     int64_t fade_[contract::kFadeEntries] = {};  // the fade table (filter.bandlimit profiles)
     std::vector<Octave> oct_;

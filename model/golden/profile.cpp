@@ -29,6 +29,20 @@ NoiseOptions hardwareNoise(const ProfileParams& p) {
         n.cubes = WorleyCubes::Rom256;
         n.metric = WorleyMetric::Euclid;
     }
+    // A subband unit (rtl/noise/pst_subband.sv): basis subband on the profile's plane, the tiles
+    // its ROM is sampled from (seed, size); with noise.subband_orientations K its K orientations
+    // and the heuristic weights of eq. 4 (without, any orientations: the isotropic sum the ROM
+    // holds does not depend on them).
+    if (p.noiseSubband != NoiseSubband::None) {
+        n.basis = NoiseBasis::Subband;
+        n.param = p.noiseSubband == NoiseSubband::Xy   ? SubbandParam::XY
+                  : p.noiseSubband == NoiseSubband::Xz ? SubbandParam::XZ
+                                                       : SubbandParam::YZ;
+        n.tileSize = contract::kSubbandRefTile;
+        n.seed = uint32_t(contract::kSubbandSeed);
+        n.orientations = p.noiseSubbandOrientations == 0 ? 4 : p.noiseSubbandOrientations;
+        n.weights = SubbandWeights::Heuristic;
+    }
     return n;
 }
 namespace {

@@ -3,7 +3,8 @@
 //   transform  the lattice index and fraction of M_i s + o_i (pst_octave_transform), Rows rows;
 //   fade       the octave's weight alpha from the pixel's lg edge lengths and lg ||M_i||
 //              (pst_octave_fade; 1.0 without FilterBandlimit);
-//   term       a_i n and rows of a_i M_i^T grad n, faded by alpha (pst_octave_term).
+//   term       a_i n and rows of a_i M_i^T grad n, faded by alpha (pst_octave_term; the value
+//              toward the term's mean fm_i).
 // The parallel octave datapath (pst_octave_parallel) uses Rows = 3 with a beat through its
 // pipeline registers between the parts; the serial one (pst_octave_serial) Rows = 1, a row of
 // the matrices per cycle.
@@ -54,6 +55,7 @@ module pst_octave_lane #(
   input  logic [AW-1:0]           a_i,
   input  logic [Rows*3*GMW-1:0]   gm_i,
   input  logic [FB-1:0]           alpha_i,
+  input  logic [FW-1:0]           fm_i,
   output logic [FW-1:0]           fterm_o,
   output logic [Rows*GW-1:0]      gterm_o
 );
@@ -81,7 +83,7 @@ module pst_octave_lane #(
     .GradMatrixInt(GradMatrixInt), .GradMatrixFrac(GradMatrixFrac), .FInt(FInt), .FFrac(FFrac),
     .GradInt(GradInt), .GradFrac(GradFrac), .Rows(Rows), .Bandlimit(Bl)
   ) u_term (
-    .n_i (n_i), .g_i (g_i), .a_i (a_i), .gm_i (gm_i), .alpha_i (alpha_i), .fterm_o (fterm_o),
+    .n_i (n_i), .g_i (g_i), .a_i (a_i), .gm_i (gm_i), .alpha_i (alpha_i), .fm_i (fm_i), .fterm_o (fterm_o),
     .gterm_o (gterm_o)
   );
 

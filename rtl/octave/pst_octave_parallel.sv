@@ -63,6 +63,7 @@ module pst_octave_parallel #(
   input  logic [Octaves*AW-1:0]     oct_a_i,
   input  logic [Octaves*9*GMW-1:0]  oct_gm_i,
   input  logic [Octaves*LMW-1:0]    oct_lgm_i,
+  input  logic [Octaves*FW-1:0]     oct_fm_i,
   input  logic                      bl_i,
   input  logic [pst_pkg::FadeEntries*FB-1:0] fade_i,
   // The noise units (lane u at [u*W +: W])
@@ -204,6 +205,7 @@ module pst_octave_parallel #(
     logic [9*MW-1:0]  m_sel;
     logic [3*OW-1:0]  o_sel;
     logic [AW-1:0]    a_sel;
+    logic [FW-1:0]    fm_sel;
     logic [9*GMW-1:0] gm_sel;
     logic [LMW-1:0]   lgm_sel;
     always_comb begin
@@ -211,6 +213,7 @@ module pst_octave_parallel #(
       o_sel   = oct_o_i[u*3*OW +: 3*OW];
       lgm_sel = oct_lgm_i[u*LMW +: LMW];
       a_sel   = oct_a_i[u*AW +: AW];
+      fm_sel  = oct_fm_i[u*FW +: FW];
       gm_sel  = oct_gm_i[u*9*GMW +: 9*GMW];
       for (int p = 1; p < Passes; p++) begin
         if (32'(npass) == p) begin
@@ -220,6 +223,7 @@ module pst_octave_parallel #(
         end
         if (32'(beat_n.pass) == p) begin
           a_sel  = oct_a_i[(p * NoiseUnits + u)*AW +: AW];
+          fm_sel = oct_fm_i[(p * NoiseUnits + u)*FW +: FW];
           gm_sel = oct_gm_i[(p * NoiseUnits + u)*9*GMW +: 9*GMW];
         end
       end
@@ -242,7 +246,7 @@ module pst_octave_parallel #(
       .s_i (s_i), .m_i (m_sel), .o_i (o_sel), .lat_o (lat_f), .frac_o (frac_f),
       .bl_i (bl_i), .lgx_i (lgx), .lgy_i (lgy), .lgm_i (lgm_2), .fade_i (fade_i), .alpha_o (alpha_2),
       .n_i (nz_n_i[u*NW +: NW]), .g_i (nz_g_i[u*3*NGW +: 3*NGW]), .a_i (a_sel), .gm_i (gm_sel),
-      .alpha_i (alpha_n), .fterm_o (fterm), .gterm_o (gterm)
+      .alpha_i (alpha_n), .fm_i (fm_sel), .fterm_o (fterm), .gterm_o (gterm)
     );
     pst_delay #(.Width(LTW + 3*LF), .Depth(XR)) u_x (
       .clk_i, .rst_ni, .en_i (en), .d_i ({lat_f, frac_f}),

@@ -21,6 +21,8 @@ module pst_octave_serial #(
   `PST_OCTAVE_PARAMS,
   `PST_LANE_PARAMS,
   parameter int SideW = pst_pkg::TagBits, parameter bit DebugProbes = 1'b1,
+  parameter int NoiseSubband = pst_pkg::NoiseSubbandNone,   // the subband unit's plane
+  parameter int NoiseSubbandOrientations = 0,               // its filter's orientations K (0: none)
   localparam int CW  = CoordInt + CoordFrac,
   localparam int MW  = MatrixInt + MatrixFrac,
   localparam int OW  = OffsetInt + OffsetFrac,
@@ -39,7 +41,8 @@ module pst_octave_serial #(
   localparam int PPB = pst_pkg::ProbePassBits,
   localparam int FB  = pst_pkg::FadeBits,
   localparam int LMW = pst_pkg::FadeLgBits,
-  localparam int OctBits = $clog2(Octaves + 1)
+  localparam int OctBits = $clog2(Octaves + 1),
+  localparam int SLW = ((NoiseSubbandOrientations == 0) ? 1 : NoiseSubbandOrientations) * FB
 ) (
   input  logic                      clk_i,
   input  logic                      rst_ni,
@@ -59,6 +62,7 @@ module pst_octave_serial #(
   input  logic [Octaves*AW-1:0]     oct_a_i,
   input  logic [Octaves*9*GMW-1:0]  oct_gm_i,
   input  logic [Octaves*LMW-1:0]    oct_lgm_i,
+  input  logic [Octaves*FW-1:0]     oct_fm_i,
   input  logic                      bl_i,
   input  logic [pst_pkg::FadeEntries*FB-1:0] fade_i,
   // The noise units (lane u at [u*W +: W])
@@ -67,6 +71,7 @@ module pst_octave_serial #(
   output logic [2:0]                nz_step_o,
   output logic [NoiseUnits*LTW-1:0] nz_lat_o,
   output logic [NoiseUnits*3*LF-1:0] nz_frac_o,
+  output logic [NoiseUnits*SLW-1:0] nz_lam_o,    // the subband unit's weights (lane u at [u*SLW +: SLW])
   input  logic [NoiseUnits*NW-1:0]  nz_n_i,
   input  logic [NoiseUnits*3*NGW-1:0] nz_g_i,
   input  logic [NoiseUnits-1:0]     nz_last_i,   // the output is an evaluation's last step
@@ -161,6 +166,27 @@ module pst_octave_serial #(
     assign lgy = '0;
   end
 
+  // The subband unit's filter (noise.subband_orientations K = 4, 8): the pixel's lg edges along
+  // the K orientations (pst_subband_pixel, registered like the fade's, free-running), per lane the
+  // weights of the next cycle's noise pass from its lg ||M|| and the fade table (pst_octave_fade
+  // per orientation), registered as the fragment moves on: the first noise step (cycle SR = 3)
+  // finds them (the pixel's lg are registered from cycle 2). The table is then the weights', not
+  // a fade of the term.
+  localparam int SK = NoiseSubbandOrientations;
+  localparam bit Aniso = (NoiseSubband != pst_pkg::NoiseSubbandNone) && (SK != 0);
+  logic [2*(Aniso ? SK : 1)*LgW-1:0] sb_lg;
+  if (Aniso) begin : g_sb_px
+    pst_subband_pixel #(.JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac), .NoiseSubband(NoiseSubband),
+      .K(SK), .LenRegs(1), .LgRegs(1)) u_sb_px (
+      .clk_i, .rst_ni, .en_i (1'b1), .j_i (side_i[TB +: 6*JW]), .lg_o (sb_lg));
+  end else begin : g_no_sb_px
+    assign sb_lg = '0;
+    logic unused_sb_lg;
+    assign unused_sb_lg = ^sb_lg;
+  end
+  logic bl_term;   // the term's fade: not on a subband unit with its filter
+  assign bl_term = bl_i & ~Aniso;
+
   // The pass of the noise units' output (the probes name it).
   logic [PassBits-1:0] pass_n;
   if (DebugProbes) begin : g_probe_pass
@@ -178,12 +204,46 @@ module pst_octave_serial #(
     logic [OW-1:0]    o_row, o_row_d;
     logic [3*GMW-1:0] gm_row, gm_row_d;
     logic [AW-1:0]    a_t, a_t_d;
+    logic [FW-1:0]    fm_t, fm_t_d;
     logic [LMW-1:0]   lgm_t_d;
+    // The noise pass of the next cycle from this cycle's (registered) schedule, so that the
+    // weights' path does not start at the stall: the pass after this one at a pass's last step,
+    // else this one (pass 0 before the first step).
+    logic [PassBits-1:0] lam_pass;
+    assign lam_pass = !sch.noise_on ? '0 : (32'(sch.nstep) == NoiseSteps - 1) ? sch.npass + 1'b1 : sch.npass;
+    logic [LMW-1:0]   lgm_n_d;    // that pass's lg ||M|| (the subband filter)
+    always_comb begin
+      lgm_n_d = '0;
+      for (int p = 0; p < Passes; p++) begin
+        if (32'(lam_pass) == p) lgm_n_d = oct_lgm_i[(p * NoiseUnits + u)*LMW +: LMW];
+      end
+    end
+    if (Aniso) begin : g_sb_lam
+      logic [SLW-1:0] lam_d, lam_q;
+      for (genvar i = 0; i < SK; i++) begin : g_dir
+        pst_octave_fade #(.LgW(LgW)) u_lam (
+          .en_i (bl_i), .lgx_i (sb_lg[i*LgW +: LgW]), .lgy_i (sb_lg[(SK + i)*LgW +: LgW]), .lgm_i (lgm_n_d),
+          .table_i (fade_i), .alpha_o (lam_d[i*FB +: FB]));
+      end
+      // Loaded as the fragment moves on (en), so it holds the next cycle's pass's weights.
+      always_ff @(posedge clk_i or negedge rst_ni) begin
+        if (!rst_ni) lam_q <= '0;
+        else if (en) lam_q <= lam_d;
+      end
+      assign nz_lam_o[u*SLW +: SLW] = lam_q;
+    end else begin : g_no_sb_lam
+      for (genvar i = 0; i < SLW / FB; i++) begin : g_one
+        assign nz_lam_o[u*SLW + i*FB +: FB] = FB'(1 << pst_pkg::FadeFrac);
+      end
+      logic unused_lgm_n;
+      assign unused_lgm_n = ^lgm_n_d;
+    end
     always_comb begin
       m_row_d  = '0;
       o_row_d  = '0;
       gm_row_d = '0;
       a_t_d    = '0;
+      fm_t_d   = '0;
       lgm_t_d  = '0;
       for (int p = 0; p < Passes; p++) begin
         for (int r = 0; r < SR; r++) begin
@@ -197,6 +257,7 @@ module pst_octave_serial #(
         end
         if (32'(sch_next.tpass) == p) begin
           a_t_d   = oct_a_i[(p * NoiseUnits + u)*AW +: AW];
+          fm_t_d  = oct_fm_i[(p * NoiseUnits + u)*FW +: FW];
           lgm_t_d = oct_lgm_i[(p * NoiseUnits + u)*LMW +: LMW];
         end
       end
@@ -206,6 +267,7 @@ module pst_octave_serial #(
       o_row  <= o_row_d;
       gm_row <= gm_row_d;
       a_t    <= a_t_d;
+      fm_t   <= fm_t_d;
     end
 
     logic [LB-1:0]    lat_r;      // the transform's row xrow: lattice index and fraction
@@ -219,8 +281,8 @@ module pst_octave_serial #(
     pst_octave_lane #(.Rows(1), .LgW(LgW), `PST_LANE_PASS
     ) u_lane (
       .s_i (s_i), .m_i (m_row), .o_i (o_row), .lat_o (lat_r), .frac_o (frac_r),
-      .bl_i (bl_i), .lgx_i (lgx), .lgy_i (lgy), .lgm_i (lgm_t_d), .fade_i (fade_i), .alpha_o (alpha_d),
-      .n_i (n_q), .g_i (g_q), .a_i (a_t), .gm_i (gm_row), .alpha_i (alpha_t), .fterm_o (fterm_raw),
+      .bl_i (bl_term), .lgx_i (lgx), .lgy_i (lgy), .lgm_i (lgm_t_d), .fade_i (fade_i), .alpha_o (alpha_d),
+      .n_i (n_q), .g_i (g_q), .a_i (a_t), .gm_i (gm_row), .alpha_i (alpha_t), .fm_i (fm_t), .fterm_o (fterm_raw),
       .gterm_o (gterm_raw)
     );
     // The term pass's fade, registered with its operands.

@@ -12,7 +12,8 @@
 // Parameters: the profile's (pst_top's header). Datapath selects the datapath; NoiseRegs and
 // OctaveRegs set its registers (parallel: latency, serial: cycles per fragment).
 // Registers (pst_regs, flat): quad_i A..J; oct_*_i octave i's M, o, a, GM, lg ||M|| at block i;
-// bl_i, fade_i: control.bandlimit and the fade table.
+// bl_i, fade_i: control.bandlimit and the fade table; oct_fm_i the octave terms' means (the fade's
+// target).
 `include "pst_pkg.sv"
 `include "pst_params.svh"
 `default_nettype none
@@ -64,6 +65,7 @@ module pst_octave_stage #(
   input  logic [Octaves*9*GMW-1:0]  oct_gm_i,
   input  logic [WCW-1:0]            worley_c_i,
   input  logic [Octaves*LMW-1:0]    oct_lgm_i,
+  input  logic [Octaves*(FInt+FFrac)-1:0] oct_fm_i,
   input  logic                      bl_i,
   input  logic [pst_pkg::FadeEntries*FB-1:0] fade_i,
   // Debug probes (pst_top's; zero when DebugProbes = 0)
@@ -99,13 +101,17 @@ module pst_octave_stage #(
   logic [PPB-1:0]              pr_pass;
   logic [TB-1:0]               pr_tag, pr_q_tag;
 
+  // The subband unit's weights (noise.subband_orientations; the serial datapath forms them).
+  localparam int SLW = ((NoiseSubbandOrientations == 0) ? 1 : NoiseSubbandOrientations) * FB;
+  logic [NoiseUnits*SLW-1:0] nz_lam;
   if (Serial) begin : g_serial
-    pst_octave_serial #(`PST_OCTAVE_PASS, `PST_LANE_PASS, .SideW(SideW), .DebugProbes(DebugProbes)
+    pst_octave_serial #(`PST_OCTAVE_PASS, `PST_LANE_PASS, .SideW(SideW), .DebugProbes(DebugProbes),
+      .NoiseSubband(NoiseSubband), .NoiseSubbandOrientations(NoiseSubbandOrientations)
     ) u_datapath (
       .clk_i, .rst_ni, .valid_i, .ready_o, .s_i, .side_i, .valid_o, .ready_i, .side_o, .busy_o,
-      .active_i, .quad_i, .oct_m_i, .oct_o_i, .oct_a_i, .oct_gm_i, .oct_lgm_i, .bl_i, .fade_i,
+      .active_i, .quad_i, .oct_m_i, .oct_o_i, .oct_a_i, .oct_gm_i, .oct_lgm_i, .oct_fm_i, .bl_i, .fade_i,
       .nz_en_o (nz_en), .nz_valid_o (nz_valid), .nz_step_o (nz_step), .nz_lat_o (nz_lat),
-      .nz_frac_o (nz_frac), .nz_n_i (nz_n), .nz_g_i (nz_g), .nz_last_i (nz_last),
+      .nz_frac_o (nz_frac), .nz_lam_o (nz_lam), .nz_n_i (nz_n), .nz_g_i (nz_g), .nz_last_i (nz_last),
       .fterm_o (fterm), .gterm_o (gterm), .acc_en_o (acc_en), .acc_first_o (acc_first), .q_o (q_e),
       .gradq_o (gradq_e), .pr_valid_o (pr_valid), .pr_pass_o (pr_pass), .pr_tag_o (pr_tag),
       .pr_q_tag_o (pr_q_tag)
@@ -114,7 +120,7 @@ module pst_octave_stage #(
     pst_octave_parallel #(`PST_OCTAVE_PASS, `PST_LANE_PASS, .SideW(SideW), .DebugProbes(DebugProbes)
     ) u_datapath (
       .clk_i, .rst_ni, .valid_i, .ready_o, .s_i, .side_i, .valid_o, .ready_i, .side_o, .busy_o,
-      .active_i, .quad_i, .oct_m_i, .oct_o_i, .oct_a_i, .oct_gm_i, .oct_lgm_i, .bl_i, .fade_i,
+      .active_i, .quad_i, .oct_m_i, .oct_o_i, .oct_a_i, .oct_gm_i, .oct_lgm_i, .oct_fm_i, .bl_i, .fade_i,
       .nz_en_o (nz_en), .nz_valid_o (nz_valid), .nz_step_o (nz_step), .nz_lat_o (nz_lat),
       .nz_frac_o (nz_frac), .nz_n_i (nz_n), .nz_g_i (nz_g),
       .fterm_o (fterm), .gterm_o (gterm), .acc_en_o (acc_en), .acc_first_o (acc_first), .q_o (q_e),
@@ -123,6 +129,10 @@ module pst_octave_stage #(
     );
     logic unused_last;   // the beats carry their own step
     assign unused_last = ^nz_last;
+    // No subband filter on the parallel datapath (rtl/contract.toml): weights 1.0.
+    for (genvar k = 0; k < NoiseUnits * SLW / FB; k++) begin : g_lam
+      assign nz_lam[k*FB +: FB] = FB'(1 << pst_pkg::FadeFrac);
+    end
   end
 
   logic [NoiseUnits*LTW-1:0]  pr_lat;
@@ -131,7 +141,7 @@ module pst_octave_stage #(
     .NoiseOutFrac(NoiseOutFrac), .NoiseSteps(NoiseSteps), .NoiseRegs(NoiseRegs), .DebugProbes(DebugProbes)
   ) u_noise (
     .clk_i, .rst_ni, .en_i (nz_en), .valid_i (nz_valid), .step_i (nz_step), .lat_i (nz_lat),
-    .frac_i (nz_frac), .worley_c_i, .last_o (nz_last), .n_o (nz_n), .g_o (nz_g),
+    .frac_i (nz_frac), .worley_c_i, .sb_lam_i (nz_lam), .last_o (nz_last), .n_o (nz_n), .g_o (nz_g),
     .probe_lat_o (pr_lat), .probe_frac_o (pr_frac)
   );
 

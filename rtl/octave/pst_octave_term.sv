@@ -9,8 +9,10 @@
 // Every product is a radix-4 Booth product (pst_mul_booth; g_i, n_i and alpha_i recoded).
 // floor = arithmetic shift right (a left shift, exact, if the target has more fraction bits);
 // sat = clamp to the signed output width. With Bandlimit (filter.bandlimit = isotropic) both are
-// then faded by the octave's alpha_i (pst_octave_fade; octaveTermFx + fadeScaleFx):
-//   fterm_o = floor(fterm alpha / 2^FadeFrac), gterm_o[r] likewise   (|alpha| <= 1: no saturation)
+// then faded by the octave's alpha_i (pst_octave_fade; octaveTermFx, fadeToMeanFx, fadeScaleFx),
+// the value toward the term's mean fm_i (the octave's register: a mean(n)), the gradient to 0:
+//   fterm_o = sat_F(floor((fterm - fm) alpha / 2^FadeFrac) + fm)     (alpha = 1.0: fterm)
+//   gterm_o[r] = floor(gterm[r] alpha / 2^FadeFrac)                   (|alpha| <= 1: no saturation)
 //
 // Parameters:
 //   NoiseOutFrac                    fraction bits of n_i (Q4.NoiseOutFrac) and g_i (Q6.NoiseOutFrac).
@@ -50,6 +52,7 @@ module pst_octave_term #(
   input  logic [AW-1:0]    a_i,       // amplitude
   input  logic [Rows*3*GMW-1:0] gm_i,  // GM = a M^T row-major: GM[r][c] at [(3r+c)*GMW +: GMW]
   input  logic [FB-1:0]         alpha_i, // the octave's fade, FadeFrac fraction bits (Bandlimit)
+  input  logic [FW-1:0]         fm_i,    // the term's mean the fade goes to, F format (Bandlimit)
   output logic [FW-1:0]         fterm_o,
   output logic [Rows*GW-1:0]    gterm_o    // element r at [r*GW +: GW]
 );
@@ -90,12 +93,17 @@ module pst_octave_term #(
 
   // The fade: floor(v alpha / 2^FadeFrac), alpha unsigned (Booth products, alpha recoded).
   if (Bandlimit) begin : g_fade
-    localparam int FPW = FW + FB + 1;
+    localparam int FPW = FW + 1 + FB + 1;
     localparam int GPW = GW + FB + 1;
+    logic signed [FW:0]    fd;     // fterm - fm (FW + 1 bits)
     logic signed [FPW-1:0] fp;
-    pst_mul_booth #(.AW(FW), .BW(FB), .BSigned(1'b0), .PW(FPW)) u_fp (
-      .a_i(f_sat), .b_i(alpha_i), .p_o(fp));
-    assign fterm_o = fp[pst_pkg::FadeFrac +: FW];
+    logic signed [FW+1:0]  fs;     // floor(fd alpha / 2^FadeFrac) + fm
+    assign fd = (FW+1)'($signed(f_sat)) - (FW+1)'($signed(fm_i));
+    pst_mul_booth #(.AW(FW + 1), .BW(FB), .BSigned(1'b0), .PW(FPW)) u_fp (
+      .a_i(fd), .b_i(alpha_i), .p_o(fp));
+    assign fs = (FW+2)'($signed(fp[pst_pkg::FadeFrac +: FW + 1])) + (FW+2)'($signed(fm_i));
+    pst_floor_sat #(.InWidth (FW + 2), .InFrac (0), .OutWidth (FW), .OutFrac (0)) u_fs_sat (
+      .x_i (fs), .y_o (fterm_o));
     for (genvar r = 0; r < Rows; r++) begin : g_row
       logic signed [GPW-1:0] gp;
       pst_mul_booth #(.AW(GW), .BW(FB), .BSigned(1'b0), .PW(GPW)) u_gp (
@@ -105,12 +113,12 @@ module pst_octave_term #(
       assign unused_gp = ^{gp[GPW-1:pst_pkg::FadeFrac+GW], gp[pst_pkg::FadeFrac-1:0]};
     end
     logic unused_fp;
-    assign unused_fp = ^{fp[FPW-1:pst_pkg::FadeFrac+FW], fp[pst_pkg::FadeFrac-1:0]};
+    assign unused_fp = ^{fp[FPW-1:pst_pkg::FadeFrac+FW+1], fp[pst_pkg::FadeFrac-1:0]};
   end else begin : g_whole
     assign fterm_o = f_sat;
     assign gterm_o = g_sat;
     logic unused_alpha;
-    assign unused_alpha = ^alpha_i;
+    assign unused_alpha = ^{alpha_i, fm_i};
   end
 
   // Assertions

@@ -1,7 +1,7 @@
 // pst_regs_sva: checker of pst_regs (the register file): the active octave count stays in
 // 0..Octaves and is only written in range; cover points for a write of every register class
 // (control, active count, quadric, each octave field, the last octave, the fade table and
-// the octaves' lg ||M|| of the bandlimit profiles, the worley coefficients) and the active
+// the octaves' lg ||M|| and term means of the bandlimit profiles, the worley coefficients) and the active
 // count's extremes.
 `include "sva/pst_assert.svh"
 `include "pst_pkg.sv"
@@ -50,6 +50,7 @@ module pst_regs_sva #(
   `PST_COVER(WriteLastOctave, we_i && 32'(addr_i) == 32'(pst_pkg::RegOctave) +
                               pst_pkg::RegOctaveStride * (Octaves - 1) + pst_pkg::RegOctaveA)
   `PST_COVER(WriteOctaveLgm, we_i && oct_sel && 32'(oct_off) == pst_pkg::RegOctaveLgm)
+  `PST_COVER(WriteOctaveFm, we_i && oct_sel && 32'(oct_off) == pst_pkg::RegOctaveFm)
   `PST_COVER(WriteBandlimitOn, we_i && addr_i == pst_pkg::RegControl && wdata_i[pst_pkg::RegControlBandlimitLsb])
   `PST_COVER(WriteFade, we_i && addr_i >= pst_pkg::RegFade &&
                         32'(addr_i) < 32'(pst_pkg::RegFade) + pst_pkg::RegFadeCount)

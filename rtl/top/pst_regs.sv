@@ -20,6 +20,7 @@
 //   oct_m_o, oct_o_o, oct_a_o, oct_gm_o   M (row-major), o, a, GM = a M^T (row-major)
 //   worley_o           C_0..C_3 of the worley unit
 //   bl_o, fade_o, oct_lgm_o            control.bandlimit, the fade table, lg ||M||_2 (FilterBandlimit)
+//   oct_fm_o                           the octave terms' means a_i mean(n), F format (FilterBandlimit)
 `include "pst_pkg.sv"
 `default_nettype none
 
@@ -37,6 +38,9 @@ module pst_regs #(
   parameter int GradMatrixFrac = pst_pkg::GradMatrixFracDefault,
   parameter bit Worley         = 1'b0,   // the worley unit's coefficient registers exist
   parameter int FilterBandlimit = pst_pkg::FilterBandlimitDefault,
+  parameter int FInt           = pst_pkg::FIntDefault,
+  parameter int FFrac          = pst_pkg::FFracDefault,
+  localparam int FW  = FInt + FFrac,
   localparam int QW  = QuadricInt + QuadricFrac,
   localparam int MW  = MatrixInt + MatrixFrac,
   localparam int OW  = OffsetInt + OffsetFrac,
@@ -72,7 +76,8 @@ module pst_regs #(
   output logic [NWC*WCW-1:0]         worley_o,  // the worley unit's C_k (k at [k*WCW +: WCW])
   output logic                       bl_o,
   output logic [FE*FB-1:0]           fade_o,
-  output logic [Octaves*LMW-1:0]     oct_lgm_o
+  output logic [Octaves*LMW-1:0]     oct_lgm_o,
+  output logic [Octaves*FW-1:0]      oct_fm_o
 );
 
   localparam int CB = pst_pkg::RegControlBits;
@@ -133,6 +138,8 @@ module pst_regs #(
         for (int i = 0; i < Octaves; i++) begin
           if (addr_i == pst_pkg::RegOctave + AB'(pst_pkg::RegOctaveStride * i + pst_pkg::RegOctaveLgm))
             oct_lgm_o[i*LMW +: LMW] <= wdata_i[LMW-1:0];
+          if (addr_i == pst_pkg::RegOctave + AB'(pst_pkg::RegOctaveStride * i + pst_pkg::RegOctaveFm))
+            oct_fm_o[i*FW +: FW] <= wdata_i[FW-1:0];
         end
       end
     end
@@ -140,6 +147,7 @@ module pst_regs #(
     assign bl_o      = 1'b0;
     assign fade_o    = '0;
     assign oct_lgm_o = '0;
+    assign oct_fm_o  = '0;
     logic unused_bl;
     assign unused_bl = ctrl_q[pst_pkg::RegControlBandlimitLsb];
   end

@@ -118,18 +118,19 @@ module pst_top #(
   logic [Octaves*9*(GradMatrixInt+GradMatrixFrac)-1:0] oct_gm;
   logic [pst_pkg::RegWorleyCount*(pst_pkg::WorleyCoefInt+pst_pkg::WorleyCoefFrac)-1:0] worley_c;
   logic [Octaves*pst_pkg::FadeLgBits-1:0] oct_lgm;       // bandlimited octaves (FilterBandlimit)
+  logic [Octaves*(FInt+FFrac)-1:0]        oct_fm;
   logic                          bl;
   logic [pst_pkg::FadeEntries*pst_pkg::FadeBits-1:0] fade;
   pst_regs #(.Octaves(Octaves), .QuadricInt(QuadricInt), .QuadricFrac(QuadricFrac),
     .MatrixInt(MatrixInt), .MatrixFrac(MatrixFrac), .OffsetInt(OffsetInt), .OffsetFrac(OffsetFrac),
     .AmplitudeInt(AmplitudeInt), .AmplitudeFrac(AmplitudeFrac), .GradMatrixInt(GradMatrixInt),
     .GradMatrixFrac(GradMatrixFrac), .Worley(NoiseWorleySearch != pst_pkg::NoiseWorleySearchNone),
-    .FilterBandlimit(FilterBandlimit)
+    .FilterBandlimit(FilterBandlimit), .FInt(FInt), .FFrac(FFrac)
   ) u_regs (.clk_i, .rst_ni, .we_i (reg_we_i), .addr_i (reg_addr_i), .wdata_i (reg_wdata_i),
     .clamp_o (clamp), .kind_o (kind), .active_o (active), .quad_o (quad), .oct_m_o (oct_m),
     .oct_o_o (oct_o), .oct_a_o (oct_a), .oct_gm_o (oct_gm), .worley_o (worley_c),
     .bl_o (bl), .fade_o (fade),
-    .oct_lgm_o (oct_lgm));
+    .oct_lgm_o (oct_lgm), .oct_fm_o (oct_fm));
 
   // [A] fragment -> octave stage -> [B]
   assign a_d.tag = frag_tag_i;
@@ -144,7 +145,7 @@ module pst_top #(
     .side_i ({a_q.j, a_q.tag}), .valid_o (b_in_valid), .ready_i (b_in_ready), .f_o (b_d.f),
     .grad_o (b_d.grad), .side_o ({b_d.j, b_d.tag}), .busy_o (octave_busy),
     .active_i (active), .quad_i (quad), .oct_m_i (oct_m), .oct_o_i (oct_o), .oct_a_i (oct_a),
-    .oct_gm_i (oct_gm), .worley_c_i (worley_c), .oct_lgm_i (oct_lgm), .bl_i (bl), .fade_i (fade), .probe_valid_o, .probe_tag_o, .probe_pass_o, .probe_q_valid_o,
+    .oct_gm_i (oct_gm), .worley_c_i (worley_c), .oct_lgm_i (oct_lgm), .oct_fm_i (oct_fm), .bl_i (bl), .fade_i (fade), .probe_valid_o, .probe_tag_o, .probe_pass_o, .probe_q_valid_o,
     .probe_q_tag_o, .probe_q_o, .probe_lat_o, .probe_frac_o, .probe_n_o, .probe_g_o);
   pst_pipe_reg #(.Width($bits(b_d)), .Skid(Skid)) u_reg_b (.clk_i, .rst_ni, .valid_i (b_in_valid),
     .ready_o (b_in_ready), .data_i (b_d), .valid_o (b_valid), .ready_i (b_ready), .data_o (b_q));

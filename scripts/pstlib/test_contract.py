@@ -37,8 +37,9 @@ def test_parameters_of_reduced():
     assert (p["CoordInt"], p["CoordFrac"], p["WidthFrac"]) == (10, 12, 4)
     assert (p["NoiseRegs"], p["OctaveRegs"], p["WidthRegs"], p["ColourRegs"]) == (5, 1, 0, 2)
     assert p["NoiseWorleySearch"] == 0 and p["NoiseWorleyPoints"] == 4 and p["NoiseWorleyOrder"] == 2
+    assert p["NoiseSubband"] == 0 and p["NoiseSubbandOrientations"] == 0   # no subband unit
     assert p["NoiseGradFrac"] == 10   # out_frac 8 + guard_bits 2: every node bit
-    assert len(p) == 43
+    assert len(p) == 45
 
 
 def test_enum_tables():

@@ -329,3 +329,74 @@ def test_11_anisotropic_flag_needs_subband(tmp_path):
             r"--bandlimit: anisotropic: texture 't': anisotropic filtering needs basis subband", [out])
     refused(["render", scene(tmp_path), "--variants", "sat+anisotropic", "--size", 8, "-o", out, "-q"],
             r"--variants: sat\+anisotropic: texture 't': anisotropic filtering needs basis subband", [out])
+
+
+# 12. The subband unit (rtl/noise/pst_subband.sv, test profile reduced_subband): its profile key and
+# constraints, and scenes that ask for another tile or plane than the unit's ROM holds.
+def test_12_subband_profile_keys(tmp_path):
+    out = tmp_path / "out"
+    for name, edit, pattern in [
+        ("bad_plane", lambda t: t.replace('subband = "none"', 'subband = "uv"'), r"noise\.subband: "),
+        ("bad_both", lambda t: t.replace('subband = "none"', 'subband = "xz"').replace(
+            'worley_search = "none"', 'worley_search = "octant"').replace('hash = "rayshade"', 'hash = "perm256"'),
+         r"noise\.subband: must be none with a worley unit"),
+        ("bad_frac", lambda t: t.replace('subband = "none"', 'subband = "xz"').replace(
+            "lattice_frac = 8", "lattice_frac = 2"), r"noise\.lattice_frac: must be more than 2"),
+    ]:
+        bad = profile_copy(tmp_path, name, edit, src="reduced")
+        assert bad.read_text() != (ROOT / "rtl/configs/reduced.toml").read_text()
+        refused(["render", scene(tmp_path), "--profile", bad, "--model", "golden", "-o", out, "-q"],
+                re.escape(str(bad)) + r":\d+: " + pattern, [out])
+
+
+@pytest.mark.parametrize("noise,pattern", [
+    ('{ basis = "subband", param = "xy" }',
+     r"textures\.t\.noise\.param: 'xy'; the subband unit of profile 'reduced_subband' samples the plane 'xz'"),
+    ('{ basis = "subband", param = "xz", tile_size = 512 }',
+     r"textures\.t\.noise\.tile_size/seed: 512, 1; the subband unit of profile 'reduced_subband' holds the tile of "
+     r"tile_size 256, seed 1"),
+    ('{ basis = "subband", param = "xz", seed = 7 }', r"textures\.t\.noise\.tile_size/seed: 256, 7"),
+    ('{ basis = "rayshade" }', r"textures\.t\.noise\.basis: basis 'rayshade' has no hardware unit in profile "
+                               r"'reduced_subband' \(its noise unit computes 'subband'\)"),
+])
+def test_12_subband_scene_on_the_unit(tmp_path, noise, pattern):
+    s = subband_scene(tmp_path, noise)
+    prof = ROOT / "sim" / "test_profiles" / "reduced_subband.toml"
+    out = tmp_path / "out"
+    refused(["render", s, "--profile", prof, "--model", "golden", "--size", 8, "-o", out, "-q"],
+            re.escape(str(s)) + r":\d+: " + pattern, [out])
+
+
+# The subband unit's anisotropic filter (noise.subband_orientations, test profile reduced_subband_k8):
+# the key's values and what it needs, and scenes that ask for another filter than the unit's.
+def test_12_subband_orientations_key(tmp_path):
+    out = tmp_path / "out"
+    sub = lambda t: t.replace('subband = "none"', 'subband = "xz"')
+    for name, edit, pattern in [
+        ("bad_k", lambda t: sub(t).replace("subband_orientations = 0", "subband_orientations = 6"),
+         r"noise\.subband_orientations: "),
+        ("bad_nounit", lambda t: t.replace("subband_orientations = 0", "subband_orientations = 4"),
+         r"noise\.subband_orientations: must be 0 without a subband unit"),
+        ("bad_nofade", lambda t: sub(t).replace("subband_orientations = 0", "subband_orientations = 8"),
+         r"noise\.subband_orientations: 4 or 8 needs filter\.bandlimit = isotropic"),
+    ]:
+        bad = profile_copy(tmp_path, name, edit, src="reduced")
+        refused(["render", scene(tmp_path), "--profile", bad, "--model", "golden", "-o", out, "-q"],
+                re.escape(str(bad)) + r":\d+: " + pattern, [out])
+
+
+@pytest.mark.parametrize("noise,bandlimit,pattern", [
+    ('{ basis = "subband", param = "xz", orientations = 4 }', "anisotropic",
+     r":\d+: textures\.t\.noise\.orientations: 4; the subband unit of profile 'reduced_subband_k8' holds 8 oriented tiles"),
+    ('{ basis = "subband", param = "xz", orientations = 8, weights = "least_squares" }', "anisotropic",
+     r":\d+: textures\.t\.noise\.weights: the subband unit of profile 'reduced_subband_k8' computes the heuristic weights"),
+    ('{ basis = "subband", param = "xz", orientations = 8 }', "isotropic",
+     r"texture 't': bandlimit: 'isotropic'; the subband unit of profile 'reduced_subband_k8' filters with its "
+     r"anisotropic weights"),
+])
+def test_12_subband_filter_scene_on_the_unit(tmp_path, noise, bandlimit, pattern):
+    s = subband_scene(tmp_path, noise, bandlimit)
+    prof = ROOT / "sim" / "test_profiles" / "reduced_subband_k8.toml"
+    out = tmp_path / "out"
+    refused(["render", s, "--profile", prof, "--model", "golden", "--size", 8, "-o", out, "-q"],
+            (re.escape(str(s)) if pattern.startswith(":") else "") + pattern, [out])

@@ -55,6 +55,25 @@ def test_sequence_figures_mean_psnr_and_flicker():
     m, ok = g["seascape fly-in: flicker >= 4x lower than unfiltered"]
     assert ok and m.startswith("paper 4.00x; best option trapezoid 8.00x (reference model")
     assert "flicker 0.0100 (8.00x)" in fidelity.markdown([], [f])
+    m, ok = g["seascape fly-in in hardware: flicker >= 4x lower than unfiltered"]
+    assert ok and m == "best seascape sat 4.00x"     # the trapezoid has no hardware unit
+
+
+def test_hardware_streams_are_columns_and_the_hardware_goal():
+    d = seq("seascape_subband_hw",
+            filtered={"temporal_rms": [0.02, 0.02], "rms_vs_truth": [0.1, 0.1, 0.1]},
+            unfiltered={"temporal_rms": [0.06, 0.06], "rms_vs_truth": [0.3, 0.1, 0.2]},
+            reduced_subband={"temporal_rms": [0.03, 0.03], "rms_vs_truth": [0.2, 0.2, 0.2], "hardware": True,
+                             "mismatches": 0},
+            **{"sat+isotropic": {"temporal_rms": [0.005, 0.005], "rms_vs_truth": [0.05] * 3, "variant": True}})
+    f = fidelity.sequence_figures(d)
+    assert f["flicker"]["rtl:reduced_subband"] == pytest.approx(0.03)
+    assert f["rms"]["rtl:reduced_subband"] == pytest.approx(0.2)
+    g = {goal: (m, ok) for goal, m, ok in fidelity.goals([], [f])}
+    # On the subband basis +isotropic is the reference's subband weights: not a hardware option.
+    m, ok = g["seascape fly-in in hardware: flicker >= 4x lower than unfiltered"]
+    assert not ok and m == "best seascape_subband_hw sat 3.00x"
+    assert "| sat+isotropic | rtl:reduced_subband |" in fidelity.markdown([], [f])
 
 
 def test_bad_input_names_the_file(tmp_path):

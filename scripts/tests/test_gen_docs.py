@@ -31,9 +31,9 @@ def test_every_rtl_file_is_in_the_table():
 
 @pytest.fixture
 def tree(tmp_path):
-    """A copy of what the generator reads: the docs, the baseline and derate, rtl/."""
+    """A copy of what the generator reads: the docs, the baseline, derate and noise units, rtl/."""
     for rel in ("README.md", "docs/HARDWARE.md", "docs/ARCHITECTURE.md", "scripts/synth/baseline.json",
-                "scripts/synth/layout_derate.json"):
+                "scripts/synth/layout_derate.json", "scripts/synth/noise_units.json"):
         (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
         shutil.copy(ROOT / rel, tmp_path / rel)
     shutil.copytree(ROOT / "rtl", tmp_path / "rtl")

@@ -109,7 +109,7 @@ module pst_arith_unit_top #(
     .GradMatrixInt(GradMatrixInt), .GradMatrixFrac(GradMatrixFrac), .FInt(FInt),
     .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
   ) u_term (
-    .n_i (term_n_i), .g_i (term_g_i), .a_i (term_a_i), .gm_i (term_gm_i), .alpha_i (pst_pkg::FadeBits'(0)),
+    .n_i (term_n_i), .g_i (term_g_i), .a_i (term_a_i), .gm_i (term_gm_i), .alpha_i (pst_pkg::FadeBits'(0)), .fm_i ('0),
     .fterm_o (term_fterm_o), .gterm_o (term_gterm_o)
   );
 

@@ -36,6 +36,15 @@ int64_t fadeTableEntry(const NoiseOptions& noise, int k) {
     return std::min<int64_t>(one, std::llround(std::sqrt(noiseBoxGain(noise, nu)) * double(one)));
 }
 
+int64_t subbandWeightEntry(const NoiseOptions& noise, int k) {
+    // h(nu) = exp(-sigma^2 pi^2 nu^2 / 2) at the entry's centre: eq. 4's Gaussian at the subband's
+    // centre frequency pi/16 per tile pixel, 16 tile pixels per noise unit (subband_fx.cpp).
+    namespace c = contract;
+    const double nu = std::exp2(-c::kFadeLgLo + (k + 0.5) / 4.0), pi = 3.141592653589793;
+    const double h = std::exp(-noise.sigma * noise.sigma * pi * pi * nu * nu / 2);
+    return std::llround(h * double(int64_t(1) << c::kFadeFrac));
+}
+
 int hardwareFilterKind(FilterKind k) {
     using K = contract::FilterKind;
     switch (k) {
@@ -51,18 +60,27 @@ int hardwareFilterKind(FilterKind k) {
 
 std::pair<uint16_t, uint32_t> controlWrite(const Texture& tex, int filterKind) {
     const uint32_t clamp = tex.clut.wrap() == WrapMode::Clamp ? 1u : 0u;
-    const uint32_t fade = tex.bandlimit == Bandlimit::Isotropic ? 1u : 0u;
+    // The bit enables the fade unit's table: the isotropic fade, or on a subband unit with its
+    // filter (noise.subband_orientations) the anisotropic weights.
+    const uint32_t fade = tex.bandlimit == Bandlimit::Isotropic || tex.bandlimit == Bandlimit::Anisotropic ? 1u : 0u;
     return {contract::kRegControl, (clamp << contract::kRegControlClampLsb) |
                                        (uint32_t(filterKind) << contract::kRegControlKindLsb) |
                                        (fade << contract::kRegControlBandlimitLsb)};
 }
 
 std::string hardwareUnsupported(const Profile& p, const Texture& tex) {
-    if (tex.bandlimit == Bandlimit::Isotropic && !p.bandlimit())
+    // A subband unit with its anisotropic filter (noise.subband_orientations): the table is the
+    // filter's weights, so bandlimit is anisotropic or off.
+    const bool sbFilter = p.noise.basis == NoiseBasis::Subband && p.noiseSubbandOrientations != 0;
+    if (sbFilter && tex.noise.basis == NoiseBasis::Subband) {
+        if (tex.bandlimit != Bandlimit::Off && tex.bandlimit != Bandlimit::Anisotropic)
+            return "texture '" + tex.name + "': bandlimit: '" + toString(tex.bandlimit) + "'; the subband unit of profile '" +
+                   p.name + "' filters with its anisotropic weights (write \"anisotropic\" or \"off\")";
+    } else if (tex.bandlimit == Bandlimit::Isotropic && !p.bandlimit())
         return "texture '" + tex.name + "': bandlimit: profile '" + p.name +
                "' has no fade unit (filter.bandlimit = \"off\"); use a profile with filter.bandlimit = \"isotropic\" "
                "(e.g. sim/test_profiles/reduced_bandlimit.toml) or render it without --profile";
-    if (tex.bandlimit != Bandlimit::Off && tex.bandlimit != Bandlimit::Isotropic)
+    else if (tex.bandlimit != Bandlimit::Off && tex.bandlimit != Bandlimit::Isotropic)
         return "texture '" + tex.name + "': bandlimit: '" + toString(tex.bandlimit) +
                "' is in the reference model only (the hardware's is 'isotropic'); render it without --profile";
     // The profile's noise unit computes one basis (hardwareBasis of its interp / corner / hash).
@@ -101,6 +119,29 @@ std::string hardwareUnsupported(const Profile& p, const Texture& tex) {
                 return where + "coef: C" + std::to_string(k + 1) + " is outside the coefficient registers' range (-" +
                        std::to_string(int(cmax)) + ", " + std::to_string(int(cmax)) + ")";
         }
+    }
+    if (p.noise.basis == NoiseBasis::Subband) {
+        // The subband unit samples one tile (rtl/noise/pst_subband.sv): the scene must ask for the
+        // tiles its ROM is sampled from, on its plane, so that its reference is what the hardware
+        // computes (the isotropic sum of a scale does not depend on the orientations).
+        const NoiseOptions& n = tex.noise;
+        const std::string src = tex.basisSource;
+        const std::string where = src.size() > 5 && src.compare(src.size() - 5, 5, "basis") == 0
+                                      ? src.substr(0, src.size() - 5)
+                                      : "texture '" + tex.name + "': noise.";
+        const std::string prof = "profile '" + p.name + "'";
+        if (n.param != p.noise.param)
+            return where + "param: '" + toString(n.param) + "'; the subband unit of " + prof + " samples the plane '" +
+                   toString(p.noise.param) + "' (noise.subband)";
+        if (n.tileSize != p.noise.tileSize || n.seed != p.noise.seed)
+            return where + "tile_size/seed: " + std::to_string(n.tileSize) + ", " + std::to_string(n.seed) +
+                   "; the subband unit of " + prof + " holds the tile of tile_size " + std::to_string(p.noise.tileSize) +
+                   ", seed " + std::to_string(p.noise.seed) + " (write these in the scene)";
+        if (p.noiseSubbandOrientations != 0 && n.orientations != p.noiseSubbandOrientations)
+            return where + "orientations: " + std::to_string(n.orientations) + "; the subband unit of " + prof +
+                   " holds " + std::to_string(p.noiseSubbandOrientations) + " oriented tiles";
+        if (p.noiseSubbandOrientations != 0 && n.weights != SubbandWeights::Heuristic)
+            return where + "weights: the subband unit of " + prof + " computes the heuristic weights";
     }
     if (tex.clut.size() != p.clutSize())
         return (tex.clutSource.empty() ? "texture '" + tex.name + "': colormap.size" : tex.clutSource) + ": " +
@@ -145,11 +186,19 @@ TextureProgram programTexture(const Profile& p, const Texture& tex) {
         for (int k = 0; k < 3; ++k)
             prog.writes.push_back({uint16_t(base + contract::kRegOctaveO + k), word(q(o.offset[k], p.offset))});
         prog.writes.push_back({uint16_t(base + contract::kRegOctaveA), word(q(o.amplitude, p.amplitude))});
-        if (p.bandlimit()) prog.writes.push_back({uint16_t(base + contract::kRegOctaveLgm), word(fadeLgNorm(o.M))});
+        if (p.bandlimit()) {
+            prog.writes.push_back({uint16_t(base + contract::kRegOctaveLgm), word(fadeLgNorm(o.M))});
+            // The term's mean a mean(n), where the fade takes the term (not 0: worley's mean is not 0).
+            prog.writes.push_back({uint16_t(base + contract::kRegOctaveFm),
+                                   word(q(o.amplitude * noiseMoments(tex.noise).mean, p.f))});
+        }
     }
     if (p.bandlimit())
         for (int k = 0; k < contract::kFadeEntries; ++k)
-            prog.writes.push_back({uint16_t(contract::kRegFade + k), uint32_t(fadeTableEntry(tex.noise, k))});
+            prog.writes.push_back({uint16_t(contract::kRegFade + k),
+                                   uint32_t(p.noise.basis == NoiseBasis::Subband && p.noiseSubbandOrientations != 0
+                                                ? subbandWeightEntry(tex.noise, k)
+                                                : fadeTableEntry(tex.noise, k))});
 
     // The worley unit's coefficients C_k (n = sum C_k F_k).
     if (p.noise.basis == NoiseBasis::Worley)

@@ -46,6 +46,9 @@ std::pair<uint16_t, uint32_t> controlWrite(const Texture& tex, int filterKind);
 // round(2^FadeFrac sqrt(noiseBoxGain(noise, nu))) at the entry's centre, lg nu = -FadeLgLo + (k + 1/2) / 4.
 int64_t fadeLgNorm(const glm::dmat3& M);
 int64_t fadeTableEntry(const NoiseOptions& noise, int k);
+// Entry k of the table on a subband unit with its anisotropic filter (noise.subband_orientations):
+// the weight h(nu) = exp(-sigma^2 pi^2 nu^2 / 2) at the entry's centre nu (FadeFrac bits).
+int64_t subbandWeightEntry(const NoiseOptions& noise, int k);
 
 FragmentFx quantizeFragment(const Profile& p, uint32_t tag, const glm::dvec3& s,
                             const glm::dvec3& dsdx, const glm::dvec3& dsdy);

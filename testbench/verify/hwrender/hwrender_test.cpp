@@ -22,7 +22,7 @@ namespace {
 Profile profile(const std::string& name) { return loadProfile(rtlProfilePath(name)); }
 
 const char* kScenes[] = {"wood_teapot", "marble", "seascape", "fire", "planet", "moonrise", "zoneplate", "wood_torus",
-                         "perlin2002", "worley"};
+                         "perlin2002", "worley", "seascape_subband_hw", "seascape_subband"};
 
 // Whether profile p's noise unit computes every texture of the scene (its basis).
 bool runsScene(const Profile& p, const Scene& scene) {
@@ -35,6 +35,8 @@ bool runsScene(const Profile& p, const Scene& scene) {
 std::string basisScene(const Profile& p) {
     return p.noise.basis == NoiseBasis::Perlin2002 ? "perlin2002"
            : p.noise.basis == NoiseBasis::Worley   ? "worley"
+           : p.noise.basis == NoiseBasis::Subband  ? (p.noiseSubbandOrientations != 0 ? "seascape_subband"
+                                                                                        : "seascape_subband_hw")
                                                    : "marble";
 }
 

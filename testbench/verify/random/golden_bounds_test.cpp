@@ -253,6 +253,11 @@ void checkProfile(const Profile& p, uint64_t seed, int textures, int perTexture,
 TEST(GoldenBounds, FGradAndWWithinTheFormatsBound) {
     for (const std::string& name : rtlProfiles()) {
         const Profile p = loadProfile(rtlProfilePath(name));
+        // The subband unit's reference (evalF: model/subband.h, the 256-pixel tile) differs from
+        // what the unit interpolates (the 64-pixel ROM tile) by more than a format bound: the
+        // unit is checked against its own double reference within the derived bound, and that
+        // against the reference basis, by golden_test SubbandFx.*.
+        if (p.noise.basis == NoiseBasis::Subband) continue;
         Stats st;
         checkProfile(p, 1234, 600, 100, &st);
         std::printf("[ bounds ] %-13s %ld samples (%ld near saturation skipped, %ld with W): worst error / bound "

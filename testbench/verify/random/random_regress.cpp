@@ -142,6 +142,11 @@ Texture randomTexture(RandomStream& r, const Profile& p) {
     t.filter = kinds[r.range(0, 4)];
     // Bandlimited octaves on a profile with the fade unit (other profiles draw nothing more).
     if (p.bandlimit()) t.bandlimit = r.chance(0.7) ? Bandlimit::Isotropic : Bandlimit::Off;
+    // A subband unit with its anisotropic filter: its weights instead, of a random sigma.
+    if (p.noise.basis == NoiseBasis::Subband && p.noiseSubbandOrientations != 0) {
+        if (t.bandlimit == Bandlimit::Isotropic) t.bandlimit = Bandlimit::Anisotropic;
+        t.noise.sigma = std::exp2(r.uniform(-3.0, 2.0));
+    }
     return t;
 }
 
@@ -256,6 +261,16 @@ RandomRegressResult runRandomRegress(const Profile& p, const std::string& rtlNam
                         if (r.chance(0.5))
                             writes.push_back({uint16_t(contract::kRegFade + k),
                                               uint32_t(r.range(0, (1 << contract::kFadeBits) - 1))});
+                // Fade unit: sometimes arbitrary term means (a basis of another mean; the whole F
+                // range, its extremes too: the fade toward them saturates at the format's ends).
+                if (p.bandlimit() && r.chance(0.3))
+                    for (int i = 0; i < p.octaves; ++i) {
+                        const int64_t lo = fx::minSigned(p.f.width()), hi = fx::maxSigned(p.f.width());
+                        const int64_t v = r.chance(0.2) ? (r.chance(0.5) ? lo : hi) : int64_t(r.range(lo, hi));
+                        writes.push_back({uint16_t(contract::kRegOctave + contract::kRegOctaveStride * i +
+                                                   contract::kRegOctaveFm),
+                                          uint32_t(uint64_t(v) & 0xffffffffu)});
+                    }
             } else {
                 writes = {controlWrite(tex, int(r.range(0, 3)))};
             }

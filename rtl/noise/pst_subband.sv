@@ -1,0 +1,220 @@
+// The subband unit: the anisotropic-noise basis of Goldberg, Zwicker, Durand 2008 (model/subband.h)
+// as the hardware samples it, in place of the lattice-noise unit (pst_noise) when the profile's
+// noise.subband is not none: one octave's subbands read from a tile ROM by bilinear, periodic
+// lookups on two lattice axes, one corner per noise step; the isotropic sum (K = 0, eq. 7 with
+// every lambda_ij = 1) or K = 4, 8 oriented tiles weighted by the pixel's lambda_i (eq. 7 with
+// the anisotropic filter's weights, pst_subband_pixel and pst_octave_fade in
+// pst_octave_serial). Same ports and token timing as pst_noise, plus lam_i. Golden:
+// pst::subbandFx (model/golden/subband_fx.cpp, same steps and floors); its double reference is
+// pst::subbandRomReference (the bilinear lookup of the unrounded tiles).
+//
+// Notation: LF = NoiseLatticeFrac, OF = NoiseOutFrac, TL = SubbandTileLog2, UB = TL -
+// SubbandPeriodLog2 (ROM pixels per noise unit 2^UB), WF = LF - UB, VB / VF = SubbandValueBits /
+// SubbandValueFrac, (A0, A1) the plane's lattice axes (xy: 0, 1; xz: 0, 2; yz: 1, 2), K =
+// NoiseSubbandOrientations, FF = FadeFrac (the weights' fraction bits), VF' = VF (K = 0) or VF + FF.
+//
+// 1. Tile pixel per in-plane axis a: x_a = {lat_a mod 2^(TL - UB), frac_a >> WF} (TL bits), the
+//    weight's fraction w_a = frac_a mod 2^WF.
+// 2. Corners c = cx + 2 cy: step j reads corners j CPS .. j CPS + CPS - 1, CPS = ceil(4 /
+//    NoiseSteps) (one per step on the reduced schedule; the later steps' slots are off): ROM
+//    word at {(x_A1 + cy) mod 2^TL, (x_A0 + cx) mod 2^TL}: K = 0 its value v_c; K = 4, 8 its K
+//    values v_c,i, v_c = sum_i lambda_i v_c,i (exact); weights u_0 = 2^WF - w, u_1 = w.
+// 3. Exact sums, held across the steps (step 0 starts from 0):
+//    V += v_c u_cx(w_A0) u_cy(w_A1), Gx += +-v_c u_cy(w_A1) (+ for cx = 1), Gy += +-v_c u_cx(w_A0).
+// 4. n = sat(floor(V / 2^(VF' + 2 WF - OF)), Q4.OF); grad_A0 = sat(floor(Gx / 2^(VF' + WF - UB -
+//    OF)), Q6.OF) (2^UB ROM pixels per noise unit), grad_A1 from Gy, the third axis 0.
+//
+// Pipeline (NoiseRegs): a register at b0 between the step's corner values (the ROM read and the
+// weighted sums) and the bilinear sums (the first), the others at the output; the result of the
+// last step comes NoiseRegs advances (en_i) after its input, as pst_noise's. The held sums store
+// at every valid advance of b0's token (steps come on consecutive advances).
+//
+// Parameters: NoiseLatticeFrac, NoiseOutFrac, NoiseSteps, NoiseRegs (the profile's noise keys),
+// NoiseSubband (the plane: pst_pkg::NoiseSubbandXy, Xz or Yz), NoiseSubbandOrientations (K: 0,
+// 4 or 8).
+// Ports: pst_noise's; lam_i [max(1, K)*FadeBits-1:0] the weights lambda_i (i at [i*FadeBits +:
+// FadeBits], unsigned, 1.0 = 2^FadeFrac; unused for K = 0), steady over an evaluation's steps.
+`include "pst_pkg.sv"
+`default_nettype none
+
+`ifndef PST_ROM_DIR
+`define PST_ROM_DIR "rom"
+`endif
+
+module pst_subband #(
+  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault,
+  parameter int NoiseOutFrac     = pst_pkg::NoiseOutFracDefault,
+  parameter int NoiseSteps       = pst_pkg::NoiseStepsDefault,
+  parameter int NoiseRegs        = pst_pkg::NoiseRegsDefault,
+  parameter int NoiseSubband     = pst_pkg::NoiseSubbandXz,
+  parameter int NoiseSubbandOrientations = 0,
+  localparam int LF  = NoiseLatticeFrac,
+  localparam int KT  = (NoiseSubbandOrientations == 0) ? 1 : NoiseSubbandOrientations,  // tiles
+  localparam int FB  = pst_pkg::FadeBits,
+  localparam int OF  = NoiseOutFrac,
+  localparam int NW  = pst_pkg::NoiseIntBits + NoiseOutFrac,
+  localparam int NGW = pst_pkg::NoiseGradIntBits + NoiseOutFrac,
+  localparam int LB  = pst_pkg::LatticeBits
+) (
+  input  logic               clk_i,
+  input  logic               rst_ni,
+  input  logic               en_i,
+  input  logic               valid_i,
+  input  logic [2:0]         step_i,
+  input  logic [pst_pkg::LatticeWidth-1:0] lat_i,
+  input  logic [3*LF-1:0]    frac_i,
+  input  logic [KT*FB-1:0]   lam_i,
+  output logic               valid_o,
+  output logic               last_o,
+  output logic signed [NW-1:0]  n_o,
+  output logic [3*NGW-1:0]      grad_o
+);
+
+  localparam int TL  = pst_pkg::SubbandTileLog2;
+  localparam int PL  = pst_pkg::SubbandPeriodLog2;
+  localparam int UB  = TL - PL;
+  localparam int WF  = LF - UB;
+  localparam int VB  = pst_pkg::SubbandValueBits;
+  localparam int K   = NoiseSubbandOrientations;
+  localparam int VF  = pst_pkg::SubbandValueFrac + ((K == 0) ? 0 : pst_pkg::FadeFrac);
+  localparam int CVW = (K == 0) ? VB : VB + FB + 4;  // a corner's value: sum of K <= 8 products
+  localparam int A0  = (NoiseSubband == pst_pkg::NoiseSubbandYz) ? 1 : 0;
+  localparam int A1  = (NoiseSubband == pst_pkg::NoiseSubbandXy) ? 1 : 2;
+  localparam int A2  = 3 - A0 - A1;                 // the axis outside the plane
+  localparam int CPS = (4 + NoiseSteps - 1) / NoiseSteps;
+  localparam int UW  = WF + 1;                      // a weight u (unsigned, <= 2^WF)
+  localparam int VW  = CVW + 2 * UW + 2;            // V (signed): 4 products v u u
+  localparam int GW  = CVW + UW + 2;                // Gx, Gy (signed): 4 products +-v u
+  localparam int SUMW = VW + 2 * GW;                // the held sums {Gy, Gx, V}
+  // |V| <= 2^VBE: a convex combination of corners of |v| <= KT 2^(VB-1) (2^FadeFrac) (pst_subband_sva).
+  localparam int VBE = VB - 1 + 2 * WF + ((K == 0) ? 0 : pst_pkg::FadeFrac + $clog2(KT));
+
+  // ---- ROM -------------------------------------------------------------------------------
+  logic [KT*VB-1:0] tile [1 << (2*TL)];
+  if (K == 0) begin : g_rom_iso
+    initial $readmemh({`PST_ROM_DIR, "/subband64.memh"}, tile);
+  end else if (K == 4) begin : g_rom_k4
+    initial $readmemh({`PST_ROM_DIR, "/subband64_k4.memh"}, tile);
+  end else begin : g_rom_k8
+    initial $readmemh({`PST_ROM_DIR, "/subband64_k8.memh"}, tile);
+  end
+
+  // ---- 1. tile pixel and weights -------------------------------------------------------------
+  logic [TL-1:0] x0, x1;
+  logic [WF-1:0] w0, w1;
+  assign x0 = {lat_i[A0*LB +: PL], frac_i[A0*LF + WF +: UB]};
+  assign x1 = {lat_i[A1*LB +: PL], frac_i[A1*LF + WF +: UB]};
+  assign w0 = frac_i[A0*LF +: WF];
+  assign w1 = frac_i[A1*LF +: WF];
+
+  // ---- 2. this step's corners: the ROM words and (K = 4, 8) their weighted sums --------------
+  logic [CPS*CVW-1:0] cv_a;   // slot i: corner step_i CPS + i (a slot past corner 3 is off in step 3)
+  always_comb begin
+    logic signed [CVW-1:0] v;
+    logic [KT*VB-1:0]      word;
+    logic [TL-1:0]         cx_addr, cy_addr;
+    int                    c;
+    for (int i = 0; i < CPS; i++) begin
+      c = 32'(step_i) * CPS + i;
+      cx_addr = x0 + TL'(c & 1);
+      cy_addr = x1 + TL'((c >> 1) & 1);
+      word = tile[{cy_addr, cx_addr}];
+      if (K == 0) begin
+        v = CVW'($signed(word[VB-1:0]));
+      end else begin
+        // The corner's weighted sum of its K words (eq. 7), exact.
+        v = '0;
+        for (int t = 0; t < KT; t++)
+          v = v + CVW'($signed(word[t*VB +: VB])) * CVW'($signed({1'b0, lam_i[t*FB +: FB]}));
+      end
+      cv_a[i*CVW +: CVW] = v;
+    end
+  end
+
+  // Boundary b0 (the first pipeline register): the step's corner values, the bilinear weights'
+  // fractions and the token; the sums are formed after it.
+  localparam int R0 = (NoiseRegs >= 1) ? 1 : 0;
+  localparam int RO = NoiseRegs - R0;
+  logic [CPS*CVW-1:0] cv_b;
+  logic [WF-1:0]      w0_b, w1_b;
+  logic [3:0]         tok_b;
+  pst_delay #(.Width(CPS*CVW + 2*WF), .Depth(R0)) u_b0 (
+    .clk_i, .rst_ni, .en_i, .d_i ({cv_a, w1, w0}), .q_o ({cv_b, w1_b, w0_b}));
+  pst_delay #(.Width(4), .Depth(R0), .Reset(1'b1)) u_b0_tok (
+    .clk_i, .rst_ni, .en_i, .d_i ({valid_i, step_i}), .q_o (tok_b));
+
+  // ---- 3. the sums, held across the steps ----------------------------------------------------
+  logic [SUMW-1:0] held_q, sum_in, sum_out;
+  always_comb begin
+    logic signed [VW-1:0]  v_acc;
+    logic signed [GW-1:0]  gx_acc, gy_acc;
+    logic signed [CVW-1:0] v;
+    logic [UW-1:0]         ux, uy;
+    int                    c;
+    sum_in = (tok_b[2:0] == 3'd0) ? '0 : held_q;
+    {gy_acc, gx_acc, v_acc} = sum_in;
+    for (int i = 0; i < CPS; i++) begin
+      c = 32'(tok_b[2:0]) * CPS + i;
+      v  = cv_b[i*CVW +: CVW];
+      ux = ((c & 1) != 0) ? UW'(w0_b) : UW'(1 << WF) - UW'(w0_b);
+      uy = ((c & 2) != 0) ? UW'(w1_b) : UW'(1 << WF) - UW'(w1_b);
+      if (c < 4) begin
+        v_acc = v_acc + VW'(v) * VW'($signed({1'b0, ux})) * VW'($signed({1'b0, uy}));
+        if ((c & 1) != 0) gx_acc = gx_acc + GW'(v) * GW'($signed({1'b0, uy}));
+        else              gx_acc = gx_acc - GW'(v) * GW'($signed({1'b0, uy}));
+        if ((c & 2) != 0) gy_acc = gy_acc + GW'(v) * GW'($signed({1'b0, ux}));
+        else              gy_acc = gy_acc - GW'(v) * GW'($signed({1'b0, ux}));
+      end
+    end
+    sum_out = {gy_acc, gx_acc, v_acc};
+  end
+  always_ff @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) held_q <= '0;
+    else if (en_i && tok_b[3]) held_q <= sum_out;
+  end
+  logic [SUMW-1:0] sum_b;
+  assign sum_b = sum_out;
+
+  // ---- 4. floor and saturate -------------------------------------------------------------------
+  logic [NW-1:0]  n_b;
+  logic [NGW-1:0] gx_b, gy_b;
+  pst_floor_sat #(.InWidth(VW), .InFrac(VF + 2*WF), .OutWidth(NW), .OutFrac(OF)) u_n_sat (
+    .x_i (sum_b[0 +: VW]), .y_o (n_b));
+  pst_floor_sat #(.InWidth(GW), .InFrac(VF + WF - UB), .OutWidth(NGW), .OutFrac(OF)) u_gx_sat (
+    .x_i (sum_b[VW +: GW]), .y_o (gx_b));
+  pst_floor_sat #(.InWidth(GW), .InFrac(VF + WF - UB), .OutWidth(NGW), .OutFrac(OF)) u_gy_sat (
+    .x_i (sum_b[VW + GW +: GW]), .y_o (gy_b));
+  logic [3*NGW-1:0] g_b;
+  always_comb begin
+    g_b = '0;
+    g_b[A0*NGW +: NGW] = gx_b;
+    g_b[A1*NGW +: NGW] = gy_b;
+    g_b[A2*NGW +: NGW] = '0;
+  end
+
+  // The remaining pipeline registers at the output.
+  logic [3:0] tok_o;
+  pst_delay #(.Width(NW + 3*NGW), .Depth(RO)) u_out (
+    .clk_i, .rst_ni, .en_i, .d_i ({g_b, n_b}), .q_o ({grad_o, n_o}));
+  pst_delay #(.Width(4), .Depth(RO), .Reset(1'b1)) u_out_tok (
+    .clk_i, .rst_ni, .en_i, .d_i (tok_b), .q_o (tok_o));
+  assign valid_o = tok_o[3];
+  assign last_o  = tok_o[3] && (32'(tok_o[2:0]) == NoiseSteps - 1);
+
+  logic unused_in;   // lattice bits above the period, the third axis, the token's step
+  assign unused_in = ^{sum_in, lat_i[A0*LB + PL +: LB - PL], lat_i[A1*LB + PL +: LB - PL],
+                       lat_i[A2*LB +: LB], frac_i[A2*LF +: LF], (K == 0) ? lam_i : '0};
+
+  // Assertions
+`ifndef SYNTHESIS
+  initial begin
+    if (NoiseSubband == pst_pkg::NoiseSubbandNone) $error("pst_subband: NoiseSubband is none");
+    if (WF < 1) $error("pst_subband: NoiseLatticeFrac must exceed SubbandTileLog2 - SubbandPeriodLog2");
+    if (NoiseRegs < 0 || NoiseRegs > 6) $error("pst_subband: NoiseRegs must be 0..6");
+    if (K != 0 && K != 4 && K != 8) $error("pst_subband: NoiseSubbandOrientations must be 0, 4 or 8");
+  end
+`endif
+
+endmodule
+
+`default_nettype wire
