@@ -16,6 +16,7 @@
 #include "fixed.h"
 #include "noise_fx.h"
 #include "source_dir.h"
+#include "unit_point_test.h"
 #include "subband.h"
 
 namespace pst {
@@ -30,24 +31,6 @@ Profile fullSubband(NoiseSubband plane, int K = 0) {
     p.noise = hardwareNoise(p);
     p.name = "full formats, subband";
     return p;
-}
-
-struct Point {
-    int lat[3];
-    int64_t frac[3];
-    glm::dvec3 pq;  // the point the unit sees
-};
-
-// The unit's input for a point p (identity transform, as the hardware's octave transform).
-Point unitPoint(const Profile& prof, const glm::dvec3& p) {
-    Point pt;
-    int64_t s[3], M[9] = {}, o[3] = {0, 0, 0};
-    for (int k = 0; k < 3; ++k) s[k] = fx::quantize(p[k], prof.coord.intBits, prof.coord.fracBits);
-    for (int k = 0; k < 3; ++k) M[4 * k] = fx::quantize(1.0, prof.matrix.intBits, prof.matrix.fracBits);
-    octaveTransformFx(prof, s, M, o, pt.lat, pt.frac);
-    for (int k = 0; k < 3; ++k)
-        pt.pq[k] = double(fx::floorShift(s[k], prof.coord.fracBits)) + std::ldexp(double(pt.frac[k]), -prof.noiseLatticeFrac);
-    return pt;
 }
 
 TEST(SubbandFx, RomWordsRoundTheTile) {
@@ -97,7 +80,7 @@ void checkProfile(const Profile& prof, uint64_t seed, int count) {
         glm::dvec3 p(u(rng), u(rng), u(rng));
         if (t % 4 == 1) p = glm::floor(p * 4.0) / 4.0;
         if (t % 4 == 2) p = glm::floor(p);
-        const Point pt = unitPoint(prof, p);
+        const UnitPoint pt = unitPoint(prof, p);
         // K = 4, 8: random weights in [0, 1.0] (0 and 1.0 among them).
         int64_t lamI[8];
         double lamD[8];
@@ -237,7 +220,7 @@ TEST(SubbandFx, PeriodicOnThePlane) {
     for (int t = 0; t < 2000; ++t) {
         const glm::dvec3 x(u(rng), u(rng), u(rng));
         int64_t n0, g0[3], n1, g1[3];
-        const Point a = unitPoint(p, x), b = unitPoint(p, x + glm::dvec3(period, 3.0 * t, -2 * period));
+        const UnitPoint a = unitPoint(p, x), b = unitPoint(p, x + glm::dvec3(period, 3.0 * t, -2 * period));
         subbandFx(p, a.lat, a.frac, nullptr, &n0, g0);
         subbandFx(p, b.lat, b.frac, nullptr, &n1, g1);
         ASSERT_EQ(n0, n1);
@@ -260,7 +243,7 @@ TEST(SubbandFx, CloseToTheReferenceBasis) {
     double se = 0, sr = 0, sf = 0, sfr = 0, gse = 0, gr = 0, gf = 0, gfr = 0;
     const int n = 20000;
     for (int t = 0; t < n; ++t) {
-        const Point pt = unitPoint(p, glm::dvec3(u(rng), u(rng), u(rng)));
+        const UnitPoint pt = unitPoint(p, glm::dvec3(u(rng), u(rng), u(rng)));
         int64_t v, g[3];
         subbandFx(p, pt.lat, pt.frac, nullptr, &v, g);
         glm::dvec3 gref;

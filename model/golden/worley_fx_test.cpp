@@ -15,6 +15,7 @@
 #include "noise_fx.h"
 #include "worley.h"
 #include "source_dir.h"
+#include "unit_point_test.h"
 
 namespace pst {
 namespace {
@@ -31,26 +32,8 @@ Profile fullWorley(WorleySearchKind search, int points, int order) {
     return p;
 }
 
-struct Point {
-    int lat[3];
-    int64_t frac[3];
-    glm::dvec3 pq;  // the point the unit sees
-};
-
-// The unit's input for a point p (identity transform, as the hardware's octave transform).
-Point unitPoint(const Profile& prof, const glm::dvec3& p) {
-    Point pt;
-    int64_t s[3], M[9] = {}, o[3] = {0, 0, 0};
-    for (int k = 0; k < 3; ++k) s[k] = fx::quantize(p[k], prof.coord.intBits, prof.coord.fracBits);
-    for (int k = 0; k < 3; ++k) M[4 * k] = fx::quantize(1.0, prof.matrix.intBits, prof.matrix.fracBits);
-    octaveTransformFx(prof, s, M, o, pt.lat, pt.frac);
-    for (int k = 0; k < 3; ++k)
-        pt.pq[k] = double(fx::floorShift(s[k], prof.coord.fracBits)) + std::ldexp(double(pt.frac[k]), -prof.noiseLatticeFrac);
-    return pt;
-}
-
 // Compares one point: every F_k and grad F_k of the trace, n and grad n.
-void checkPoint(const Profile& prof, const Point& pt, const double coef[4], double* worst) {
+void checkPoint(const Profile& prof, const UnitPoint& pt, const double coef[4], double* worst) {
     const int NF = prof.noiseOutFrac + prof.noiseGuardBits, OF = prof.noiseOutFrac;
     int64_t creg[4];
     double cq[4], sumAbs = 0;
@@ -98,7 +81,7 @@ void checkProfile(const Profile& prof, uint64_t seed, int count) {
     const double coefs[][4] = {{1, 0, 0, 0}, {-1, 1, 0, 0}, {0.5, 1.25, -0.75, 2}, {-3.5, 2.75, 1, -1}};
     double worst[4] = {0, 0, 0, 0};
     for (int t = 0; t < count; ++t) {
-        const Point pt = unitPoint(prof, glm::dvec3(u(rng), u(rng), u(rng)));
+        const UnitPoint pt = unitPoint(prof, glm::dvec3(u(rng), u(rng), u(rng)));
         checkPoint(prof, pt, coefs[t % 4], worst);
         if (::testing::Test::HasFatalFailure()) return;
     }
@@ -136,7 +119,7 @@ TEST(WorleyFx, SpecialPoints) {
     for (int64_t c = -20; c <= 20; ++c) {
         const WorleyCube cube = worleyRomCube(worleyRomIndex(c, 3, -c), 4);
         const glm::dvec3 x = glm::dvec3(double(c), 3.0, double(-c)) + cube.offset[0];
-        const Point pt = unitPoint(p, x);
+        const UnitPoint pt = unitPoint(p, x);
         int64_t n, g[3];
         WorleyFxTrace tr;
         const int64_t creg[4] = {4096, 0, 0, 0};

@@ -94,16 +94,16 @@ std::string hardwareUnsupported(const Profile& p, const Texture& tex) {
         return where + ": basis '" + toString(tex.noise.basis) + "' has no hardware unit in profile '" + p.name +
                "' (its noise unit computes '" + toString(p.noise.basis) + "'); " + how;
     }
+    // "FILE:LINE: textures.NAME.noise." (the noise table's line) when the scene named it.
+    const NoiseOptions& n = tex.noise;
+    const std::string& src = tex.basisSource;
+    const std::string where = src.size() > 5 && src.compare(src.size() - 5, 5, "basis") == 0
+                                  ? src.substr(0, src.size() - 5)
+                                  : "texture '" + tex.name + "': noise.";
+    const std::string prof = "profile '" + p.name + "'";
     if (p.noise.basis == NoiseBasis::Worley) {
         // The worley unit computes one variant (rtl/noise/pst_worley.sv): the scene must ask for it,
         // so that its reference is the variant the hardware computes.
-        const NoiseOptions& n = tex.noise;
-        // "FILE:LINE: textures.NAME.noise." (the noise table's line) when the scene named it.
-        const std::string src = tex.basisSource;
-        const std::string where = src.size() > 5 && src.compare(src.size() - 5, 5, "basis") == 0
-                                      ? src.substr(0, src.size() - 5)
-                                      : "texture '" + tex.name + "': noise.";
-        const std::string prof = "profile '" + p.name + "'";
         if (n.search != p.noise.search || n.maxPoints != p.noise.maxPoints || n.cubes != WorleyCubes::Rom256)
             return where + "search/max_points/cubes: " + toString(n.search) + ", " + std::to_string(n.maxPoints) + ", " +
                    toString(n.cubes) + "; the worley unit of " + prof + " computes " + toString(p.noise.search) +
@@ -124,12 +124,6 @@ std::string hardwareUnsupported(const Profile& p, const Texture& tex) {
         // The subband unit samples one tile (rtl/noise/pst_subband.sv): the scene must ask for the
         // tiles its ROM is sampled from, on its plane, so that its reference is what the hardware
         // computes (the isotropic sum of a scale does not depend on the orientations).
-        const NoiseOptions& n = tex.noise;
-        const std::string src = tex.basisSource;
-        const std::string where = src.size() > 5 && src.compare(src.size() - 5, 5, "basis") == 0
-                                      ? src.substr(0, src.size() - 5)
-                                      : "texture '" + tex.name + "': noise.";
-        const std::string prof = "profile '" + p.name + "'";
         if (n.param != p.noise.param)
             return where + "param: '" + toString(n.param) + "'; the subband unit of " + prof + " samples the plane '" +
                    toString(p.noise.param) + "' (noise.subband)";
