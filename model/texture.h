@@ -83,6 +83,8 @@ struct Texture {
     std::string basisSource;
     // "FILE:LINE: FIELD" of the colour map's size (set by the scene parser), for the same reason.
     std::string clutSource;
+    // "FILE:LINE: FIELD" of bandlimit when the scene gives it (set by the scene parser), the same.
+    std::string bandlimitSource;
 };
 
 // The per-fragment result of the texture pipeline.

@@ -391,7 +391,7 @@ def test_12_subband_orientations_key(tmp_path):
     ('{ basis = "subband", param = "xz", orientations = 8, weights = "least_squares" }', "anisotropic",
      r":\d+: textures\.t\.noise\.weights: the subband unit of profile 'reduced_subband_k8' computes the heuristic weights"),
     ('{ basis = "subband", param = "xz", orientations = 8 }', "isotropic",
-     r"texture 't': bandlimit: 'isotropic'; the subband unit of profile 'reduced_subband_k8' filters with its "
+     r":\d+: textures\.t\.bandlimit: 'isotropic'; the subband unit of profile 'reduced_subband_k8' filters with its "
      r"anisotropic weights"),
 ])
 def test_12_subband_filter_scene_on_the_unit(tmp_path, noise, bandlimit, pattern):
@@ -400,3 +400,16 @@ def test_12_subband_filter_scene_on_the_unit(tmp_path, noise, bandlimit, pattern
     out = tmp_path / "out"
     refused(["render", s, "--profile", prof, "--model", "golden", "--size", 8, "-o", out, "-q"],
             (re.escape(str(s)) if pattern.startswith(":") else "") + pattern, [out])
+
+
+# A bandlimit the profile cannot do, named by the scene's line (the fade unit missing; a
+# reference-only option).
+@pytest.mark.parametrize("bandlimit,pattern", [
+    ("isotropic", r"textures\.t\.bandlimit: profile 'reduced' has no fade unit"),
+    ("footprint", r"textures\.t\.bandlimit: 'footprint' is in the reference model only"),
+])
+def test_12_bandlimit_the_profile_cannot_do_names_the_line(tmp_path, bandlimit, pattern):
+    s = subband_scene(tmp_path, '{ basis = "rayshade" }', bandlimit)
+    out = tmp_path / "out"
+    refused(["render", s, "--profile", "reduced", "--model", "golden", "--size", 8, "-o", out, "-q"],
+            re.escape(str(s)) + r":\d+: " + pattern, [out])

@@ -314,6 +314,7 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
                             "off, footprint, isotropic or anisotropic");
     if (std::string why = bandlimitUnsupported(tex, tex.bandlimit); !why.empty())
         c.fail(find(t, "bandlimit"), join(path, "bandlimit"), why);
+    if (const toml::node* bn = find(t, "bandlimit")) tex.bandlimitSource = c.at(bn, join(path, "bandlimit"));
     tex.filter = getEnum(c, t, path, "filter", tex.filter, parseFilterKind, "none, mip, mip_linear, sat, box or trapezoid");
     tex.norm = getEnum(c, t, path, "norm", tex.norm, parseGradNorm, "euclid, max_half_min or l1");
     tex.clut = parseColorMap(c, requireTable(c, t, path, "colormap"), join(path, "colormap"));

@@ -76,6 +76,7 @@ void overrideTextures(Scene& scene, const std::string& bandlimit, const std::str
     for (auto& t : scene.textures) {
         if (!bandlimit.empty()) {
             parseBandlimit(bandlimit, &t.bandlimit);
+            t.bandlimitSource.clear();   // the value is the option's, not the scene line's
             if (std::string why = bandlimitUnsupported(t, t.bandlimit); !why.empty())
                 throw InputError("--bandlimit: " + bandlimit + ": texture '" + t.name + "': " + why);
         }

@@ -72,16 +72,18 @@ std::string hardwareUnsupported(const Profile& p, const Texture& tex) {
     // A subband unit with its anisotropic filter (noise.subband_orientations): the table is the
     // filter's weights, so bandlimit is anisotropic or off.
     const bool sbFilter = p.noise.basis == NoiseBasis::Subband && p.noiseSubbandOrientations != 0;
+    // "FILE:LINE: textures.NAME.bandlimit" when the scene gave it.
+    const std::string bl = tex.bandlimitSource.empty() ? "texture '" + tex.name + "': bandlimit" : tex.bandlimitSource;
     if (sbFilter && tex.noise.basis == NoiseBasis::Subband) {
         if (tex.bandlimit != Bandlimit::Off && tex.bandlimit != Bandlimit::Anisotropic)
-            return "texture '" + tex.name + "': bandlimit: '" + toString(tex.bandlimit) + "'; the subband unit of profile '" +
+            return bl + ": '" + toString(tex.bandlimit) + "'; the subband unit of profile '" +
                    p.name + "' filters with its anisotropic weights (write \"anisotropic\" or \"off\")";
     } else if (tex.bandlimit == Bandlimit::Isotropic && !p.bandlimit())
-        return "texture '" + tex.name + "': bandlimit: profile '" + p.name +
+        return bl + ": profile '" + p.name +
                "' has no fade unit (filter.bandlimit = \"off\"); use a profile with filter.bandlimit = \"isotropic\" "
                "(e.g. sim/test_profiles/reduced_bandlimit.toml) or render it without --profile";
     else if (tex.bandlimit != Bandlimit::Off && tex.bandlimit != Bandlimit::Isotropic)
-        return "texture '" + tex.name + "': bandlimit: '" + toString(tex.bandlimit) +
+        return bl + ": '" + toString(tex.bandlimit) +
                "' is in the reference model only (the hardware's is 'isotropic'); render it without --profile";
     // The profile's noise unit computes one basis (hardwareBasis of its interp / corner / hash).
     if (tex.noise.basis != p.noise.basis) {
