@@ -11,12 +11,14 @@ net is routed without it), magic reads the routed DEF (migrate), netgen compares
 netlist (LVS), after magic has written the GDS and checked the design rules (DRC).
 """
 import dataclasses
+import json
 import pathlib
 import re
 import shutil
 import time
 
 from .. import procs
+from . import islands
 
 SCRIPTS = pathlib.Path("/usr/lib/qflow/scripts")
 TECH = "osu018"
@@ -179,6 +181,48 @@ def drc(p: Project) -> float:
                 ok=lambda rc, out: rc == 0 or re.search(r"^drc = \d+", out, re.M) is not None)
 
 
+def drc_count(p: Project) -> int:
+    m = re.search(r"^drc = (\d+)", (p.log / "drc.sh.out").read_text(), re.M)
+    if not m:
+        raise FlowError(f"{p.log / 'drc.sh.out'}: no DRC count")
+    return int(m.group(1))
+
+
+def find_islands(p: Project) -> list:
+    """The minimum-area errors magic finds in the block's layout: (layer, x, y) in DEF units."""
+    tcl = p.layout / f"islands_{p.name}.tcl"
+    tcl.write_text(islands.ISLANDS_TCL.format(lef=LEF, cell=p.name))
+    rc, out, err = procs.run(["magic", "-dnull", "-noconsole", tcl], cwd=p.layout, timeout=STEP_TIMEOUT)
+    (p.log / "islands.out").write_text(out + "\n" + err)
+    scale = re.search(r"^SCALE ([0-9.]+)", out, re.M)
+    if rc != 0 or not scale:
+        raise FlowError(f"magic's DRC listing of {p.name} failed (exit {rc}; log {p.log / 'islands.out'})")
+    units = float(re.search(r"^UNITS DISTANCE MICRONS (\d+)", (p.layout / f"{p.name}.def").read_text(), re.M).group(1))
+    f = float(scale.group(1)) * units
+    return [(layer, round(x * f), round(y * f)) for layer, x, y in islands.parse_magic_islands(out)]
+
+
+def drc_repair(p: Project) -> float:
+    """DRC; when magic finds minimum-area islands, the routed DEF repaired (pstlib/pnr/islands.py)
+    and the layout read, written and checked again. The repair counts go to log/islands.json."""
+    t0 = time.time()
+    drc(p)
+    counts = {"moved": 0, "removed": 0, "left": 0, "drc_before": drc_count(p)}
+    if counts["drc_before"]:
+        found = find_islands(p)
+        if found:
+            routed = p.layout / f"{p.name}.def"
+            text, c = islands.repair(routed.read_text(), found, LEF.read_text())
+            counts.update(c)
+            if c["moved"] or c["removed"]:
+                routed.write_text(text)
+                migrate(p)
+                gds(p)
+                drc(p)
+    (p.log / "islands.json").write_text(json.dumps(counts) + "\n")
+    return time.time() - t0
+
+
 def gds(p: Project) -> float:
     _clear_later_logs(p, "drc.log", "lvs.log")
     return _run(p, "gdsii.sh", [p.path, p.name], [p.layout / f"{p.name}.gds"], "gdsii.log")
@@ -230,19 +274,17 @@ def run_steps(p: Project, resume: bool = False) -> dict:
 # The GDS, then DRC, then LVS: gdsii.sh refuses to run after a DRC or LVS log that ends in an
 # error, drc.sh after such an LVS log; the counts are reported rather than hidden.
 STEPS = [("synthesize", synthesize), ("place", place), ("route", route), ("migrate", migrate),
-         ("gds", gds), ("drc", drc), ("lvs", lvs)]
+         ("gds", gds), ("drc", drc_repair), ("lvs", lvs)]
 
 
 def results(p: Project) -> dict:
     """DRC errors (magic, against the LEF cell views: Debian's OSU018 has no cell GDS) and the
     LVS verdict (netgen: layout extracted by magic against qflow's netlist) of a finished run."""
-    drc_out = (p.log / "drc.sh.out").read_text()
-    m = re.search(r"^drc = (\d+)", drc_out, re.M)
-    if not m:
-        raise FlowError(f"{p.log / 'drc.sh.out'}: no DRC count")
     lvs_out = (p.log / "lvs.sh.out").read_text()
     e = re.search(r"Total errors = (\d+)", lvs_out)
     if not e:
         raise FlowError(f"{p.log / 'lvs.sh.out'}: no LVS error count")
-    return {"drc_errors": int(m.group(1)), "lvs_errors": int(e.group(1)),
+    fixed = p.log / "islands.json"
+    return {"drc_errors": drc_count(p), "lvs_errors": int(e.group(1)),
+            "drc_islands_repaired": json.loads(fixed.read_text()) if fixed.exists() else None,
             "lvs_match": "Circuits match uniquely" in lvs_out and int(e.group(1)) == 0}
