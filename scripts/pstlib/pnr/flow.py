@@ -15,7 +15,7 @@ import time
 from ..paths import ROOT
 from ..synth import flow as synth_flow, liberty, sta as synth_sta
 from ..synth.tools import SDC, run_sta, run_yosys
-from . import blif, buffering, layout, partition, qflow, report, spef, timing
+from . import assembly, blif, buffering, layout, partition, qflow, report, spef, timing
 
 STANDIN = "PST_MEMRD*"    # the memory read stand-ins: macros, outside every block
 
@@ -64,7 +64,11 @@ def run_block(name: str, info: dict, work: pathlib.Path, lib: pathlib.Path, out:
     # The netlist as placed, written from the BLIF graywolf placed (pstlib/pnr/blif.py): qflow's
     # blif2Verilog garbles the port names of the large blocks and merges ports whose names
     # hold a bus index inside a path (g_ch[0].sn_d[1] -> g_ch[0]).
-    routed_v = blif.to_verilog((p.synthesis / f"{module}.blif").read_text())
+    # qflow's placement step reassigns each flip-flop to its nearest clock buffer and writes the
+    # netlist it placed as NAME_anno.blif (the routed DEF's connections); NAME.blif keeps the
+    # assignment before placement.
+    placed = p.synthesis / f"{module}_anno.blif"
+    routed_v = blif.to_verilog((placed if placed.exists() else p.synthesis / f"{module}.blif").read_text())
     sta_v = p.path / "sta.v"
     sta_v.write_text(timing.without_fill(routed_v))
     spef_text, unmatched = spef.to_spef((p.layout / f"{module}.rc").read_text(), spef.netlist_pins(routed_v),
@@ -134,7 +138,20 @@ def place_and_route(profile, opts: Options) -> dict:
                              "error": str(e).splitlines()[0]}
     if not recs:
         raise RuntimeError("no block finished: " + "; ".join(f"{k}: {v['error']}" for k, v in failed.items()))
+    # The whole chip timed from its blocks' routed netlists and parasitics; a block without a
+    # layout (not finished, or not run) from its netlist before layout.
+    t_asm = time.time()
+    routed = {r["block"]: (work / "qflow" / r["block"] / "sta.v", work / "qflow" / r["block"] / f"blk_{r['block']}.spef")
+              for r in recs}
+    unrouted = {k: work / "blocks" / f"blk_{k}.blif" for k in blocks if k not in routed}
+    try:
+        assembled = assembly.time_design(work / "assembly", work / "blocks" / partition.ASSEMBLY_BLIF, routed,
+                                         unrouted, [lib, swork / "standin.lib"], SDC)
+    except (RuntimeError, ValueError, OSError) as e:
+        assembled = {"error": str(e).splitlines()[0]}
+    assembled["seconds_total"] = round(time.time() - t_asm, 1)
     result = report.assemble(name, synth, recs, round(t_synth, 1), round(time.time() - t0, 1))
+    result["assembled"] = assembled
     result["buffering"] = buf
     result["failed_blocks"] = failed
     result["skipped_blocks"] = sorted(set(blocks) - set(todo))      # left out with --block

@@ -16,6 +16,7 @@ import re
 LIMIT = 25000
 MIN_CELLS = 2000
 TOP = "pst_top"
+ASSEMBLY_BLIF = "assembly.blif"
 
 
 def parent(path: str) -> str:
@@ -93,7 +94,9 @@ def list_script(libs: list, netlist, top: str, out) -> str:
 def split_script(libs: list, netlist, top: str, selections: dict, outdir, keep_types: str) -> str:
     """Yosys: the flattened design's blocks (name -> a `select -read` file of `top/cell` lines)
     each moved into a module blk_NAME (`submod`: nets crossing its edge become ports) and
-    written alone to OUTDIR/blk_NAME.v. Cells of type KEEP_TYPES (the memory stand-ins) stay
+    written alone to OUTDIR/blk_NAME.v (and .blif, its pre-layout netlist for the assembled
+    timing when it has no layout), and the top level that connects them to
+    OUTDIR/ASSEMBLY_BLIF. Cells of type KEEP_TYPES (the memory stand-ins) stay
     outside every block."""
     lines = [*(f"read_liberty -lib {lib}" for lib in libs), f"read_verilog {netlist}",
              f"hierarchy -top {top}", "flatten"]
@@ -103,5 +106,10 @@ def split_script(libs: list, netlist, top: str, selections: dict, outdir, keep_t
     lines += ["design -save split"]
     for name in selections:
         lines += ["design -load split", f"hierarchy -top blk_{name}",
-                  f"write_verilog -noattr {outdir}/blk_{name}.v"]
+                  f"write_verilog -noattr {outdir}/blk_{name}.v",
+                  f"write_blif -buf BUFX2 A Y -gates {outdir}/blk_{name}.blif"]
+    # The top level alone (blocks as black boxes, memory stand-ins, net aliases as .conn):
+    # what connects the blocks (pstlib/pnr/assembly.py).
+    lines += ["design -load split", f"hierarchy -top {top}", "blackbox blk_*",
+              f"write_blif -conn -gates {outdir}/{ASSEMBLY_BLIF}"]
     return "\n".join(lines) + "\n"
