@@ -68,6 +68,16 @@ def derate_markdown(root: Path) -> str:
     L.append(f"Derate applied to every pre-layout Fmax: **{d['ratio']:.3f}** (the worst routed block's). "
              f"Slowest routed block: `{d['slowest_block']}`, {d['slowest_block_pre_layout_fmax_mhz']:.1f} MHz "
              f"pre-layout, {d['post_route_fmax_mhz']:.1f} MHz post-route.")
+    if d.get("assembled_fmax_mhz"):
+        cp = d["assembled_critical_path"]
+        pre = d.get("assembled_blocks_without_layout") or []
+        L.append("")
+        L.append(f"The chip assembled from its routed blocks (every block's routed netlist and SPEF under its "
+                 f"instance, the clock propagated through each block's own buffers, no wire between blocks"
+                 + (f"; without layout: {', '.join(f'`{b}`' for b in pre)}" if pre else "")
+                 + f"): **{d['assembled_fmax_mhz']:.1f} MHz** post-route, critical path `{cp['from']}` -> "
+                 f"`{cp['to']}` ({cp['arrival_ns']:.2f} ns, {cp['cells']} cells, slack {cp['slack_ns']:+.3f} ns "
+                 f"at 10 ns).")
     return "\n".join(L) + "\n"
 
 

@@ -33,7 +33,9 @@ def from_baseline(name: str, b: dict, derate) -> dict:
     return {"profile": name, "logic_ge": b["logic_ge"], "memory_ge": b["memory_ge"], "total_ge": b["total_ge"],
             "flip_flops": b["flip_flops"], "fmax_mhz": b.get("fmax_mhz"),
             "signoff_sdc": b.get("fmax_setup_uncertainty_ns") is not None,
-            "post_route_mhz": derate["post_route_fmax_mhz"] if derate and derate["profile"] == name else None,
+            "post_route_mhz": ((derate.get("assembled_fmax_mhz") or derate["post_route_fmax_mhz"])
+                               if derate and derate["profile"] == name else None),
+            "post_route_assembled": bool(derate and derate["profile"] == name and derate.get("assembled_fmax_mhz")),
             "post_route_partial": bool(derate and derate["profile"] == name and derate.get("not_routed")),
             "derate": derate["ratio"] if derate else None,
             "clocks_per_pixel": b["clocks_per_pixel"], "worst_psnr": _worst_psnr(b.get("psnr_db")),
@@ -49,7 +51,9 @@ def from_synth(s: dict, pnr=None, psnr=None) -> dict:
     d = s.get("fmax_derate")
     return {"profile": s["profile"], "logic_ge": s.get("logic_ge"), "memory_ge": s.get("memory_ge"),
             "total_ge": s.get("total_ge"), "flip_flops": s.get("flip_flops"), "fmax_mhz": s.get("fmax_mhz"),
-            "signoff_sdc": "constraints" in tm, "post_route_mhz": pnr["post_route_fmax_mhz"] if pnr else None,
+            "signoff_sdc": "constraints" in tm,
+            "post_route_mhz": ((pnr.get("assembled") or {}).get("fmax_mhz") or pnr["post_route_fmax_mhz"]) if pnr else None,
+            "post_route_assembled": bool(pnr and (pnr.get("assembled") or {}).get("fmax_mhz")),
             "post_route_partial": bool(pnr and (pnr.get("failed_blocks") or pnr.get("skipped_blocks"))),
             "derate": d["ratio"] if d else None, "clocks_per_pixel": s.get("clocks_per_pixel"),
             "worst_psnr": _worst_psnr(psnr), "paper_gates": s.get("paper_gates"),
@@ -60,9 +64,14 @@ def from_synth(s: dict, pnr=None, psnr=None) -> dict:
 
 
 def _clock(p: dict):
-    """(MHz, label) the throughput is quoted at: post-route, else pre-layout derated, else
-    pre-layout."""
+    """(MHz, label) the throughput is quoted at: post-route (the chip assembled from its routed
+    blocks where the place and route timed it, else its slowest block), else pre-layout
+    derated, else pre-layout."""
     if p["post_route_mhz"]:
+        if p.get("post_route_assembled"):
+            # The chip timed from its routed blocks; a block without a layout is in it before layout.
+            return p["post_route_mhz"], "post-route, blocks assembled" + (
+                "; some without layout" if p.get("post_route_partial") else "")
         return p["post_route_mhz"], "post-route" + (", timed blocks only" if p.get("post_route_partial") else "")
     if p["fmax_mhz"] and p["derate"]:
         return round(p["fmax_mhz"] * p["derate"], 1), "derated"

@@ -22,6 +22,20 @@ def test_clock_is_post_route_else_derated_else_pre_layout():
     assert rows["worst paper scene"] == ["planet 41.0 dB"] * 3
 
 
+def test_post_route_from_the_assembled_chip_when_the_place_and_route_timed_it():
+    derate = {"profile": "reduced", "ratio": 0.9, "post_route_fmax_mhz": 104.3, "not_routed": ["u_regs"],
+              "assembled_fmax_mhz": 112.1}
+    base = {"logic_ge": 1000, "memory_ge": 500, "total_ge": 1500, "flip_flops": 10, "fmax_mhz": 116.6,
+            "clocks_per_pixel": 2}
+    p = silicon_table.from_baseline("reduced", base, derate)
+    rows = {r[0]: r[1:] for r in silicon_table.rows([p])}
+    assert rows["Fmax post-route, or pre-layout x derate"] == ["112.1 MHz (post-route, blocks assembled; some without layout)"]
+    del derate["assembled_fmax_mhz"]
+    p = silicon_table.from_baseline("reduced", base, derate)
+    rows = {r[0]: r[1:] for r in silicon_table.rows([p])}
+    assert rows["Fmax post-route, or pre-layout x derate"] == ["104.3 MHz (post-route, timed blocks only)"]
+
+
 def test_blocks_union_of_profiles_top_last():
     a = profile(profile="a", block_ge={"top": 5, "noise": 700, "quadric": 295})
     b = profile(profile="b", block_ge={"quadric_serial": 90, "top": 5, "noise": 905})

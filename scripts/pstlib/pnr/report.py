@@ -142,4 +142,10 @@ def write_derate(r: dict, path) -> None:
            "slowest_block_pre_layout_fmax_mhz": slow["sta"]["pre_layout"]["fmax_mhz"],
            "block_ratios": {b["block"]: b["fmax_ratio"] for b in r["blocks"]},
            "method": r["method"]}
+    a = r.get("assembled") or {}
+    if "fmax_mhz" in a:
+        # The whole chip timed from its routed blocks (pstlib/pnr/assembly.py).
+        doc.update({"assembled_fmax_mhz": a["fmax_mhz"], "assembled_critical_path": a["critical_path"],
+                    "assembled_hold_slack_ns": a["hold_slack_ns"],
+                    "assembled_blocks_without_layout": a["blocks_without_layout"]})
     pathlib.Path(path).write_text(json.dumps(doc, indent=2) + "\n")
