@@ -48,3 +48,19 @@ def test_gives_up_below_the_least_density(project):
     with pytest.raises(qflow.Unrouted):
         qflow.run_steps(p)
     assert qflow.density(p) == pytest.approx(0.4)
+
+
+def test_spice_ports_rewritten_from_the_blif():
+    # blif2BSpice's header for a large block: one long name cut in pieces and garbled bytes.
+    spc = (b"*SPICE netlist\n.include cells.sp\n.subckt blk vdd gnd clk_i u.o \xc2\xb5`\xc2\xae ct_o_i[97] y\n"
+           b"XINVX1_1 vdd gnd clk_i y INVX1\n.ends\n")
+    blif_text = ".model blk\n.inputs clk_i u.oct_o_i[97]\n.outputs y\n.gate INVX1 A=clk_i Y=y\n.end\n"
+    out = qflow.spice_ports(spc, qflow.blif_ports(blif_text))
+    assert out.split(b"\n")[2] == b".subckt blk vdd gnd clk_i u.oct_o_i[97] y"
+    # Only the header changes.
+    assert out.split(b"\n")[3:] == spc.split(b"\n")[3:] and out.split(b"\n")[:2] == spc.split(b"\n")[:2]
+
+
+def test_spice_without_subckt_is_an_error():
+    with pytest.raises(qflow.FlowError, match="subckt"):
+        qflow.spice_ports(b"* nothing\n", ["a"])
