@@ -5,7 +5,8 @@ large blocks as bytes that are not text (u_octave, the noise unit of reduced).
 Instances are named as qflow's blif2cel names the placed cells: CELL_N, N counting each cell
 type from 1 in BLIF order (the routed DEF's component names). Nets are the BLIF's names with
 every character other than a letter, a digit or _ made _ (as blif2Verilog -c does); a
-collision is an error.
+collision is an error. Pins on Yosys's constant nets ($true, $false, $undef: a block's netlist
+before qflow) are left unconnected: timing ignores them.
 """
 import collections
 import re
@@ -37,10 +38,14 @@ def to_verilog(blif_text: str) -> str:
             outs += parts[1:]
         elif parts[0] in (".gate", ".subckt"):
             gates.append((parts[1], [p.split("=", 1) for p in parts[2:]]))
+        elif parts[0] == ".names" and parts[1:] in (["$true"], ["$false"], ["$undef"]):
+            continue        # Yosys's constant drivers: pins on them are left unconnected
         elif parts[0] == ".end":
             break
         elif parts[0].startswith("."):
             raise ValueError(f"BLIF construct not expected in a mapped netlist: {parts[0]}")
+        elif parts != ["1"]:
+            raise ValueError(f"BLIF line not expected in a mapped netlist: {line[:60]}")
     if model is None:
         raise ValueError("BLIF has no .model")
     names = {}
@@ -53,6 +58,8 @@ def to_verilog(blif_text: str) -> str:
             names[n] = v
         return names[n]
     ports = [name(n) for n in ins + outs]
+    const = {"$true", "$false", "$undef"}
+    gates = [(cell, [(p, n) for p, n in pins if n not in const]) for cell, pins in gates]
     nets = sorted({name(net) for _, pins in gates for _, net in pins} - set(ports))
     out = [f"module {model} ({', '.join(ports)});"]
     out += [f"input {name(n)};" for n in ins] + [f"output {name(n)};" for n in outs]

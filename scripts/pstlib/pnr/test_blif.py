@@ -29,3 +29,14 @@ def test_names_and_instances():
 def test_collision_is_an_error():
     with pytest.raises(ValueError, match="collide"):
         blif.to_verilog(".model m\n.inputs a.b a_b\n.outputs\n.end\n")
+
+
+def test_constant_pins_left_unconnected():
+    v = blif.to_verilog(".model m\n.inputs a\n.outputs y\n.names $false\n.names $true\n1\n.names $undef\n"
+                        ".gate NAND2X1 A=a B=$true Y=y\n.end\n")
+    assert "NAND2X1 NAND2X1_1 ( .A(a), .Y(y) );" in v and "$" not in v
+
+
+def test_logic_in_a_mapped_netlist_is_an_error():
+    with pytest.raises(ValueError, match="not expected"):
+        blif.to_verilog(".model m\n.inputs a\n.outputs y\n.names a y\n1 1\n.end\n")
