@@ -99,6 +99,20 @@ def run_block(name: str, info: dict, work: pathlib.Path, lib: pathlib.Path, out:
             "seconds": times, "png": png.name}
 
 
+def buffered_netlist(name: str, info: dict, work: pathlib.Path, lib: pathlib.Path) -> pathlib.Path:
+    """A block without a layout as qflow buffers it before placement (its clock and fanout
+    trees from blifFanout: the netlist the assembled timing uses for it, without wires); the
+    block's own netlist when qflow fails on it."""
+    module = f"blk_{name}"
+    try:
+        p = qflow.setup(work / "qflow" / name, module, info["netlist"], lib, resume=True)
+        if not (p.log / "synthesize.done").exists():
+            qflow.synthesize(p)
+        return p.synthesis / f"{module}.blif"
+    except qflow.FlowError:
+        return work / "blocks" / f"{module}.blif"
+
+
 def place_and_route(profile, opts: Options) -> dict:
     """The whole profile: synthesis, cut, every block, the record OUT/NAME.json (and .md)."""
     profile = pathlib.Path(profile)
@@ -143,7 +157,7 @@ def place_and_route(profile, opts: Options) -> dict:
     t_asm = time.time()
     routed = {r["block"]: (work / "qflow" / r["block"] / "sta.v", work / "qflow" / r["block"] / f"blk_{r['block']}.spef")
               for r in recs}
-    unrouted = {k: work / "blocks" / f"blk_{k}.blif" for k in blocks if k not in routed}
+    unrouted = {k: buffered_netlist(k, blocks[k], work, lib) for k in blocks if k not in routed}
     try:
         assembled = assembly.time_design(work / "assembly", work / "blocks" / partition.ASSEMBLY_BLIF, routed,
                                          unrouted, [lib, swork / "standin.lib"], SDC)
