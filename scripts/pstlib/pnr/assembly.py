@@ -14,8 +14,9 @@ the project's SDC at the chip's own pins.
   in the paths that cross blocks; the setup uncertainty keeps only the SDC's jitter
   (timing.POST_ROUTE_SETUP_UNCERTAINTY), as in the blocks' own post-route runs.
 - Not modelled: wires between blocks (blocks are taken to abut: a block pin's net at the top
-  has no parasitics) and a block without a routed layout is timed from its pre-layout netlist
-  (no wires), named in the record.
+  has no parasitics) and a top-level clock driver (clk_i switches ideally into every block's
+  first clock buffer, the same for all blocks); a block without a routed layout is timed from
+  its netlist before layout as qflow buffers it (no wires), named in the record.
 """
 import collections
 import pathlib
