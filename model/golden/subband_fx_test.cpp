@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "arith_fx.h"
 #include "contract.h"
 #include "fixed.h"
 #include "noise_fx.h"
@@ -152,10 +153,31 @@ TEST(SubbandFx, OrientedTilesSumToTheIsotropicOne) {
     }
 }
 
+// The corrected lg against log2: for every length up to 2^16 (the 4 mantissa bits exact below
+// 2^4, truncated above) lg L - lg_fx lies in -0.0376 .. +0.0875 octave (header's bound), and both
+// ends are reached (the bound is the correction's, not a loose one).
+TEST(SubbandFx, CorrectedLgWithinItsBound) {
+    const Profile p = reducedSubband();
+    double lo = 1, hi = -1;
+    for (uint64_t len = 1; len < (uint64_t(1) << 16); ++len) {
+        const double lg = double(subbandLgCorrectFx(mitchellLgFx(p, len))) / (1 << contract::kFadeLgFrac);
+        const double e = std::log2(double(len)) - p.jacobian.fracBits - lg;
+        lo = std::min(lo, e);
+        hi = std::max(hi, e);
+    }
+    EXPECT_GE(lo, -0.0376);
+    EXPECT_LE(hi, 0.0875);
+    EXPECT_LT(lo, -0.03);
+    EXPECT_GT(hi, 0.08);
+}
+
 // The weights against eq. 4's Gaussian: M = m I, so c_i . J of the octave is m c_i . J_s and the
-// hardware's lg is off only by the direction constants (2^-9 relative), Mitchell's lg (at most
-// 0.086 octave low) and the table's quarter octave: lambda_fx lies between the exact lambda of the
-// footprint scaled by 2^-0.34 and by 2^+0.25 (each edge's factor apart), up to the table's rounding.
+// hardware's lg is off only by the direction constants (2^-9 relative), Mitchell's lg with its
+// mantissa corrected (the true lg is the unit's + -0.0376 .. +0.0875 octave: the 16 mantissa steps'
+// ends against floor(16 lg(1 + (m + 1/2) / 16)) / 16) and the table's quarter octave. With the
+// driver's table (h at each entry's top end, lg nu = -FadeLgLo + (k + 1) / 4) the table's lg is the
+// true lg + -0.0875 .. +0.2876: lambda_fx lies between the exact lambda of the footprint scaled by
+// 2^-0.09 and by 2^+0.29 (each edge's factor apart), up to the table's rounding.
 TEST(SubbandFx, WeightsAreTheGaussianWithinTheTablesStep) {
     for (int K : {4, 8}) {
         Profile p = reducedSubband();
@@ -166,7 +188,7 @@ TEST(SubbandFx, WeightsAreTheGaussianWithinTheTablesStep) {
         int64_t table[contract::kFadeEntries];
         const int64_t one = int64_t(1) << contract::kFadeFrac;
         for (int k = 0; k < contract::kFadeEntries; ++k)
-            table[k] = std::llround(h(std::exp2(-contract::kFadeLgLo + (k + 0.5) / 4.0)) * double(one));
+            table[k] = std::llround(h(std::exp2(-contract::kFadeLgLo + (k + 1.0) / 4.0)) * double(one));
         std::mt19937_64 rng(5 + K);
         std::uniform_real_distribution<double> u(-1.0, 1.0), lm(-2.0, 3.0);
         int checked = 0;
@@ -194,8 +216,8 @@ TEST(SubbandFx, WeightsAreTheGaussianWithinTheTablesStep) {
                 // Inside the table's range only (nu from 1/8 to 32 on both edges), away from 0.
                 if (std::min(px, py) < 0.15 || std::max(px, py) > 28) continue;
                 const double fx = double(lam[i]) / double(one);
-                const double hi = h(px * std::exp2(-0.34)) * h(py * std::exp2(-0.34));
-                const double lo = h(px * std::exp2(0.25)) * h(py * std::exp2(0.25));
+                const double hi = h(px * std::exp2(-0.09)) * h(py * std::exp2(-0.09));
+                const double lo = h(px * std::exp2(0.29)) * h(py * std::exp2(0.29));
                 ASSERT_LE(fx, std::min(1.0, hi) + 2.0 / one) << "K " << K << " i " << i << " nu " << px << " " << py;
                 ASSERT_GE(fx, lo - 2.0 / one) << "K " << K << " i " << i << " nu " << px << " " << py;
                 ++checked;
