@@ -34,7 +34,7 @@ inline int subbandTileCount(int K) { return K == 0 ? 1 : K; }
 const std::vector<double>& subbandRomTile(int K);
 // Tile t's part of ROM word a: the tile value rounded to SubbandValueFrac fraction bits, saturated
 // to SubbandValueBits signed bits (sim/tools/pst_roms writes the words, tile t at bits
-// [t SubbandValueBits +: SubbandValueBits], to subband64.memh (K = 0) and subband64_kK.memh).
+// [t SubbandValueBits +: SubbandValueBits], to subband.memh (K = 0) and subband_kK.memh).
 int64_t subbandRomWord(int K, int t, int a);
 
 // The profile's two lattice axes (noise.subband xy: 0, 1; xz: 0, 2; yz: 1, 2).
