@@ -88,7 +88,7 @@ package pst_pkg;
 
   // Parameter defaults of every module: the profile full (rtl/configs/full.toml).
   localparam int OctavesDefault = 8;
-  localparam int NoiseUnitsDefault = 8;
+  localparam int NoiseUnitsDefault = 4;
   localparam int NoiseStepsDefault = 1;
   localparam int Log2ClutDefault = 8;
   localparam int ColourBitsDefault = 8;
@@ -104,7 +104,7 @@ package pst_pkg;
   localparam int NoiseLatticeFracDefault = 16;
   localparam int NoiseOutFracDefault = 16;
   localparam int NoiseGuardBitsDefault = 4;
-  localparam int NoiseGradFracDefault = 16;
+  localparam int NoiseGradFracDefault = 20;
   localparam int NoiseWorleySearchDefault = NoiseWorleySearchNone;
   localparam int NoiseWorleyPointsDefault = 4;
   localparam int NoiseWorleyOrderDefault = 2;
@@ -116,7 +116,7 @@ package pst_pkg;
   localparam int CoordIntDefault = 12;
   localparam int CoordFracDefault = 20;
   localparam int JacobianIntDefault = 8;
-  localparam int JacobianFracDefault = 18;
+  localparam int JacobianFracDefault = 24;
   localparam int MatrixIntDefault = 8;
   localparam int MatrixFracDefault = 16;
   localparam int OffsetIntDefault = 13;
@@ -124,13 +124,13 @@ package pst_pkg;
   localparam int AmplitudeIntDefault = 2;
   localparam int AmplitudeFracDefault = 16;
   localparam int GradMatrixIntDefault = 8;
-  localparam int GradMatrixFracDefault = 11;
+  localparam int GradMatrixFracDefault = 16;
   localparam int QuadricIntDefault = 8;
   localparam int QuadricFracDefault = 16;
   localparam int FIntDefault = 12;
   localparam int FFracDefault = 20;
   localparam int GradIntDefault = 16;
-  localparam int GradFracDefault = 14;
+  localparam int GradFracDefault = 16;
   localparam int WidthFracDefault = 8;
 
   // Register map (docs/HARDWARE.md).

@@ -37,7 +37,7 @@ struct ProfileParams {
     // K: noise terms a_i n(T_i s) the hardware holds (register map: 16 octave blocks)
     int octaves = 8;
     // noise units in parallel: octaves / noise_units passes per pixel
-    int noiseUnits = 8;
+    int noiseUnits = 4;
     // cycles per pass: a noise unit walks its 8 corners over 1, 2, 4 or 8 cycles
     int noiseSteps = 1;
     // N = 2^log2_clut colour-table entries (the SAT range 0x2000 + 4 e stays below 0x4000)
@@ -80,7 +80,7 @@ struct ProfileParams {
     // only the filter width): corners and every lerp floor them to multiples of 2^-grad_frac; >=
     // out_frac + guard_bits keeps every node bit (exact lerps); lattice noise only (a worley unit
     // needs >= out_frac + guard_bits)
-    int noiseGradFrac = 16;
+    int noiseGradFrac = 20;
     // none: the noise unit is the lattice-noise unit above; else a worley unit (basis worley,
     // rtl/noise/pst_worley.sv) searching the 2 x 2 x 2 cubes toward the nearest faces (octant) or
     // the 27 cubes around the home cube (cube27), its cubes' points from the 256-entry feature-
@@ -118,7 +118,7 @@ struct ProfileParams {
     // s, t, r
     FixedFormat coord = {12, 20};
     // ds/dx, ds/dy entries
-    FixedFormat jacobian = {8, 18};
+    FixedFormat jacobian = {8, 24};
     // M_i entries
     FixedFormat matrix = {8, 16};
     // o_i
@@ -126,13 +126,13 @@ struct ProfileParams {
     // a_i
     FixedFormat amplitude = {2, 16};
     // a_i M_i^T entries
-    FixedFormat gradMatrix = {8, 11};
+    FixedFormat gradMatrix = {8, 16};
     // A..J
     FixedFormat quadric = {8, 16};
     // colour index f
     FixedFormat f = {12, 20};
     // grad_s f components
-    FixedFormat grad = {16, 14};
+    FixedFormat grad = {16, 16};
     // W = w N fraction bits (unsigned, formula w_int_bits integer bits)
     int widthFrac = 8;
 };
