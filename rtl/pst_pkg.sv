@@ -88,7 +88,7 @@ package pst_pkg;
 
   // Parameter defaults of every module: the profile full (rtl/configs/full.toml).
   localparam int OctavesDefault = 8;
-  localparam int NoiseUnitsDefault = 8;
+  localparam int NoiseUnitsDefault = 4;
   localparam int NoiseStepsDefault = 1;
   localparam int Log2ClutDefault = 8;
   localparam int ColourBitsDefault = 8;
@@ -104,7 +104,7 @@ package pst_pkg;
   localparam int NoiseLatticeFracDefault = 16;
   localparam int NoiseOutFracDefault = 16;
   localparam int NoiseGuardBitsDefault = 4;
-  localparam int NoiseGradFracDefault = 16;
+  localparam int NoiseGradFracDefault = 20;
   localparam int NoiseWorleySearchDefault = NoiseWorleySearchNone;
   localparam int NoiseWorleyPointsDefault = 4;
   localparam int NoiseWorleyOrderDefault = 2;
@@ -116,7 +116,7 @@ package pst_pkg;
   localparam int CoordIntDefault = 12;
   localparam int CoordFracDefault = 20;
   localparam int JacobianIntDefault = 8;
-  localparam int JacobianFracDefault = 18;
+  localparam int JacobianFracDefault = 24;
   localparam int MatrixIntDefault = 8;
   localparam int MatrixFracDefault = 16;
   localparam int OffsetIntDefault = 13;
@@ -124,13 +124,13 @@ package pst_pkg;
   localparam int AmplitudeIntDefault = 2;
   localparam int AmplitudeFracDefault = 16;
   localparam int GradMatrixIntDefault = 8;
-  localparam int GradMatrixFracDefault = 11;
+  localparam int GradMatrixFracDefault = 16;
   localparam int QuadricIntDefault = 8;
   localparam int QuadricFracDefault = 16;
   localparam int FIntDefault = 12;
   localparam int FFracDefault = 20;
   localparam int GradIntDefault = 16;
-  localparam int GradFracDefault = 14;
+  localparam int GradFracDefault = 16;
   localparam int WidthFracDefault = 8;
 
   // Register map (docs/HARDWARE.md).
@@ -206,7 +206,7 @@ package pst_pkg;
   localparam int WorleyCountBits = 4;  // worley unit: bits of a cube's point count in the feature-point ROM
   localparam int WorleyCoefInt = 4;  // worley unit: integer bits (with sign) of the coefficients C_k
   localparam int WorleyCoefFrac = 12;  // worley unit: fraction bits of the coefficients C_k
-  localparam int SubbandTileLog2 = 6;  // subband unit: the tile ROM is 2^SubbandTileLog2 x 2^SubbandTileLog2 words (64 x 64: the reference's 256 x 256 centre-scale tile sampled every 4th pixel, which loses nothing: the band ends at pi/8 rad per reference pixel, pi/2 per ROM pixel)
+  localparam int SubbandTileLog2 = 7;  // subband unit: the tile ROM is 2^SubbandTileLog2 x 2^SubbandTileLog2 words (128 x 128: the reference's 256 x 256 centre-scale tile sampled every 2nd pixel; the band ends at pi/8 rad per reference pixel, pi/4 per ROM pixel, where the bilinear lookup is close to the reference's: with 64 x 64 (pi/2 per ROM pixel) the seascape fly-in flickered 3.69x less than unfiltered, with 128 x 128 4.07x, CHANGELOG.md)
   localparam int SubbandPeriodLog2 = 4;  // subband unit: the tile repeats every 2^SubbandPeriodLog2 noise units (the reference's 256-pixel tile at 16 pixels per unit)
   localparam int SubbandValueBits = 8;  // subband unit: bits of a tile word (signed)
   localparam int SubbandValueFrac = 7;  // subband unit: fraction bits of a tile word (Q1.7: the tile, scaled to Rayshade noise's standard deviation 0.255, stays inside +-0.82)

@@ -61,8 +61,8 @@ initial begin
     else $fatal(1, "noise.grad_frac: must be at least noise.out_frac + noise.guard_bits with a worley unit (noise.worley_search): it has no derivative lanes to floor");
   assert (NoiseSubband == pst_pkg::NoiseSubbandNone || NoiseWorleySearch == pst_pkg::NoiseWorleySearchNone)
     else $fatal(1, "noise.subband: must be none with a worley unit (noise.worley_search): a profile has one kind of noise unit");
-  assert (NoiseSubband == pst_pkg::NoiseSubbandNone || NoiseLatticeFrac > 2)
-    else $fatal(1, "noise.lattice_frac: must be more than 2 (SubbandTileLog2 - SubbandPeriodLog2) with a subband unit (noise.subband): the bilinear weights are the bits below the tile pixel");
+  assert (NoiseSubband == pst_pkg::NoiseSubbandNone || NoiseLatticeFrac > 3)
+    else $fatal(1, "noise.lattice_frac: must be more than 3 (SubbandTileLog2 - SubbandPeriodLog2) with a subband unit (noise.subband): the bilinear weights are the bits below the tile pixel");
   assert (NoiseSubbandOrientations == 0 || NoiseSubband != pst_pkg::NoiseSubbandNone)
     else $fatal(1, "noise.subband_orientations: must be 0 without a subband unit (noise.subband = none)");
   assert (NoiseSubbandOrientations == 0 || ( FilterBandlimit == pst_pkg::FilterBandlimitIsotropic && Datapath == pst_pkg::DatapathSerial ))

@@ -65,7 +65,8 @@ def derate_markdown(root: Path) -> str:
     for b in d.get("not_routed", []):
         L.append(f"| `{b}` | not routed |")
     L.append("")
-    L.append(f"Derate applied to every pre-layout Fmax: **{d['ratio']:.3f}** (the worst routed block's). "
+    why = d.get("ratio_source") or "the worst routed block's"
+    L.append(f"Derate applied to every pre-layout Fmax: **{d['ratio']:.3f}** ({why}). "
              f"Slowest routed block: `{d['slowest_block']}`, {d['slowest_block_pre_layout_fmax_mhz']:.1f} MHz "
              f"pre-layout, {d['post_route_fmax_mhz']:.1f} MHz post-route.")
     if d.get("assembled_fmax_mhz"):

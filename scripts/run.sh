@@ -6,10 +6,10 @@
 #   2b. the seascape fly-in (pst animate, 24 frames at 64x64): webm videos, out/animations/flicker.md
 #       (a report section)
 #   2c. the filter options (the paper's SAT, the exact box, the trapezoid footprint, bandlimited
-#       octaves) against the ground truth: every scene at 64x64 with a 16x16 truth, six
+#       octaves) against the ground truth: every scene at 64x64 with a 16x16 truth, seven
 #       animated sequences (16 frames at 48x48, 8x8 truth; the subband seascapes also through the
-#       subband units' RTL) -> out/fidelity/fidelity.md (a report section)
-#   3. silicon figures of both profiles (OSU018 area, OpenSTA timing, memories), Figures 10
+#       subband units' RTL, the planet through reduced's) -> out/fidelity/fidelity.md (a report section)
+#   3. silicon figures of the named profiles (OSU018 area, OpenSTA timing, memories), Figures 10
 #      and 11, a quick precision sweep
 #   4. out/report.md and out/report.html (the same data; the HTML page has an image viewer per
 #      scene and sortable tables, opens from file://), the pages a designer opens first
@@ -29,7 +29,7 @@ for scene in scenes/*.toml; do
 done
 echo "== RTL regression at ${SIZE}x${SIZE}"
 rc=0
-./build/pst regress --size "$SIZE" --profile full --profile reduced -o out/regress.json --images out || rc=$?
+./build/pst regress --size "$SIZE" --profile full --profile full_1clk --profile reduced -o out/regress.json --images out || rc=$?
 echo "== animation: seascape fly-in, 24 frames at 64x64 through the reference and full's RTL, flicker vs a 4x4 truth"
 ./build/pst animate scenes/seascape.toml --frames 24 --size 64 --truth 4 --profile full -o out/anim/seascape -q || rc=1
 mkdir -p out/animations
@@ -43,12 +43,14 @@ for scene in scenes/*.toml; do
   stills+=("out/fidelity/$name")
 done
 seqs=()
-for name in seascape fire marble planet seascape_subband seascape_subband_hw; do
-  # The subband basis: also its anisotropic filter (reference); the subband unit's own images.
+for name in seascape fire marble planet planet_subband seascape_subband seascape_subband_hw; do
+  # The subband basis: also its anisotropic filter (reference); the subband unit's own images; the
+  # planet fly-in also through reduced's RTL (the paper's filter in hardware).
   v="$VARIANTS"; hw=()
   case "$name" in *subband*) v="$VARIANTS,sat+anisotropic" ;; esac
   [ "$name" = seascape_subband_hw ] && hw=(--profile reduced_subband)
   [ "$name" = seascape_subband ] && hw=(--profile reduced_subband_k8)
+  [ "$name" = planet ] && hw=(--profile reduced)
   ./build/pst animate "scenes/$name.toml" --frames 16 --size 48 --truth 8 --variants "$v" "${hw[@]}" --no-video \
     -o "out/fidelity/anim/$name" -q -j2 || rc=1
   seqs+=("out/fidelity/anim/$name")
@@ -61,6 +63,7 @@ echo "== silicon figures (Yosys + OpenSTA), quick precision sweep, figures"
 /usr/bin/python3 scripts/synth.py full --quiet & full_synth=$!
 /usr/bin/python3 scripts/sweep.py --quick || rc=1
 /usr/bin/python3 scripts/synth.py balanced --quiet || rc=1     # in the baseline too (9-12 min on one core)
+/usr/bin/python3 scripts/synth.py full_1clk --quiet || rc=1    # the one-clock full, in the baseline
 wait "$full_synth" || rc=1
 [ -f out/synth/reduced.md ] || /usr/bin/python3 scripts/synth.py reduced --quiet || rc=1
 /usr/bin/python3 scripts/figures.py fig11 --out out || rc=1

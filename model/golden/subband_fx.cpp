@@ -25,7 +25,8 @@
 // exp(-sigma^2/2 |J^T w_i|^2) = h(c_i . J_x) h(c_i . J_y), h(nu) = exp(-sigma^2 pi^2 nu^2 / 2), J in
 // noise units per screen pixel. The hardware bounds c_i . J of the octave by ||M|| (c_i . J_s on
 // the plane), exact for M a multiple of the identity, and reads h from the fade table at the
-// quarter octave of lg |c_i . J_s| + lg ||M|| (subbandPixelLgFx, subbandLambdaFx).
+// quarter octave of lg |c_i . J_s| + lg ||M|| (subbandPixelLgFx, subbandLambdaFx), Mitchell's lg
+// with its mantissa corrected (subbandLgCorrectFx).
 #include "subband_fx.h"
 
 #include <cmath>
@@ -78,6 +79,16 @@ void subbandDirection(int K, int i, int* cc, int* ss) {
     *ss = int(std::lround(one * std::sin(a)));
 }
 
+int64_t subbandLgCorrectFx(int64_t lg) {
+    // Mitchell's lg(1 + x) ~ x is low by up to 0.086 octave; the mantissa's FadeLgFrac bits m (x
+    // truncated to m / 2^FadeLgFrac) become floor(2^FadeLgFrac lg(1 + (m + 1/2) / 2^FadeLgFrac)), the
+    // lg at the centre of the mantissa's step (a 16-entry constant table in the RTL).
+    static_assert(c::kFadeLgFrac == 4, "the RTL's correction table has 16 entries");
+    static constexpr int64_t kCorr[16] = {0, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 14, 15};
+    const int64_t mask = (int64_t(1) << c::kFadeLgFrac) - 1;
+    return (lg & ~mask) | kCorr[lg & mask];
+}
+
 void subbandPixelLgFx(const Profile& prof, const int64_t j[6], int64_t lg[16]) {
     int a0, a1;
     subbandAxes(prof, &a0, &a1);
@@ -88,7 +99,7 @@ void subbandPixelLgFx(const Profile& prof, const int64_t j[6], int64_t lg[16]) {
             subbandDirection(K, i, &cc, &ss);
             const int64_t p = int64_t(fx::floorShift(fx::i128(cc) * j[3 * e + a0] + fx::i128(ss) * j[3 * e + a1],
                                                      c::kSubbandDirFrac));
-            lg[e * K + i] = mitchellLgFx(prof, uint64_t(p < 0 ? -p : p));
+            lg[e * K + i] = subbandLgCorrectFx(mitchellLgFx(prof, uint64_t(p < 0 ? -p : p)));
         }
 }
 

@@ -34,7 +34,7 @@ inline int subbandTileCount(int K) { return K == 0 ? 1 : K; }
 const std::vector<double>& subbandRomTile(int K);
 // Tile t's part of ROM word a: the tile value rounded to SubbandValueFrac fraction bits, saturated
 // to SubbandValueBits signed bits (sim/tools/pst_roms writes the words, tile t at bits
-// [t SubbandValueBits +: SubbandValueBits], to subband64.memh (K = 0) and subband64_kK.memh).
+// [t SubbandValueBits +: SubbandValueBits], to subband.memh (K = 0) and subband_kK.memh).
 int64_t subbandRomWord(int K, int t, int a);
 
 // The profile's two lattice axes (noise.subband xy: 0, 1; xz: 0, 2; yz: 1, 2).
@@ -45,8 +45,11 @@ void subbandAxes(const Profile& prof, int* a0, int* a1);
 void subbandDirection(int K, int i, int* c, int* s);
 // Per pixel (rtl/octave/pst_subband_pixel.sv): for each edge e (x: j[0..2], y: j[3..5]) and
 // orientation i, lg |c_i . (j_a0, j_a1)| (the edge on the plane, along the orientation):
-// p = floor((C_i j_a0 + S_i j_a1) / 2^SubbandDirFrac), lg[e K + i] = mitchellLgFx(|p|).
+// p = floor((C_i j_a0 + S_i j_a1) / 2^SubbandDirFrac), lg[e K + i] = subbandLgCorrectFx(mitchellLgFx(|p|)).
 void subbandPixelLgFx(const Profile& prof, const int64_t j[6], int64_t lg[16]);
+// Mitchell's lg with its FadeLgFrac mantissa bits m replaced by floor(2^FadeLgFrac lg(1 + (m + 1/2) /
+// 2^FadeLgFrac)) (lg |p| is the result + -0.038 .. +0.088 octave; uncorrected + 0 .. 0.149).
+int64_t subbandLgCorrectFx(int64_t lg);
 // Per octave: lambda_i = octaveFadeFx(lg[i], lg[K + i], lgm, table) (FadeFrac fraction bits, <= 1.0):
 // the separable Gaussian of eq. 4, h(nu_x) h(nu_y), h the driver's table exp(-sigma^2 pi^2 nu^2 / 2).
 void subbandLambdaFx(const Profile& prof, const int64_t lg[16], int64_t lgm, const int64_t table[contract::kFadeEntries],

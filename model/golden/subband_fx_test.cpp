@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "arith_fx.h"
 #include "contract.h"
 #include "fixed.h"
 #include "noise_fx.h"
@@ -49,7 +50,7 @@ TEST(SubbandFx, RomWordsRoundTheTile) {
         sum2 += t[size_t(i)] * t[size_t(i)];
     }
     // The tile's standard deviation is Rayshade noise's (subbandCentreScale), within the sampling
-    // of a 64 x 64 field (0.255 for the reference's seed 1).
+    // of a 128 x 128 field (0.255 for the reference's seed 1).
     const double sd = std::sqrt(sum2 / kSubbandRomWords);
     EXPECT_NEAR(sd, 0.255, 0.01);
 }
@@ -152,10 +153,31 @@ TEST(SubbandFx, OrientedTilesSumToTheIsotropicOne) {
     }
 }
 
+// The corrected lg against log2: for every length up to 2^16 (the 4 mantissa bits exact below
+// 2^4, truncated above) lg L - lg_fx lies in -0.0376 .. +0.0875 octave (header's bound), and both
+// ends are reached (the bound is the correction's, not a loose one).
+TEST(SubbandFx, CorrectedLgWithinItsBound) {
+    const Profile p = reducedSubband();
+    double lo = 1, hi = -1;
+    for (uint64_t len = 1; len < (uint64_t(1) << 16); ++len) {
+        const double lg = double(subbandLgCorrectFx(mitchellLgFx(p, len))) / (1 << contract::kFadeLgFrac);
+        const double e = std::log2(double(len)) - p.jacobian.fracBits - lg;
+        lo = std::min(lo, e);
+        hi = std::max(hi, e);
+    }
+    EXPECT_GE(lo, -0.0376);
+    EXPECT_LE(hi, 0.0875);
+    EXPECT_LT(lo, -0.03);
+    EXPECT_GT(hi, 0.08);
+}
+
 // The weights against eq. 4's Gaussian: M = m I, so c_i . J of the octave is m c_i . J_s and the
-// hardware's lg is off only by the direction constants (2^-9 relative), Mitchell's lg (at most
-// 0.086 octave low) and the table's quarter octave: lambda_fx lies between the exact lambda of the
-// footprint scaled by 2^-0.34 and by 2^+0.25 (each edge's factor apart), up to the table's rounding.
+// hardware's lg is off only by the direction constants (2^-9 relative), Mitchell's lg with its
+// mantissa corrected (the true lg is the unit's + -0.0376 .. +0.0875 octave: the 16 mantissa steps'
+// ends against floor(16 lg(1 + (m + 1/2) / 16)) / 16) and the table's quarter octave. With a
+// table of h at each entry's top end (lg nu = -FadeLgLo + (k + 1) / 4) the table's lg is the
+// true lg + -0.0875 .. +0.2876: lambda_fx lies between the exact lambda of the footprint scaled by
+// 2^-0.09 and by 2^+0.29 (each edge's factor apart), up to the table's rounding.
 TEST(SubbandFx, WeightsAreTheGaussianWithinTheTablesStep) {
     for (int K : {4, 8}) {
         Profile p = reducedSubband();
@@ -166,7 +188,7 @@ TEST(SubbandFx, WeightsAreTheGaussianWithinTheTablesStep) {
         int64_t table[contract::kFadeEntries];
         const int64_t one = int64_t(1) << contract::kFadeFrac;
         for (int k = 0; k < contract::kFadeEntries; ++k)
-            table[k] = std::llround(h(std::exp2(-contract::kFadeLgLo + (k + 0.5) / 4.0)) * double(one));
+            table[k] = std::llround(h(std::exp2(-contract::kFadeLgLo + (k + 1.0) / 4.0)) * double(one));
         std::mt19937_64 rng(5 + K);
         std::uniform_real_distribution<double> u(-1.0, 1.0), lm(-2.0, 3.0);
         int checked = 0;
@@ -194,8 +216,8 @@ TEST(SubbandFx, WeightsAreTheGaussianWithinTheTablesStep) {
                 // Inside the table's range only (nu from 1/8 to 32 on both edges), away from 0.
                 if (std::min(px, py) < 0.15 || std::max(px, py) > 28) continue;
                 const double fx = double(lam[i]) / double(one);
-                const double hi = h(px * std::exp2(-0.34)) * h(py * std::exp2(-0.34));
-                const double lo = h(px * std::exp2(0.25)) * h(py * std::exp2(0.25));
+                const double hi = h(px * std::exp2(-0.09)) * h(py * std::exp2(-0.09));
+                const double lo = h(px * std::exp2(0.29)) * h(py * std::exp2(0.29));
                 ASSERT_LE(fx, std::min(1.0, hi) + 2.0 / one) << "K " << K << " i " << i << " nu " << px << " " << py;
                 ASSERT_GE(fx, lo - 2.0 / one) << "K " << K << " i " << i << " nu " << px << " " << py;
                 ++checked;
@@ -229,13 +251,15 @@ TEST(SubbandFx, PeriodicOnThePlane) {
 }
 
 // The unit against the reference model's basis between the ROM's pixels: the bilinear lookup
-// of the 64-pixel tile instead of the 256-pixel one (itself nearly exact there: 16 pixels per
+// of the 128-pixel tile instead of the 256-pixel one (itself nearly exact there: 16 pixels per
 // unit). Linear interpolation of a sinusoid of frequency w (radians per ROM pixel) misses it by
 // about t (1 - t) w^2 / 2 of its amplitude at the offset t, mean square over t: w^4 / 120. The
-// band is centred on w = pi/4 per ROM pixel and reaches pi/2; per axis w_a^2 averages r^2 / 2
-// (r the radius), so the RMS error is about sd r_c^2 sqrt(2 / 120) ~ 0.08 sd for the centre
-// r_c = pi/4, and 0.16 sd at r = pi / (2 sqrt 2) (the band's power-weighted radius is between).
-// Bound: RMS < 0.16 sd; value and gradient also correlate above 0.98 and 0.9.
+// band is centred on w = pi/8 per ROM pixel and reaches pi/4; per axis w_a^2 averages r^2 / 2
+// (r the radius), so the RMS error is about sd r_c^2 sqrt(2 / 120) ~ 0.02 sd for the centre
+// r_c = pi/8, and 0.04 sd at r = pi / (4 sqrt 2) (the band's power-weighted radius is between).
+// The piecewise-constant derivative misses the sinusoid's by about w / sqrt 12 of its RMS (0.11
+// at the centre, 0.23 at the band's edge). Bounds: RMS < 0.04 sd, value correlation above 0.998,
+// gradient correlation above 0.98 (1 - 0.2^2 / 2).
 TEST(SubbandFx, CloseToTheReferenceBasis) {
     const Profile p = reducedSubband();
     std::mt19937_64 rng(11);
@@ -260,9 +284,9 @@ TEST(SubbandFx, CloseToTheReferenceBasis) {
     std::printf("[ subband_fx ] against the reference basis: RMS %.4f (sd %.4f, %.3f sd), correlation %.4f; "
                 "gradient RMS %.4f (%.3f of its RMS), correlation %.4f\n",
                 rms, sd, rms / sd, corr, std::sqrt(gse / (2 * n)), std::sqrt(gse / gr), gcorr);
-    EXPECT_LT(rms, 0.16 * sd);
-    EXPECT_GT(corr, 0.98);
-    EXPECT_GT(gcorr, 0.9);
+    EXPECT_LT(rms, 0.04 * sd);
+    EXPECT_GT(corr, 0.998);
+    EXPECT_GT(gcorr, 0.98);
 }
 
 }  // namespace

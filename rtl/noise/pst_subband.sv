@@ -92,11 +92,11 @@ module pst_subband #(
   // ---- ROM -------------------------------------------------------------------------------
   logic [KT*VB-1:0] tile [1 << (2*TL)];
   if (K == 0) begin : g_rom_iso
-    initial $readmemh({`PST_ROM_DIR, "/subband64.memh"}, tile);
+    initial $readmemh({`PST_ROM_DIR, "/subband.memh"}, tile);
   end else if (K == 4) begin : g_rom_k4
-    initial $readmemh({`PST_ROM_DIR, "/subband64_k4.memh"}, tile);
+    initial $readmemh({`PST_ROM_DIR, "/subband_k4.memh"}, tile);
   end else begin : g_rom_k8
-    initial $readmemh({`PST_ROM_DIR, "/subband64_k8.memh"}, tile);
+    initial $readmemh({`PST_ROM_DIR, "/subband_k8.memh"}, tile);
   end
 
   // ---- 1. tile pixel and weights -------------------------------------------------------------

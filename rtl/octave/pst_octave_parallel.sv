@@ -6,7 +6,8 @@
 //   issue     octave transform of the beat's pass            -> XR registers (OctaveRegs = 2)
 //   noise     the noise units (outside, pst_octave_noise)     -> NoiseRegs registers
 //   term      octave term, zero unless the lane's octave is active -> MR registers (OctaveRegs >= 1)
-// The quadric (pst_quadric) runs beside, pipelined through the first min(2, Lat) registers.
+// The quadric (pst_quadric, folded over the last two beats when a fragment has two or more:
+// pst_quadric_fold) runs beside, pipelined through the first min(2, Lat) registers.
 // At the end the beat's terms go to the accumulators (acc_en_o, acc_first_o); the last beat
 // offers the fragment to [B] (valid_o) and the whole pipeline stalls while [B] refuses it.
 // busy_o: a beat is inside the pipeline's registers.
@@ -140,18 +141,30 @@ module pst_octave_parallel #(
     else cyc_q <= cyc_d;
   end
 
-  // Quadric (every product every beat), pipelined through the first min(2, Lat) registers and
-  // delayed through the rest.
+  // Quadric, pipelined through the first min(2, Lat) registers and delayed through the rest:
+  // every product every beat with one beat per fragment; with two or more, folded over the
+  // last two (rows 0 and 1 on the beat before the last, row 2 on the last: pst_quadric_fold).
   localparam int QR = (Lat < 2) ? Lat : 2;
   logic [FW-1:0]   q_f;
   logic [3*GW-1:0] gradq_f;
-  pst_quadric #(
-    .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
-    .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac),
-    .Regs(QR)
-  ) u_quadric (
-    .clk_i, .rst_ni, .en_i (en), .s_i (s_i), .coef_i (quad_i), .q_o (q_f), .gradq_o (gradq_f)
-  );
+  if (Cycles >= 2) begin : g_quad_fold
+    pst_quadric_fold #(
+      .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
+      .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac),
+      .Regs(QR)
+    ) u_quadric (
+      .clk_i, .rst_ni, .en_i (en), .first_i (32'(cyc_q) == Cycles - 2), .s_i (s_i), .coef_i (quad_i),
+      .q_o (q_f), .gradq_o (gradq_f)
+    );
+  end else begin : g_quad
+    pst_quadric #(
+      .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
+      .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac),
+      .Regs(QR)
+    ) u_quadric (
+      .clk_i, .rst_ni, .en_i (en), .s_i (s_i), .coef_i (quad_i), .q_o (q_f), .gradq_o (gradq_f)
+    );
+  end
   pst_delay #(.Width(FW + 3*GW), .Depth(Lat - QR)) u_q_delay (
     .clk_i, .rst_ni, .en_i (en), .d_i ({gradq_f, q_f}), .q_o ({gradq_o, q_o}));
 

@@ -6,8 +6,12 @@
 //
 //   Q = [A B C D; B E F G; C F H I; D G I J]   (eq. 4, coef_i = A..J)
 //   v = (Q [s 1])_xyz            exact, QuadricFrac + CoordFrac fraction bits
-//   q = s . v + ((D s + G t + I r) << CoordFrac) + (J << 2 CoordFrac)
-//                                exact, QuadricFrac + 2 CoordFrac fraction bits (= eq. 3)
+//   w = v + ((D, G, I) << CoordFrac)   exact: the linear terms folded into v, so that
+//   q = s . w + (J << 2 CoordFrac)
+//     = s . v + ((D s + G t + I r) << CoordFrac) + (J << 2 CoordFrac)
+//                                exact, QuadricFrac + 2 CoordFrac fraction bits (= eq. 3):
+//                                three products s_k w_k, no separate D s + G t + I r
+//                                (the same integer; three QW x CW products fewer)
 //   q_o     = sat_F(floor(q to FFrac))
 //   gradq_o = sat_Grad(floor(2 v to GradFrac)), per component
 // floor = arithmetic shift right (a left shift, exact, if the target has more fraction bits);
@@ -51,7 +55,10 @@ module pst_quadric #(
   // v: three products of at most 2^(QW+CW-2) each plus D << CoordFrac (at most 2^(QW+CW-2)
   // as CoordInt >= 1): |v| <= 2^(QW+CW) -> QW + CW + 1 bits signed.
   localparam int VW  = QW + CW + 1;
-  // q: s . v < 3 * 2^(CW-1) * 2^(QW+CW) and the linear part < 2^(QW+2CW-1): |q| < 2^(QW+2CW+2).
+  // w = v + D << CoordFrac: |w| <= 1.25 2^(QW+CW) -> VW + 1 bits signed.
+  localparam int WW  = VW + 1;
+  // q: s . w < 3 * 2^(CW-1) * 1.25 2^(QW+CW) and J << 2 CoordFrac < 2^(QW+2CW-3):
+  // |q| < 2^(QW+2CW+1).
   localparam int QXW = QW + 2 * CW + 3;
 
   // The coefficients A..J of eq. 3 and the coordinates s, t, r as signed values.
@@ -67,27 +74,32 @@ module pst_quadric #(
   assign v1_d = VW'(cb) * VW'(s0) + VW'(ce) * VW'(s1) + VW'(cf) * VW'(s2) + (VW'(cg) <<< CoordFrac);
   assign v2_d = VW'(cc) * VW'(s0) + VW'(cf) * VW'(s1) + VW'(ch) * VW'(s2) + (VW'(ci) <<< CoordFrac);
 
-  logic signed [QXW-1:0] lin_d, lin, lin_q, qx;
-  assign lin_d = QXW'(cd) * QXW'(s0) + QXW'(cg) * QXW'(s1) + QXW'(ci) * QXW'(s2);
+  logic signed [QXW-1:0] qx;
 
-  // Register 1: v, the linear term, s and J.
+  // Register 1: v, s, J and the linear coefficients D, G, I.
   logic signed [CW-1:0] s0_r, s1_r, s2_r;
-  logic signed [QW-1:0] cj_r, cj_q;
-  pst_delay #(.Width(3*VW + QXW + 3*CW + QW), .Depth(Regs > 0 ? 1 : 0)) u_reg1 (
-    .clk_i, .rst_ni, .en_i, .d_i ({v2_d, v1_d, v0_d, lin_d, s2, s1, s0, cj}),
-    .q_o ({v2, v1, v0, lin, s2_r, s1_r, s0_r, cj_r})
+  logic signed [QW-1:0] cj_r, cj_q, cd_r, cg_r, ci_r;
+  pst_delay #(.Width(3*VW + 3*CW + 4*QW), .Depth(Regs > 0 ? 1 : 0)) u_reg1 (
+    .clk_i, .rst_ni, .en_i, .d_i ({v2_d, v1_d, v0_d, s2, s1, s0, cj, ci, cg, cd}),
+    .q_o ({v2, v1, v0, s2_r, s1_r, s0_r, cj_r, ci_r, cg_r, cd_r})
   );
 
-  // Register 2: the three products s_k v_k (and what the sum and the gradient still need).
+  // Step 2: w = v + (D, G, I) << CoordFrac; register 2: the three products s_k w_k (and what
+  // the sum and the gradient still need).
+  logic signed [WW-1:0] w0, w1, w2;
+  assign w0 = WW'(v0) + (WW'(cd_r) <<< CoordFrac);
+  assign w1 = WW'(v1) + (WW'(cg_r) <<< CoordFrac);
+  assign w2 = WW'(v2) + (WW'(ci_r) <<< CoordFrac);
   logic signed [QXW-1:0] p0_d, p1_d, p2_d, p0, p1, p2;
-  assign p0_d = QXW'(s0_r) * QXW'(v0);
-  assign p1_d = QXW'(s1_r) * QXW'(v1);
-  assign p2_d = QXW'(s2_r) * QXW'(v2);
-  pst_delay #(.Width(3*QXW + QXW + QW + 3*VW), .Depth(Regs > 1 ? 1 : 0)) u_reg2 (
-    .clk_i, .rst_ni, .en_i, .d_i ({p2_d, p1_d, p0_d, lin, cj_r, v2, v1, v0}),
-    .q_o ({p2, p1, p0, lin_q, cj_q, v2_q, v1_q, v0_q})
+  assign p0_d = QXW'(s0_r) * QXW'(w0);
+  assign p1_d = QXW'(s1_r) * QXW'(w1);
+  assign p2_d = QXW'(s2_r) * QXW'(w2);
+  pst_delay #(.Width(3*QXW + QW + 3*VW), .Depth(Regs > 1 ? 1 : 0)) u_reg2 (
+    .clk_i, .rst_ni, .en_i, .d_i ({p2_d, p1_d, p0_d, cj_r, v2, v1, v0}),
+    .q_o ({p2, p1, p0, cj_q, v2_q, v1_q, v0_q})
   );
-  assign qx = p0 + p1 + p2 + (lin_q <<< CoordFrac) + (QXW'(cj_q) <<< (2 * CoordFrac));
+  // Step 3: q = s . w + J << 2 CoordFrac.
+  assign qx = p0 + p1 + p2 + (QXW'(cj_q) <<< (2 * CoordFrac));
 
   pst_floor_sat #(
     .InWidth (QXW), .InFrac (QuadricFrac + 2 * CoordFrac), .OutWidth (FW), .OutFrac (FFrac)

@@ -5,7 +5,9 @@
 // all enabled by en_i. Golden: subbandPixelLgFx (model/golden/subband_fx.cpp, bit for bit).
 //
 //   p = floor((C_i j_A0 + S_i j_A1) / 2^SubbandDirFrac), (C_i, S_i) = round(2^8 (cos, sin)(pi i / K))
-//   lg_o[e K + i] = pst_fade_lg(|p|)      (|p| < 2^JW: |C_i| + |S_i| <= 2^8 sqrt 2, |j| <= 2^(JW-1))
+//   lg_o[e K + i] = corr(pst_fade_lg(|p|))   (|p| < 2^JW: |C_i| + |S_i| <= 2^8 sqrt 2, |j| <= 2^(JW-1))
+//   corr: Mitchell's mantissa m (the FadeLgFrac low bits) -> floor(16 lg(1 + (m + 1/2) / 16)), the
+//         lg at the centre of the mantissa's step (subbandLgCorrectFx)
 //
 // Parameters:
 //   JacobianInt, JacobianFrac   the Jacobian entry format.
@@ -71,10 +73,22 @@ module pst_subband_pixel #(
   end
   pst_delay #(.Width(2*K*JW), .Depth(LenRegs)) u_len (.clk_i, .rst_ni, .en_i, .d_i (len_a), .q_o (len_b));
 
+  // floor(16 lg(1 + (m + 1/2) / 16)) for Mitchell's mantissa m (FadeLgFrac = 4).
+  function automatic logic [3:0] corr(input logic [3:0] m);
+    case (m)
+      4'd0: corr = 4'd0;
+      4'd14: corr = 4'd14;
+      4'd15: corr = 4'd15;
+      default: corr = m + 4'd1;
+    endcase
+  endfunction
+
   logic [2*K*LgW-1:0] lg_a;
   for (genvar k = 0; k < 2*K; k++) begin : g_lg
+    logic [LgW-1:0] lg_m;
     pst_fade_lg #(.JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac)) u_lg (
-      .len_i (len_b[k*JW +: JW]), .lg_o (lg_a[k*LgW +: LgW]));
+      .len_i (len_b[k*JW +: JW]), .lg_o (lg_m));
+    assign lg_a[k*LgW +: LgW] = {lg_m[LgW-1:4], corr(lg_m[3:0])};
   end
   pst_delay #(.Width(2*K*LgW), .Depth(LgRegs)) u_lgr (.clk_i, .rst_ni, .en_i, .d_i (lg_a), .q_o (lg_o));
 
@@ -85,6 +99,7 @@ module pst_subband_pixel #(
 `ifndef SYNTHESIS
   initial begin
     if (K != 4 && K != 8) $error("pst_subband_pixel: K must be 4 or 8");
+    if (pst_pkg::FadeLgFrac != 4) $error("pst_subband_pixel: the lg correction is for FadeLgFrac = 4");
     if (LenRegs < 0 || LenRegs > 1 || LgRegs < 0 || LgRegs > 1) $error("pst_subband_pixel: LenRegs and LgRegs must be 0 or 1");
   end
 `endif

@@ -82,10 +82,12 @@ def test_stage_cycles():
     # cycles per pixel (`pst regress` measures 32); its serial quadric takes 3 (3 + 1 + 3) + 1
     # steps with its product register, + 1 for its result register, its euclidean filter width
     # 16 (the RTL's, checked by sim/unit/arith_unit_test against the golden model), its colour
-    # filter 4 + 2 registers; full is one pixel per clock whatever its pipeline registers.
+    # filter 4 + 2 registers; full_1clk is one pixel per clock whatever its pipeline registers,
+    # full (eight octaves over two passes of four noise units) two.
     assert contract.stage_cycles(reduced()) == {"octave": 32, "quadric": 23, "width": 16, "colour": 6, "pixel": 32}
-    with open(ROOT / "rtl" / "configs" / "full.toml", "rb") as f:
-        assert contract.stage_cycles(tomllib.load(f))["pixel"] == 1
+    for name, cycles in (("full_1clk", 1), ("full", 2)):
+        with open(ROOT / "rtl" / "configs" / f"{name}.toml", "rb") as f:
+            assert contract.stage_cycles(tomllib.load(f))["pixel"] == cycles, name
 
 
 def test_constraint_translation():

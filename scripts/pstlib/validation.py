@@ -81,17 +81,17 @@ def judge_profiles(psnrs: dict, features: dict, tolerance: float = acceptance.TO
 
 
 def run(profile_names: list, count: int, size: int, seed: int, out: pathlib.Path, pst: str, jobs: int = 1,
-        say=print) -> int:
+        say=print, split: valset.Split = valset.HOLDOUT) -> int:
     """Renders the set through every profile, writes validate.json and validate.md; exit status 0
     (every named profile passes), 1 (one fails the rule, or a render failed). Bad input
     (ValueError) is raised before anything is written."""
     profiles = resolve_profiles(profile_names)
-    valset.check(seed, count, size)          # before anything is written
+    valset.check(seed, count, size, split)   # before anything is written
     t0 = time.time()
     sdir = out / "scenes"
-    manifest = valset.write(sdir, seed, count, size)
+    manifest = valset.write(sdir, seed, count, size, split)
     features = {f["name"]: f for f in manifest["scenes"]}
-    say(f"validate: {count} scenes (seed {seed}) at {size} x {size}, profiles {', '.join(n for n, _ in profiles)} "
+    say(f"validate: {count} {split.name} scenes (seed {seed}) at {size} x {size}, profiles {', '.join(n for n, _ in profiles)} "
         f"-> {out}")
 
     def one(name):
@@ -114,9 +114,9 @@ def run(profile_names: list, count: int, size: int, seed: int, out: pathlib.Path
     psnrs = dict(sorted(psnrs.items()))
     wall = time.time() - t0
     res = judge_profiles(psnrs, features)
-    doc = {"seed": seed, "count": count, "size": size, "reference": REFERENCE, "tolerance_db": acceptance.TOLERANCE_DB,
+    doc = {"seed": seed, "count": count, "size": size, "split": split.name, "reference": REFERENCE, "tolerance_db": acceptance.TOLERANCE_DB,
            "wall_s": round(wall, 1), "jobs": jobs, "profiles": {n: str(p) for n, p in profiles},
-           "command": command(profile_names, count, size, seed),
+           "command": command(profile_names, count, size, seed, split),
            "results": res, "psnr": psnrs, "features": features}
     atomic.write_text(out / "validate.json", json.dumps(doc, indent=1) + "\n")
     atomic.write_text(out / "validate.md", markdown(doc))
@@ -127,8 +127,9 @@ def run(profile_names: list, count: int, size: int, seed: int, out: pathlib.Path
     return 0 if all(r["passed"] for r in res.values()) else 1
 
 
-def command(profile_names, count, size, seed) -> str:
-    return (f"scripts/validate.py {' '.join(map(str, profile_names))} --count {count} --size {size} --seed {seed}")
+def command(profile_names, count, size, seed, split=valset.HOLDOUT) -> str:
+    return (f"scripts/validate.py {' '.join(map(str, profile_names))}{' --train' if split is valset.TRAINING else ''}"
+            f" --count {count} --size {size} --seed {seed}")
 
 
 def _f(v, fmt="{:.2f}"):
@@ -140,11 +141,13 @@ def _f(v, fmt="{:.2f}"):
 
 def markdown(doc: dict) -> str:
     res, feats = doc["results"], doc["features"]
-    L = [f"# Validation: {doc['count']} held-out scenes at {doc['size']} x {doc['size']} (seed {doc['seed']})\n",
+    held = doc.get("split", valset.HOLDOUT.name) == valset.HOLDOUT.name
+    L = [f"# {'Validation' if held else 'Training strata'}: {doc['count']} {'held-out' if held else 'training'} scenes at {doc['size']} x {doc['size']} (seed {doc['seed']})\n",
          f"`{doc['command']}`, {doc['wall_s']:.0f} s wall ({doc['jobs']} job(s)). Golden model of each profile "
          f"against the double reference (PSNR, dB); the rule (scripts/pstlib/acceptance.py): every scene "
          f"within {doc['tolerance_db']:g} dB of {doc['reference']}'s PSNR on the same scene. Scenes: "
-         "scripts/pstlib/valset.py (eight strata, seeds apart from training).\n",
+         "scripts/pstlib/valset.py (eight strata, " + ("seeds apart from training" if held else
+                                                       "training seeds: for choosing, not for judging") + ").\n",
          f"| profile | worst dB | median dB | worst loss vs {doc['reference']} dB | scenes over "
          f"{doc['tolerance_db']:g} dB | worst-loss scene | its features | rule |",
          "|---|---:|---:|---:|---:|---|---|---|"]

@@ -31,10 +31,16 @@ takes seeds 0..TRAIN_SEED_END-1; this set takes [TRAIN_SEED_END, 2 * TRAIN_SEED_
 refuses others, and its streams are named "holdout" besides: no scene of it is a training
 scene. Deterministic: a scene is a function of (seed, index, size) alone, and scene k does not
 change when the set grows.
+
+The training twin (TRAINING, `scripts/validate.py --train`): the same strata drawn on training
+seeds (0..TRAIN_SEED_END-1, stream "strata_train", scenes trn_NNN), for choosing formats and
+structures by the same rule without looking at the held-out scenes; a choice is then judged once
+on the held-out set (HOLDOUT, the default everywhere).
 """
 import json
 import math
 import pathlib
+from typing import NamedTuple
 
 from . import atomic, scenegen
 from .scenegen import FILTERS, INTERPS, MATRIX_KINDS, MESHES, OCTAVE_COUNTS, QUADRIC_KINDS, STEP_FILTERS, WRAPS
@@ -45,6 +51,20 @@ DEFAULT_SEED = SEED_BEGIN + 1
 DEFAULT_COUNT = 64
 DEFAULT_SIZE = 128
 STREAM = "holdout"
+
+
+class Split(NamedTuple):
+    """Which seeds a set takes, the generator stream it draws from and its scenes' prefix."""
+    name: str
+    seed_begin: int
+    seed_end: int
+    stream: str
+    prefix: str
+
+
+HOLDOUT = Split("validation", SEED_BEGIN, SEED_END, STREAM, "val")
+TRAINING = Split("training", 0, scenegen.TRAIN_SEED_END, "strata_train", "trn")
+TRAIN_DEFAULT_SEED = 1
 
 # Stratum -> the values each feature may take (one value: pinned). Features: filter, wrap,
 # interp, matrix (octave matrix kind), quadric (kind), mesh, octaves (count).
@@ -71,11 +91,12 @@ SIZE_RANGE = (16, 2048)
 MAX_COUNT = 4096
 
 
-def check_seed(seed: int, flag: str = "--seed") -> int:
-    """SEED if it is a validation seed, else ValueError (what the command lines print)."""
-    if not isinstance(seed, int) or not SEED_BEGIN <= seed < SEED_END:
-        raise ValueError(f"{flag}: validation seeds are {SEED_BEGIN}..{SEED_END - 1} (training takes "
-                         f"0..{SEED_BEGIN - 1}), got {seed}")
+def check_seed(seed: int, flag: str = "--seed", split: Split = HOLDOUT) -> int:
+    """SEED if it is a seed of SPLIT, else ValueError (what the command lines print)."""
+    if not isinstance(seed, int) or not split.seed_begin <= seed < split.seed_end:
+        other = TRAINING if split is HOLDOUT else HOLDOUT
+        raise ValueError(f"{flag}: {split.name} seeds are {split.seed_begin}..{split.seed_end - 1} ({other.name} "
+                         f"takes {other.seed_begin}..{other.seed_end - 1}), got {seed}")
     return seed
 
 
@@ -83,14 +104,14 @@ def stratum_of(index: int) -> str:
     return STRATUM_NAMES[index % len(STRATUM_NAMES)]
 
 
-def features_of(seed: int, index: int) -> dict:
+def features_of(seed: int, index: int, split: Split = HOLDOUT) -> dict:
     """The categorical features of scene INDEX: its stratum's pinned values, the anchor's for
     the stratum's first scene, and walks through the allowed values for the rest."""
-    check_seed(seed)
+    check_seed(seed, split=split)
     st = stratum_of(index)
     j = index // len(STRATUM_NAMES)
     allowed = dict(_ALL, **STRATA[st])
-    out = {f: scenegen._stratum(seed, STREAM, f"{st}/{f}", list(v), j) for f, v in allowed.items()}
+    out = {f: scenegen._stratum(seed, split.stream, f"{st}/{f}", list(v), j) for f, v in allowed.items()}
     if j == 0:
         out.update(ANCHORS.get(st, {}))
     out["stratum"] = st
@@ -115,10 +136,10 @@ def horizon_camera(r) -> tuple:
     return {"eye": eye, "target": target, "fovy": r.uniform(35.0, 50.0), "near": 0.05}, obj
 
 
-def scene(seed: int, index: int, size: int = DEFAULT_SIZE) -> tuple:
-    """(file name, TOML text, features) of validation scene INDEX."""
-    f = features_of(seed, index)
-    r = scenegen._rng(seed, STREAM, "scene", index)
+def scene(seed: int, index: int, size: int = DEFAULT_SIZE, split: Split = HOLDOUT) -> tuple:
+    """(file name, TOML text, features) of scene INDEX of SPLIT (the validation set by default)."""
+    f = features_of(seed, index, split)
+    r = scenegen._rng(seed, split.stream, "scene", index)
     octs, ofeat = scenegen.octaves(r, f["octaves"], f["matrix"])
     quad = scenegen.quadric(r, f["quadric"])
     cmap = scenegen.colormap(r, f["wrap"], f["interp"])
@@ -126,12 +147,12 @@ def scene(seed: int, index: int, size: int = DEFAULT_SIZE) -> tuple:
         cam, obj = horizon_camera(r)
     else:
         cam, obj = scenegen.camera_and_object(r, f["mesh"])
-    name = f"val_{index:03d}"
-    header = [f"# Validation scene {name} (scripts/validate.py, seed {seed}), stratum {f['stratum']}: "
+    name = f"{split.prefix}_{index:03d}"
+    header = [f"# {split.name.capitalize()} scene {name} (scripts/validate.py, seed {seed}), stratum {f['stratum']}: "
               f"{f['octaves']} octave(s), {f['matrix']} matrices,",
               f"# {f['quadric']} quadric, {f['interp']} colour map ({f['wrap']}), filter {f['filter']}, "
               f"mesh {f['mesh']}.",
-              f'title = "validation {name} (seed {seed}, {f["stratum"]})"']
+              f'title = "{split.name} {name} (seed {seed}, {f["stratum"]})"']
     text = scenegen.scene_toml(header, size, [r.uniform(0, 0.25) for _ in range(3)], cam, quad, f["filter"], cmap,
                                octs, obj)
     step = f["interp"] == "step" and f["wrap"] == "mod" and f["filter"] in STEP_FILTERS
@@ -142,19 +163,20 @@ def scene(seed: int, index: int, size: int = DEFAULT_SIZE) -> tuple:
     return f"{name}.toml", text, feats
 
 
-def check(seed: int, count: int, size: int) -> None:
-    """ValueError("--flag: what is wrong") unless SEED, COUNT and SIZE make a set."""
-    check_seed(seed)
+def check(seed: int, count: int, size: int, split: Split = HOLDOUT) -> None:
+    """ValueError("--flag: what is wrong") unless SEED, COUNT and SIZE make a set of SPLIT."""
+    check_seed(seed, split=split)
     if not isinstance(count, int) or not 1 <= count <= MAX_COUNT:
         raise ValueError(f"--count: 1..{MAX_COUNT} scenes, got {count}")
     if not isinstance(size, int) or not SIZE_RANGE[0] <= size <= SIZE_RANGE[1]:
         raise ValueError(f"--size: {SIZE_RANGE[0]}..{SIZE_RANGE[1]} pixels, got {size}")
 
 
-def generate(seed: int = DEFAULT_SEED, count: int = DEFAULT_COUNT, size: int = DEFAULT_SIZE) -> list:
+def generate(seed: int = DEFAULT_SEED, count: int = DEFAULT_COUNT, size: int = DEFAULT_SIZE,
+             split: Split = HOLDOUT) -> list:
     """[(file name, text, features)] of scenes 0..COUNT-1."""
-    check(seed, count, size)
-    return [scene(seed, i, size) for i in range(count)]
+    check(seed, count, size, split)
+    return [scene(seed, i, size, split) for i in range(count)]
 
 
 def describe(feats: dict) -> str:
@@ -164,18 +186,20 @@ def describe(feats: dict) -> str:
             f"{feats['interp']} map ({feats['wrap']}), filter {feats['filter']}, {feats['mesh']}")
 
 
-def write(out: pathlib.Path, seed: int = DEFAULT_SEED, count: int = DEFAULT_COUNT, size: int = DEFAULT_SIZE) -> dict:
-    """OUT/val_NNN.toml (files of other counts removed) and OUT/manifest.json; the manifest."""
-    scenes = generate(seed, count, size)
+def write(out: pathlib.Path, seed: int = DEFAULT_SEED, count: int = DEFAULT_COUNT, size: int = DEFAULT_SIZE,
+          split: Split = HOLDOUT) -> dict:
+    """OUT/PREFIX_NNN.toml (files of other counts or the other split removed) and OUT/manifest.json;
+    the manifest."""
+    scenes = generate(seed, count, size, split)
     out = pathlib.Path(out)
     out.mkdir(parents=True, exist_ok=True)
     names = {f for f, _, _ in scenes}
-    for old in out.glob("val_*.toml"):
+    for old in [*out.glob(f"{HOLDOUT.prefix}_*.toml"), *out.glob(f"{TRAINING.prefix}_*.toml")]:
         if old.name not in names:
             old.unlink()
     for fname, text, _ in scenes:
         atomic.write_if_changed(out / fname, text)
-    manifest = {"seed": seed, "count": count, "size": size, "generator": "scripts/pstlib/valset.py",
+    manifest = {"seed": seed, "count": count, "size": size, "split": split.name, "generator": "scripts/pstlib/valset.py",
                 "scenes": [f for _, _, f in scenes]}
     atomic.write_text(out / "manifest.json", json.dumps(manifest, indent=1) + "\n")
     return manifest

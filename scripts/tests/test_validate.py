@@ -51,6 +51,7 @@ def fake(tmp_path):
     (["full", "--size", "4"], "--size: 16..2048"),
     (["full", "--size", "100000"], "--size"),
     (["full", "--seed", "1"], "--seed: validation seeds"),
+    (["full", "--train", "--seed", "1000001"], "--seed: training seeds are 0..999999"),
     (["full", "--jobs", "0"], "--jobs"),
     (["full", "--pst", "/no/such/pst"], "--pst"),
     ([], "name at least one PROFILE"),
@@ -96,3 +97,13 @@ def test_profiles_resolve_to_files_full_exact_first():
     got = validation.resolve_profiles(["balanced", "full_exact", "full"])
     assert [n for n, _ in got] == ["full_exact", "balanced", "full"]
     assert all(p.is_file() for _, p in got)
+
+
+def test_train_draws_the_strata_on_training_seeds_and_says_so(tmp_path, fake):
+    out = tmp_path / "t"
+    rc, text = cli("full", "--train", "--count", 8, "--size", 16, "--pst", fake, "--out", out)
+    assert rc == 0, text
+    doc = json.loads((out / "validate.json").read_text())
+    assert doc["split"] == "training" and doc["seed"] == 1 and "--train" in doc["command"]
+    assert sorted(p.name for p in (out / "scenes").glob("*.toml")) == [f"trn_{i:03d}.toml" for i in range(8)]
+    assert (out / "validate.md").read_text().startswith("# Training strata: 8 training scenes")

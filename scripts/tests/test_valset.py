@@ -147,3 +147,16 @@ def test_bad_counts_sizes_and_the_writer(tmp_path):
     assert [f["name"] for f in m["scenes"]] == [f"val_{i:03d}" for i in range(5)]
     valset.write(tmp_path, count=2)
     assert len(list(tmp_path.glob("val_*.toml"))) == 2
+
+
+def test_the_training_twin_has_the_same_strata_on_training_seeds_and_other_textures():
+    train = valset.generate(valset.TRAIN_DEFAULT_SEED, 16, 64, valset.TRAINING)
+    held = valset.generate(count=16, size=64)
+    assert [f["stratum"] for _, _, f in train] == [f["stratum"] for _, _, f in held]
+    assert [n for n, _, _ in train][:2] == ["trn_000.toml", "trn_001.toml"]
+    assert not {repr(_tex(tomllib.loads(t))) for _, t, _ in train} & {repr(_tex(tomllib.loads(t))) for _, t, _ in held}
+    for s in (valset.SEED_BEGIN, valset.DEFAULT_SEED, -1):
+        with pytest.raises(ValueError, match="training seeds are"):
+            valset.scene(s, 0, split=valset.TRAINING)
+    # the held-out set itself is unchanged by the twin: same files as its default
+    assert held == valset.generate(valset.DEFAULT_SEED, 16, 64, valset.HOLDOUT)

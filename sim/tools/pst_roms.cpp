@@ -16,10 +16,11 @@
 //                                          (Poisson, clamped to 1..M), point j's x, y, z bytes
 //                                          at [4 + 24 j + 8 a +: 8] (1 + 6 M hex digits)
 // and the subband unit's tile (rtl/noise/pst_subband.sv, model/golden/subband_fx.h):
-//   OUTDIR/subband64.memh                  4096 words of SubbandValueBits (two's complement),
-//                                          word y 64 + x the tile at pixel (x, y)
-//   OUTDIR/subband64_k<K>.memh, K = 4, 8   4096 words of K SubbandValueBits: oriented tile t at
-//                                          [t SubbandValueBits +: SubbandValueBits]
+//   OUTDIR/subband.memh                    4^SubbandTileLog2 words of SubbandValueBits (two's
+//                                          complement), word y 2^SubbandTileLog2 + x the tile at
+//                                          pixel (x, y)
+//   OUTDIR/subband_k<K>.memh, K = 4, 8     4^SubbandTileLog2 words of K SubbandValueBits: oriented
+//                                          tile t at [t SubbandValueBits +: SubbandValueBits]
 // Each file is written to a temporary name and renamed, so a reader never sees half a file.
 #include <cmath>
 #include <cstdint>
@@ -141,15 +142,15 @@ int main(int argc, char** argv) {
     }
     // The subband unit's tile (rtl/noise/pst_subband.sv): SubbandValueBits-bit two's complement
     // words, y 2^SubbandTileLog2 + x (model/golden/subband_fx.h subbandRomWord).
-    // subband64_k4.memh, subband64_k8.memh: the K oriented tiles, tile t at [t vb +: vb] (writeMemh
+    // subband_k4.memh, subband_k8.memh: the K oriented tiles, tile t at [t vb +: vb] (writeMemh
     // writes up to 32 bits: the words are written here, most significant tile first).
     {
         const int vb = pst::contract::kSubbandValueBits;
-        ok = ok && writeMemh(dir, "subband64.memh", pst::kSubbandRomWords, (vb + 3) / 4, [&](int i) {
+        ok = ok && writeMemh(dir, "subband.memh", pst::kSubbandRomWords, (vb + 3) / 4, [&](int i) {
             return uint32_t(pst::subbandRomWord(0, 0, i)) & uint32_t((uint64_t(1) << vb) - 1);
         });
         for (int K : {4, 8}) {
-            const std::string path = dir + "/subband64_k" + std::to_string(K) + ".memh";
+            const std::string path = dir + "/subband_k" + std::to_string(K) + ".memh";
             std::ofstream out(path + ".tmp", std::ios::trunc);
             for (int a = 0; a < pst::kSubbandRomWords; ++a) {
                 std::string line;

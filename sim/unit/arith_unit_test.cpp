@@ -139,7 +139,7 @@ protected:
         clearPort(d.term_n_i), clearPort(d.term_g_i), clearPort(d.term_a_i), clearPort(d.term_gm_i);
         clearPort(d.fw_grad_i), clearPort(d.fw_j_i), clearPort(d.sqrt_x_i), clearPort(d.fs_x_i);
         // The serial variants: out of reset, at step 0, clock low.
-        d.clk_i = 0, d.rst_ni = 1, d.ser_step_i = 0, d.ser_adv_i = 0, d.quad_ser_step_i = 0, d.quad_ser_step_next_i = 0, d.quad_ser_adv_i = 0;
+        d.clk_i = 0, d.rst_ni = 1, d.ser_step_i = 0, d.ser_adv_i = 0, d.quad_ser_step_i = 0, d.quad_ser_step_next_i = 0, d.quad_ser_adv_i = 0, d.quad_fold_en_i = 0, d.quad_fold_first_i = 0;
         ASSERT_TRUE(eval()) << "an RTL assertion fired on all-zero inputs";
     }
     static void TearDownTestSuite() {
@@ -255,14 +255,34 @@ protected:
         bool serialMatch = true;
         for (int h = 0; h < 2; ++h)
             serialMatch = serialMatch && sq[h] == q && sg[h][0] == gq[0] && sg[h][1] == gq[1] && sg[h][2] == gq[2];
-        t.check(assertOk && serialOk && rq == q && rg[0] == gq[0] && rg[1] == gq[1] && rg[2] == gq[2] && serialMatch,
+        // The folded quadric: rows 0 and 1 held at an enabled edge with first, row 2 live
+        // after it; on every other vector a stalled edge (en low, first high) with other
+        // inputs between them must leave the held rows alone.
+        d.quad_ser_adv_i = 0, d.ser_adv_i = 0;
+        d.quad_fold_en_i = 1, d.quad_fold_first_i = 1;
+        bool foldOk = tick();
+        if (++foldVectors_ & 1) {
+            d.quad_fold_en_i = 0;
+            for (int k = 0; k < 3; ++k) setBits(d.quad_s_i, k * CW, CW, uint64_t(~s[k]));
+            foldOk = tick() && foldOk;
+            for (int k = 0; k < 3; ++k) setBits(d.quad_s_i, k * CW, CW, uint64_t(s[k]));
+            d.quad_fold_en_i = 1;
+        }
+        d.quad_fold_first_i = 0;
+        foldOk = eval() && foldOk;
+        const int64_t fq = getSigned(d.quad_fold_q_o, 0, FW);
+        int64_t fg[3];
+        for (int k = 0; k < 3; ++k) fg[k] = getSigned(d.quad_fold_gradq_o, k * GW, GW);
+        const bool foldMatch = fq == q && fg[0] == gq[0] && fg[1] == gq[1] && fg[2] == gq[2];
+        t.check(assertOk && serialOk && foldOk && rq == q && rg[0] == gq[0] && rg[1] == gq[1] && rg[2] == gq[2] &&
+                    serialMatch && foldMatch,
                 [&] {
                     std::ostringstream os;
-                    if (!assertOk || !serialOk) os << "  (an RTL assertion fired)\n";
+                    if (!assertOk || !serialOk || !foldOk) os << "  (an RTL assertion fired)\n";
                     os << "  s " << list(s, 3) << "\n  coef " << list(coef, 10) << "\n  golden q " << q << " gradq "
                        << list(gq, 3) << "\n  rtl    q " << rq << " gradq " << list(rg, 3) << "\n  serial q (live) "
                        << sq[0] << " gradq " << list(sg[0], 3) << "\n  serial q (held) " << sq[1] << " gradq "
-                       << list(sg[1], 3);
+                       << list(sg[1], 3) << "\n  folded q " << fq << " gradq " << list(fg, 3);
                     return os.str();
                 });
         return q;
@@ -361,6 +381,7 @@ protected:
 
     static std::unique_ptr<VerilatedContext> ctx_;
     static std::unique_ptr<Vpst_arith_unit_top> top_;
+    int foldVectors_ = 0;   // quadric vectors so far (every other one gets a stalled edge)
 };
 std::unique_ptr<VerilatedContext> ArithUnit::ctx_;
 std::unique_ptr<Vpst_arith_unit_top> ArithUnit::top_;

@@ -1,4 +1,5 @@
-// Unit-test top of the arithmetic units (sim/unit/arith_unit_test.cpp): pst_quadric,
+// Unit-test top of the arithmetic units (sim/unit/arith_unit_test.cpp): pst_quadric (and
+// pst_quadric_fold),
 // pst_octave_term and pst_filter_width side by side, so that one verilated model per profile
 // tests all three against the golden model (model/golden/arith_fx.cpp). Besides the profile's
 // filter width (fw_w_o, norm FilterNorm) it builds the other two norms too (fw_w_norm_o: one
@@ -49,6 +50,12 @@ module pst_arith_unit_top #(
   input  logic [10*QW-1:0]  quad_coef_i,
   output logic [FW-1:0]     quad_q_o,
   output logic [3*GW-1:0]   quad_gradq_o,
+  // pst_quadric_fold (Regs = 0) on quad_s_i / quad_coef_i, clocked by clk_i: rows 0 and 1 are
+  // held at a clock edge with quad_fold_first_i and quad_fold_en_i, row 2 is live after it
+  input  logic              quad_fold_en_i,
+  input  logic              quad_fold_first_i,
+  output logic [FW-1:0]     quad_fold_q_o,
+  output logic [3*GW-1:0]   quad_fold_gradq_o,
   // pst_octave_term
   input  logic [NW-1:0]     term_n_i,
   input  logic [3*NGW-1:0]  term_g_i,
@@ -93,6 +100,14 @@ module pst_arith_unit_top #(
   ) u_quadric (
     .clk_i, .rst_ni, .en_i (1'b0),   // Regs = 0: combinational
     .s_i (quad_s_i), .coef_i (quad_coef_i), .q_o (quad_q_o), .gradq_o (quad_gradq_o)
+  );
+
+  pst_quadric_fold #(
+    .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
+    .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
+  ) u_quadric_fold (
+    .clk_i, .rst_ni, .en_i (quad_fold_en_i), .first_i (quad_fold_first_i),
+    .s_i (quad_s_i), .coef_i (quad_coef_i), .q_o (quad_fold_q_o), .gradq_o (quad_fold_gradq_o)
   );
 
   pst_quadric_serial #(

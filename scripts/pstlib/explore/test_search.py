@@ -11,7 +11,7 @@ from pstlib.explore import search as S
 from pstlib.explore import slurm
 from pstlib.paths import ROOT
 
-FULL = ROOT / "rtl" / "configs" / "full.toml"
+FULL = ROOT / "rtl" / "configs" / "full_1clk.toml"   # a one-clock start: the walks below keep cpp 1
 REDUCED = ROOT / "rtl" / "configs" / "reduced.toml"
 
 
@@ -227,8 +227,10 @@ def test_per_class_arguments(tmp_path):
             cli.parse_args(bad)
         assert e.value.code == 2, bad
     (tmp_path / "hash4096.memh").write_text("0\n")     # stand-ins: parse_args checks they exist
-    ok = cli.parse_args(["--max-loss", "1=1,4=1.5,32=2", "--pst", sys.executable, "--rom-dir", str(tmp_path)])
-    assert ok.max_losses == {1: 1.0, 4: 1.5, 32: 2.0}
+    ok = cli.parse_args(["--max-loss", "1=1,2=1,4=1.5,32=2", "--pst", sys.executable, "--rom-dir", str(tmp_path)])
+    assert ok.max_losses == {1: 1.0, 2: 1.0, 4: 1.5, 32: 2.0}
+    assert {c: p.name for c, (p, _) in ok.start_docs.items()} == {1: "full_1clk.toml", 2: "full.toml", 4: "full.toml",
+                                                                   32: "reduced.toml"}
 
 
 def test_slurm_job_script_names_the_cluster_options(tmp_path):

@@ -9,7 +9,7 @@ from pstlib.explore import sweep
 from pstlib.paths import ROOT
 
 REDUCED = ROOT / "rtl" / "configs" / "reduced.toml"
-FULL = ROOT / "rtl" / "configs" / "full.toml"
+FULL = ROOT / "rtl" / "configs" / "full_1clk.toml"   # eight octaves on eight units
 
 
 def load(p):

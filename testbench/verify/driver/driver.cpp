@@ -37,10 +37,11 @@ int64_t fadeTableEntry(const NoiseOptions& noise, int k) {
 }
 
 int64_t subbandWeightEntry(const NoiseOptions& noise, int k) {
-    // h(nu) = exp(-sigma^2 pi^2 nu^2 / 2) at the entry's centre: eq. 4's Gaussian at the subband's
-    // centre frequency pi/16 per tile pixel, 16 tile pixels per noise unit (subband_fx.cpp).
+    // h(nu) = exp(-sigma^2 pi^2 nu^2 / 2): eq. 4's Gaussian at the subband's centre frequency pi/16
+    // per tile pixel, 16 tile pixels per noise unit (subband_fx.cpp), kSubbandWeightOffset above the
+    // entry's centre.
     namespace c = contract;
-    const double nu = std::exp2(-c::kFadeLgLo + (k + 0.5) / 4.0), pi = 3.141592653589793;
+    const double nu = std::exp2(-c::kFadeLgLo + (k + 0.5) / 4.0 + kSubbandWeightOffset), pi = 3.141592653589793;
     const double h = std::exp(-noise.sigma * noise.sigma * pi * pi * nu * nu / 2);
     return std::llround(h * double(int64_t(1) << c::kFadeFrac));
 }

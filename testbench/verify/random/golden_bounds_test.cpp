@@ -254,7 +254,7 @@ TEST(GoldenBounds, FGradAndWWithinTheFormatsBound) {
     for (const std::string& name : rtlProfiles()) {
         const Profile p = loadProfile(rtlProfilePath(name));
         // The subband unit's reference (evalF: model/subband.h, the 256-pixel tile) differs from
-        // what the unit interpolates (the 64-pixel ROM tile) by more than a format bound: the
+        // what the unit interpolates (the 128-pixel ROM tile) by more than a format bound: the
         // unit is checked against its own double reference within the derived bound, and that
         // against the reference basis, by golden_test SubbandFx.*.
         if (p.noise.basis == NoiseBasis::Subband) continue;
