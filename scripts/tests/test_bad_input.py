@@ -341,7 +341,7 @@ def test_12_subband_profile_keys(tmp_path):
             'worley_search = "none"', 'worley_search = "octant"').replace('hash = "rayshade"', 'hash = "perm256"'),
          r"noise\.subband: must be none with a worley unit"),
         ("bad_frac", lambda t: t.replace('subband = "none"', 'subband = "xz"').replace(
-            "lattice_frac = 8", "lattice_frac = 2"), r"noise\.lattice_frac: must be more than 2"),
+            "lattice_frac = 8", "lattice_frac = 3"), r"noise\.lattice_frac: must be more than 3"),
     ]:
         bad = profile_copy(tmp_path, name, edit, src="reduced")
         assert bad.read_text() != (ROOT / "rtl/configs/reduced.toml").read_text()
