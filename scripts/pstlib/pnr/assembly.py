@@ -48,32 +48,7 @@ def to_verilog(blif_text: str, block_prefix: str = "blk_") -> str:
     other cells CELL_N. Constant nets ($true, $false, $undef and what is joined to them:
     the stand-ins' constant address bits, outputs tied off) connect to nothing: they time
     nothing."""
-    lines = list(blif._logical_lines(blif_text))
-    ins, outs, gates, conns = [], [], [], []
-    model = None
-    for line in lines:
-        parts = line.split()
-        if parts[0] == ".model":
-            if model is not None:
-                break
-            model = parts[1]
-        elif parts[0] == ".inputs":
-            ins += parts[1:]
-        elif parts[0] == ".outputs":
-            outs += parts[1:]
-        elif parts[0] in (".gate", ".subckt"):
-            gates.append((parts[1], [p.split("=", 1) for p in parts[2:]]))
-        elif parts[0] == ".conn":
-            conns.append((parts[1], parts[2]))
-        elif parts[0] == ".names":
-            if parts[1:] not in (["$true"], ["$false"], ["$undef"]):
-                raise ValueError(f"BLIF logic not expected in the top level: {line[:80]}")
-        elif parts[0] == ".end":
-            break
-        elif parts[0] not in ("1", "0"):
-            raise ValueError(f"BLIF construct not expected in the top level: {parts[0]}")
-    if model is None:
-        raise ValueError("BLIF has no .model")
+    model, ins, outs, gates, conns = blif.read_model(blif_text, "the top level", conn=True, covers=(["1"], ["0"]))
     parent = {}
 
     def find(n):
@@ -143,16 +118,8 @@ def sta_script(libs: list, netlists: list, top: str, sdc, spefs: dict, out: str,
     lines += [f"read_spef -path {inst} {f}" for inst, f in spefs.items()]
     lines += ["set_propagated_clock [all_clocks]",
               f"set_clock_uncertainty -setup {POST_ROUTE_SETUP_UNCERTAINTY} [all_clocks]"]
-    fields = "-digits 3 -fields {cap slew fanout}"
-    data_in = "[delete_from_list [all_inputs] [get_ports clk_i]]"
-    lines += [f"report_checks -path_delay max -format full_clock_expanded {fields} > {out}.setup",
-              f"report_checks -path_delay max -from [all_registers] -to [all_registers] {fields} > {out}.reg2reg",
-              f"report_checks -path_delay max -from {data_in} {fields} > {out}.in",
-              f"report_checks -path_delay max -to [all_outputs] {fields} > {out}.out",
-              f"report_checks -path_delay min {fields} > {out}.hold",
-              f"report_check_types -max_transition -digits 3 > {out}.transition",
-              f"report_check_types -max_transition -all_violators -digits 3 >> {out}.transition",
-              cap_check, "exit"]
+    lines += [f"report_checks -path_delay max -format full_clock_expanded {timing.FIELDS} > {out}.setup",
+              *timing.report_lines(out), cap_check, "exit"]
     return "\n".join(lines) + "\n"
 
 

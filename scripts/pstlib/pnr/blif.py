@@ -25,12 +25,19 @@ def _logical_lines(text: str):
         buf = ""
 
 
-def to_verilog(blif_text: str) -> str:
-    """Structural Verilog of the BLIF's one model (.inputs, .outputs, .gate lines)."""
-    model, ins, outs, gates = None, [], [], []
+CONSTANTS = (["$true"], ["$false"], ["$undef"])   # Yosys's constant drivers (.names with no input)
+
+
+def read_model(blif_text: str, where: str, conn: bool = False, covers=(["1"],)) -> tuple:
+    """The BLIF's first model: (name, inputs, outputs, gates [(cell, [[pin, net], ...])],
+    conns [(a, b)]). Yosys's constant drivers and their cover lines (COVERS) are skipped;
+    `.conn` is read when CONN; any other logic or construct is a ValueError naming WHERE."""
+    model, ins, outs, gates, conns = None, [], [], [], []
     for line in _logical_lines(blif_text):
         parts = line.split()
         if parts[0] == ".model":
+            if model is not None:
+                break
             model = parts[1]
         elif parts[0] == ".inputs":
             ins += parts[1:]
@@ -38,16 +45,26 @@ def to_verilog(blif_text: str) -> str:
             outs += parts[1:]
         elif parts[0] in (".gate", ".subckt"):
             gates.append((parts[1], [p.split("=", 1) for p in parts[2:]]))
-        elif parts[0] == ".names" and parts[1:] in (["$true"], ["$false"], ["$undef"]):
-            continue        # Yosys's constant drivers: pins on them are left unconnected
+        elif parts[0] == ".conn" and conn:
+            conns.append((parts[1], parts[2]))
+        elif parts[0] == ".names":
+            if parts[1:] not in CONSTANTS:
+                raise ValueError(f"BLIF logic not expected in {where}: {line[:80]}")
         elif parts[0] == ".end":
             break
         elif parts[0].startswith("."):
-            raise ValueError(f"BLIF construct not expected in a mapped netlist: {parts[0]}")
-        elif parts != ["1"]:
-            raise ValueError(f"BLIF line not expected in a mapped netlist: {line[:60]}")
+            raise ValueError(f"BLIF construct not expected in {where}: {parts[0]}")
+        elif parts not in covers:
+            raise ValueError(f"BLIF line not expected in {where}: {line[:60]}")
     if model is None:
         raise ValueError("BLIF has no .model")
+    return model, ins, outs, gates, conns
+
+
+def to_verilog(blif_text: str) -> str:
+    """Structural Verilog of the BLIF's one model (.inputs, .outputs, .gate lines); pins on
+    Yosys's constant drivers are left unconnected."""
+    model, ins, outs, gates, _ = read_model(blif_text, "a mapped netlist")
     names = {}
 
     def name(n):

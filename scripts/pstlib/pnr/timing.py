@@ -24,6 +24,21 @@ POST_ROUTE_SETUP_UNCERTAINTY = 0.1   # pst.sdc's jitter; its 0.3 ns skew is meas
 REPORTS = ("reg2reg", "in", "out", "hold", "transition")
 
 
+FIELDS = "-digits 3 -fields {cap slew fanout}"
+
+
+def report_lines(out: str) -> list:
+    """Tcl writing the REPORTS: OUT.reg2reg, OUT.in (from the data inputs), OUT.out (to the
+    outputs), OUT.hold, OUT.transition."""
+    data_in = "[delete_from_list [all_inputs] [get_ports clk_i]]"
+    return [f"report_checks -path_delay max -from [all_registers] -to [all_registers] {FIELDS} > {out}.reg2reg",
+            f"report_checks -path_delay max -from {data_in} {FIELDS} > {out}.in",
+            f"report_checks -path_delay max -to [all_outputs] {FIELDS} > {out}.out",
+            f"report_checks -path_delay min {FIELDS} > {out}.hold",
+            f"report_check_types -max_transition -digits 3 > {out}.transition",
+            f"report_check_types -max_transition -all_violators -digits 3 >> {out}.transition"]
+
+
 def script(lib, netlist, top: str, sdc, spef, out: str, propagated: bool) -> str:
     """Tcl writing OUT.reg2reg, OUT.in (from the data inputs), OUT.out (to the outputs), OUT.hold
     and OUT.transition; the capacitance check on stdout. PROPAGATED: the clock through its
@@ -37,16 +52,7 @@ def script(lib, netlist, top: str, sdc, spef, out: str, propagated: bool) -> str
     if propagated:
         lines += ["set_propagated_clock [all_clocks]",
                   f"set_clock_uncertainty -setup {POST_ROUTE_SETUP_UNCERTAINTY} [all_clocks]"]
-    fields = "-digits 3 -fields {cap slew fanout}"
-    data_in = "[delete_from_list [all_inputs] [get_ports clk_i]]"
-    lines += [f"report_checks -path_delay max -from [all_registers] -to [all_registers] {fields} > {out}.reg2reg",
-              f"report_checks -path_delay max -from {data_in} {fields} > {out}.in",
-              f"report_checks -path_delay max -to [all_outputs] {fields} > {out}.out",
-              f"report_checks -path_delay min {fields} > {out}.hold",
-              f"report_check_types -max_transition -digits 3 > {out}.transition",
-              f"report_check_types -max_transition -all_violators -digits 3 >> {out}.transition",
-              synth_sta.cap_check_tcl(limits, limits[f"{drive}/Y"]),
-              "exit"]
+    lines += [*report_lines(out), synth_sta.cap_check_tcl(limits, limits[f"{drive}/Y"]), "exit"]
     return "\n".join(lines) + "\n"
 
 
