@@ -60,7 +60,7 @@ package pst_pkg;
   localparam int NoiseRegsMin = 0;
   localparam int NoiseRegsMax = 6;
   localparam int OctaveRegsMin = 0;
-  localparam int OctaveRegsMax = 2;
+  localparam int OctaveRegsMax = 3;
   localparam int WidthRegsMin = 0;
   localparam int WidthRegsMax = 8;
   localparam int ColourRegsMin = 0;
@@ -88,14 +88,14 @@ package pst_pkg;
 
   // Parameter defaults of every module: the profile full (rtl/configs/full.toml).
   localparam int OctavesDefault = 8;
-  localparam int NoiseUnitsDefault = 4;
+  localparam int NoiseUnitsDefault = 3;
   localparam int NoiseStepsDefault = 1;
   localparam int Log2ClutDefault = 8;
   localparam int ColourBitsDefault = 8;
   localparam int DatapathDefault = DatapathParallel;
   localparam int NoiseRegsDefault = 6;
-  localparam int OctaveRegsDefault = 2;
-  localparam int WidthRegsDefault = 5;
+  localparam int OctaveRegsDefault = 3;
+  localparam int WidthRegsDefault = 8;
   localparam int ColourRegsDefault = 2;
   localparam int NoiseInterpDefault = NoiseInterpScurve;
   localparam int NoiseCornerDefault = NoiseCornerValueGradient;
@@ -239,10 +239,11 @@ package pst_pkg;
   function automatic int w_width(input int Log2Clut, input int WidthFrac);
     w_width = w_int_bits(Log2Clut) + WidthFrac;
   endfunction
-  // octave_passes: octave passes per fragment (NoiseUnits divides Octaves)
-  //   = Octaves / NoiseUnits
+  // octave_passes: octave passes per fragment: ceil(Octaves / NoiseUnits) (the last pass's lanes
+  // beyond Octaves are idle)
+  //   = (Octaves + NoiseUnits - 1) / NoiseUnits
   function automatic int octave_passes(input int Octaves, input int NoiseUnits);
-    octave_passes = Octaves / NoiseUnits;
+    octave_passes = ((Octaves + NoiseUnits) - 1) / NoiseUnits;
   endfunction
   // term_regs: the register after the octave term (octave_regs >= 1); the serial quadric's Regs
   //   = OctaveRegs >= 1 ? 1 : 0

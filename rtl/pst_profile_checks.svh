@@ -9,7 +9,7 @@ initial begin
   assert (ColourBits >= 1 && ColourBits <= 8) else $fatal(1, "pipeline.colour_bits: must be in [1, 8]");
   assert (Datapath >= 0 && Datapath < 2) else $fatal(1, "pipeline.datapath: unknown value");
   assert (NoiseRegs >= 0 && NoiseRegs <= 6) else $fatal(1, "pipeline.noise_regs: must be in [0, 6]");
-  assert (OctaveRegs >= 0 && OctaveRegs <= 2) else $fatal(1, "pipeline.octave_regs: must be in [0, 2]");
+  assert (OctaveRegs >= 0 && OctaveRegs <= 3) else $fatal(1, "pipeline.octave_regs: must be in [0, 3]");
   assert (WidthRegs >= 0 && WidthRegs <= 8) else $fatal(1, "pipeline.width_regs: must be in [0, 8]");
   assert (ColourRegs >= 0 && ColourRegs <= 2) else $fatal(1, "pipeline.colour_regs: must be in [0, 2]");
   assert (NoiseInterp >= 0 && NoiseInterp < 3) else $fatal(1, "noise.interp: unknown value");
@@ -47,8 +47,12 @@ initial begin
   assert (GradInt >= 1 && GradInt <= 62 && GradFrac >= 0 && GradFrac <= 62 && GradInt + GradFrac <= 48)
     else $fatal(1, "formats.grad: int in [1, 62], frac in [0, 62], int + frac <= 48");
   assert (WidthFrac >= 0 && WidthFrac <= 24) else $fatal(1, "formats.width_frac: must be in [0, 24]");
-  assert (Octaves % NoiseUnits == 0)
-    else $fatal(1, "pipeline.noise_units: must divide pipeline.octaves");
+  assert (Datapath != pst_pkg::DatapathSerial || Octaves % NoiseUnits == 0)
+    else $fatal(1, "pipeline.noise_units: must divide pipeline.octaves on the serial datapath");
+  assert (NoiseUnits <= Octaves)
+    else $fatal(1, "pipeline.noise_units: must be at most pipeline.octaves");
+  assert (Datapath != pst_pkg::DatapathSerial || OctaveRegs <= 2)
+    else $fatal(1, "pipeline.octave_regs: 3 needs the parallel datapath");
   assert (Datapath != pst_pkg::DatapathSerial || NoiseSteps >= 4)
     else $fatal(1, "pipeline.datapath: serial needs pipeline.noise_steps >= 4");
   assert (( NoiseInterp == pst_pkg::NoiseInterpQuintic ) == ( NoiseCorner == pst_pkg::NoiseCornerGrad12 ))

@@ -24,7 +24,7 @@ from pstlib import baseline
 from pstlib.paths import ROOT
 from pstlib.synth import report
 
-PROFILES = ("reduced", "full", "full_1clk")
+PROFILES = ("reduced", "full", "full_2clk", "full_1clk")
 
 
 def main() -> int:

@@ -29,7 +29,7 @@ for scene in scenes/*.toml; do
 done
 echo "== RTL regression at ${SIZE}x${SIZE}"
 rc=0
-./build/pst regress --size "$SIZE" --profile full --profile full_1clk --profile reduced -o out/regress.json --images out || rc=$?
+./build/pst regress --size "$SIZE" --profile full --profile full_2clk --profile full_1clk --profile reduced -o out/regress.json --images out || rc=$?
 echo "== animation: seascape fly-in, 24 frames at 64x64 through the reference and full's RTL, flicker vs a 4x4 truth"
 ./build/pst animate scenes/seascape.toml --frames 24 --size 64 --truth 4 --profile full -o out/anim/seascape -q || rc=1
 mkdir -p out/animations
@@ -64,6 +64,7 @@ echo "== silicon figures (Yosys + OpenSTA), quick precision sweep, figures"
 /usr/bin/python3 scripts/sweep.py --quick || rc=1
 /usr/bin/python3 scripts/synth.py balanced --quiet || rc=1     # in the baseline too (9-12 min on one core)
 /usr/bin/python3 scripts/synth.py full_1clk --quiet || rc=1    # the one-clock full, in the baseline
+/usr/bin/python3 scripts/synth.py full_2clk --quiet || rc=1    # the two-clock full, in the baseline
 wait "$full_synth" || rc=1
 [ -f out/synth/reduced.md ] || /usr/bin/python3 scripts/synth.py reduced --quiet || rc=1
 /usr/bin/python3 scripts/figures.py fig11 --out out || rc=1

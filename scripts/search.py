@@ -1,8 +1,8 @@
 #!/usr/bin/python3
 """Design-space search: the least logic area at a quality, throughput and clock target.
 
-    scripts/search.py [--classes 1,2,4,32] [--psnr DB | --psnr 1=50,2=50,4=45,32=30] [--max-loss DB] [--fmax MHZ]
-                      [--start 1=full_1clk,2=full,4=full,32=reduced] [--knobs k1,k2,...] [--budget N]
+    scripts/search.py [--classes 1,2,3,4,32] [--psnr DB | --psnr 1=50,2=50,3=50,4=45,32=30] [--max-loss DB] [--fmax MHZ]
+                      [--start 1=full_1clk,2=full_2clk,3=full,4=full_2clk,32=reduced] [--knobs k1,k2,...] [--budget N]
                       [--backtracks N] [--size 48] [--train 8] [--valid 8] [--seed 1]
                       [--valid-seed 1000001] [--paper]
                       [--jobs 2] [--backend local|slurm] [--rtl N] [--rtl-size 32] [--out out/search]
@@ -65,13 +65,13 @@ from pstlib.paths import ROOT
 
 def parse_args(argv):
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--classes", default="1,2,4,32")
+    ap.add_argument("--classes", default="1,2,3,4,32")
     ap.add_argument("--psnr", help="target worst training PSNR, dB (one value or CLASS=DB,...; default 40)")
     ap.add_argument("--max-loss", help="texture by texture: every training scene within this many dB of the "
                     "class's start profile (one value or CLASS=DB,...; default: no such bound)")
     ap.add_argument("--fmax", type=float, default=0.0, help="target Fmax, MHz (0: no constraint); met by the Fmax derated from the routed profile "
                     "(scripts/synth/layout_derate.json) where the silicon flow gives one, else the pre-layout Fmax")
-    ap.add_argument("--start", help="start profile per class, CLASS=PROFILE,... (default 1=full_1clk,2=full,4=full,32=reduced)")
+    ap.add_argument("--start", help="start profile per class, CLASS=PROFILE,... (default 1=full_1clk,2=full_2clk,3=full,4=full_2clk,32=reduced)")
     ap.add_argument("--knobs", help=f"comma-separated, default all: {','.join(KNOB_NAMES)}")
     ap.add_argument("--budget", type=int, help="points per class walk (default 40)")
     ap.add_argument("--backtracks", type=int, help="backtracks per walk (default 2)")

@@ -36,8 +36,9 @@ struct ProfileParams {
     // [pipeline]
     // K: noise terms a_i n(T_i s) the hardware holds (register map: 16 octave blocks)
     int octaves = 8;
-    // noise units in parallel: octaves / noise_units passes per pixel
-    int noiseUnits = 4;
+    // noise units in parallel: ceil(octaves / noise_units) passes per pixel (the last pass's lanes
+    // beyond the octaves idle)
+    int noiseUnits = 3;
     // cycles per pass: a noise unit walks its 8 corners over 1, 2, 4 or 8 cycles
     int noiseSteps = 1;
     // N = 2^log2_clut colour-table entries (the SAT range 0x2000 + 4 e stays below 0x4000)
@@ -52,11 +53,14 @@ struct ProfileParams {
     // noise_regs cycles per pixel)
     int noiseRegs = 6;
     // pipeline registers around the noise unit: 1 after the octave term, 2 also after the octave
-    // transform (parallel only) (latency; serial: + 1 cycle per pixel for the term register)
-    int octaveRegs = 2;
+    // transform, 3 also between the transform's products and their sum (2 and 3 parallel only)
+    // (latency; serial: + 1 cycle per pixel for the term register)
+    int octaveRegs = 3;
     // pipeline registers in the parallel filter width: after the dot products, after ax^2 + ay^2,
-    // the rest inside the square root (latency only; ignored by the serial unit, which has none)
-    int widthRegs = 5;
+    // the rest inside the square root; from 6 on, the first between the products and their sums and
+    // one more after the clamp (6: three in the root) (latency only; ignored by the serial unit,
+    // which has none)
+    int widthRegs = 8;
     // pipeline registers in the colour-table filter: after the table reads, after the sums and the
     // MIP blend (parallel: latency; serial: + colour_regs cycles in [C])
     int colourRegs = 2;
@@ -311,7 +315,7 @@ inline constexpr int kNoiseStepsMin = 1, kNoiseStepsMax = 8;
 inline constexpr int kLog2ClutMin = 1, kLog2ClutMax = 11;
 inline constexpr int kColourBitsMin = 1, kColourBitsMax = 8;
 inline constexpr int kNoiseRegsMin = 0, kNoiseRegsMax = 6;
-inline constexpr int kOctaveRegsMin = 0, kOctaveRegsMax = 2;
+inline constexpr int kOctaveRegsMin = 0, kOctaveRegsMax = 3;
 inline constexpr int kWidthRegsMin = 0, kWidthRegsMax = 8;
 inline constexpr int kColourRegsMin = 0, kColourRegsMax = 2;
 inline constexpr int kNoiseValueFracMin = 1, kNoiseValueFracMax = 15;
@@ -332,7 +336,7 @@ inline constexpr KeySpec kSchema[] = {
     {"pipeline", "colour_bits", KeyKind::Range, ColourBits, 1, 8, {}, 0, nullptr, 0},
     {"pipeline", "datapath", KeyKind::Enum, Datapath, 0, 1, {}, 2, kDatapathNames, 0},
     {"pipeline", "noise_regs", KeyKind::Range, NoiseRegs, 0, 6, {}, 0, nullptr, 0},
-    {"pipeline", "octave_regs", KeyKind::Range, OctaveRegs, 0, 2, {}, 0, nullptr, 0},
+    {"pipeline", "octave_regs", KeyKind::Range, OctaveRegs, 0, 3, {}, 0, nullptr, 0},
     {"pipeline", "width_regs", KeyKind::Range, WidthRegs, 0, 8, {}, 0, nullptr, 0},
     {"pipeline", "colour_regs", KeyKind::Range, ColourRegs, 0, 2, {}, 0, nullptr, 0},
     {"noise", "interp", KeyKind::Enum, NoiseInterp, 0, 2, {}, 3, kNoiseInterpNames, 0},
@@ -370,8 +374,12 @@ struct Constraint {
     bool (*holds)(const int* v);
 };
 inline constexpr Constraint kConstraints[] = {
-    {"pipeline.noise_units", "must divide pipeline.octaves",
-     [](const int* v) { return v[Octaves] % v[NoiseUnits] == 0; }},
+    {"pipeline.noise_units", "must divide pipeline.octaves on the serial datapath",
+     [](const int* v) { return v[Datapath] != 1 || v[Octaves] % v[NoiseUnits] == 0; }},
+    {"pipeline.noise_units", "must be at most pipeline.octaves",
+     [](const int* v) { return v[NoiseUnits] <= v[Octaves]; }},
+    {"pipeline.octave_regs", "3 needs the parallel datapath",
+     [](const int* v) { return v[Datapath] != 1 || v[OctaveRegs] <= 2; }},
     {"pipeline.datapath", "serial needs pipeline.noise_steps >= 4",
      [](const int* v) { return v[Datapath] != 1 || v[NoiseSteps] >= 4; }},
     {"noise.interp", "quintic comes with corner grad12 and hash perlin256 (basis perlin2002), and only with them",
@@ -646,10 +654,11 @@ constexpr int w_int_bits(int log2Clut) {
 constexpr int w_width(int log2Clut, int widthFrac) {
     return w_int_bits(log2Clut) + widthFrac;
 }
-// octave_passes: octave passes per fragment (NoiseUnits divides Octaves)
-//   = Octaves / NoiseUnits
+// octave_passes: octave passes per fragment: ceil(Octaves / NoiseUnits) (the last pass's lanes
+// beyond Octaves are idle)
+//   = (Octaves + NoiseUnits - 1) / NoiseUnits
 constexpr int octave_passes(int octaves, int noiseUnits) {
-    return octaves / noiseUnits;
+    return ((octaves + noiseUnits) - 1) / noiseUnits;
 }
 // term_regs: the register after the octave term (octave_regs >= 1); the serial quadric's Regs
 //   = OctaveRegs >= 1 ? 1 : 0

@@ -149,7 +149,8 @@ void expectError(const std::string& from, const std::string& to, const std::stri
 }
 
 TEST(Profile, RejectsWhatTheContractRejects) {
-    expectError("noise_units = 1", "noise_units = 3", "pipeline.noise_units: must divide pipeline.octaves");
+    expectError("noise_units = 1", "noise_units = 3",
+                "pipeline.noise_units: must divide pipeline.octaves on the serial datapath");
     expectError("noise_steps = 4", "noise_steps = 2", "pipeline.datapath: serial needs pipeline.noise_steps >= 4");
     expectError("noise_steps = 4", "noise_steps = 3", "pipeline.noise_steps: must be 1, 2, 4 or 8");
     expectError("octaves = 5", "octaves = 17", "pipeline.octaves: must be in [1, 16]");

@@ -27,26 +27,45 @@ module pst_delay #(
     logic unused_ctl;
     assign unused_ctl = ^{clk_i, rst_ni, en_i};
   end else begin : g_regs
-    logic [Depth*Width-1:0] q;   // register k at [k*Width +: Width]
-    logic [Depth*Width-1:0] d;
-    if (Depth > 1) begin : g_shift
-      assign d = {q[0 +: (Depth-1)*Width], d_i};
-    end else begin : g_one
-      assign d = d_i;
+    // The last register (q_o) apart from the ones before it (q: register k at
+    // [k*Width +: Width], k < Depth - 1): an assertion's $past/$stable of q_o then samples
+    // Width bits, not the whole line (Verilator 5.006 emits the sampled copy of a vector over
+    // about 40 words as a loop whose index it does not declare).
+    logic [Width-1:0] last_q, last_d;
+    if (Depth > 1) begin : g_line
+      logic [(Depth-1)*Width-1:0] q, d;
+      if (Depth > 2) begin : g_shift
+        assign d = {q[0 +: (Depth-2)*Width], d_i};
+      end else begin : g_one
+        assign d = d_i;
+      end
+      assign last_d = q[(Depth-2)*Width +: Width];
+      if (Reset) begin : g_reset
+        always_ff @(posedge clk_i or negedge rst_ni) begin
+          if (!rst_ni) q <= '0;
+          else if (en_i) q <= d;
+        end
+      end else begin : g_noreset
+        always_ff @(posedge clk_i) begin
+          if (en_i) q <= d;
+        end
+      end
+    end else begin : g_first
+      assign last_d = d_i;
     end
     if (Reset) begin : g_reset
       always_ff @(posedge clk_i or negedge rst_ni) begin
-        if (!rst_ni) q <= '0;
-        else if (en_i) q <= d;
+        if (!rst_ni) last_q <= '0;
+        else if (en_i) last_q <= last_d;
       end
     end else begin : g_noreset
       always_ff @(posedge clk_i) begin
-        if (en_i) q <= d;
+        if (en_i) last_q <= last_d;
       end
       logic unused_rst;
       assign unused_rst = rst_ni;
     end
-    assign q_o = q[(Depth-1)*Width +: Width];
+    assign q_o = last_q;
   end
 
 endmodule

@@ -1,5 +1,5 @@
-// pst_octave_lane: the body of one octave lane (docs/HARDWARE.md units 2 and 4), combinational,
-// in three parts the datapaths register between as their schedules need:
+// pst_octave_lane: the body of one octave lane (docs/HARDWARE.md units 2 and 4), combinational
+// but for the transform's TransformRegs register, in three parts the datapaths register between as their schedules need:
 //   transform  the lattice index and fraction of M_i s + o_i (pst_octave_transform), Rows rows;
 //   fade       the octave's weight alpha from the pixel's lg edge lengths and lg ||M_i||
 //              (pst_octave_fade; 1.0 without FilterBandlimit);
@@ -11,6 +11,7 @@
 //
 // Parameters:
 //   Rows             3: whole matrices; 1: one row per use (m_i, o_i, gm_i that row's).
+//   TransformRegs    0, 1: the register inside the transform (pst_octave_transform Regs).
 //   FilterBandlimit  isotropic: the fade (alpha_o from the table); off: alpha_o = 1.0.
 //   LgW              width of lgx_i, lgy_i (pst_fade_lg's lg_o).
 //   <Format>Int/Frac the profile's number formats (pst_top's header).
@@ -20,6 +21,7 @@
 
 module pst_octave_lane #(
   parameter int Rows = 3,
+  parameter int TransformRegs = 0,
   parameter int LgW = 9,
   `PST_LANE_PARAMS,
   localparam int CW  = CoordInt + CoordFrac,
@@ -36,6 +38,9 @@ module pst_octave_lane #(
   localparam int FB  = pst_pkg::FadeBits,
   localparam int LMW = pst_pkg::FadeLgBits
 ) (
+  input  logic                    clk_i,    // TransformRegs: the transform's register (en_i)
+  input  logic                    rst_ni,
+  input  logic                    en_i,
   // Transform
   input  logic [3*CW-1:0]         s_i,
   input  logic [Rows*3*MW-1:0]    m_i,
@@ -64,9 +69,10 @@ module pst_octave_lane #(
 
   pst_octave_transform #(
     .CoordInt(CoordInt), .CoordFrac(CoordFrac), .MatrixInt(MatrixInt), .MatrixFrac(MatrixFrac),
-    .OffsetInt(OffsetInt), .OffsetFrac(OffsetFrac), .NoiseLatticeFrac(NoiseLatticeFrac), .Rows(Rows)
+    .OffsetInt(OffsetInt), .OffsetFrac(OffsetFrac), .NoiseLatticeFrac(NoiseLatticeFrac), .Rows(Rows),
+    .Regs(TransformRegs)
   ) u_transform (
-    .s_i (s_i), .m_i (m_i), .o_i (o_i), .lat_o (lat_o), .frac_o (frac_o)
+    .clk_i, .rst_ni, .en_i, .s_i (s_i), .m_i (m_i), .o_i (o_i), .lat_o (lat_o), .frac_o (frac_o)
   );
 
   if (Bl) begin : g_fade

@@ -1,9 +1,12 @@
 // pst_octave_parallel: the parallel octave datapath of pst_octave_stage: every product every
 // cycle, a fragment per Passes x NoiseSteps cycles (a pixel per clock with one pass of one
-// step). Each cycle of a fragment in [A] issues a beat (its pass, step, first / last flags)
-// into a pipeline of Lat = XR + NoiseRegs + MR registers, which carries side_i (the tag and
+// step; Passes = ceil(Octaves / NoiseUnits): when NoiseUnits does not divide Octaves, the last
+// pass's lanes beyond the octaves evaluate noise whose term is zero). Each cycle of a fragment
+// in [A] issues a beat (its pass, step, first / last flags) into a pipeline of
+// Lat = TR + XR + NoiseRegs + MR registers, which carries side_i (the tag and
 // Jacobian) beside it; [A] is released at the last beat's issue. Per lane (pst_octave_lane):
-//   issue     octave transform of the beat's pass            -> XR registers (OctaveRegs = 2)
+//   issue     octave transform of the beat's pass            -> TR + XR registers (OctaveRegs 3: TR
+//             between its products and their sum; >= 2: XR after it)
 //   noise     the noise units (outside, pst_octave_noise)     -> NoiseRegs registers
 //   term      octave term, zero unless the lane's octave is active -> MR registers (OctaveRegs >= 1)
 // The quadric (pst_quadric, folded over the last two beats when a fragment has two or more:
@@ -91,16 +94,17 @@ module pst_octave_parallel #(
 
   localparam int Passes   = pst_pkg::octave_passes(Octaves, NoiseUnits);
   localparam int PassBits = (Passes > 1) ? $clog2(Passes) : 1;
+  localparam int TR       = (OctaveRegs >= 3) ? 1 : 0;   // inside the transform (products | sum)
   localparam int XR       = (OctaveRegs >= 2) ? 1 : 0;   // after the transform
   localparam int NR       = NoiseRegs;                    // inside the noise units
   localparam int MR       = pst_pkg::term_regs(OctaveRegs);   // after the term
-  localparam int Lat      = XR + NR + MR;
+  localparam int Lat      = TR + XR + NR + MR;
   localparam int Cycles   = pst_pkg::octave_cycles(Octaves, NoiseUnits, NoiseSteps, pst_pkg::DatapathParallel,
                                                  NoiseRegs, OctaveRegs);   // a fragment's beats
   localparam int CycBits  = (Cycles > 1) ? $clog2(Cycles) : 1;
   localparam bit Bl       = (FilterBandlimit == pst_pkg::FilterBandlimitIsotropic);
   localparam int LgW      = $clog2((JW + 1) << pst_pkg::FadeLgFrac) + 1;
-  localparam int FL       = XR + NR;                      // the fade chain's registers
+  localparam int FL       = TR + XR + NR;                 // the fade chain's registers
   localparam int F1       = (FL >= 3) ? 1 : 0;
   localparam int F2       = (FL >= 2) ? 1 : 0;
   localparam int F3       = FL - F1 - F2;
@@ -108,6 +112,8 @@ module pst_octave_parallel #(
   typedef struct packed {
     logic                valid;
     logic [PassBits-1:0] pass;
+    logic [Passes-1:0]   pass_oh;   // the pass one-hot (the term's register select)
+    logic [NoiseUnits-1:0] on;      // lane u's octave is active (decided at issue)
     logic [2:0]          step;
     logic                first;
     logic                last;
@@ -125,6 +131,10 @@ module pst_octave_parallel #(
   assign nstep  = 3'(32'(cyc_q) % NoiseSteps);
   assign beat_f.valid = valid_i;
   assign beat_f.pass  = npass;
+  assign beat_f.pass_oh = Passes'(1) << npass;
+  for (genvar u = 0; u < NoiseUnits; u++) begin : g_on
+    assign beat_f.on[u] = (OctBits + 1)'(32'(npass) * NoiseUnits + u) < {1'b0, active_i};
+  end
   assign beat_f.step  = nstep;
   assign beat_f.first = (cyc_q == '0);
   assign beat_f.last  = (32'(cyc_q) + 1 >= Cycles);
@@ -148,12 +158,19 @@ module pst_octave_parallel #(
   logic [FW-1:0]   q_f;
   logic [3*GW-1:0] gradq_f;
   if (Cycles >= 2) begin : g_quad_fold
+    // cyc_q == Cycles - 2, registered from cyc_d (the rows' select without the compare)
+    logic fold_first_q;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) fold_first_q <= (Cycles == 2);
+      else fold_first_q <= (32'(cyc_d) == Cycles - 2);
+    end
     pst_quadric_fold #(
       .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
       .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac),
-      .Regs(QR)
+      .Regs(QR), .SelReg(Cycles >= 3)
     ) u_quadric (
-      .clk_i, .rst_ni, .en_i (en), .first_i (32'(cyc_q) == Cycles - 2), .s_i (s_i), .coef_i (quad_i),
+      .clk_i, .rst_ni, .en_i (en), .first_i (fold_first_q), .first_next_i (32'(cyc_d) == Cycles - 2),
+      .s_i (s_i), .coef_i (quad_i),
       .q_o (q_f), .gradq_o (gradq_f)
     );
   end else begin : g_quad
@@ -170,13 +187,13 @@ module pst_octave_parallel #(
 
   // Beats and side payload: [X] after the transform, NR beside the noise units, [M] after the
   // term.
-  pst_delay #(.Width($bits(beat_f)), .Depth(XR), .Reset(1'b1)) u_beat_x (
+  pst_delay #(.Width($bits(beat_f)), .Depth(TR + XR), .Reset(1'b1)) u_beat_x (
     .clk_i, .rst_ni, .en_i (en), .d_i (beat_f), .q_o (beat_x));
   pst_delay #(.Width($bits(beat_f)), .Depth(NR), .Reset(1'b1)) u_beat_n (
     .clk_i, .rst_ni, .en_i (en), .d_i (beat_x), .q_o (beat_n));
   pst_delay #(.Width($bits(beat_f)), .Depth(MR), .Reset(1'b1)) u_beat_e (
     .clk_i, .rst_ni, .en_i (en), .d_i (beat_n), .q_o (beat_e));
-  pst_delay #(.Width(SideW), .Depth(XR)) u_side_x (
+  pst_delay #(.Width(SideW), .Depth(TR + XR)) u_side_x (
     .clk_i, .rst_ni, .en_i (en), .d_i (side_i), .q_o (side_x));
   pst_delay #(.Width(SideW), .Depth(NR)) u_side_n (
     .clk_i, .rst_ni, .en_i (en), .d_i (side_x), .q_o (side_n));
@@ -229,24 +246,25 @@ module pst_octave_parallel #(
       fm_sel  = oct_fm_i[u*FW +: FW];
       gm_sel  = oct_gm_i[u*9*GMW +: 9*GMW];
       for (int p = 1; p < Passes; p++) begin
-        if (32'(npass) == p) begin
-          m_sel   = oct_m_i[(p * NoiseUnits + u)*9*MW +: 9*MW];
-          o_sel   = oct_o_i[(p * NoiseUnits + u)*3*OW +: 3*OW];
-          lgm_sel = oct_lgm_i[(p * NoiseUnits + u)*LMW +: LMW];
-        end
-        if (32'(beat_n.pass) == p) begin
-          a_sel  = oct_a_i[(p * NoiseUnits + u)*AW +: AW];
-          fm_sel = oct_fm_i[(p * NoiseUnits + u)*FW +: FW];
-          gm_sel = oct_gm_i[(p * NoiseUnits + u)*9*GMW +: 9*GMW];
+        // (a lane of the last pass beyond the octaves keeps its first selection: its term is
+        // zero, lane_on below)
+        if (p * NoiseUnits + u < Octaves) begin
+          if (32'(npass) == p) begin
+            m_sel   = oct_m_i[(p * NoiseUnits + u)*9*MW +: 9*MW];
+            o_sel   = oct_o_i[(p * NoiseUnits + u)*3*OW +: 3*OW];
+            lgm_sel = oct_lgm_i[(p * NoiseUnits + u)*LMW +: LMW];
+          end
+          if (beat_n.pass_oh[p]) begin
+            a_sel  = oct_a_i[(p * NoiseUnits + u)*AW +: AW];
+            fm_sel = oct_fm_i[(p * NoiseUnits + u)*FW +: FW];
+            gm_sel = oct_gm_i[(p * NoiseUnits + u)*9*GMW +: 9*GMW];
+          end
         end
       end
     end
-    // The lane's octave after the noise units (lane_on: an active octave).
-    logic [OctBits:0] oct_n;
-    logic             lane_on;
-    assign oct_n   = (Passes > 1) ? (OctBits + 1)'(beat_n.pass) * (OctBits + 1)'(NoiseUnits) + (OctBits + 1)'(u)
-                                  : (OctBits + 1)'(u);
-    assign lane_on = oct_n < {1'b0, active_i};
+    // The lane's octave after the noise units is active (lane_on, decided at the beat's issue).
+    logic lane_on;
+    assign lane_on = beat_n.on[u];
 
     logic [LTW-1:0]  lat_f;
     logic [3*LF-1:0] frac_f;
@@ -254,8 +272,9 @@ module pst_octave_parallel #(
     logic [FB-1:0]   alpha_2, alpha_n;
     logic [FW-1:0]   fterm;
     logic [3*GW-1:0] gterm;
-    pst_octave_lane #(.Rows(3), .LgW(LgW), `PST_LANE_PASS
+    pst_octave_lane #(.Rows(3), .TransformRegs(TR), .LgW(LgW), `PST_LANE_PASS
     ) u_lane (
+      .clk_i, .rst_ni, .en_i (en),
       .s_i (s_i), .m_i (m_sel), .o_i (o_sel), .lat_o (lat_f), .frac_o (frac_f),
       .bl_i (bl_i), .lgx_i (lgx), .lgy_i (lgy), .lgm_i (lgm_2), .fade_i (fade_i), .alpha_o (alpha_2),
       .n_i (nz_n_i[u*NW +: NW]), .g_i (nz_g_i[u*3*NGW +: 3*NGW]), .a_i (a_sel), .gm_i (gm_sel),
@@ -285,13 +304,13 @@ module pst_octave_parallel #(
   assign pr_tag_o    = DebugProbes ? side_n[TB-1:0] : '0;
   assign pr_q_tag_o  = DebugProbes ? side_e[TB-1:0] : '0;
   logic unused;
-  assign unused = ^{beat_x.pass, beat_x.first, beat_x.last, beat_n.first, beat_n.last, beat_e.pass,
-                    beat_e.step, side_n[SideW-1:TB]};
+  assign unused = ^{beat_x.pass, beat_x.pass_oh, beat_x.on, beat_x.first, beat_x.last, beat_n.first,
+                    beat_n.last, beat_e.pass, beat_e.pass_oh, beat_e.on, beat_e.step, side_n[SideW-1:TB]};
 
   // Assertions
 `ifndef SYNTHESIS
   initial begin
-    if (OctaveRegs < 0 || OctaveRegs > 2) $error("pst_octave_parallel: OctaveRegs must be 0..2");
+    if (OctaveRegs < 0 || OctaveRegs > 3) $error("pst_octave_parallel: OctaveRegs must be 0..3");
     if (Bl && SideW < TB + 6*JW) $error("pst_octave_parallel: SideW must hold the Jacobian above the tag");
   end
   assert property (@(posedge clk_i) disable iff (!rst_ni) 32'(cyc_q) < Cycles);

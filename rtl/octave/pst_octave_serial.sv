@@ -280,6 +280,7 @@ module pst_octave_serial #(
     logic [3*GW-1:0]  gterm_d;
     pst_octave_lane #(.Rows(1), .LgW(LgW), `PST_LANE_PASS
     ) u_lane (
+      .clk_i, .rst_ni, .en_i (1'b1),   // (no register inside: TransformRegs = 0)
       .s_i (s_i), .m_i (m_row), .o_i (o_row), .lat_o (lat_r), .frac_o (frac_r),
       .bl_i (bl_term), .lgx_i (lgx), .lgy_i (lgy), .lgm_i (lgm_t_d), .fade_i (fade_i), .alpha_o (alpha_d),
       .n_i (n_q), .g_i (g_q), .a_i (a_t), .gm_i (gm_row), .alpha_i (alpha_t), .fm_i (fm_t), .fterm_o (fterm_raw),

@@ -1,6 +1,7 @@
 // Unit 1 of the texture pipeline (docs/HARDWARE.md): the octave transform p = M s + o of
 // one noise octave, reduced to what the noise unit needs (lattice index mod 4096 and fraction).
-// Combinational. Golden model: pst::octaveTransformFx (model/golden/noise_fx.cpp).
+// Combinational (Regs = 0) or one register inside (Regs = 1). Golden model:
+// pst::octaveTransformFx (model/golden/noise_fx.cpp).
 //
 // Arithmetic, per axis r (exact until the floor):
 //   acc_r = sum_j M[r][j] * s[j] + (o[r] << (MatrixFrac + CoordFrac - OffsetFrac))
@@ -19,6 +20,9 @@
 //   NoiseLatticeFrac        fraction bits of u handed to the noise unit (LF)
 //   Rows                    3: all three axes; 1: one axis (the caller hands in that row of
 //                           M and o: the serial datapath, one row per cycle)
+//   Regs                    0: combinational; 1: a pipeline register (pst_delay, en_i) between
+//                           the products (with o) and their sum: lat_o, frac_o come one advance
+//                           after s_i, m_i, o_i (the parallel datapath's octave_regs = 3)
 // Requires MatrixFrac + CoordFrac >= NoiseLatticeFrac and >= OffsetFrac (asserted).
 //
 // Ports:
@@ -39,6 +43,7 @@ module pst_octave_transform #(
   parameter int OffsetFrac = pst_pkg::OffsetFracDefault,
   parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault,
   parameter int Rows = 3,
+  parameter int Regs = 0,
   // Derived widths (do not override).
   localparam int CW = CoordInt + CoordFrac,   // s element width
   localparam int MW = MatrixInt + MatrixFrac, // M element width
@@ -46,6 +51,9 @@ module pst_octave_transform #(
   localparam int LF = NoiseLatticeFrac,
   localparam int LB = pst_pkg::LatticeBits        // one lattice index
 ) (
+  input  logic             clk_i,    // Regs = 1: the register between products and sum
+  input  logic             rst_ni,
+  input  logic             en_i,
   input  logic [3*CW-1:0] s_i,
   input  logic [Rows*3*MW-1:0] m_i,
   input  logic [Rows*OW-1:0]   o_i,
@@ -67,7 +75,8 @@ module pst_octave_transform #(
   localparam logic [LB-1:0] LatticeOffset = LB'(pst_pkg::LatticeOffset);
 
   for (genvar r = 0; r < Rows; r++) begin : g_axis
-    logic [3*KW-1:0]  prod;  // three products mod 2^KW, j at [j*KW +: KW]
+    logic [3*KW-1:0]  prod_d, prod;  // three products mod 2^KW, j at [j*KW +: KW]
+    logic [OW-1:0]    o_r;           // o beside them
     logic [KW-1:0]    off_ext;
     logic [KW-1:0]    acc;
 
@@ -75,14 +84,17 @@ module pst_octave_transform #(
       pst_mul_booth #(.AW(CW), .BW(MW), .BSigned(1'b1), .PW(KW)) u_mul (
         .a_i (s_i[j*CW +: CW]),
         .b_i (m_i[(3*r+j)*MW +: MW]),
-        .p_o (prod[j*KW +: KW])
+        .p_o (prod_d[j*KW +: KW])
       );
     end
+    pst_delay #(.Width(3*KW + OW), .Depth(Regs)) u_reg (
+      .clk_i, .rst_ni, .en_i, .d_i ({o_i[r*OW +: OW], prod_d}), .q_o ({o_r, prod})
+    );
 
     if (OffShift > 0) begin : g_off_shift
-      assign off_ext = KW'({{KW{o_i[r*OW + OW-1]}}, o_i[r*OW +: OW], {OffShift{1'b0}}});
+      assign off_ext = KW'({{KW{o_r[OW-1]}}, o_r, {OffShift{1'b0}}});
     end else begin : g_off_noshift
-      assign off_ext = KW'({{KW{o_i[r*OW + OW-1]}}, o_i[r*OW +: OW]});
+      assign off_ext = KW'({{KW{o_r[OW-1]}}, o_r});
     end
 
     assign acc = prod[0 +: KW] + prod[KW +: KW] + prod[2*KW +: KW] + off_ext;
@@ -103,6 +115,7 @@ module pst_octave_transform #(
   initial begin
     if (AccFrac < NoiseLatticeFrac) $error("MatrixFrac + CoordFrac must be >= NoiseLatticeFrac");
     if (OffShift < 0) $error("MatrixFrac + CoordFrac must be >= OffsetFrac");
+    if (Regs != 0 && Regs != 1) $error("pst_octave_transform: Regs must be 0 or 1");
   end
 `endif
 

@@ -17,10 +17,13 @@
 //   gradq_o = sat_Grad(floor(2 v_r to GradFrac)), per component
 // are the fragment's (pst_quadric's values); other beats' outputs are not used.
 // Area: 6 + 2 products instead of 9 + 3, for a 4 x QW + CW input multiplexer and the hold
-// (2 QXW + 2 VW flip-flops).
+// (2 QXW + 2 VW flip-flops). Register 1 holds w_u (v_u with the linear term added once more,
+// in step 1's sum of products), so step 2's path is the product alone.
 //
 // Parameters: as pst_quadric (formats; Regs 0..2 pipeline registers after v and after the
-// products).
+// products); SelReg 1: unit 0's row registered a clock ahead from first_next_i (a fragment of
+// three or more beats: the first of them is never used, so the register is always loaded
+// from the coefficients that the used beats see).
 `include "pst_pkg.sv"
 `default_nettype none
 
@@ -34,6 +37,7 @@ module pst_quadric_fold #(
   parameter int GradInt     = pst_pkg::GradIntDefault,
   parameter int GradFrac    = pst_pkg::GradFracDefault,
   parameter int Regs        = 0,
+  parameter bit SelReg      = 1'b0,
   // Derived widths (not profile keys).
   localparam int CW = CoordInt + CoordFrac,       // one texture coordinate
   localparam int QW = QuadricInt + QuadricFrac,   // one coefficient
@@ -44,6 +48,7 @@ module pst_quadric_fold #(
   input  logic             rst_ni,
   input  logic             en_i,     // the pipeline advances (every register, the hold too)
   input  logic             first_i,  // this beat computes rows 0 and 1 (else row 2)
+  input  logic             first_next_i,   // SelReg: first_i of the next clock's beat
   input  logic [3*CW-1:0]  s_i,      // s, t, r; element k at [k*CW +: CW]
   input  logic [10*QW-1:0] coef_i,   // A..J; element k at [k*QW +: QW]
   output logic [FW-1:0]    q_o,
@@ -63,27 +68,67 @@ module pst_quadric_fold #(
   // The rows each unit takes this beat: unit 0 row 0 or row 2, unit 1 row 1.
   logic signed [QW-1:0] r0_a, r0_b, r0_c, r0_d;
   logic signed [CW-1:0] r0_s;
-  assign {r0_a, r0_b, r0_c, r0_d} = first_i ? {ca, cb, cc, cd} : {cc, cf, ch, ci};
+  logic [3*CW-1:0]      s_p;   // s for step 1's products (SelReg: a registered copy)
+  if (SelReg) begin : g_sel_reg
+    // Selected a cycle ahead from first_next_i and registered every clock: the products start
+    // at a register, not at the multiplexer (the caller's promise: the coefficients do not
+    // change in the cycle before a beat that is used; pst_octave_parallel with three or more
+    // beats, register writes only while idle).
+    // s is registered beside them (a copy of s_i, which holds one fragment over its beats):
+    // the products' s then comes from a register of their own, not through s_i's fanout.
+    logic [4*QW-1:0] row_q;
+    logic [3*CW-1:0] s_q;
+    always_ff @(posedge clk_i) begin
+      row_q <= first_next_i ? {ca, cb, cc, cd} : {cc, cf, ch, ci};
+      s_q   <= s_i;
+    end
+    assign {r0_a, r0_b, r0_c, r0_d} = row_q;
+    assign s_p = s_q;
+    logic unused_rst_sel;
+    assign unused_rst_sel = rst_ni;
+  end else begin : g_sel
+    assign {r0_a, r0_b, r0_c, r0_d} = first_i ? {ca, cb, cc, cd} : {cc, cf, ch, ci};
+    assign s_p = s_i;
+    logic unused_first_next;
+    assign unused_first_next = first_next_i;
+  end
   assign r0_s = first_i ? s0 : s2;
 
-  // Step 1: v_u = (row) . [s 1] at QuadricFrac + CoordFrac.
-  logic signed [VW-1:0] v0_d, v1_d, v0, v1;
-  assign v0_d = VW'(r0_a) * VW'(s0) + VW'(r0_b) * VW'(s1) + VW'(r0_c) * VW'(s2) + (VW'(r0_d) <<< CoordFrac);
-  assign v1_d = VW'(cb) * VW'(s0) + VW'(ce) * VW'(s1) + VW'(cf) * VW'(s2) + (VW'(cg) <<< CoordFrac);
+  // Step 1: w_u = v_u + Q_r3 << CoordFrac = (row) . [s 1] + Q_r3 << CoordFrac, one sum of
+  // products (the linear coefficient twice: w = a s + b t + c r + 2 d << CoordFrac), so that
+  // step 2 starts at its product; v_u = w_u - Q_r3 << CoordFrac is taken back after it (off
+  // the product's path).
+  // Radix-4 Booth products (rtl/common/pst_mul_booth.sv, the coefficient recoded: 13 rows
+  // instead of Yosys' 32-row AND array; step 1 is the fold's longest path), modulo 2^WW.
+  logic signed [WW-1:0] w0_d, w1_d, w0, w1;
+  logic [6*WW-1:0] pr;   // unit u, column c at [(3u + c)*WW +: WW]
+  for (genvar c = 0; c < 3; c++) begin : g_col
+    pst_mul_booth #(.AW(CW), .BW(QW), .BSigned(1'b1), .PW(WW)) u_m0 (
+      .a_i (s_p[c*CW +: CW]), .b_i (c == 0 ? r0_a : c == 1 ? r0_b : r0_c), .p_o (pr[c*WW +: WW]));
+    pst_mul_booth #(.AW(CW), .BW(QW), .BSigned(1'b1), .PW(WW)) u_m1 (
+      .a_i (s_p[c*CW +: CW]), .b_i (c == 0 ? cb : c == 1 ? ce : cf), .p_o (pr[(3+c)*WW +: WW]));
+  end
+  assign w0_d = pr[0*WW +: WW] + pr[1*WW +: WW] + pr[2*WW +: WW] + (WW'(r0_d) <<< (CoordFrac + 1));
+  assign w1_d = pr[3*WW +: WW] + pr[4*WW +: WW] + pr[5*WW +: WW] + (WW'(cg) <<< (CoordFrac + 1));
 
-  // Register 1: v, the rows' own coordinates and linear coefficients, J, the beat's flag.
+  // Register 1: w, the rows' own coordinates and linear coefficients, J, the beat's flag.
   logic signed [CW-1:0] r0_s_r, s1_r;
   logic signed [QW-1:0] r0_d_r, cg_r, cj_r, cj_q;
   logic                 first_r, first_q;
-  pst_delay #(.Width(2*VW + 2*CW + 3*QW + 1), .Depth(Regs > 0 ? 1 : 0)) u_reg1 (
-    .clk_i, .rst_ni, .en_i, .d_i ({v1_d, v0_d, s1, r0_s, cj, cg, r0_d, first_i}),
-    .q_o ({v1, v0, s1_r, r0_s_r, cj_r, cg_r, r0_d_r, first_r})
+  pst_delay #(.Width(2*WW + 2*CW + 3*QW + 1), .Depth(Regs > 0 ? 1 : 0)) u_reg1 (
+    .clk_i, .rst_ni, .en_i, .d_i ({w1_d, w0_d, s1, r0_s, cj, cg, r0_d, first_i}),
+    .q_o ({w1, w0, s1_r, r0_s_r, cj_r, cg_r, r0_d_r, first_r})
   );
 
-  // Step 2: p_u = s_r (v_u + Q_r3 << CoordFrac); register 2.
-  logic signed [WW-1:0] w0, w1;
-  assign w0 = WW'(v0) + (WW'(r0_d_r) <<< CoordFrac);
-  assign w1 = WW'(v1) + (WW'(cg_r) <<< CoordFrac);
+  // Step 2: p_u = s_r w_u; v_u = w_u - Q_r3 << CoordFrac (exact, VW bits); register 2.
+  logic signed [VW-1:0] v0, v1;
+  logic signed [WW-1:0] v0_w, v1_w;
+  assign v0_w = w0 - (WW'(r0_d_r) <<< CoordFrac);
+  assign v1_w = w1 - (WW'(cg_r) <<< CoordFrac);
+  assign v0 = v0_w[VW-1:0];
+  assign v1 = v1_w[VW-1:0];
+  logic unused_v_top;   // |v| < 2^(VW-1): the top bit is a sign copy
+  assign unused_v_top = ^{v0_w[WW-1], v1_w[WW-1]};
   logic signed [QXW-1:0] p0_d, p1_d, p0, p1;
   assign p0_d = QXW'(r0_s_r) * QXW'(w0);
   assign p1_d = QXW'(s1_r) * QXW'(w1);

@@ -31,7 +31,9 @@
 //   Regs                        pipeline registers (Serial = 0 only; the profile's
 //                               pipeline.width_regs): the first after the dot products gx, gy,
 //                               the second after ax^2 + ay^2 (other norms: after the norm), the
-//                               rest inside pst_isqrt (other norms: after the second); w_o
+//                               rest inside pst_isqrt (other norms: after the second); from 6
+//                               on, the first between the six products and their sums and one
+//                               more after the clamp (ax, ay), so 6 leaves 3 in the root; w_o
 //                               comes Regs advances (en_i) after grad_i, j_i.
 // Steps (Serial): pst_pkg::WidthProducts products, then for the euclidean norm
 // pst_pkg::WidthEuclidSquares squares and NSq root cycles; NSteps in all (16 in reduced).
@@ -85,21 +87,36 @@ module pst_filter_width #(
   localparam int LastStep = NSteps - 1;
   localparam int SB = pst_pkg::StepBits;
   // Pipeline registers (parallel): after g, after the squares (or the norm), the rest.
-  localparam int R0 = (!Serial && Regs > 0) ? 1 : 0;
+  // Regs >= 6 (Split): the first register goes between the six products and their sums (RP)
+  // and the second after |W|'s clamp (RA) instead of after g; then the squares, the rest in
+  // the root: products | sums, |.|, clamp | squares | root. Fewer: g | squares | root.
+  localparam bit Split = !Serial && Regs >= 6;
+  localparam int RP = Split ? 1 : 0;
+  localparam int R0 = (!Serial && !Split && Regs > 0) ? 1 : 0;
+  localparam int RA = Split ? 1 : 0;
   localparam int R1 = (!Serial && Regs > 1) ? 1 : 0;
-  localparam int RS = (!Serial && Regs > 2) ? Regs - 2 : 0;
+  localparam int RS = Split ? Regs - 3 : (!Serial && Regs > 2) ? Regs - 2 : 0;
   // (Not '1: Yosys 0.23 reads '1 in a parameter declaration as the 1-bit value 1.)
   localparam logic [WW-1:0] WMax = {WW{1'b1}};
 
   // Step 1 per direction d (0: x with dsdx = j[0..2], 1: y with dsdy = j[3..5]): gd.
   logic [2*XW-1:0] g;    // g_d at [d*XW +: XW]
   if (!Serial) begin : g_par
+    // One signed product, exact: a radix-4 Booth product (rtl/common/pst_mul_booth.sv, the
+    // Jacobian entry recoded; half the rows of Yosys' AND array: less area, a shorter path).
+    localparam int PW = GW + JW;
     logic [2*XW-1:0] g_d;
+    logic [6*PW-1:0] prod_d, prod;   // grad_k ds_k/d(x, y): product 3 d + k at [(3d+k)*PW +: PW]
     for (genvar d = 0; d < 2; d++) begin : g_dir
-      assign g_d[d*XW +: XW] =
-          XW'($signed(grad_i[0*GW +: GW])) * XW'($signed(j_i[(3*d+0)*JW +: JW])) +
-          XW'($signed(grad_i[1*GW +: GW])) * XW'($signed(j_i[(3*d+1)*JW +: JW])) +
-          XW'($signed(grad_i[2*GW +: GW])) * XW'($signed(j_i[(3*d+2)*JW +: JW]));
+      for (genvar k = 0; k < 3; k++) begin : g_prod
+        pst_mul_booth #(.AW(GW), .BW(JW), .BSigned(1'b1), .PW(PW)) u_mul (
+          .a_i (grad_i[k*GW +: GW]), .b_i (j_i[(3*d+k)*JW +: JW]), .p_o (prod_d[(3*d+k)*PW +: PW]));
+      end
+    end
+    pst_delay #(.Width(6*PW), .Depth(RP)) u_reg_p (.clk_i, .rst_ni, .en_i, .d_i (prod_d), .q_o (prod));
+    for (genvar d = 0; d < 2; d++) begin : g_sum
+      assign g_d[d*XW +: XW] = XW'($signed(prod[(3*d+0)*PW +: PW])) + XW'($signed(prod[(3*d+1)*PW +: PW])) +
+                               XW'($signed(prod[(3*d+2)*PW +: PW]));
     end
     pst_delay #(.Width(2*XW), .Depth(R0)) u_reg_g (.clk_i, .rst_ni, .en_i, .d_i (g_d), .q_o (g));
     logic unused_serial;
@@ -149,15 +166,16 @@ module pst_filter_width #(
   end
 
   // Steps 2-3 per direction: to entries, |.|, clamp.
-  logic [2*WW-1:0] aw;   // a_d at [d*WW +: WW]
+  logic [2*WW-1:0] aw_d, aw;   // a_d at [d*WW +: WW]; aw after RA
   for (genvar d = 0; d < 2; d++) begin : g_dir
     logic signed [XW-1:0] gd;
     logic signed [SW-1:0] wd, absd;
     assign gd   = g[d*XW +: XW];
     assign wd   = (SW'(gd) <<< ShL) >>> ShR;        // floor(g N to WidthFrac)
     assign absd = wd[SW-1] ? -wd : wd;              // |W_d|, no overflow (XW has a spare bit)
-    assign aw[d*WW +: WW] = (absd[SW-1:WW] != '0) ? WMax : absd[WW-1:0];
+    assign aw_d[d*WW +: WW] = (absd[SW-1:WW] != '0) ? WMax : absd[WW-1:0];
   end
+  pst_delay #(.Width(2*WW), .Depth(RA)) u_reg_a (.clk_i, .rst_ni, .en_i, .d_i (aw_d), .q_o (aw));
 
   logic [WW-1:0] ax, ay;
   assign ax = aw[0*WW +: WW];

@@ -22,8 +22,9 @@ def w_width(Log2Clut, WidthFrac) -> int:
 
 
 def octave_passes(Octaves, NoiseUnits) -> int:
-    """Octave passes per fragment (NoiseUnits divides Octaves)."""
-    return int(Octaves // NoiseUnits)
+    """Octave passes per fragment: ceil(Octaves / NoiseUnits) (the last pass's lanes beyond Octaves
+    are idle)."""
+    return int(((Octaves + NoiseUnits) - 1) // NoiseUnits)
 
 
 def term_regs(OctaveRegs) -> int:

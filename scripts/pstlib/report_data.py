@@ -261,7 +261,7 @@ def collect(out_dir) -> Report:
     synth = root / "synth"
     # The two profiles and any other profile the regression ran (out/synth also holds the
     # sweep's points, <base>_<knob>_<value>.json: those belong to the sweep's section).
-    names = ["full", "full_1clk", "reduced", "balanced"]
+    names = ["full", "full_2clk", "full_1clk", "reduced", "balanced"]
     names += sorted({r["profile"] for r in rep.runs} - set(names))
     for name in names:
         rep.gates.append(read_included(f"Gates and timing: {name}", f"gates-{name}", synth / f"{name}.md", root,

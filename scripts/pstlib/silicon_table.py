@@ -9,7 +9,7 @@ dicts into the table; the raw JSON stays one link away.
 """
 from .synth.report import PAPER_GATES, REALTIME_MPIX
 
-PROFILES = ("full", "full_1clk", "reduced", "balanced")
+PROFILES = ("full", "full_2clk", "full_1clk", "reduced", "balanced")
 GE_UM2 = 24.0     # NAND2X1 of OSU018: GE -> mm^2 where only GE are stored
 
 

@@ -50,7 +50,8 @@ def test_enum_tables():
 
 
 @pytest.mark.parametrize("edit, field", [
-    (lambda d: d["pipeline"].update(noise_units=3), "pipeline.noise_units"),
+    (lambda d: d["pipeline"].update(noise_units=3), "pipeline.noise_units"),   # serial: must divide
+    (lambda d: d["pipeline"].update(noise_units=16), "pipeline.noise_units"),  # more than octaves
     (lambda d: d["pipeline"].update(noise_steps=2), "pipeline.datapath"),   # serial needs >= 4
     (lambda d: d["pipeline"].update(noise_steps=3), "pipeline.noise_steps"),
     (lambda d: d["noise"].update(grad_frac=0), "noise.grad_frac"),
@@ -83,9 +84,10 @@ def test_stage_cycles():
     # steps with its product register, + 1 for its result register, its euclidean filter width
     # 16 (the RTL's, checked by sim/unit/arith_unit_test against the golden model), its colour
     # filter 4 + 2 registers; full_1clk is one pixel per clock whatever its pipeline registers,
-    # full (eight octaves over two passes of four noise units) two.
+    # full_2clk (eight octaves over two passes of four noise units) two, full (three passes of
+    # three, the last with an idle lane) three.
     assert contract.stage_cycles(reduced()) == {"octave": 32, "quadric": 23, "width": 16, "colour": 6, "pixel": 32}
-    for name, cycles in (("full_1clk", 1), ("full", 2)):
+    for name, cycles in (("full_1clk", 1), ("full_2clk", 2), ("full", 3)):
         with open(ROOT / "rtl" / "configs" / f"{name}.toml", "rb") as f:
             assert contract.stage_cycles(tomllib.load(f))["pixel"] == cycles, name
 
@@ -108,7 +110,7 @@ def test_read_profile_error_has_line(tmp_path):
     with pytest.raises(contract.ProfileError) as e:
         contract.read_profile(p)
     line = text.splitlines().index("noise_units = 3") + 1
-    assert str(e.value) == f"{p}:{line}: pipeline.noise_units: must divide pipeline.octaves"
+    assert str(e.value) == f"{p}:{line}: pipeline.noise_units: must divide pipeline.octaves on the serial datapath"
 
 
 def test_read_profile_syntax_and_missing(tmp_path):

@@ -85,10 +85,10 @@ def structures(octaves: int, max_cpp: int, base: dict | None = None) -> list:
     the structure's alone (no pipeline registers)."""
     out = []
     for units in range(1, octaves + 1):
-        if octaves % units:
-            continue
         for steps in (1, 2, 4, 8):
             for dp in ("serial", "parallel"):
+                if octaves % units and dp == "serial":
+                    continue              # parallel: ceil(octaves / units) passes, a lane idle
                 doc = {"pipeline": {"octaves": octaves, "noise_units": units, "noise_steps": steps, "datapath": dp}}
                 if dp == "serial" and steps < 4:
                     continue

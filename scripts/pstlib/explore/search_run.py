@@ -23,7 +23,7 @@ from .store import Store, read_json
 BIG = {"train": 32, "valid": 64, "size": 128, "paper": True, "budget": 200, "backtracks": 4,
        "psnr": "1=50,4=45,32=30"}
 DEFAULTS = {"psnr": "40", "budget": 40, "backtracks": 2, "size": 48, "train": 8, "valid": 8, "paper": False}
-DEFAULT_START = {1: "full_1clk", 2: "full", 4: "full", 32: "reduced"}
+DEFAULT_START = {1: "full_1clk", 2: "full_2clk", 3: "full", 4: "full_2clk", 32: "reduced"}
 PAPER_SCENES = ["wood_teapot", "marble", "seascape", "fire", "planet", "moonrise", "zoneplate", "wood_torus"]
 
 

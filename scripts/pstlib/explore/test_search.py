@@ -227,9 +227,10 @@ def test_per_class_arguments(tmp_path):
             cli.parse_args(bad)
         assert e.value.code == 2, bad
     (tmp_path / "hash4096.memh").write_text("0\n")     # stand-ins: parse_args checks they exist
-    ok = cli.parse_args(["--max-loss", "1=1,2=1,4=1.5,32=2", "--pst", sys.executable, "--rom-dir", str(tmp_path)])
-    assert ok.max_losses == {1: 1.0, 2: 1.0, 4: 1.5, 32: 2.0}
-    assert {c: p.name for c, (p, _) in ok.start_docs.items()} == {1: "full_1clk.toml", 2: "full.toml", 4: "full.toml",
+    ok = cli.parse_args(["--max-loss", "1=1,2=1,3=1,4=1.5,32=2", "--pst", sys.executable, "--rom-dir", str(tmp_path)])
+    assert ok.max_losses == {1: 1.0, 2: 1.0, 3: 1.0, 4: 1.5, 32: 2.0}
+    assert {c: p.name for c, (p, _) in ok.start_docs.items()} == {1: "full_1clk.toml", 2: "full_2clk.toml",
+                                                                   3: "full.toml", 4: "full_2clk.toml",
                                                                    32: "reduced.toml"}
 
 
