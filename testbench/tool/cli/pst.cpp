@@ -690,16 +690,19 @@ double baselineFmax(const std::string& profile) {
     return p.contains("fmax_mhz") && p["fmax_mhz"].is_number() ? p["fmax_mhz"].get<double>() : 0;
 }
 
-// The profile's Fmax after layout (MHz): the routed profile's post-route figure, any other
-// profile's pre-layout Fmax times the routed blocks' worst ratio (scripts/synth/layout_derate.json,
-// as docs/HARDWARE.md's silicon table); 0 without it.
+// The profile's Fmax after layout (MHz): the routed profile's post-route figure (the chip timed
+// from its routed blocks, assembled_fmax_mhz, as the silicon table gives it; else the slowest
+// block's), any other profile's pre-layout Fmax times the routed blocks' worst ratio
+// (scripts/synth/layout_derate.json, as docs/HARDWARE.md's silicon table); 0 without it.
 double layoutFmax(const std::string& profile, double preLayout) {
     std::ifstream in(sourceDir() + "/scripts/synth/layout_derate.json");
     if (!in) return 0;
     const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
     if (j.is_discarded()) return 0;
-    if (j.value("profile", "") == profile && j.contains("post_route_fmax_mhz") && j["post_route_fmax_mhz"].is_number())
-        return j["post_route_fmax_mhz"].get<double>();
+    if (j.value("profile", "") == profile) {
+        for (const char* key : {"assembled_fmax_mhz", "post_route_fmax_mhz"})
+            if (j.contains(key) && j[key].is_number()) return j[key].get<double>();
+    }
     return j.contains("ratio") && j["ratio"].is_number() ? preLayout * j["ratio"].get<double>() : 0;
 }
 
