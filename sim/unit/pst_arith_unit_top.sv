@@ -106,7 +106,7 @@ module pst_arith_unit_top #(
     .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
     .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac)
   ) u_quadric_fold (
-    .clk_i, .rst_ni, .en_i (quad_fold_en_i), .first_i (quad_fold_first_i),
+    .clk_i, .rst_ni, .en_i (quad_fold_en_i), .first_i (quad_fold_first_i), .first_next_i (1'b0),   // SelReg = 0
     .s_i (quad_s_i), .coef_i (quad_coef_i), .q_o (quad_fold_q_o), .gradq_o (quad_fold_gradq_o)
   );
 

@@ -52,6 +52,7 @@ module pst_noise_unit_top #(
     .OffsetFrac       (OffsetFrac),
     .NoiseLatticeFrac (NoiseLatticeFrac)
   ) u_octave_transform (
+    .clk_i, .rst_ni, .en_i (1'b0),   // Regs = 0: combinational
     .s_i    (ot_s_i),
     .m_i    (ot_m_i),
     .o_i    (ot_o_i),
