@@ -31,36 +31,29 @@ module pst_delay #(
     // [k*Width +: Width], k < Depth - 1): an assertion's $past/$stable of q_o then samples
     // Width bits, not the whole line (Verilator 5.006 emits the sampled copy of a vector over
     // about 40 words as a loop whose index it does not declare).
+    localparam int LW = (Depth > 1) ? (Depth - 1) * Width : 1;   // Depth = 1: one constant bit
+    logic [LW-1:0]    q, d;
     logic [Width-1:0] last_q, last_d;
-    if (Depth > 1) begin : g_line
-      logic [(Depth-1)*Width-1:0] q, d;
-      if (Depth > 2) begin : g_shift
-        assign d = {q[0 +: (Depth-2)*Width], d_i};
-      end else begin : g_one
-        assign d = d_i;
-      end
+    if (Depth > 2) begin : g_shift
+      assign d = {q[0 +: (Depth-2)*Width], d_i};
       assign last_d = q[(Depth-2)*Width +: Width];
-      if (Reset) begin : g_reset
-        always_ff @(posedge clk_i or negedge rst_ni) begin
-          if (!rst_ni) q <= '0;
-          else if (en_i) q <= d;
-        end
-      end else begin : g_noreset
-        always_ff @(posedge clk_i) begin
-          if (en_i) q <= d;
-        end
-      end
-    end else begin : g_first
+    end else if (Depth == 2) begin : g_two
+      assign d = d_i;
+      assign last_d = q;
+    end else begin : g_one
+      assign d = '0;
       assign last_d = d_i;
+      logic unused_q;
+      assign unused_q = q;
     end
     if (Reset) begin : g_reset
       always_ff @(posedge clk_i or negedge rst_ni) begin
-        if (!rst_ni) last_q <= '0;
-        else if (en_i) last_q <= last_d;
+        if (!rst_ni) {q, last_q} <= '0;
+        else if (en_i) {q, last_q} <= {d, last_d};
       end
     end else begin : g_noreset
       always_ff @(posedge clk_i) begin
-        if (en_i) last_q <= last_d;
+        if (en_i) {q, last_q} <= {d, last_d};
       end
       logic unused_rst;
       assign unused_rst = rst_ni;
