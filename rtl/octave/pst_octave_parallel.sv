@@ -159,17 +159,18 @@ module pst_octave_parallel #(
   logic [3*GW-1:0] gradq_f;
   if (Cycles >= 2) begin : g_quad_fold
     // cyc_q == Cycles - 2, registered from cyc_d (the rows' select without the compare)
-    logic fold_first_q;
+    logic fold_first_d, fold_first_q;
+    assign fold_first_d = (32'(cyc_d) == Cycles - 2);
     always_ff @(posedge clk_i or negedge rst_ni) begin
       if (!rst_ni) fold_first_q <= (Cycles == 2);
-      else fold_first_q <= (32'(cyc_d) == Cycles - 2);
+      else fold_first_q <= fold_first_d;
     end
     pst_quadric_fold #(
       .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
       .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac),
       .Regs(QR), .SelReg(Cycles >= 3)
     ) u_quadric (
-      .clk_i, .rst_ni, .en_i (en), .first_i (fold_first_q), .first_next_i (32'(cyc_d) == Cycles - 2),
+      .clk_i, .rst_ni, .en_i (en), .first_i (fold_first_q), .first_next_i (fold_first_d),
       .s_i (s_i), .coef_i (quad_i),
       .q_o (q_f), .gradq_o (gradq_f)
     );
