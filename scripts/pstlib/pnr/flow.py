@@ -15,7 +15,7 @@ import time
 from ..paths import ROOT
 from ..synth import flow as synth_flow, liberty, sta as synth_sta
 from ..synth.tools import SDC, run_sta, run_yosys
-from . import assembly, blif, buffering, layout, partition, qflow, report, spef, timing
+from . import assembly, blif, buffering, layout, partition, pins, qflow, report, spef, timing
 
 STANDIN = "PST_MEMRD*"    # the memory read stand-ins: macros, outside every block
 
@@ -93,8 +93,11 @@ def run_block(name: str, info: dict, work: pathlib.Path, lib: pathlib.Path, out:
         (out / f"{name}.{ext}").write_bytes((p.layout / f"{module}.{ext}").read_bytes())
     (out / f"{name}.spef").write_text(spef_text)
     checks = qflow.results(p)
+    hinted = p.log / "pins.json"
     return {"block": name, "instance": info["instance"], "cells_synth": info["cells_synth"], **fig, **checks,
             "initial_density": density,
+            "pin_hints": json.loads(hinted.read_text()) if hinted.exists() else None,
+            "median_pin_to_cell_um": round(pins.pin_distance_um((p.layout / f"{module}.def").read_text()), 1),
             "sta": sta, "fmax_ratio": round(sta["post_route"]["fmax_mhz"] / sta["pre_layout"]["fmax_mhz"], 3),
             "seconds": times, "png": png.name}
 

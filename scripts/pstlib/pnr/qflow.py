@@ -18,7 +18,7 @@ import shutil
 import time
 
 from .. import procs
-from . import blif, islands
+from . import blif, islands, pins
 
 SCRIPTS = pathlib.Path("/usr/lib/qflow/scripts")
 TECH = "osu018"
@@ -105,6 +105,18 @@ def synthesize(p: Project) -> float:
 
 def place(p: Project) -> float:
     s = _run(p, "placement.sh", ["-d", p.path, p.name], [p.layout / f"{p.name}.def"], "place.log")
+    if (p.layout / f"{p.name}.cel2").exists():
+        # Pins placed from the cells (a retry, hint_pins): graywolf followed the hints roughly;
+        # each pin now moves to the edge by its cells as placed (pins.snap).
+        # router.sh routes NAME_unroute.def (copied over NAME.def): both carry the pins.
+        placed = p.layout / f"{p.name}.def"
+        text, summary = pins.snap(placed.read_text())
+        for f in (placed, p.layout / f"{p.name}_unroute.def"):
+            f.write_text(text)
+        log = p.log / "pins.json"
+        tries = json.loads(log.read_text())
+        tries[-1].update(summary)
+        log.write_text(json.dumps(tries, indent=1) + "\n")
     # Routing without qrouter's stage-3 cleanup (standard_route's third argument).
     cfg = p.layout / f"{p.name}.cfg"
     text = cfg.read_text()
@@ -267,11 +279,34 @@ def set_density(p: Project, d: float) -> None:
     v.write_text(re.sub(r"^set initial_density = [0-9.]+", f"set initial_density = {d:.2f}", v.read_text(), flags=re.M))
 
 
+def hint_pins(p: Project) -> bool:
+    """Pin hints (NAME.cel2) written from the block's last placement; True when it had none
+    before (the first retry). The tries go to log/pins.json (median pin-to-cell distance of
+    the placement each was made from)."""
+    cel2 = p.layout / f"{p.name}.cel2"
+    first = not cel2.exists()
+    placed = p.layout / f"{p.name}.def"
+    text, summary = pins.from_def(placed.read_text())
+    summary["median_pin_to_cell_um_before"] = round(pins.pin_distance_um(placed.read_text()), 1)
+    summary["density"] = density(p)
+    cel2.write_text(text)
+    # graywolf keeps 1.2 um between pins (osu018.par): with ~2,000 pins they no longer fit
+    # around the cells and graywolf rings them 250 um out (u_regs of reduced). The hints
+    # space the pins themselves; graywolf may put them a track apart.
+    par = p.layout / f"{p.name}.par"
+    par.write_text(re.sub(r"^\*minimum_pad_space\s*:.*$", "*minimum_pad_space    : 0", par.read_text(), flags=re.M))
+    log = p.log / "pins.json"
+    tries = json.loads(log.read_text()) if log.exists() and not first else []
+    log.write_text(json.dumps(tries + [summary], indent=1) + "\n")
+    return first
+
+
 def run_steps(p: Project, resume: bool = False) -> dict:
     """Every step in order; step -> seconds. RESUME skips the steps a previous run finished
     (log/STEP.done holds their seconds); a step run again makes every later one run again.
-    When qrouter leaves nets unrouted, the block is placed again DENSITY_STEP less dense
-    (down to DENSITY_MIN) and routed again; the seconds of every try are summed."""
+    When qrouter leaves nets unrouted, the block is placed again with its pins where the failed
+    placement put their cells (pins.py), then DENSITY_STEP less dense each time (down to
+    DENSITY_MIN), and routed again; the seconds of every try are summed."""
     times = {}
     i = 0
     while i < len(STEPS):
@@ -287,9 +322,14 @@ def run_steps(p: Project, resume: bool = False) -> dict:
             fn(p)
         except Unrouted:
             times[step] = times.get(step, 0.0) + round(time.time() - t0, 1)
-            d = round(density(p) - DENSITY_STEP, 2)
-            if d < DENSITY_MIN:
-                raise
+            # First the pins placed from this placement (pstlib/pnr/pins.py) at the same
+            # density; after that, less dense each time (with the pins placed again).
+            if hint_pins(p):
+                d = density(p)
+            else:
+                d = round(density(p) - DENSITY_STEP, 2)
+                if d < DENSITY_MIN:
+                    raise
             set_density(p, d)
             i = [s for s, _ in STEPS].index("place")
             continue

@@ -61,6 +61,17 @@ def _repaired(b: dict) -> str:
     return f" (was {f['drc_before']}: {f['moved']} via moved onto its pin, {f['removed']} removed)"
 
 
+def _pins(b: dict) -> str:
+    """The median distance from a block pin to the nearest cell on its net; for a block whose
+    pins were placed from its cells after a placement that did not route (pstlib/pnr/pins.py),
+    the figure of that placement beside."""
+    d = b.get("median_pin_to_cell_um")
+    if d is None:
+        return "-"
+    tries = b.get("pin_hints") or []
+    return f"{d:.0f}" + (f" (pins from cells; was {tries[0]['median_pin_to_cell_um_before']:.0f})" if tries else "")
+
+
 def _assembled_rows(a) -> list:
     """The whole chip timed from its blocks (pstlib/pnr/assembly.py)."""
     if not a:
@@ -109,8 +120,8 @@ def markdown(r: dict) -> str:
               f"{'within' if r['buffering']['within_2_percent'] else 'NOT within'} 2 %) |"] if "buffering" in r else []),
           f"| time | synthesis {r['seconds']['synthesis']:.0f} s, all {r['seconds']['total'] / 60:.1f} min |", "",
           "| block | instance | cells | FF | die um | util (placed at) | wire mm | DRC | LVS | Fmax pre | Fmax post | ratio | "
-          "reg-reg post | hold ns | worst path (post) | place + route min |",
-          "|---|---|---:|---:|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---|---:|"]
+          "reg-reg post | hold ns | worst path (post) | pin to cell um (median) | place + route min |",
+          "|---|---|---:|---:|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---|---:|---:|"]
     for b in r["blocks"]:
         pre, post = b["sta"]["pre_layout"], b["sta"]["post_route"]
         cp = post["critical_path"]
@@ -120,10 +131,10 @@ def markdown(r: dict) -> str:
                   f"{b['drc_errors']}{_repaired(b)} | {'match' if b['lvs_match'] else 'MISMATCH'} | {pre['fmax_mhz']:.1f} | "
                   f"{post['fmax_mhz']:.1f} | {b['fmax_ratio']:.3f} | {post['reg2reg']['fmax_mhz']:.1f} | "
                   f"{post['hold_slack_ns']:+.3f} | `{cp['from']}` -> `{cp['to']}` ({cp['arrival_ns']:.2f} ns, "
-                  f"{cp['cells']} cells) | {(s['place'] + s['route']) / 60:.1f} |")
+                  f"{cp['cells']} cells) | {_pins(b)} | {(s['place'] + s['route']) / 60:.1f} |")
     for name, f in r.get("failed_blocks", {}).items():
         md.append(f"| {name} | `{f['instance']}` | ({f['cells_synth']:,} cells synthesized) | - | - | - | - | - | - | - | "
-                  f"- | - | - | - | not finished: {f['error']} | - |")
+                  f"- | - | - | - | not finished: {f['error']} | - | - |")
     md.append("")
     md += [f"![{b['block']}]({r['profile']}/{b['png']})" for b in r["blocks"]]
     return "\n".join(md) + "\n"

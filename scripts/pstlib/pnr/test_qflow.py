@@ -1,13 +1,19 @@
-"""The step driver of pstlib/pnr/qflow.py: resume, and the retry at a lower density when
-qrouter leaves nets unrouted (the steps themselves replaced by stand-ins)."""
+"""The step driver of pstlib/pnr/qflow.py: resume, and the retries when qrouter leaves nets
+unrouted: pins placed from the cells first, then lower densities (the steps themselves
+replaced by stand-ins; the placement stand-in writes a small placed DEF)."""
+import json
+
 import pytest
 
 from pstlib.pnr import qflow
+from pstlib.pnr.test_pins import DEF
 
 
 @pytest.fixture
 def project(tmp_path, monkeypatch):
     (tmp_path / "log").mkdir()
+    (tmp_path / "layout").mkdir()
+    (tmp_path / "layout" / "blk.par").write_text("*padspacing           : variable\n*minimum_pad_space    : 120\n")
     (tmp_path / "project_vars.sh").write_text("set initial_density = 0.70\n")
     calls = []
     fails = {"route": 2}
@@ -15,6 +21,8 @@ def project(tmp_path, monkeypatch):
     def step(name):
         def run(p):
             calls.append((name, qflow.density(p)))
+            if name == "place":
+                (p.layout / "blk.def").write_text(DEF)
             if fails.get(name, 0):
                 fails[name] -= 1
                 raise qflow.Unrouted("nets left")
@@ -24,12 +32,17 @@ def project(tmp_path, monkeypatch):
     return qflow.Project(tmp_path, "blk"), calls, fails
 
 
-def test_unrouted_block_is_placed_again_less_dense(project):
+def test_unrouted_block_gets_pins_from_cells_then_less_density(project):
     p, calls, _ = project
     times = qflow.run_steps(p)
     assert [c[0] for c in calls] == ["synthesize", "place", "route", "place", "route", "place", "route", "drc"]
-    assert [c[1] for c in calls if c[0] == "place"] == [0.7, 0.6, 0.5]
-    assert times["density"] == 0.5 and (p.path / "log" / "drc.done").exists()
+    # First retry: same density, pins placed from the cells; second: less dense.
+    assert [c[1] for c in calls if c[0] == "place"] == [0.7, 0.7, 0.6]
+    assert times["density"] == 0.6 and (p.path / "log" / "drc.done").exists()
+    assert "restrict side L" in (p.layout / "blk.cel2").read_text()
+    assert "*minimum_pad_space    : 0\n" in (p.layout / "blk.par").read_text()
+    tries = json.loads((p.log / "pins.json").read_text())
+    assert [t["density"] for t in tries] == [0.7, 0.7] and tries[0]["hinted"] == 4
 
 
 def test_resume_skips_finished_steps(project):

@@ -1,0 +1,101 @@
+"""Tests of the pin hints (pstlib/pnr/pins.py) on a hand-made placed DEF."""
+import pytest
+
+from pstlib.pnr import pins
+
+# A 100 x 40 µm die (DEF units of 0.01 µm); cell a sits by the left edge, b by the top right,
+# c in the middle of the bottom; the pins were placed far from them.
+DEF = """VERSION 5.6 ;
+UNITS DISTANCE MICRONS 100 ;
+DIEAREA ( 0 0 ) ( 10000 4000 ) ;
+TRACKS X 40 DO 125 STEP 80 LAYER metal2 ;
+TRACKS Y 50 DO 40 STEP 100 LAYER metal3 ;
+COMPONENTS 3 ;
+- a DFFPOSX1 + PLACED ( 200 2000 ) N ;
+- b DFFPOSX1 + PLACED ( 9000 3800 ) N ;
+- c NAND2X1 + PLACED ( 5000 100 ) N ;
+END COMPONENTS
+PINS 4 ;
+- qa + NET qa + DIRECTION OUTPUT + LAYER metal2 ( -15 -15 ) ( 15 15 ) + PLACED ( 9900 100 ) N ;
+- qb + NET qb + DIRECTION OUTPUT + LAYER metal2 ( -15 -15 ) ( 15 15 ) + PLACED ( 100 100 ) N ;
+- qc + NET qc + DIRECTION OUTPUT + LAYER metal2 ( -15 -15 ) ( 15 15 ) + PLACED ( 5000 3900 ) N ;
+- d + NET d + DIRECTION INPUT + LAYER metal2 ( -15 -15 ) ( 15 15 ) + PLACED ( 5000 3900 ) N ;
+END PINS
+NETS 4 ;
+- qa
+  ( PIN qa ) ( a Q ) ;
+- qb
+  ( PIN qb ) ( b Q ) ;
+- qc
+  ( PIN qc ) ( c Y ) ;
+- d
+  ( PIN d ) ( a D ) ( b D ) ;
+END NETS
+END DESIGN
+"""
+
+
+def test_parse_def():
+    die, pos, cells = pins.parse_def(DEF)
+    assert die == pins.Die(0, 0, 10000, 4000)
+    assert pos["b"] == (9000, 3800)
+    assert cells == {"qa": ["a"], "qb": ["b"], "qc": ["c"], "d": ["a", "b"]}
+
+
+def test_hints_nearest_side_and_position():
+    die, pos, cells = pins.parse_def(DEF)
+    h = pins.hints(die, pos, cells, 100)
+    assert h["qa"] == ("L", pytest.approx(0.5))
+    assert h["qb"] == ("T", pytest.approx(0.9))
+    assert h["qc"] == ("B", pytest.approx(0.5))
+    assert h["d"][0] == "T"                       # centroid (46, 29) µm: 11 µm from the top
+
+
+def test_overfull_side_gives_pins_away():
+    # A 4 µm tall die: the L and R sides hold 2 pins each (1.6 µm pitch); five pins by the left.
+    die = pins.Die(0, 0, 10000, 400)
+    pos = {f"c{i}": (10, 200) for i in range(5)}
+    cells = {f"p{i}": [f"c{i}"] for i in range(5)}
+    h = pins.hints(die, pos, cells, 100)
+    sides = sorted(s for s, _ in h.values())
+    assert sides.count("L") == 2 and len(h) == 5   # the other three on B or T
+
+
+def test_spread_keeps_order_and_slots():
+    assert pins.spread([0.0, 0.0, 0.0], 10) == [0, 1, 2]
+    assert pins.spread([1.0, 1.0, 1.0], 10) == [7, 8, 9]
+    assert pins.spread([0.1, 0.5, 0.9], 10) == [1, 5, 9]
+    with pytest.raises(ValueError):
+        pins.spread([0.5] * 4, 3)
+
+
+def test_cel2_groups():
+    die, pos, cells = pins.parse_def(DEF)
+    text = pins.cel2(die, pins.hints(die, pos, cells, 100), 100)
+    groups = text.strip().split("\n\n")
+    assert len(groups) == 4                          # L, B, and T twice (d and qb a span apart)
+    left = next(g for g in groups if "restrict side L" in g)
+    assert left.splitlines() == ["padgroup pg_L0 permute", "twpin_qa nonfixed", "restrict side L",
+                                 "sidespace 0.0000 1.0000"]
+    bottom = next(g for g in groups if "restrict side B" in g)
+    assert "twpin_qc nonfixed" in bottom and "sidespace 0.5000 1.0000" in bottom   # 100 µm: 2 spans
+
+
+def test_pin_distance():
+    # qa 97 + 19 = 116 µm from a, qb 89 + 37 = 126 from b, qc 38 from c, d 40 + 1 = 41 from b:
+    # the median of four is the third.
+    assert pins.pin_distance_um(DEF) == pytest.approx(116.0)
+
+
+def test_snap_moves_pins_by_their_cells():
+    new, summary = pins.snap(DEF)
+    placed = {m.group(1): (m.group(4), int(m.group(6)), int(m.group(7))) for m in pins.PIN_ENTRY.finditer(new)}
+    assert set(placed) == {"qa", "qb", "qc", "d"}
+    layer, x, y = placed["qa"]                   # left side, level with cell a (y 20 µm), metal3 track
+    assert layer == "metal3" and x in (0, 100) and abs(y - 2000) <= 100 and (y - 50) % 100 == 0
+    layer, x, y = placed["qc"]                   # bottom, under cell c (x 50 µm), metal2 track
+    assert layer == "metal2" and abs(x - 5000) <= 80 and (x - 40) % 80 == 0
+    assert placed["qb"][1:] != placed["d"][1:]   # two pins on the top side, apart
+    assert summary["moved"] == 4
+    assert summary["median_pin_to_cell_um"] < summary["median_pin_to_cell_um_before_snap"]
+    assert pins.pin_distance_um(new) == summary["median_pin_to_cell_um"]
