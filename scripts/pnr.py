@@ -26,9 +26,9 @@ Method:
   project's SDC (scripts/synth/pst.sdc) before layout and after routing on the same netlist;
   block pins get the SDC's 2 ns input and output budgets. Typical corner only (the one the
   library has); no coupling capacitance; the clock is qflow's buffered clock net (no CTS).
-- A block qrouter cannot finish is placed again, first with its pins placed from the cells on
-  their nets (pstlib/pnr/pins.py: graywolf's pin hints; graywolf alone places pins with no
-  regard to their cells), then 0.1 less dense each time down to 0.4.
+- A block qrouter cannot finish is placed again 0.1 less dense (down to 0.4), with its pins
+  placed from the cells on their nets (pstlib/pnr/pins.py: graywolf alone places pins with no
+  regard to their cells).
 - A block that does not finish (qrouter leaves nets unrouted at the least density, a tool
   fails) is reported with its error and left out of the figures; the others are kept.
 - The profile: area = the blocks' dies + the memories; post-route Fmax = the slowest block's;

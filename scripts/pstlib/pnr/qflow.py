@@ -279,10 +279,9 @@ def set_density(p: Project, d: float) -> None:
     v.write_text(re.sub(r"^set initial_density = [0-9.]+", f"set initial_density = {d:.2f}", v.read_text(), flags=re.M))
 
 
-def hint_pins(p: Project) -> bool:
-    """Pin hints (NAME.cel2) written from the block's last placement; True when it had none
-    before (the first retry). The tries go to log/pins.json (median pin-to-cell distance of
-    the placement each was made from)."""
+def hint_pins(p: Project) -> None:
+    """Pin hints (NAME.cel2) written from the block's last placement. The tries go to
+    log/pins.json (median pin-to-cell distance of the placement each was made from)."""
     cel2 = p.layout / f"{p.name}.cel2"
     first = not cel2.exists()
     placed = p.layout / f"{p.name}.def"
@@ -298,15 +297,14 @@ def hint_pins(p: Project) -> bool:
     log = p.log / "pins.json"
     tries = json.loads(log.read_text()) if log.exists() and not first else []
     log.write_text(json.dumps(tries + [summary], indent=1) + "\n")
-    return first
 
 
 def run_steps(p: Project, resume: bool = False) -> dict:
     """Every step in order; step -> seconds. RESUME skips the steps a previous run finished
     (log/STEP.done holds their seconds); a step run again makes every later one run again.
-    When qrouter leaves nets unrouted, the block is placed again with its pins where the failed
-    placement put their cells (pins.py), then DENSITY_STEP less dense each time (down to
-    DENSITY_MIN), and routed again; the seconds of every try are summed."""
+    When qrouter leaves nets unrouted, the block is placed again DENSITY_STEP less dense (down
+    to DENSITY_MIN) with its pins placed from its cells (pins.py), and routed again; the
+    seconds of every try are summed."""
     times = {}
     i = 0
     while i < len(STEPS):
@@ -322,14 +320,11 @@ def run_steps(p: Project, resume: bool = False) -> dict:
             fn(p)
         except Unrouted:
             times[step] = times.get(step, 0.0) + round(time.time() - t0, 1)
-            # First the pins placed from this placement (pstlib/pnr/pins.py) at the same
-            # density; after that, less dense each time (with the pins placed again).
-            if hint_pins(p):
-                d = density(p)
-            else:
-                d = round(density(p) - DENSITY_STEP, 2)
-                if d < DENSITY_MIN:
-                    raise
+            # Less dense, with the pins placed from this placement's cells (pstlib/pnr/pins.py).
+            d = round(density(p) - DENSITY_STEP, 2)
+            if d < DENSITY_MIN:
+                raise
+            hint_pins(p)
             set_density(p, d)
             i = [s for s, _ in STEPS].index("place")
             continue

@@ -32,17 +32,17 @@ def project(tmp_path, monkeypatch):
     return qflow.Project(tmp_path, "blk"), calls, fails
 
 
-def test_unrouted_block_gets_pins_from_cells_then_less_density(project):
+def test_unrouted_block_is_placed_again_less_dense_with_pins_from_cells(project):
     p, calls, _ = project
     times = qflow.run_steps(p)
     assert [c[0] for c in calls] == ["synthesize", "place", "route", "place", "route", "place", "route", "drc"]
-    # First retry: same density, pins placed from the cells; second: less dense.
-    assert [c[1] for c in calls if c[0] == "place"] == [0.7, 0.7, 0.6]
-    assert times["density"] == 0.6 and (p.path / "log" / "drc.done").exists()
+    # Each retry less dense, with the pins placed from the cells.
+    assert [c[1] for c in calls if c[0] == "place"] == [0.7, 0.6, 0.5]
+    assert times["density"] == 0.5 and (p.path / "log" / "drc.done").exists()
     assert "restrict side L" in (p.layout / "blk.cel2").read_text()
     assert "*minimum_pad_space    : 0\n" in (p.layout / "blk.par").read_text()
     tries = json.loads((p.log / "pins.json").read_text())
-    assert [t["density"] for t in tries] == [0.7, 0.7] and tries[0]["hinted"] == 4
+    assert [t["density"] for t in tries] == [0.7, 0.6] and tries[0]["hinted"] == 4
 
 
 def test_resume_skips_finished_steps(project):
