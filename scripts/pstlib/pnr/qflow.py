@@ -105,7 +105,14 @@ def synthesize(p: Project) -> float:
 
 def place(p: Project) -> float:
     s = _run(p, "placement.sh", ["-d", p.path, p.name], [p.layout / f"{p.name}.def"], "place.log")
-    if (p.layout / f"{p.name}.cel2").exists():
+    cel2 = p.layout / f"{p.name}.cel2"
+    if not cel2.exists() and pins.ring_ratio((p.layout / f"{p.name}.def").read_text()) > pins.RING_RATIO:
+        # graywolf ringed the pins far outside the cells (too many for its pin spacing): such a
+        # placement routes for half an hour and fails (u_regs), so place again at once with the
+        # pins from the cells.
+        hint_pins(p)
+        s += _run(p, "placement.sh", ["-d", p.path, p.name], [p.layout / f"{p.name}.def"], "place.log")
+    if cel2.exists():
         # Pins placed from the cells (a retry, hint_pins): graywolf followed the hints roughly;
         # each pin now moves to the edge by its cells as placed (pins.snap).
         # router.sh routes NAME_unroute.def (copied over NAME.def): both carry the pins.

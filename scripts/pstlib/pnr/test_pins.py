@@ -99,3 +99,10 @@ def test_snap_moves_pins_by_their_cells():
     assert summary["moved"] == 4
     assert summary["median_pin_to_cell_um"] < summary["median_pin_to_cell_um_before_snap"]
     assert pins.pin_distance_um(new) == summary["median_pin_to_cell_um"]
+
+
+def test_ring_ratio():
+    # Cells span 88 x 37 µm of a 100 x 40 µm die: about 1 (no ring).
+    assert pins.ring_ratio(DEF) == pytest.approx(4000 * 10000 / (8800 * 3700))
+    ringed = DEF.replace("DIEAREA ( 0 0 ) ( 10000 4000 )", "DIEAREA ( -5000 -5000 ) ( 15000 9000 )")
+    assert pins.ring_ratio(ringed) > pins.RING_RATIO
