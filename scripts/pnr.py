@@ -28,8 +28,8 @@ Method:
   library has); no coupling capacitance; the clock is qflow's buffered clock net (no CTS).
 - A block qrouter cannot finish is placed again 0.1 less dense (down to 0.4), with its pins
   placed from the cells on their nets (pstlib/pnr/pins.py: graywolf alone places pins with no
-  regard to their cells). A placement whose pins graywolf ringed far outside the cells (die
-  over 1.5 x the cells' extent: too many pins for its spacing) is placed again at once so.
+  regard to their cells). A first placement whose pins graywolf put far from their cells
+  (median over 5 % of the die's half perimeter, or ringed outside them) is placed again at once so.
 - A block that does not finish (qrouter leaves nets unrouted at the least density, a tool
   fails) is reported with its error and left out of the figures; the others are kept.
 - The profile: area = the blocks' dies + the memories; post-route Fmax = the slowest block's;

@@ -246,3 +246,18 @@ def ring_ratio(def_text: str) -> float:
     w = max(x for x, _ in xy) - min(x for x, _ in xy)
     h = max(y for _, y in xy) - min(y for _, y in xy)
     return (die.x1 - die.x0) * (die.y1 - die.y0) / max(1, w * h)
+
+
+FAR = 0.05   # median pin-to-cell distance over the die's half perimeter above which pins are far
+
+
+def far(def_text: str) -> bool:
+    """Whether graywolf placed the pins far from their cells: pins ringed outside the cells
+    (ring_ratio over RING_RATIO) or a median pin-to-cell distance over FAR of the die's
+    half perimeter. Measured on reduced's first placements: u_octave 23 µm of 2,030 (1.1 %),
+    u_octave_g_serial 257 of 2,454 (10 %, 2,265 pins), u_regs 611 of 2,461 (25 %, ring 3.1)."""
+    die, _, _ = parse_def(def_text)
+    units = float(re.search(r"^UNITS DISTANCE MICRONS (\d+)", def_text, re.M).group(1))
+    half = ((die.x1 - die.x0) + (die.y1 - die.y0)) / units
+    d = pin_distance_um(def_text)
+    return ring_ratio(def_text) > RING_RATIO or (not math.isnan(d) and d > FAR * half)

@@ -106,10 +106,11 @@ def synthesize(p: Project) -> float:
 def place(p: Project) -> float:
     s = _run(p, "placement.sh", ["-d", p.path, p.name], [p.layout / f"{p.name}.def"], "place.log")
     cel2 = p.layout / f"{p.name}.cel2"
-    if not cel2.exists() and pins.ring_ratio((p.layout / f"{p.name}.def").read_text()) > pins.RING_RATIO:
-        # graywolf ringed the pins far outside the cells (too many for its pin spacing): such a
-        # placement routes for half an hour and fails (u_regs), so place again at once with the
-        # pins from the cells.
+    if not cel2.exists() and pins.far((p.layout / f"{p.name}.def").read_text()):
+        # graywolf put the pins far from their cells (or ringed them outside the cells: too
+        # many for its pin spacing): such a placement routes for half an hour or more and fails
+        # (u_regs, u_octave_g_serial of reduced), so place again at once with the pins from the
+        # cells.
         hint_pins(p)
         s += _run(p, "placement.sh", ["-d", p.path, p.name], [p.layout / f"{p.name}.def"], "place.log")
     if cel2.exists():

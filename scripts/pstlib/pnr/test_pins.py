@@ -106,3 +106,9 @@ def test_ring_ratio():
     assert pins.ring_ratio(DEF) == pytest.approx(4000 * 10000 / (8800 * 3700))
     ringed = DEF.replace("DIEAREA ( 0 0 ) ( 10000 4000 )", "DIEAREA ( -5000 -5000 ) ( 15000 9000 )")
     assert pins.ring_ratio(ringed) > pins.RING_RATIO
+
+
+def test_far():
+    # Median 116 µm of a 140 µm half perimeter: far; the pins snapped by their cells (2.6 µm): not.
+    assert pins.far(DEF)
+    assert not pins.far(pins.snap(DEF)[0])
