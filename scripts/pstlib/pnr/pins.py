@@ -1,21 +1,22 @@
-"""Block pins placed from the cells they connect: graywolf's pin hints (qflow's NAME.cel2).
+"""Block pins placed from the cells they connect (graywolf's pin hints, qflow's NAME.cel2, and
+the placed DEF's pins moved by their cells).
 
 graywolf places a block's pins along the die edge with no regard to where the cells on their
-nets end up. For most blocks that costs a little wire; for u_regs of reduced (1,856 flip-flops,
-each driving a block pin) it was fatal: the pins landed a median 384 µm from the nearest cell
-on their net and qrouter left nets unrouted at every density.
+nets end up, 1.2 µm apart: u_regs of reduced (1,924 pins) got them ringed 250 µm outside its
+cells (median pin-to-cell 611 µm) and never routed; u_octave_g_serial (2,265 pins) 257 µm.
 
-When a block does not route, its pins are placed again from the placement that failed:
+A placement whose pins are `far` (or any retry after qrouter left nets unrouted) is placed
+again from the cells of the last placement:
 - each pin goes to the die side nearest the centroid of the cells on its net, at the centroid's
-  position along that side (`hints`);
-- a side holding more pins than fit (two routing tracks apart, or one when the die's edge is
-  too short for that) gives its pins with the least cost of moving (the extra distance to
-  their next side) to the other sides;
-- along a side, pins keep their order and are spread so that none shares a slot
-  (`spread`), then grouped into spans of about SPAN_UM: one `padgroup` per span with
-  `restrict side` and `sidespace lo hi` (fractions of the side; graywolf measures L and R
-  sides from the bottom, T and B sides from the left), pins permutable inside it.
-graywolf then places again with these hints (placement.sh appends NAME.cel2 to NAME.cel).
+  position along that side (`hints`); a side holding more pins than fit (two routing tracks
+  apart, or one when the edge is too short) gives the pins that lose least by moving to their
+  next side;
+- along a side, pins keep their order and are spread so that none shares a slot (`spread`),
+  then grouped into spans of about SPAN_UM: one `padgroup` per span with `restrict side` and
+  `sidespace lo hi`, pins permutable inside it (`cel2`). graywolf follows these only roughly:
+  its fractions are of its own core at pad placement (configpads.c), not of the final die;
+- after graywolf has placed again, `snap` moves every pin to the routing track at the edge
+  nearest its cells as placed.
 """
 import collections
 import math
@@ -29,6 +30,11 @@ SPAN_UM = 40.0        # one pad group's share of a side
 
 Die = collections.namedtuple("Die", "x0 y0 x1 y1")
 SIDES = "LRBT"
+
+
+def def_units(def_text: str) -> float:
+    """DEF database units per µm."""
+    return float(re.search(r"^UNITS DISTANCE MICRONS (\d+)", def_text, re.M).group(1))
 
 
 def parse_def(def_text: str) -> tuple:
@@ -141,7 +147,7 @@ def cel2(die: Die, hint: dict, units: float) -> str:
 
 def from_def(def_text: str) -> tuple:
     """(.cel2 text, summary) for the placed DEF_TEXT."""
-    units = float(re.search(r"^UNITS DISTANCE MICRONS (\d+)", def_text, re.M).group(1))
+    units = def_units(def_text)
     die, pos, cells = parse_def(def_text)
     h = hints(die, pos, cells, units)
     count = collections.Counter(s for s, _ in h.values())
@@ -151,7 +157,7 @@ def from_def(def_text: str) -> tuple:
 def pin_distance_um(def_text: str) -> float:
     """Median distance (µm, Manhattan) from each placed block pin to the nearest cell on its net:
     the figure that says whether the pins sit by their cells."""
-    units = float(re.search(r"^UNITS DISTANCE MICRONS (\d+)", def_text, re.M).group(1))
+    units = def_units(def_text)
     _, pos, cells = parse_def(def_text)
     pins = def_text[def_text.index("\nPINS"):def_text.index("\nEND PINS")]
     at = {m.group(1): (int(m.group(2)), int(m.group(3)))
@@ -180,7 +186,7 @@ def snap(def_text: str) -> tuple:
     on metal3, at the edge offset qflow used on that side), and the median pin-to-cell distance
     before and after (µm). graywolf follows the hints only roughly (its side fractions are of its
     own core, not the die); this puts each pin where its cells ended up."""
-    units = float(re.search(r"^UNITS DISTANCE MICRONS (\d+)", def_text, re.M).group(1))
+    units = def_units(def_text)
     die, pos, cells = parse_def(def_text)
     start = def_text.index("\nPINS")
     end = def_text.index("\nEND PINS")
@@ -257,7 +263,7 @@ def far(def_text: str) -> bool:
     half perimeter. Measured on reduced's first placements: u_octave 23 µm of 2,030 (1.1 %),
     u_octave_g_serial 257 of 2,454 (10 %, 2,265 pins), u_regs 611 of 2,461 (25 %, ring 3.1)."""
     die, _, _ = parse_def(def_text)
-    units = float(re.search(r"^UNITS DISTANCE MICRONS (\d+)", def_text, re.M).group(1))
+    units = def_units(def_text)
     half = ((die.x1 - die.x0) + (die.y1 - die.y0)) / units
     d = pin_distance_um(def_text)
     return ring_ratio(def_text) > RING_RATIO or (not math.isnan(d) and d > FAR * half)

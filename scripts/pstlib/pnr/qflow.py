@@ -121,10 +121,7 @@ def place(p: Project) -> float:
         text, summary = pins.snap(placed.read_text())
         for f in (placed, p.layout / f"{p.name}_unroute.def"):
             f.write_text(text)
-        log = p.log / "pins.json"
-        tries = json.loads(log.read_text())
-        tries[-1].update(summary)
-        log.write_text(json.dumps(tries, indent=1) + "\n")
+        _log_pins(p, summary, new_try=False)
     # Routing without qrouter's stage-3 cleanup (standard_route's third argument).
     cfg = p.layout / f"{p.name}.cfg"
     text = cfg.read_text()
@@ -292,9 +289,9 @@ def hint_pins(p: Project) -> None:
     log/pins.json (median pin-to-cell distance of the placement each was made from)."""
     cel2 = p.layout / f"{p.name}.cel2"
     first = not cel2.exists()
-    placed = p.layout / f"{p.name}.def"
-    text, summary = pins.from_def(placed.read_text())
-    summary["median_pin_to_cell_um_before"] = round(pins.pin_distance_um(placed.read_text()), 1)
+    placed = (p.layout / f"{p.name}.def").read_text()
+    text, summary = pins.from_def(placed)
+    summary["median_pin_to_cell_um_before"] = round(pins.pin_distance_um(placed), 1)
     summary["density"] = density(p)
     cel2.write_text(text)
     # graywolf keeps 1.2 um between pins (osu018.par): with ~2,000 pins they no longer fit
@@ -302,9 +299,19 @@ def hint_pins(p: Project) -> None:
     # space the pins themselves; graywolf may put them a track apart.
     par = p.layout / f"{p.name}.par"
     par.write_text(re.sub(r"^\*minimum_pad_space\s*:.*$", "*minimum_pad_space    : 0", par.read_text(), flags=re.M))
+    _log_pins(p, summary, new_try=True, fresh=first)
+
+
+def _log_pins(p: Project, summary: dict, new_try: bool, fresh: bool = False) -> None:
+    """log/pins.json: one entry per try with pins from cells (NEW_TRY), or SUMMARY added to the
+    last one; FRESH starts the list (the block's first such try)."""
     log = p.log / "pins.json"
-    tries = json.loads(log.read_text()) if log.exists() and not first else []
-    log.write_text(json.dumps(tries + [summary], indent=1) + "\n")
+    tries = json.loads(log.read_text()) if log.exists() and not fresh else []
+    if new_try:
+        tries.append(summary)
+    else:
+        tries[-1].update(summary)
+    log.write_text(json.dumps(tries, indent=1) + "\n")
 
 
 def run_steps(p: Project, resume: bool = False) -> dict:
