@@ -180,12 +180,13 @@ def _tracks(def_text: str, axis: str, layer: str) -> tuple:
 
 
 def snap(def_text: str) -> tuple:
-    """The placed DEF with every block pin whose net has placed cells moved to the die edge by
-    them (the side nearest their centroid, on the routing track nearest it, pins in order along
-    the side, two tracks apart when the side has room, else one; B and T pins on metal2, L and R
-    on metal3, at the edge offset qflow used on that side), and the median pin-to-cell distance
-    before and after (µm). graywolf follows the hints only roughly (its side fractions are of its
-    own core, not the die); this puts each pin where its cells ended up."""
+    """The placed DEF with every block pin moved to a routing track of its own at the die edge
+    (B and T pins on metal2, L and R on metal3, at the edge offset qflow used on that side; pins
+    in order along a side, two tracks apart when it has room, else one): a pin whose net has
+    placed cells to the side nearest their centroid, on the track nearest it; any other pin on
+    its side, by where graywolf put it. Returns it with the median pin-to-cell distance before
+    and after (µm). graywolf follows the hints only roughly (its side fractions are of its own
+    core, not the die); this puts each pin where its cells ended up."""
     units = def_units(def_text)
     die, pos, cells = parse_def(def_text)
     start = def_text.index("\nPINS")
@@ -199,6 +200,12 @@ def snap(def_text: str) -> tuple:
         d = _side_distances(die, x, y)
         s = min(d, key=d.get)
         edge[s][x if s in "LR" else y] += 1
+        # A pin with no placed cell on its net (an unused input bit, a pin wired straight to
+        # another pin) keeps its side and place along it, but takes a track of its own like the
+        # others: left where graywolf put it, it shared a track with a moved pin and qrouter
+        # found no tap for either (u_regs 9, u_octave_g_serial 17, top 28 nets of reduced).
+        if e.group(1) not in want:
+            want[e.group(1)] = (s, _along(die, s, x, y))
     at = {s: (edge[s].most_common(1)[0][0] if edge[s] else {"L": die.x0, "R": die.x1, "B": die.y0, "T": die.y1}[s])
           for s in SIDES}
     tx = _tracks(def_text, "X", "metal2")
@@ -221,11 +228,12 @@ def snap(def_text: str) -> tuple:
             place[p] = (s, (at[s], c) if s in "LR" else (c, at[s]))
     if set(place) - {e.group(1) for e in entries}:
         raise ValueError(f"placed DEF: pins not in the PINS section's form: {sorted(set(place) - {e.group(1) for e in entries})[:3]}")
+    shared = collections.Counter(place.values())
+    if any(n > 1 for n in shared.values()):
+        raise ValueError(f"placed DEF: pins snapped onto one track: {[k for k, n in shared.items() if n > 1][:3]}")
     out, last = [], 0
     for e in entries:
         name = e.group(1)
-        if name not in place:
-            continue
         s, (x, y) = place[name]
         layer = "metal3" if s in "LR" else "metal2"
         out += [def_text[last:e.start()],

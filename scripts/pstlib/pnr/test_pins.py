@@ -112,3 +112,16 @@ def test_far():
     # Median 116 µm of a 140 µm half perimeter: far; the pins snapped by their cells (2.6 µm): not.
     assert pins.far(DEF)
     assert not pins.far(pins.snap(DEF)[0])
+
+
+def test_snap_gives_cellless_pins_a_track_of_their_own():
+    # Pin u drives nothing (an unused input bit): it stays on its side but must not share a
+    # track with qa, which moves by cell a to the left side level with it.
+    text = DEF.replace("PINS 4 ;", "PINS 5 ;").replace(
+        "END PINS", "- u + NET u + DIRECTION INPUT + LAYER metal3 ( -15 -15 ) ( 15 15 ) + PLACED ( 0 2050 ) N ;\nEND PINS").replace(
+        "NETS 4 ;", "NETS 5 ;").replace("END NETS", "- u\n  ( PIN u ) ;\nEND NETS")
+    new, summary = pins.snap(text)
+    placed = {m.group(1): (int(m.group(6)), int(m.group(7))) for m in pins.PIN_ENTRY.finditer(new)}
+    assert len(placed) == 5 and len(set(placed.values())) == 5
+    assert placed["u"][0] == placed["qa"][0]        # both on the left side
+    assert summary["moved"] == 5
