@@ -204,7 +204,8 @@ def snap(def_text: str) -> tuple:
         # another pin) keeps its side and place along it, but takes a track of its own like the
         # others: left where graywolf put it, it shared a track with a moved pin and qrouter
         # found no tap for either (u_regs 9, u_octave_g_serial 17, top 28 nets of reduced).
-        if e.group(1) not in want:
+        # The power pins (vdd, gnd: special nets, not in NETS) stay where qflow put them.
+        if e.group(1) in cells and e.group(1) not in want:
             want[e.group(1)] = (s, _along(die, s, x, y))
     at = {s: (edge[s].most_common(1)[0][0] if edge[s] else {"L": die.x0, "R": die.x1, "B": die.y0, "T": die.y1}[s])
           for s in SIDES}
@@ -234,6 +235,8 @@ def snap(def_text: str) -> tuple:
     out, last = [], 0
     for e in entries:
         name = e.group(1)
+        if name not in place:
+            continue
         s, (x, y) = place[name]
         layer = "metal3" if s in "LR" else "metal2"
         out += [def_text[last:e.start()],

@@ -120,8 +120,12 @@ def test_snap_gives_cellless_pins_a_track_of_their_own():
     text = DEF.replace("PINS 4 ;", "PINS 5 ;").replace(
         "END PINS", "- u + NET u + DIRECTION INPUT + LAYER metal3 ( -15 -15 ) ( 15 15 ) + PLACED ( 0 2050 ) N ;\nEND PINS").replace(
         "NETS 4 ;", "NETS 5 ;").replace("END NETS", "- u\n  ( PIN u ) ;\nEND NETS")
+    # gnd is a special net (not in NETS): qflow's power pin stays where it is, on its layer.
+    gnd = "- gnd + NET gnd\n  + LAYER metal6 ( -80 -40 ) ( 80 40 )\n  + PLACED ( 3000 -60 ) N ;"
+    text = text.replace("END PINS", gnd + "\nEND PINS").replace("PINS 5 ;", "PINS 6 ;")
     new, summary = pins.snap(text)
     placed = {m.group(1): (int(m.group(6)), int(m.group(7))) for m in pins.PIN_ENTRY.finditer(new)}
-    assert len(placed) == 5 and len(set(placed.values())) == 5
+    assert len(placed) == 6 and len(set(placed.values())) == 6
     assert placed["u"][0] == placed["qa"][0]        # both on the left side
     assert summary["moved"] == 5
+    assert gnd in new
