@@ -67,10 +67,14 @@ def _along(die: Die, side: str, x: float, y: float) -> float:
 
 
 def side_capacity(die: Die, units: float, pins: int = 0) -> dict:
-    """Side -> how many pins it holds: at two tracks apart when all PINS fit so, else one."""
+    """Side -> how many pins it holds (corners kept clear): at two tracks apart when all PINS
+    fit so, else one."""
     w, h = (die.x1 - die.x0) / units, (die.y1 - die.y0) / units
+    # Two tracks clear of each corner (snap): a side that `hints` fills to the brim must still
+    # hold its pins two tracks apart there (top of reduced got a side one track apart: metal3
+    # spacing errors between the routed pins).
     for tracks in (2, 1):
-        cap = {s: int((h if s in "LR" else w) // (tracks * TRACK_UM[s])) for s in SIDES}
+        cap = {s: max(0, int((h if s in "LR" else w) / TRACK_UM[s]) - 5) // tracks for s in SIDES}
         if sum(cap.values()) >= pins:
             break
     return cap
@@ -192,21 +196,24 @@ def snap(def_text: str) -> tuple:
     start = def_text.index("\nPINS")
     end = def_text.index("\nEND PINS")
     entries = list(PIN_ENTRY.finditer(def_text, start, end))
+    # A pin with no placed cell on its net (an unused input bit, a pin wired straight to another
+    # pin) stands in for its own cell where graywolf put it: it keeps its side and place unless
+    # the side is full, and takes a track of its own like the others (left where graywolf put it,
+    # it shared a track with a moved pin and qrouter found no tap for either: u_regs 9,
+    # u_octave_g_serial 17, top 28 nets of reduced). The power pins (vdd, gnd: special nets,
+    # not in NETS) stay where qflow put them.
+    pos, cells = dict(pos), dict(cells)
+    for e in entries:
+        if e.group(1) in cells and not cells[e.group(1)]:
+            pos[f"pin {e.group(1)}"] = (int(e.group(6)), int(e.group(7)))
+            cells[e.group(1)] = [f"pin {e.group(1)}"]
     want = hints(die, pos, cells, units)
     # The edge offset qflow used on each side (B and L one track in, T and R on the edge).
     edge = collections.defaultdict(collections.Counter)
     for e in entries:
         x, y = int(e.group(6)), int(e.group(7))
         d = _side_distances(die, x, y)
-        s = min(d, key=d.get)
-        edge[s][x if s in "LR" else y] += 1
-        # A pin with no placed cell on its net (an unused input bit, a pin wired straight to
-        # another pin) keeps its side and place along it, but takes a track of its own like the
-        # others: left where graywolf put it, it shared a track with a moved pin and qrouter
-        # found no tap for either (u_regs 9, u_octave_g_serial 17, top 28 nets of reduced).
-        # The power pins (vdd, gnd: special nets, not in NETS) stay where qflow put them.
-        if e.group(1) in cells and e.group(1) not in want:
-            want[e.group(1)] = (s, _along(die, s, x, y))
+        edge[min(d, key=d.get)][x if min(d, key=d.get) in "LR" else y] += 1
     at = {s: (edge[s].most_common(1)[0][0] if edge[s] else {"L": die.x0, "R": die.x1, "B": die.y0, "T": die.y1}[s])
           for s in SIDES}
     tx = _tracks(def_text, "X", "metal2")

@@ -52,9 +52,11 @@ def test_hints_nearest_side_and_position():
 
 
 def test_overfull_side_gives_pins_away():
-    # A 4 µm tall die: the L and R sides hold 2 pins each (1.6 µm pitch); five pins by the left.
-    die = pins.Die(0, 0, 10000, 400)
-    pos = {f"c{i}": (10, 200) for i in range(5)}
+    # A 10 µm tall die: the L and R sides hold 2 pins each (ten 1 µm tracks less five kept
+    # clear at the corners, two tracks apart); five pins by the left.
+    die = pins.Die(0, 0, 10000, 1000)
+    assert pins.side_capacity(die, 100, 5)["L"] == 2
+    pos = {f"c{i}": (10, 500) for i in range(5)}
     cells = {f"p{i}": [f"c{i}"] for i in range(5)}
     h = pins.hints(die, pos, cells, 100)
     sides = sorted(s for s, _ in h.values())
