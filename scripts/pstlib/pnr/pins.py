@@ -187,8 +187,8 @@ def snap(def_text: str) -> tuple:
     """The placed DEF with every block pin moved to a routing track of its own at the die edge
     (B and T pins on metal2, L and R on metal3, at the edge offset qflow used on that side; pins
     in order along a side, two tracks apart when it has room, else one): a pin whose net has
-    placed cells to the side nearest their centroid, on the track nearest it; any other pin on
-    its side, by where graywolf put it. Returns it with the median pin-to-cell distance before
+    placed cells to the side nearest their centroid, on the track nearest it; any other pin as
+    if its own cell stood where graywolf put it. Returns it with the median pin-to-cell distance before
     and after (µm). graywolf follows the hints only roughly (its side fractions are of its own
     core, not the die); this puts each pin where its cells ended up."""
     units = def_units(def_text)
@@ -213,7 +213,8 @@ def snap(def_text: str) -> tuple:
     for e in entries:
         x, y = int(e.group(6)), int(e.group(7))
         d = _side_distances(die, x, y)
-        edge[min(d, key=d.get)][x if min(d, key=d.get) in "LR" else y] += 1
+        s = min(d, key=d.get)
+        edge[s][x if s in "LR" else y] += 1
     at = {s: (edge[s].most_common(1)[0][0] if edge[s] else {"L": die.x0, "R": die.x1, "B": die.y0, "T": die.y1}[s])
           for s in SIDES}
     tx = _tracks(def_text, "X", "metal2")
