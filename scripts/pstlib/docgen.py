@@ -4,8 +4,7 @@ generator, and nothing else (scripts/gen_docs.py --write rewrites it, --check fa
 differs: ctest docs_stale).
 
 A Section names its file (relative to the repository root), its marker NAME and a function of
-the root that returns the body. A file may also have a whole-text transform (the contract's
-tables of docs/HARDWARE.md, whose markers scripts/pstlib/contract.py owns).
+the root that returns the body. scripts/gen_docs.py lists every section of every file.
 """
 from __future__ import annotations
 
@@ -44,10 +43,9 @@ def replace(text: str, section: Section, body: str) -> str:
     return text[:m.start(1)] + body + text[m.end(1):]
 
 
-def render(root: Path, sections: list, transforms: dict | None = None) -> dict:
-    """{relative path: (current text, generated text)} of every file a section or a transform
-    (relative path -> function(root, text) -> text) writes."""
-    paths = list(dict.fromkeys([s.path for s in sections] + list(transforms or {})))
+def render(root: Path, sections: list) -> dict:
+    """{relative path: (current text, generated text)} of every file a section writes."""
+    paths = list(dict.fromkeys(s.path for s in sections))
     out = {}
     for rel in paths:
         p = root / rel
@@ -55,8 +53,6 @@ def render(root: Path, sections: list, transforms: dict | None = None) -> dict:
             raise DocError(f"{rel}: missing")
         cur = p.read_text()
         text = cur
-        if transforms and rel in transforms:
-            text = transforms[rel](root, text)
         for s in sections:
             if s.path == rel:
                 text = replace(text, s, s.body(root))
@@ -64,15 +60,15 @@ def render(root: Path, sections: list, transforms: dict | None = None) -> dict:
     return out
 
 
-def stale(root: Path, sections: list, transforms: dict | None = None) -> list:
+def stale(root: Path, sections: list) -> list:
     """Relative paths whose generated sections are not what the generators give."""
-    return [rel for rel, (cur, new) in render(root, sections, transforms).items() if cur != new]
+    return [rel for rel, (cur, new) in render(root, sections).items() if cur != new]
 
 
-def write(root: Path, sections: list, transforms: dict | None = None) -> list:
+def write(root: Path, sections: list) -> list:
     """Rewrite the stale files; returns their relative paths."""
     out = []
-    for rel, (cur, new) in render(root, sections, transforms).items():
+    for rel, (cur, new) in render(root, sections).items():
         if cur != new:
             (root / rel).write_text(new)
             out.append(rel)

@@ -138,12 +138,24 @@ def test_one_line_edit_changes_generated_files(tmp_path):
     (tmp_path / "rtl" / "configs").mkdir()
     for f in (ROOT / "rtl" / "configs").glob("*.toml"):
         (tmp_path / "rtl" / "configs" / f.name).write_text(f.read_text())
-    (tmp_path / "docs").mkdir()
-    (tmp_path / "docs" / "HARDWARE.md").write_text((ROOT / "docs" / "HARDWARE.md").read_text())
-    gen = contract.generate(tmp_path, contract.load(tmp_path / "rtl" / "contract.toml"))
+    c = contract.load(tmp_path / "rtl" / "contract.toml")
+    gen = contract.generate(tmp_path, c)
     assert "localparam logic [15:0] RegClut = 16'h1800;" in gen["rtl/pst_pkg.sv"]
     assert "kRegClut = 0x1800;" in gen["model/golden/contract.h"]
-    assert "| 0x1800 + e |" in gen["docs/HARDWARE.md"]
+    assert "| 0x1800 + e |" in contract.hardware_md_table(c)     # docs/HARDWARE.md (scripts/gen_docs.py)
+
+
+def test_profile_key_reference_has_every_key():
+    """docs/PROFILES.md's table (scripts/gen_docs.py): every schema key with its type and full's value."""
+    c = contract.load()
+    text = contract.profile_keys_md(c, ROOT)
+    for k in c.keys:
+        assert f"| `{k.key}` | " in text, k.field
+    assert "| `octaves` | `Octaves` | integer, 1 .. 16 | 8 |" in text
+    assert "| `datapath` | `Datapath` | string: `parallel`, `serial` | `parallel` |" in text
+    assert "| `noise_steps` | `NoiseSteps` | integer: 1, 2, 4, 8 | 1 |" in text
+    for con in c.constraints:
+        assert con.message.split("|")[0].strip() in text
 
 
 def test_generated_cpp_enums_follow_the_contract():

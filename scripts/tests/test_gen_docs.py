@@ -32,10 +32,11 @@ def test_every_rtl_file_is_in_the_table():
 @pytest.fixture
 def tree(tmp_path):
     """A copy of what the generator reads: the docs, the baseline, derate and noise units, rtl/."""
-    for rel in ("README.md", "docs/HARDWARE.md", "docs/ARCHITECTURE.md", "scripts/synth/baseline.json",
+    for rel in ("README.md", "scenes/README.md", "scripts/synth/baseline.json",
                 "scripts/synth/layout_derate.json", "scripts/synth/noise_units.json"):
         (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
         shutil.copy(ROOT / rel, tmp_path / rel)
+    shutil.copytree(ROOT / "docs", tmp_path / "docs")
     shutil.copytree(ROOT / "rtl", tmp_path / "rtl")
     return tmp_path
 
