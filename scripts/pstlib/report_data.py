@@ -331,7 +331,7 @@ def flatten_figures(data: dict) -> dict:
 
 
 def gate_summary(gates: list, root: Optional[pathlib.Path] = None, runs: list = ()) -> Optional[Table]:
-    """The silicon table (pstlib/silicon_table.py: the README's rows) of each synthesized
+    """The silicon table (pstlib/silicon_table.py: docs/HARDWARE.md's rows) of each synthesized
     profile, named profiles first: out/synth/<profile>.json, the post-route Fmax of
     out/pnr/<profile>.json when the profile was placed and routed, the worst paper scene of the
     regression RUNS; the last row links each profile's raw JSON."""

@@ -1,5 +1,5 @@
 """The silicon tables: one column per named profile. The summary a designer reads first has
-the same rows in the README and docs/HARDWARE.md (generated from scripts/synth/baseline.json
+the same rows in docs/HARDWARE.md (generated from scripts/synth/baseline.json
 and scripts/synth/layout_derate.json: `scripts/gen_docs.py --write`) and in the report (from
 out/synth/PROFILE.json and out/pnr/PROFILE.json); docs/HARDWARE.md also has the logic per
 block (`blocks_markdown`) and the critical path per stage (`stages_markdown`).

@@ -1,5 +1,5 @@
 """The silicon tables (pstlib/silicon_table.py): the summary's rows, the logic per block and
-the critical path per stage. That the README's and docs/HARDWARE.md's copies are the generated
+the critical path per stage. That docs/HARDWARE.md's copy is the generated
 ones is scripts/tests/test_gen_docs.py's (and ctest docs_stale's) check."""
 from pstlib import silicon_table
 
