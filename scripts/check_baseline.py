@@ -14,6 +14,14 @@ input is missing. Also exit 1 when a profile's synthesis fails the sign-off chec
 transition, max capacitance: scripts/synth.py's), or was made with another Yosys or OpenSTA
 than the baseline's (tools in the file): its figures are not comparable, so the check stops
 there and says so (re-baseline with --update after checking the new tools' figures).
+
+The baseline also holds digests of every input of the synthesis (pstlib/synth/record.py), and
+--update/--add copy OUT/synth/PROFILE.{json,md} into the record scripts/synth/records/:
+  --stale     exit 1 naming each input changed since the baseline was written (ctest
+              baseline_stale: an RTL, profile or flow change without a new baseline fails the
+              default test suite), 0 while the baseline stands
+  --restore   the main job without --synth: OUT/synth/PROFILE.{json,md} from the record, after
+              the --stale check (exit 1 when it fails: synthesize instead)
 """
 import argparse
 import json
@@ -22,7 +30,7 @@ import sys
 
 from pstlib import baseline
 from pstlib.paths import ROOT
-from pstlib.synth import report
+from pstlib.synth import record, report
 
 PROFILES = ("reduced", "full", "full_2clk", "full_1clk")
 
@@ -33,15 +41,24 @@ def main() -> int:
     ap.add_argument("--baseline", default=str(ROOT / "scripts" / "synth" / "baseline.json"))
     ap.add_argument("--update", action="store_true", help="write the current figures as the baseline")
     ap.add_argument("--add", metavar="PROFILE", help="add or replace one profile's figures, the others kept")
+    ap.add_argument("--stale", action="store_true", help="exit 1 when an input changed since the baseline")
+    ap.add_argument("--restore", action="store_true", help="OUT/synth from the record while the baseline stands")
+    ap.add_argument("--rom-dir", default=str(ROOT / "build" / "rom"), help="the ROM images (default build/rom)")
     args = ap.parse_args()
     out = pathlib.Path(args.out)
     path = pathlib.Path(args.baseline)
+    rom_dir = pathlib.Path(args.rom_dir)
+    if (args.update or args.add) and not list(rom_dir.glob("*.memh")):
+        print(f"error: {rom_dir}: no ROM images (build first)", file=sys.stderr)
+        return 2
     base = json.loads(path.read_text()) if path.exists() else None
     if base is None and not args.update:
         print(f"error: {path}: no baseline (write one with --update)", file=sys.stderr)
         return 2
+    if args.stale or args.restore:
+        return check_stale(base, path, out, rom_dir if rom_dir.is_dir() else None, args.restore)
     if args.add:
-        return add_profile(base, path, out, args.add)
+        return add_profile(base, path, out, args.add, rom_dir)
     names = PROFILES if args.update or base is None else tuple(base["profiles"])
     synth, tools = {}, {}
     for n in names:
@@ -60,9 +77,10 @@ def main() -> int:
         return 2
     current = baseline.collect(synth, json.loads(reg_path.read_text()))
     if args.update:
-        path.write_text(json.dumps({"tolerance": baseline.TOLERANCE, "tools": tools, "profiles": current},
-                                   indent=2, sort_keys=True) + "\n")
-        print(f"baseline: wrote {path}")
+        path.write_text(json.dumps({"tolerance": baseline.TOLERANCE, "tools": tools, "profiles": current,
+                                    "inputs": record.inputs(rom_dir)}, indent=2, sort_keys=True) + "\n")
+        record.save(out / "synth", names)
+        print(f"baseline: wrote {path} and the record {record.RECORDS.relative_to(ROOT)}")
         return 0
     failed = [(n, e) for n in names for e in report.signoff_errors(synth[n])]
     for n, e in failed:
@@ -86,7 +104,28 @@ def main() -> int:
     return 1
 
 
-def add_profile(base: dict, path: pathlib.Path, out: pathlib.Path, name: str) -> int:
+def check_stale(base: dict, path: pathlib.Path, out: pathlib.Path, rom_dir, restore: bool) -> int:
+    """--stale and --restore: does the baseline (and its record) stand for the tree?"""
+    why = record.stale(base, rom_dir)
+    gone = record.missing(base["profiles"])
+    if gone:
+        why.append(f"no record of {', '.join(gone)} in {record.RECORDS.relative_to(ROOT)}")
+    if why:
+        print(f"baseline: {path.name} does not stand for this tree: " + "; ".join(why[:8]) +
+              (f" (and {len(why) - 8} more)" if len(why) > 8 else ""))
+        print("  synthesize the baseline's profiles again (scripts/run.sh --synth, or scripts/synth.py PROFILE), "
+              "then scripts/check_baseline.py --update")
+        return 1
+    if restore:
+        record.restore(out / "synth", base["profiles"])
+        print(f"baseline: inputs unchanged since {path.name} (digest {record.digest.summary(base['inputs'], {})}): "
+              f"silicon figures of {', '.join(base['profiles'])} from {record.RECORDS.relative_to(ROOT)}")
+    else:
+        print(f"baseline: {path.name} stands for this tree ({len(base['inputs'])} inputs unchanged)")
+    return 0
+
+
+def add_profile(base: dict, path: pathlib.Path, out: pathlib.Path, name: str, rom_dir: pathlib.Path) -> int:
     """--add NAME: NAME's figures from OUT/synth/NAME.json (and OUT/regress.json's PSNRs when
     present, else the baseline's own) into the baseline, which must have been made with the
     same tools."""
@@ -113,9 +152,17 @@ def add_profile(base: dict, path: pathlib.Path, out: pathlib.Path, name: str) ->
     for k in ("psnr_db", "regress_size"):
         if k not in new[name] and k in base["profiles"].get(name, {}):
             new[name][k] = base["profiles"][name][k]
+    # The digest stands for every profile of the baseline: a profile is added only while the
+    # inputs are those the others were synthesized from (else every profile again, --update).
+    why = record.stale(base, rom_dir)
+    if why:
+        print(f"error: the inputs changed since {path.name} ({'; '.join(why[:5])}): synthesize every profile "
+              f"and rewrite it with --update", file=sys.stderr)
+        return 1
     base["profiles"].update(new)
     path.write_text(json.dumps(base, indent=2, sort_keys=True) + "\n")
-    print(f"baseline: {name} added to {path}")
+    record.save(out / "synth", [name])
+    print(f"baseline: {name} added to {path} and the record")
     return 0
 
 

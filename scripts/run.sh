@@ -9,13 +9,23 @@
 #       octaves) against the ground truth: every scene at 64x64 with a 16x16 truth, seven
 #       animated sequences (16 frames at 48x48, 8x8 truth; the subband seascapes also through the
 #       subband units' RTL, the planet through reduced's) -> out/fidelity/fidelity.md (a report section)
-#   3. silicon figures of the named profiles (OSU018 area, OpenSTA timing, memories), Figures 10
-#      and 11, a quick precision sweep
+#   3. silicon figures of the named profiles (OSU018 area, OpenSTA timing, memories): from the
+#      silicon record (scripts/synth/records, pstlib/synth/record.py) while every input of the
+#      synthesis is unchanged since the baseline, else the run fails and says what changed;
+#      `scripts/run.sh --synth` synthesizes them again (with a quick precision sweep, tens of
+#      minutes on 2 cores); Figures 10 and 11
 #   4. out/report.md and out/report.html (the same data; the HTML page has an image viewer per
 #      scene and sortable tables, opens from file://), the pages a designer opens first
 #   5. the figures against scripts/synth/baseline.json (fails on a move > 2 %)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+SYNTH=0
+case "${1:-}" in
+  --synth) SYNTH=1 ;;
+  "") ;;
+  -h|--help) sed -n '2,/^set -euo/p' "$0" | sed '$d'; exit 0 ;;
+  *) echo "error: unknown option '$1' (scripts/run.sh [--synth])" >&2; exit 2 ;;
+esac
 START=$(date +%s)
 scripts/setup.sh
 scripts/build.sh pst
@@ -29,7 +39,8 @@ for scene in scenes/*.toml; do
 done
 echo "== RTL regression at ${SIZE}x${SIZE}"
 rc=0
-./build/pst regress --size "$SIZE" --profile full --profile full_2clk --profile full_1clk --profile reduced -o out/regress.json --images out || rc=$?
+./build/pst regress --size "$SIZE" --profile full --profile full_2clk --profile full_1clk --profile reduced -o out/regress.json --images out \
+  --junit out/regress.junit.xml || rc=$?
 echo "== animation: seascape fly-in, 24 frames at 64x64 through the reference and full's RTL, flicker vs a 4x4 truth"
 ./build/pst animate scenes/seascape.toml --frames 24 --size 64 --truth 4 --profile full -o out/anim/seascape -q || rc=1
 mkdir -p out/animations
@@ -57,16 +68,22 @@ for name in seascape fire marble planet planet_subband seascape_subband seascape
 done
 /usr/bin/python3 scripts/fidelity.py --stills "${stills[@]}" --sequences "${seqs[@]}" \
   --md out/fidelity/fidelity.md --json out/fidelity/fidelity.json > /dev/null || rc=1
-echo "== silicon figures (Yosys + OpenSTA), quick precision sweep, figures"
-# full's synthesis and timing (one core) run beside the quick sweep, whose base point is
-# the reduced profile's synthesis (out/synth/reduced.{json,md}).
-/usr/bin/python3 scripts/synth.py full --quiet & full_synth=$!
-/usr/bin/python3 scripts/sweep.py --quick || rc=1
-/usr/bin/python3 scripts/synth.py balanced --quiet || rc=1     # in the baseline too (9-12 min on one core)
-/usr/bin/python3 scripts/synth.py full_1clk --quiet || rc=1    # the one-clock full, in the baseline
-/usr/bin/python3 scripts/synth.py full_2clk --quiet || rc=1    # the two-clock full, in the baseline
-wait "$full_synth" || rc=1
-[ -f out/synth/reduced.md ] || /usr/bin/python3 scripts/synth.py reduced --quiet || rc=1
+if [ "$SYNTH" = 1 ]; then
+  echo "== silicon figures (Yosys + OpenSTA), quick precision sweep"
+  # full's synthesis and timing (one core) run beside the quick sweep, whose base point is
+  # the reduced profile's synthesis (out/synth/reduced.{json,md}).
+  /usr/bin/python3 scripts/synth.py full --quiet & full_synth=$!
+  /usr/bin/python3 scripts/sweep.py --quick || rc=1
+  /usr/bin/python3 scripts/synth.py balanced --quiet || rc=1     # in the baseline too
+  /usr/bin/python3 scripts/synth.py full_1clk --quiet || rc=1    # the one-clock full, in the baseline
+  /usr/bin/python3 scripts/synth.py full_2clk --quiet || rc=1    # the two-clock full, in the baseline
+  wait "$full_synth" || rc=1
+  [ -f out/synth/reduced.md ] || /usr/bin/python3 scripts/synth.py reduced --quiet || rc=1
+else
+  echo "== silicon figures from the record (scripts/run.sh --synth synthesizes them again)"
+  /usr/bin/python3 scripts/check_baseline.py --restore --out out || rc=1
+fi
+echo "== figures"
 /usr/bin/python3 scripts/figures.py fig11 --out out || rc=1
 /usr/bin/python3 scripts/figures.py fig10 --out out || rc=1
 /usr/bin/python3 scripts/report.py out --md out/report.md --html out/report.html || rc=1

@@ -23,13 +23,21 @@ import pathlib
 import subprocess
 import time
 
-from . import contract
+from . import contract, digest
 from .paths import ROOT
 from .synth import tools
 
 BOOTH = ROOT / "rtl" / "common" / "pst_mul_booth.sv"
 DIGITS = ROOT / "sim" / "formal" / "pst_mul_digits.sv"
 PARAMS = ("AW", "BW", "BSigned", "PW")
+# The record of the last full proof (scripts/mul_proof.py --record), checked by `--cached`.
+RECORD = ROOT / "sim" / "formal" / "mul_proof.record.json"
+# What one width's proof depends on: the two forms and this code (the tools' versions beside).
+PROOF_INPUTS = ("rtl/common/pst_mul_booth.sv", "sim/formal/pst_mul_digits.sv", "scripts/pstlib/mulproof.py",
+                "scripts/pstlib/synth/tools.py")
+# What decides which widths the profiles instantiate: the RTL and every profile.
+ELABORATION_INPUTS = ("rtl/**/*.sv", "rtl/**/*.svh", "rtl/contract.toml", "rtl/configs/*.toml",
+                      "sim/test_profiles/*.toml", "scripts/pstlib/contract.py")
 
 
 @dataclasses.dataclass(frozen=True, order=True)
@@ -137,3 +145,47 @@ def prove(w: Width, tmp: pathlib.Path, booth=BOOTH, digits=DIGITS) -> dict:
     res["proven"] = all(res[k] for k in ("Q0", "Q1", "Q2", "Q3"))
     res["seconds"] = round(time.time() - t0, 1)
     return res
+
+
+def tool_versions() -> dict:
+    """The versions of the tools a proof runs (Yosys with its ABC, Z3)."""
+    import z3   # Debian python3-z3
+    return {"yosys": tools.tool_version(["yosys", "-V"]), "z3": z3.get_version_string()}
+
+
+def width_key(w: Width) -> dict:
+    return {"aw": w.aw, "bw": w.bw, "bsigned": w.bsigned, "pw": w.pw}
+
+
+def make_record(widths: dict) -> dict:
+    """The record of a full proof: {Width: [profiles]} every one proven, and the digests of the
+    inputs it was made from (digest.py)."""
+    return {"schema": 1, "made_by": "scripts/mul_proof.py --record", "tools": tool_versions(),
+            "proof_inputs": digest.inputs(PROOF_INPUTS), "elaboration_inputs": digest.inputs(ELABORATION_INPUTS),
+            "widths": [{**width_key(w), "profiles": sorted(set(p))} for w, p in sorted(widths.items())]}
+
+
+def read_record(path: pathlib.Path = RECORD) -> dict:
+    """The record, or None when there is none. Raises ValueError on a malformed one."""
+    if not path.exists():
+        return None
+    rec = json.loads(path.read_text())
+    if rec.get("schema") != 1 or not isinstance(rec.get("widths"), list):
+        raise ValueError(f"{path}: not a schema-1 proof record")
+    return rec
+
+
+def record_widths(rec: dict) -> dict:
+    """{Width: [profiles]} of a record."""
+    return {Width(r["aw"], r["bw"], r["bsigned"], r["pw"]): r["profiles"] for r in rec["widths"]}
+
+
+def record_status(rec: dict, versions: dict = None) -> tuple:
+    """(why the elaboration is stale, why the proofs are stale): each a list of reasons (changed
+    files, moved tool versions), empty where the record stands for the tree as it is."""
+    if rec is None:
+        return ["no record"], ["no record"]
+    versions = versions if versions is not None else tool_versions()
+    elab = digest.stale(rec["elaboration_inputs"], digest.inputs(ELABORATION_INPUTS))
+    proof = digest.stale(rec["proof_inputs"], digest.inputs(PROOF_INPUTS), rec["tools"], versions)
+    return elab, proof

@@ -386,7 +386,8 @@ protected:
 std::unique_ptr<VerilatedContext> ArithUnit::ctx_;
 std::unique_ptr<Vpst_arith_unit_top> ArithUnit::top_;
 
-constexpr int kRandom = 100000;
+// Random vectors per test: 100,000 under ctest -L long, a tenth by default (unit_seed.h).
+const int kRandom = pst::unit::randomCount(100000);
 
 TEST_F(ArithUnit, Quadric) {
     ASSERT_LE(CW, 64);

@@ -1,11 +1,14 @@
-// The unit tests' profile and seed: the profile the executable was built for
-// (PST_PROFILE_PATH) and one seed per run, printed so that PST_SEED=<n> replays it.
+// The unit tests' profile, seed and random count: the profile the executable was built for
+// (PST_PROFILE_PATH), one seed per run, printed so that PST_SEED=<n> replays it, and how many
+// random vectors a test draws (a tenth of its long count by default, the whole of it with
+// PST_UNIT_LONG=1: ctest -L long).
 #pragma once
 
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <random>
+#include <string>
 
 #include "profile.h"
 
@@ -27,6 +30,17 @@ inline uint64_t seed(const char* test) {
         return v;
     }();
     return s;
+}
+
+// The number of random vectors of a test whose long run draws LONG_COUNT: all of them with
+// PST_UNIT_LONG=1 in the environment (the `long` ctest label), a tenth by default. The special
+// values and boundaries of each test run in both.
+inline int randomCount(int longCount) {
+    static const bool full = [] {
+        const char* e = std::getenv("PST_UNIT_LONG");
+        return e && *e && std::string(e) != "0";
+    }();
+    return full ? longCount : longCount / 10;
 }
 
 }  // namespace pst::unit
