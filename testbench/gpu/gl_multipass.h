@@ -34,6 +34,7 @@ struct Timing {
     int draws = 0;           // draw calls per frame (the paper's passes)
     int frames = 0;          // frames timed
     double msPerFrame = 0;   // the passes only, glFinish to glFinish, mean over frames
+    double msPerFrameMin = 0;  // the fastest frame (the machine's load shows in the mean)
     double msUpload = 0;     // the three coordinate images to textures (first frame)
     double msReadback = 0;   // the noise texture to the host (glReadPixels)
 };
