@@ -18,6 +18,7 @@ PACKAGES=(
   libtinyobjloader-dev libmetis-dev # pst atlas: OBJ meshes (mesh = "obj"), the multiresolution atlas's partition
   libfftw3-dev libeigen3-dev       # model/subband: spectral noise tiles (FFT), least-squares weights
   z3 python3-z3                    # scripts/mul_proof.py: the multiplier forms' proof (with Yosys's ABC)
+  libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri  # pst_multipass: OpenGL ES 3 through EGL without a display (llvmpipe)
 )
 # scripts/pnr.py (place and route, not part of the test suite): `scripts/setup.sh --pnr` adds
 # qflow and its OSU 0.18 um technology (graywolf, qrouter, magic, netgen-lvs come with it) and

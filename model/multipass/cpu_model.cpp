@@ -1,0 +1,83 @@
+// Bit-accurate CPU model of the multipass noise passes; see cpu_model.h.
+#include "cpu_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace pst::multipass {
+
+namespace {
+
+// Float -> UNORM8 (GL fixed-point conversion): round(clamp(x) 255), tracking the tie margin.
+uint8_t toUnorm(double x, Stats& stats) {
+    const double c = std::clamp(x, 0.0, 1.0) * 255.0;
+    if (x > 0.0 && x < 1.0) {
+        const double frac = c - std::floor(c);
+        stats.minTieMargin = std::min(stats.minTieMargin, std::fabs(frac - 0.5));
+    }
+    return static_cast<uint8_t>(std::floor(c + 0.5));
+}
+
+// round(d s / 255) in integers: floor((2 d s + 255) / 510); d s / 255 is never a tie.
+uint8_t mulUnorm(int d, int s) { return static_cast<uint8_t>((2 * d * s + 255) / 510); }
+
+}  // namespace
+
+Image8 runCpu(const Program& prog, const Tables& tables, const Image8& s, const Image8& t,
+              const Image8& r, Stats* statsOut, State* stateOut) {
+    if (s.width != t.width || s.width != r.width || s.height != t.height || s.height != r.height ||
+        s.px.size() != size_t(s.width) * s.height || t.px.size() != s.px.size() ||
+        r.px.size() != s.px.size())
+        throw std::invalid_argument("multipass: s, t, r images differ in size");
+    State local;
+    State& st = stateOut ? *stateOut : local;
+    for (Image8& im : st.img) im = Image8{s.width, s.height, std::vector<uint8_t>(s.px.size(), 0)};
+    st.img[TexS] = s;
+    st.img[TexT] = t;
+    st.img[TexR] = r;
+    Stats stats;
+    const size_t n = s.px.size();
+    for (const Pass& p : prog.passes) {
+        std::vector<uint8_t>& dst = st.img[p.dst].px;
+        const std::vector<uint8_t>& src = st.img[p.src].px;
+        switch (p.op) {
+            case Op::Transfer:
+                for (size_t i = 0; i < n; ++i) {
+                    uint8_t v = toUnorm(src[i] / 255.0 * p.scale + p.bias, stats);
+                    // PixelMap: a 256-entry map indexed by round(c 255), the byte just stored
+                    if (p.table != NoTable) v = tables[p.table][v];
+                    dst[i] = v;
+                }
+                break;
+            case Op::BlendAdd:
+                for (size_t i = 0; i < n; ++i) dst[i] = uint8_t(std::min(255, dst[i] + src[i]));
+                break;
+            case Op::BlendSub:
+                for (size_t i = 0; i < n; ++i) dst[i] = uint8_t(std::max(0, src[i] - dst[i]));
+                break;
+            case Op::BlendMul:
+                for (size_t i = 0; i < n; ++i) dst[i] = mulUnorm(dst[i], src[i]);
+                break;
+            case Op::BlendMulInv:
+                for (size_t i = 0; i < n; ++i) dst[i] = mulUnorm(dst[i], 255 - src[i]);
+                break;
+            case Op::Save:
+                std::swap(st.img[p.dst].px, st.img[p.src].px);
+                break;
+            case Op::Clear:
+                std::fill(dst.begin(), dst.end(), 0);
+                break;
+        }
+    }
+    if (statsOut) *statsOut = stats;
+    return st.img[TexNoise];
+}
+
+uint8_t toFixed(double x, const Format& f) {
+    if (!std::isfinite(x)) return 0;
+    const double v = std::floor(x * (1 << f.bf));
+    return static_cast<uint8_t>(static_cast<int64_t>(std::fmod(v, 256.0) + 256.0) & 255);
+}
+
+}  // namespace pst::multipass

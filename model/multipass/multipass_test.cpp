@@ -1,0 +1,179 @@
+// Tests of the multipass noise's program and CPU model (Hart 2001, sections 3, 4, 7) against
+// values derived here independently: integer shifts, the paper's Figure 3 formula evaluated in
+// double precision with a derived error bound, exact lattice values, pass counts.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+
+#include "cpu_model.h"
+#include "program.h"
+#include "tables.h"
+
+namespace pst::multipass {
+namespace {
+
+struct Input {
+    Image8 s, t, r;
+};
+
+Input randomInput(int w, int h, uint32_t seed) {
+    std::mt19937 gen(seed);
+    Input in;
+    for (Image8* im : {&in.s, &in.t, &in.r}) {
+        im->width = w;
+        im->height = h;
+        im->px.resize(size_t(w) * h);
+        for (uint8_t& v : im->px) v = uint8_t(gen() & 255);
+    }
+    return in;
+}
+
+// Figure 3 with section 4.3's randomization, in double precision: the weighted sum over the
+// eight corners of nran[sran[i] + tran[j] + rran[k]] / 255, weights u or 1 - u with
+// u = frac(S / 2^b_f) 2^b_f / (2^b_f - 1) (section 4.2's fracshift), or SCURVE(u) (section 7).
+double figure3(const Tables& T, const Format& f, Interp interp, int S, int Tc, int R) {
+    const int c[3] = {S, Tc, R};
+    int K[3];
+    double u[3];
+    for (int a = 0; a < 3; ++a) {
+        K[a] = c[a] / (1 << f.bf);
+        u[a] = double(c[a] - K[a] * (1 << f.bf)) / ((1 << f.bf) - 1);
+        if (interp == Interp::Scurve) u[a] = u[a] * u[a] * (3.0 - 2.0 * u[a]);
+    }
+    double n = 0.0;
+    for (int k = 0; k < 8; ++k) {
+        const int sum = T[Sran][K[0] + (k & 1)] + T[Tran][K[1] + (k >> 1 & 1)] +
+                        T[Rran][K[2] + (k >> 2 & 1)];
+        double w = 1.0;
+        for (int a = 0; a < 3; ++a) w *= (k >> a & 1) ? u[a] : 1.0 - u[a];
+        n += T[Nran][sum] / 255.0 * w;
+    }
+    return n;
+}
+
+TEST(Multipass, PassCountsAreThePapers) {
+    // 4 passes per coordinate (shift right, shift left, subtract, fracshift), 11 per corner
+    // (3 lookups, 3 draws of the sum, nran, 3 weights, the add into the noise); SCURVE 4 more
+    // per weight image (section 7).
+    Params p;
+    EXPECT_EQ(sgiProgram(p).draws(), 3 * 4 + 8 * 11);
+    p.interp = Interp::Scurve;
+    EXPECT_EQ(sgiProgram(p).draws(), 3 * 8 + 8 * 11);
+    p.format.bf = 0;
+    EXPECT_THROW(sgiProgram(p), std::invalid_argument);
+}
+
+TEST(Multipass, TablesInRangeAndPeriodic) {
+    for (int bf : {1, 4, 7}) {
+        Params p;
+        p.format.bf = bf;
+        const Tables T = makeTables(p);
+        const int cells = 1 << p.format.bi();
+        for (int tb : {Sran, Tran, Rran}) {
+            EXPECT_LE(*std::max_element(T[tb].begin(), T[tb].end()), 85);  // [0, 1/3]
+            for (int i = cells; i < 256; ++i) EXPECT_EQ(T[tb][i], T[tb][i % cells]);
+        }
+        // nran spans [0, 1]: with 256 draws, both quarters at the ends are hit
+        EXPECT_LT(*std::min_element(T[Nran].begin(), T[Nran].end()), 64);
+        EXPECT_GT(*std::max_element(T[Nran].begin(), T[Nran].end()), 191);
+    }
+    Params a, b;
+    b.seed = 2;
+    EXPECT_NE(makeTables(a).t, makeTables(b).t);
+}
+
+// Section 4.2 exactly: si = S >> b_f and the weight round((S mod 2^b_f) 255 / (2^b_f - 1)),
+// for every byte and every b_f, with every stored value far from a rounding tie.
+TEST(Multipass, DecompositionIsExactForEveryByte) {
+    Image8 all{256, 1, {}};
+    for (int v = 0; v < 256; ++v) all.px.push_back(uint8_t(v));
+    for (int bf = 1; bf <= 8; ++bf) {
+        Params p;
+        p.format.bf = bf;
+        State st;
+        Stats stats;
+        runCpu(sgiProgram(p), makeTables(p), all, all, all, &stats, &st);
+        const int m = (1 << bf) - 1;
+        for (int v = 0; v < 256; ++v) {
+            ASSERT_EQ(st.img[TexSI].px[v], v >> bf) << "b_f " << bf << " S " << v;
+            const int F = v & m;
+            ASSERT_EQ(st.img[TexTF].px[v], (2 * F * 255 + m) / (2 * m)) << "b_f " << bf << " S " << v;
+        }
+        EXPECT_GE(stats.minTieMargin, 1.0 / 512) << "b_f " << bf;
+    }
+}
+
+// At a lattice point (every fraction 0) the weights are exactly 0 and 1 - 0 = 1, so the noise
+// is exactly the corner's random value; at the largest fraction (weight 255/255) the far corner's.
+TEST(Multipass, LatticePointsAreTheTableValues) {
+    for (Interp interp : {Interp::Linear, Interp::Scurve}) {
+        Params p;
+        p.interp = interp;
+        const Tables T = makeTables(p);
+        const int m = (1 << p.format.bf) - 1;
+        Image8 s{64, 1, {}}, t{64, 1, {}}, r{64, 1, {}};
+        std::mt19937 gen(7);
+        std::vector<int> far;
+        for (int i = 0; i < 64; ++i) {
+            const int f = (i & 1) ? m : 0;
+            far.push_back(f != 0);
+            s.px.push_back(uint8_t((gen() & 15) << p.format.bf | f));
+            t.px.push_back(uint8_t((gen() & 15) << p.format.bf | f));
+            r.px.push_back(uint8_t((gen() & 15) << p.format.bf | f));
+        }
+        const Image8 n = runCpu(sgiProgram(p), T, s, t, r);
+        for (int i = 0; i < 64; ++i) {
+            const int d = far[i];
+            const int sum = T[Sran][(s.px[i] >> 4) + d] + T[Tran][(t.px[i] >> 4) + d] +
+                            T[Rran][(r.px[i] >> 4) + d];
+            EXPECT_EQ(n.px[i], T[Nran][sum]) << "pixel " << i;
+        }
+    }
+}
+
+// The model against Figure 3 in double precision. Bound, in LSB (1/255): each corner is
+// v Wq + three roundings of at most 1/2 scaled by weights <= 1 (1.5 per corner, 12 for eight);
+// the quantized weights Wq differ from the exact ones by e per axis, and their pairs (u, 1 - u)
+// sum to 1 exactly, so sum_c |prod Wq - prod W| <= 2 sum_axes |e|: linear |e| <= 1/2 -> 3;
+// SCURVE |e| <= 5.75 (3/4 - u/2 rounded (1/4), two products rounded (1/2 each) at 1/4 scale,
+// times 4 -> 5, plus u's own 1/2 LSB times max SCURVE' = 3/2) -> 34.5.
+TEST(Multipass, CpuModelWithinBoundOfFigure3) {
+    const uint32_t seed = 20011;
+    std::printf("seed %u\n", seed);
+    const Input in = randomInput(128, 128, seed);
+    for (Interp interp : {Interp::Linear, Interp::Scurve}) {
+        for (int bf = 1; bf <= 7; ++bf) {
+            Params p;
+            p.format.bf = bf;
+            p.interp = interp;
+            const Tables T = makeTables(p);
+            const Image8 n = runCpu(sgiProgram(p), T, in.s, in.t, in.r);
+            double maxErr = 0.0, sq = 0.0;
+            for (size_t i = 0; i < n.px.size(); ++i) {
+                const double e = std::fabs(n.px[i] / 255.0 -
+                                           figure3(T, p.format, interp, in.s.px[i], in.t.px[i], in.r.px[i]));
+                maxErr = std::max(maxErr, e);
+                sq += e * e;
+            }
+            const double bound = (interp == Interp::Linear ? 15.0 : 12.0 + 34.5) / 255.0;
+            std::printf("%s b_f %d: max %.2f LSB, rms %.2f LSB\n", interp == Interp::Linear ? "linear" : "scurve",
+                        bf, maxErr * 255, std::sqrt(sq / n.px.size()) * 255);
+            EXPECT_LE(maxErr, bound) << "b_f " << bf;
+        }
+    }
+}
+
+TEST(Multipass, ToFixedWraps) {
+    Format f;
+    EXPECT_EQ(toFixed(0.0, f), 0);
+    EXPECT_EQ(toFixed(15.9375, f), 255);
+    EXPECT_EQ(toFixed(16.0, f), 0);
+    EXPECT_EQ(toFixed(-0.0625, f), 255);
+    EXPECT_EQ(toFixed(1.03, f), 16);
+}
+
+}  // namespace
+}  // namespace pst::multipass

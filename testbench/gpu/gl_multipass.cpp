@@ -1,0 +1,312 @@
+// The multipass noise on OpenGL ES 3; see gl_multipass.h.
+#include "gl_multipass.h"
+
+#include <GLES3/gl3.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <stdexcept>
+#include <string>
+
+namespace pst::gpu {
+
+using namespace pst::multipass;
+
+namespace {
+
+// A full-screen triangle from gl_VertexID (no vertex buffer).
+const char* kVertex = R"(#version 300 es
+void main() {
+    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
+    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}
+)";
+
+// Section 4.1's blendtex with PixelTransfer (scale, bias) and PixelMap: the map is a 256 x 1
+// texture indexed by round(c 255), c the clamped scaled value (the GL's PixelMap index rule).
+const char* kTransfer = R"(#version 300 es
+precision highp float;
+precision highp int;
+uniform highp sampler2D src;
+uniform highp sampler2D map;
+uniform float scale;
+uniform float bias;
+uniform int useMap;
+out vec4 color;
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    float y = clamp(texelFetch(src, p, 0).r * scale + bias, 0.0, 1.0);
+    if (useMap != 0) y = texelFetch(map, ivec2(int(floor(y * 255.0 + 0.5)), 0), 0).r;
+    color = vec4(y, y, y, 1.0);
+}
+)";
+
+// A blend as a shader (BlendArith::Shader): dst and src read as textures.
+const char* kBlend = R"(#version 300 es
+precision highp float;
+precision highp int;
+uniform highp sampler2D dst;
+uniform highp sampler2D src;
+uniform int op;  // 0 add, 1 subtract (src - dst), 2 multiply, 3 multiply by 1 - src
+out vec4 color;
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    float d = texelFetch(dst, p, 0).r, s = texelFetch(src, p, 0).r, y;
+    if (op == 0) y = d + s;
+    else if (op == 1) y = s - d;
+    else if (op == 2) y = d * s;
+    else y = d * (1.0 - s);
+    y = clamp(y, 0.0, 1.0);
+    color = vec4(y, y, y, 1.0);
+}
+)";
+
+void check(const char* what) {
+    const GLenum e = glGetError();
+    if (e != GL_NO_ERROR) {
+        char buf[16];
+        std::snprintf(buf, sizeof buf, "0x%04x", e);
+        throw std::runtime_error(std::string("GL: ") + what + ": error " + buf);
+    }
+}
+
+GLuint compile(GLenum type, const char* text) {
+    GLuint sh = glCreateShader(type);
+    glShaderSource(sh, 1, &text, nullptr);
+    glCompileShader(sh);
+    GLint ok = 0;
+    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    if (!ok) {
+        char log[2048];
+        glGetShaderInfoLog(sh, sizeof log, nullptr, log);
+        throw std::runtime_error(std::string("GL: shader compile: ") + log);
+    }
+    return sh;
+}
+
+GLuint link(const char* fragment) {
+    GLuint prog = glCreateProgram();
+    GLuint vs = compile(GL_VERTEX_SHADER, kVertex), fs = compile(GL_FRAGMENT_SHADER, fragment);
+    glAttachShader(prog, vs);
+    glAttachShader(prog, fs);
+    glLinkProgram(prog);
+    glDeleteShader(vs);
+    glDeleteShader(fs);
+    GLint ok = 0;
+    glGetProgramiv(prog, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        char log[2048];
+        glGetProgramInfoLog(prog, sizeof log, nullptr, log);
+        throw std::runtime_error(std::string("GL: program link: ") + log);
+    }
+    return prog;
+}
+
+GLuint makeTexture(int w, int h) {
+    GLuint tex;
+    glGenTextures(1, &tex);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    return tex;
+}
+
+// Luminance bytes -> RGBA8 texels (R = G = B = v, A = 255).
+void upload(GLuint tex, int w, int h, const uint8_t* lum) {
+    std::vector<uint8_t> rgba(size_t(w) * h * 4);
+    for (size_t i = 0; i < size_t(w) * h; ++i) {
+        rgba[4 * i] = rgba[4 * i + 1] = rgba[4 * i + 2] = lum[i];
+        rgba[4 * i + 3] = 255;
+    }
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+}
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+struct GlMultipass::Impl {
+    int w, h;
+    GLuint fbo = 0, vao = 0;
+    GLuint transfer = 0, blend = 0;
+    GLint tScale, tBias, tUseMap, bOp;
+    std::array<GLuint, kImageCount> img{};  // the texture holding each image now
+    GLuint scratch = 0;                     // the next render target of a ping-pong pass
+    std::array<GLuint, kTableCount> table{};
+
+    void target(GLuint tex) {
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
+    }
+    void bind(int unit, GLuint tex) {
+        glActiveTexture(GL_TEXTURE0 + unit);
+        glBindTexture(GL_TEXTURE_2D, tex);
+    }
+    void draw() { glDrawArrays(GL_TRIANGLES, 0, 3); }
+
+    // PixelTransfer into scratch, which then becomes dst (dst may be src: in-place CopyPixels).
+    void runTransfer(const Pass& p) {
+        target(scratch);
+        glUseProgram(transfer);
+        glUniform1f(tScale, float(p.scale));
+        glUniform1f(tBias, float(p.bias));
+        glUniform1i(tUseMap, p.table != NoTable);
+        bind(0, img[p.src]);
+        bind(1, table[p.table != NoTable ? p.table : 0]);
+        draw();
+        std::swap(scratch, img[p.dst]);
+    }
+
+    void runBlend(const Pass& p, BlendArith arith) {
+        int op = p.op == Op::BlendAdd ? 0 : p.op == Op::BlendSub ? 1 : p.op == Op::BlendMul ? 2 : 3;
+        if (arith == BlendArith::Shader) {
+            target(scratch);
+            glUseProgram(blend);
+            glUniform1i(bOp, op);
+            bind(0, img[p.dst]);
+            bind(1, img[p.src]);
+            draw();
+            std::swap(scratch, img[p.dst]);
+            return;
+        }
+        if (p.src == p.dst) throw std::logic_error("multipass: a blend cannot read its own target");
+        // The paper's way: blendtex(src) with BlendEquation/BlendFunc into the target.
+        target(img[p.dst]);
+        glUseProgram(transfer);
+        glUniform1f(tScale, 1.0f);
+        glUniform1f(tBias, 0.0f);
+        glUniform1i(tUseMap, 0);
+        bind(0, img[p.src]);
+        bind(1, table[0]);
+        glEnable(GL_BLEND);
+        glBlendEquation(op == 1 ? GL_FUNC_SUBTRACT : GL_FUNC_ADD);
+        if (op <= 1) glBlendFunc(GL_ONE, GL_ONE);
+        else glBlendFunc(GL_ZERO, op == 2 ? GL_SRC_COLOR : GL_ONE_MINUS_SRC_COLOR);
+        draw();
+        glDisable(GL_BLEND);
+    }
+};
+
+GlMultipass::GlMultipass(int width, int height) : impl_(new Impl) {
+    Impl& m = *impl_;
+    if (width < 1 || height < 1) throw std::invalid_argument("multipass: empty image");
+    m.w = width;
+    m.h = height;
+    m.transfer = link(kTransfer);
+    m.blend = link(kBlend);
+    glUseProgram(m.transfer);
+    glUniform1i(glGetUniformLocation(m.transfer, "src"), 0);
+    glUniform1i(glGetUniformLocation(m.transfer, "map"), 1);
+    m.tScale = glGetUniformLocation(m.transfer, "scale");
+    m.tBias = glGetUniformLocation(m.transfer, "bias");
+    m.tUseMap = glGetUniformLocation(m.transfer, "useMap");
+    glUseProgram(m.blend);
+    glUniform1i(glGetUniformLocation(m.blend, "dst"), 0);
+    glUniform1i(glGetUniformLocation(m.blend, "src"), 1);
+    m.bOp = glGetUniformLocation(m.blend, "op");
+    for (GLuint& t : m.img) t = makeTexture(width, height);
+    m.scratch = makeTexture(width, height);
+    for (GLuint& t : m.table) t = makeTexture(256, 1);
+    glGenFramebuffers(1, &m.fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, m.fbo);
+    glGenVertexArrays(1, &m.vao);
+    glBindVertexArray(m.vao);
+    m.target(m.scratch);
+    if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
+        throw std::runtime_error("GL: an RGBA8 texture is not a complete render target");
+    glViewport(0, 0, width, height);
+    glDisable(GL_DITHER);  // dithering may change the UNORM conversion (GL ES 3.2 section 15.1.7)
+    check("setup");
+}
+
+GlMultipass::~GlMultipass() {
+    Impl& m = *impl_;
+    glDeleteTextures(GLsizei(m.img.size()), m.img.data());
+    glDeleteTextures(GLsizei(m.table.size()), m.table.data());
+    glDeleteTextures(1, &m.scratch);
+    glDeleteFramebuffers(1, &m.fbo);
+    glDeleteVertexArrays(1, &m.vao);
+    glDeleteProgram(m.transfer);
+    glDeleteProgram(m.blend);
+}
+
+Image8 GlMultipass::run(const Program& prog, const Tables& tables, const Image8& s, const Image8& t,
+                        const Image8& r, BlendArith arith, int frames, Timing* timing) {
+    Impl& m = *impl_;
+    for (const Image8* im : {&s, &t, &r})
+        if (im->width != m.w || im->height != m.h || im->px.size() != size_t(m.w) * m.h)
+            throw std::invalid_argument("multipass: input image size differs from the context's");
+    Timing tm;
+    glFinish();
+    auto t0 = std::chrono::steady_clock::now();
+    upload(m.img[TexS], m.w, m.h, s.px.data());
+    upload(m.img[TexT], m.w, m.h, t.px.data());
+    upload(m.img[TexR], m.w, m.h, r.px.data());
+    for (int i = 0; i < kTableCount; ++i) upload(m.table[i], 256, 1, tables[i].data());
+    glFinish();
+    tm.msUpload = msSince(t0);
+    check("upload");
+    tm.draws = prog.draws();
+    tm.frames = std::max(1, frames);
+    double total = 0;
+    tm.msPerFrameMin = 1e300;
+    for (int f = 0; f < tm.frames; ++f) {
+        t0 = std::chrono::steady_clock::now();
+        for (const Pass& p : prog.passes) {
+            switch (p.op) {
+                case Op::Transfer: m.runTransfer(p); break;
+                case Op::Save: std::swap(m.img[p.dst], m.img[p.src]); break;
+                case Op::Clear:
+                    m.target(m.img[p.dst]);
+                    glClearColor(0.f, 0.f, 0.f, 1.f);
+                    glClear(GL_COLOR_BUFFER_BIT);
+                    break;
+                default: m.runBlend(p, arith); break;
+            }
+        }
+        glFinish();
+        const double ms = msSince(t0);
+        total += ms;
+        tm.msPerFrameMin = std::min(tm.msPerFrameMin, ms);
+    }
+    tm.msPerFrame = total / tm.frames;
+    check("passes");
+    t0 = std::chrono::steady_clock::now();
+    m.target(m.img[TexNoise]);
+    std::vector<uint8_t> rgba(size_t(m.w) * m.h * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, m.w, m.h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    tm.msReadback = msSince(t0);
+    check("readback");
+    Image8 out{m.w, m.h, std::vector<uint8_t>(size_t(m.w) * m.h)};
+    for (size_t i = 0; i < out.px.size(); ++i) out.px[i] = rgba[4 * i];
+    if (timing) *timing = tm;
+    return out;
+}
+
+std::vector<float> gpuNoise(const std::vector<glm::dvec3>& coords, const Params& params,
+                            BlendArith arith, Timing* timing) {
+    if (coords.empty()) return {};
+    EglContext ctx;
+    // Lay the coordinates out as rows of up to 1024 pixels; the padding is coordinate 0.
+    const int w = int(std::min<size_t>(coords.size(), 1024));
+    const int h = int((coords.size() + w - 1) / w);
+    Image8 s{w, h, std::vector<uint8_t>(size_t(w) * h, 0)}, t = s, r = s;
+    for (size_t i = 0; i < coords.size(); ++i) {
+        s.px[i] = toFixed(coords[i].x, params.format);
+        t.px[i] = toFixed(coords[i].y, params.format);
+        r.px[i] = toFixed(coords[i].z, params.format);
+    }
+    GlMultipass gl(w, h);
+    const Image8 n = gl.run(sgiProgram(params), makeTables(params), s, t, r, arith, 1, timing);
+    std::vector<float> out(coords.size());
+    for (size_t i = 0; i < coords.size(); ++i) out[i] = n.px[i] / 255.0f;
+    return out;
+}
+
+}  // namespace pst::gpu

@@ -1,0 +1,68 @@
+// The multipass noise (Hart 2001, section 4; model/multipass/program.h) on OpenGL ES 3: every
+// image an RGBA8 texture (the luminance in R = G = B), every pass one draw of a full-screen
+// triangle whose fragment shader does exactly that pass's operation, the result stored by the
+// GL's float -> UNORM8 conversion. The bit-accurate CPU model (model/multipass/cpu_model.h) is
+// what it must equal, pixel for pixel.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/vec3.hpp>
+
+#include "cpu_model.h"
+#include "egl_context.h"
+#include "program.h"
+#include "tables.h"
+
+namespace pst::gpu {
+
+// How a blend pass is carried out.
+//   Shader: the pass's shader reads dst and src as textures and writes the blended value to a
+//           fresh render target (render to texture, ping-pong): the result is the specified
+//           float -> UNORM conversion of a float expression, equal to the CPU model on any
+//           conforming driver (every value far from a rounding tie, cpu_model.h).
+//   Blend:  the paper's way, fixed-function glBlendFunc/glBlendEquation into the target.
+//           Add and subtract of UNORM8 are exact; for multiply the specification says only
+//           "as if carried out in floating point ... precision no lower than the destination",
+//           so a driver may differ from round(D S / 255) by an LSB per multiply.
+enum class BlendArith { Shader, Blend };
+
+struct Timing {
+    int draws = 0;           // draw calls per frame (the paper's passes)
+    int frames = 0;          // frames timed
+    double msPerFrame = 0;   // the passes only, glFinish to glFinish, mean over frames
+    double msPerFrameMin = 0;  // the fastest frame (the machine's load shows in the mean)
+    double msUpload = 0;     // the three coordinate images to textures (first frame)
+    double msReadback = 0;   // the noise texture to the host (glReadPixels)
+};
+
+class GlMultipass {
+  public:
+    // Needs a current context (EglContext); width x height images.
+    GlMultipass(int width, int height);
+    ~GlMultipass();
+    GlMultipass(const GlMultipass&) = delete;
+    GlMultipass& operator=(const GlMultipass&) = delete;
+
+    // Runs the program `frames` times on the same input (the result is the same every frame;
+    // more frames for timing) and reads tex_noise back.
+    multipass::Image8 run(const multipass::Program& prog, const multipass::Tables& tables,
+                          const multipass::Image8& s, const multipass::Image8& t,
+                          const multipass::Image8& r, BlendArith arith, int frames = 1,
+                          Timing* timing = nullptr);
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+// For an atlas of solid-texture coordinates (the `pst atlas` filler): the noise n in [0, 1]
+// (the byte / 255) at each coordinate, quantized by multipass::toFixed, on the GPU. Opens its
+// own EGL context (throws EglUnavailable without one).
+std::vector<float> gpuNoise(const std::vector<glm::dvec3>& coords, const multipass::Params& params,
+                            BlendArith arith = BlendArith::Shader, Timing* timing = nullptr);
+
+}  // namespace pst::gpu
