@@ -79,6 +79,13 @@ def main() -> int:
     return rc
 
 
+def signed(old, new, rel):
+    """REL (a relative change's size, or None) with the sign of NEW - OLD."""
+    if rel is None or not isinstance(old, (int, float)) or not isinstance(new, (int, float)):
+        return rel
+    return -rel if new < old else rel
+
+
 def say(res: dict, text: str, err: bool = False) -> None:
     """Prints TEXT (stderr when ERR) and keeps it in the JSON result's messages."""
     print(text, file=sys.stderr if err else sys.stdout)
@@ -140,6 +147,8 @@ def check(args, res: dict) -> int:
         return 1
     moved = baseline.compare(base["profiles"], current, tol)
     res["figures_checked"] = len(baseline._flatten(current))
+    # The change signed (compare's is its size): a fall in Fmax reads as one.
+    moved = [(k, old, new, signed(old, new, rel)) for k, old, new, rel in moved]
     res["moved"] = [{"figure": k, "baseline": old, "current": new, "change": rel} for k, old, new, rel in moved]
     if not moved:
         n = len(baseline._flatten(current))

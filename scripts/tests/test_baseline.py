@@ -140,6 +140,9 @@ def test_check_baseline_json_on_every_exit_path(tmp_path):
     bad = result(1)
     assert bad["status"] == "fail"
     assert bad["moved"] == [{"figure": "reduced.logic_ge", "baseline": 100, "current": 103, "change": 0.03}]
+    s["logic_ge"] = 97
+    (out / "synth" / "reduced.json").write_text(json.dumps(s))
+    assert result(1)["moved"][0]["change"] == -0.03                          # a fall, signed
     s["logic_ge"] = 100
     s["timing"] = dict(s["timing"], hold={"wns_ns": -0.05, "violations": 2, "worst": {
         "slack_ns": -0.05, "startpoint": "a/q", "endpoint": "b/d", "stage": "s"}})

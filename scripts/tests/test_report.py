@@ -236,7 +236,7 @@ def top_of(md: str) -> str:
 
 
 MOVED = {"schema": 1, "status": "fail", "tolerance": 0.02, "figures_checked": 120,
-         "moved": [{"figure": "reduced.fmax_mhz", "baseline": 116.6, "current": 113.2, "change": 0.0292},
+         "moved": [{"figure": "reduced.fmax_mhz", "baseline": 116.6, "current": 113.2, "change": -0.0292},
                    {"figure": "reduced.block_ge.isqrt", "baseline": 1000, "current": 1076, "change": 0.076}],
          "signoff_failures": [], "tool_mismatches": [], "stale": [], "messages": []}
 
@@ -247,14 +247,14 @@ def test_top_shows_a_failed_baseline_beside_a_passed_regression(tmp_path):
     rep = report_data.collect(out)
     top = top_of(report_md.render(rep, lambda r: []))
     assert "**Regression: PASSED** (2 runs) · **Baseline: FAILED** (2 figures moved beyond 2 %)" in top
-    assert "- reduced.fmax_mhz: 116.6 -> 113.2 (+2.9 %)" in top
+    assert "- reduced.fmax_mhz: 116.6 -> 113.2 (-2.9 %)" in top
     assert "- reduced.block_ge.isqrt: 1000 -> 1076 (+7.6 %)" in top
     page = report_html.render(rep)
     head = page.split('<section id="regression">')[0]
     assert 'data-label="Regression" data-status="PASSED"' in head
     assert 'data-label="Baseline" data-status="FAILED"' in head
     assert '<span class="status-fail">FAILED</span> (2 figures moved beyond 2 %)' in head
-    assert "<li>reduced.fmax_mhz: 116.6 -&gt; 113.2 (+2.9 %)</li>" in head
+    assert "<li>reduced.fmax_mhz: 116.6 -&gt; 113.2 (-2.9 %)</li>" in head
 
 
 def test_top_baseline_passed_not_run_and_error(tmp_path):
