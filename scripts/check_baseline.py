@@ -143,7 +143,7 @@ def check(args, res: dict) -> int:
     if other:
         for n, t in other:
             say(res, f"baseline: {n}: synthesized with {t}, the baseline with {base.get('tools')}: its figures are not "
-                  f"comparable (check them, then rewrite {path} with --update)")
+                     f"comparable (check them, then rewrite {path} with --update)")
         return 1
     moved = baseline.compare(base["profiles"], current, tol)
     res["figures_checked"] = len(baseline._flatten(current))
@@ -155,7 +155,7 @@ def check(args, res: dict) -> int:
         say(res, f"baseline: {n} figures within {100 * base.get('tolerance', baseline.TOLERANCE):g} % of {path.name}")
         return 1 if failed else 0
     say(res, f"baseline: {len(moved)} figures moved beyond {100 * base.get('tolerance', baseline.TOLERANCE):g} % "
-          f"(update {path} with --update if the change is intended):")
+             f"(update {path} with --update if the change is intended):")
     for key, old, new, rel in moved:
         change = f"{100 * rel:+.1f} %" if rel is not None else "added/removed/changed"
         say(res, f"  {key}: {old} -> {new} ({change})")
@@ -174,9 +174,9 @@ def check_stale(base: dict, path: pathlib.Path, out: pathlib.Path, rom_dir, rest
         if restore:       # the report must not quote a previous run's restore
             atomic.write_text(source, json.dumps({"schema": SCHEMA, "source": "none", "stale": why}, indent=2) + "\n")
         say(res, f"baseline: {path.name} does not stand for this tree: " + "; ".join(why[:8]) +
-              (f" (and {len(why) - 8} more)" if len(why) > 8 else ""))
+                 (f" (and {len(why) - 8} more)" if len(why) > 8 else ""))
         say(res, "  synthesize the baseline's profiles again (scripts/run.sh --synth, or scripts/synth.py PROFILE), "
-              "then scripts/check_baseline.py --update")
+                 "then scripts/check_baseline.py --update")
         return 1
     if restore:
         record.restore(out / "synth", base["profiles"])
@@ -185,7 +185,7 @@ def check_stale(base: dict, path: pathlib.Path, out: pathlib.Path, rom_dir, rest
                                               "baseline": str(path), "profiles": sorted(base["profiles"]),
                                               "inputs": len(base["inputs"])}, indent=2) + "\n")
         say(res, f"baseline: inputs unchanged since {path.name} (digest {record.digest.summary(base['inputs'], {})}): "
-              f"silicon figures of {', '.join(base['profiles'])} from {record.RECORDS.relative_to(ROOT)}")
+                 f"silicon figures of {', '.join(base['profiles'])} from {record.RECORDS.relative_to(ROOT)}")
     else:
         say(res, f"baseline: {path.name} stands for this tree ({len(base['inputs'])} inputs unchanged)")
     return 0
@@ -224,7 +224,7 @@ def add_profile(base: dict, path: pathlib.Path, out: pathlib.Path, name: str, ro
     why = record.stale(base, rom_dir)
     if why:
         say(res, f"error: the inputs changed since {path.name} ({'; '.join(why[:5])}): synthesize every profile "
-              f"and rewrite it with --update", err=True)
+                 f"and rewrite it with --update", err=True)
         return 1
     base["profiles"].update(new)
     path.write_text(json.dumps(base, indent=2, sort_keys=True) + "\n")
