@@ -6,7 +6,11 @@
         Collects out/ (regress.json and its images, out/synth/*.json|md, out/figures, out/sweep,
         the reference renders) once (pstlib.report_data) and writes both renderings: report.md
         (tables, links) and report.html (sortable tables, an image viewer per scene, every
-        section with an anchor; one file, no network, opens from file://).
+        section with an anchor; one file, no network, opens from file://). At the top of both:
+        the regression's and the baseline check's results side by side (out/baseline_check.json,
+        scripts/check_baseline.py --json; "not run" without it), where the silicon figures came
+        from (out/synth/source.json: the record; absent: synthesized in this run) and the
+        provenance (pstlib/provenance.py: commit, tool versions, command line, schema).
 
     /usr/bin/python3 scripts/report.py --html FILE --regress JSON [--images DIR]
     /usr/bin/python3 scripts/report.py --html FILE --summary DIR/summary.json [...]

@@ -8,7 +8,10 @@ import re
 from dataclasses import dataclass, field
 from typing import Optional
 
-from . import silicon_table
+from . import provenance, silicon_table
+from .synth.report import REALTIME_MPIX
+
+SCHEMA = 1      # of the report (its provenance record says so)
 
 
 class InputError(Exception):
@@ -94,10 +97,106 @@ class Report:
     sweeps: list = field(default_factory=list)   # of Included
     extras: list = field(default_factory=list)   # of Included (coverage, animations, ...)
     references: Optional[Table] = None           # the reference renders, None when none
+    main_job: bool = False                       # the main job's report: the verdicts at its top
+    baseline_check: Optional[dict] = None        # out/baseline_check.json, None when not run
+    silicon_source: Optional[dict] = None        # out/synth/source.json, None when absent
+    provenance: dict = field(default_factory=dict)   # pstlib.provenance.collect
 
     @property
     def failed_runs(self) -> list:
         return [r for r in self.runs if not r.get("passed", False)]
+
+
+@dataclass
+class Verdict:
+    """One line of the report's top: `label`: `status` (PASSED, FAILED, ERROR, not run, or a
+    source), `detail` in parentheses, `items` listed under it (the moved figures)."""
+    label: str
+    status: str
+    detail: str = ""
+    items: list = field(default_factory=list)
+
+    @property
+    def ok(self):
+        """True (passed), False (failed or error), None (neither: not run, a source)."""
+        return {"PASSED": True, "FAILED": False, "ERROR": False}.get(self.status)
+
+
+def _fmt_value(v) -> str:
+    return f"{v:g}" if isinstance(v, float) else str(v)
+
+
+def baseline_verdict(bc: Optional[dict]) -> Verdict:
+    """The baseline check's line from its --json result (None: not run)."""
+    if bc is None:
+        return Verdict("Baseline", "not run")
+    tol = bc.get("tolerance")
+    tol_text = f"{100 * tol:g} %" if isinstance(tol, (int, float)) else "the tolerance"
+    status = bc.get("status")
+    if status == "pass":
+        return Verdict("Baseline", "PASSED", f"{bc.get('figures_checked', 0)} figures within {tol_text}")
+    if status != "fail":
+        msgs = [m for m in bc.get("messages", []) if m.startswith("error")] or bc.get("messages", [])
+        return Verdict("Baseline", "ERROR", msgs[-1] if msgs else "the check did not finish")
+    parts, items = [], []
+    moved = bc.get("moved", [])
+    if moved:
+        parts.append(f"{len(moved)} figures moved beyond {tol_text}")
+        for m in moved:
+            ch = m.get("change")
+            change = f"{100 * ch:+.1f} %" if isinstance(ch, (int, float)) else "added/removed/changed"
+            items.append(f"{m.get('figure')}: {_fmt_value(m.get('baseline'))} -> {_fmt_value(m.get('current'))} "
+                         f"({change})")
+    fails = bc.get("signoff_failures", [])
+    if fails:
+        parts.append(f"{len(fails)} sign-off failures")
+        items += [f"{f.get('profile')}: sign-off check failed: {f.get('error')}" for f in fails]
+    other = bc.get("tool_mismatches", [])
+    if other:
+        parts.append(f"{len(other)} profiles synthesized with other tools than the baseline's")
+        items += [f"{t.get('profile')}: synthesized with {t.get('tools')}, the baseline with "
+                  f"{t.get('baseline_tools')}" for t in other]
+    if not parts and bc.get("stale"):
+        parts.append(f"{len(bc['stale'])} inputs changed since the baseline")
+        items += list(bc["stale"])
+    return Verdict("Baseline", "FAILED", "; ".join(parts) or "see the main job's log", items)
+
+
+def regression_verdict(rep: "Report") -> Verdict:
+    if not rep.regress_ran:
+        return Verdict("Regression", "not run")
+    failed = rep.failed_runs
+    if failed:
+        return Verdict("Regression", "FAILED", f"{len(failed)} of {len(rep.runs)} runs with mismatches")
+    return Verdict("Regression", "PASSED", f"{len(rep.runs)} runs")
+
+
+def silicon_verdict(rep: "Report") -> Verdict:
+    """Where the silicon figures came from: the record (out/synth/source.json of
+    `check_baseline.py --restore`), this run's synthesis (no source.json), or nowhere."""
+    src = rep.silicon_source
+    if src and src.get("source") == "record":
+        return Verdict("Silicon figures", "from the silicon record",
+                       f"inputs unchanged since the baseline, digest {src.get('digest', '?')}")
+    if src and src.get("source") == "none":
+        stale = src.get("stale") or []
+        return Verdict("Silicon figures", "not from the record",
+                       "the inputs changed since the baseline: " + "; ".join(stale[:5])
+                       + (f" (and {len(stale) - 5} more)" if len(stale) > 5 else "")
+                       + "; synthesize again: scripts/run.sh --synth")
+    if any(g.data for g in rep.gates):
+        return Verdict("Silicon figures", "synthesized in this run")
+    return Verdict("Silicon figures", "none", "not synthesized")
+
+
+def verdicts(rep: "Report") -> list:
+    """The report's top: the regression's and the baseline check's results side by side, then
+    where the silicon figures came from."""
+    return [regression_verdict(rep), baseline_verdict(rep.baseline_check), silicon_verdict(rep)]
+
+
+def verdict_text(v: Verdict) -> str:
+    return f"{v.label}: {v.status}" + (f" ({v.detail})" if v.detail else "")
 
 
 def scene_stem(run: dict) -> str:
@@ -235,10 +334,62 @@ def reference_table(root: pathlib.Path) -> Optional[Table]:
     return t
 
 
-def collect(out_dir) -> Report:
-    """Everything the main job (scripts/run.sh) left under out_dir."""
+def _optional_json(path: pathlib.Path, what: str) -> Optional[dict]:
+    """PATH's object, None when absent; an unreadable file is an error verdict, not a crash."""
+    if not path.exists():
+        return None
+    try:
+        data = json.loads(path.read_text())
+    except (OSError, ValueError) as e:
+        return {"status": "error", "source": "unreadable", "messages": [f"error: {path}: {e}"]}
+    if not isinstance(data, dict):
+        return {"status": "error", "source": "unreadable", "messages": [f"error: {path}: not a {what}"]}
+    return data
+
+
+THROUGHPUT_ROW = re.compile(r"^\| throughput \|.*$", re.M)
+# The derated Fmax row's own throughput (": 36.70 Mpixel/s (misses 36.9)"), dropped: the
+# throughput row states the one figure.
+DERATED_MPIX = re.compile(r": [\d.,]+ Mpixel/s \((?:meets|misses) [\d.]+\)")
+
+
+def one_throughput(text: str, fig: dict) -> str:
+    """A profile's included synthesis Markdown (out/synth/PROFILE.md) with one throughput: the
+    silicon table's (pstlib.silicon_table.throughput, FIG its normalized profile), labelled with
+    its basis, in place of scripts/synth.py's pre-layout and derated figures."""
+    tp = silicon_table.throughput(fig)
+    if tp is None or text is None:
+        return text
+    mpix, mhz, basis = tp
+    text = DERATED_MPIX.sub("", text)
+    row = (f"| throughput, {basis} (the summary's: {mhz:.1f} MHz / {fig['clocks_per_pixel']} clocks per pixel) | "
+           f"{mpix:.2f} Mpixel/s ({'meets' if mpix >= REALTIME_MPIX else 'misses'} 640x480 60 Hz depth 2: "
+           f"{REALTIME_MPIX:.1f} Mpixel/s) |")
+    if THROUGHPUT_ROW.search(text):
+        return THROUGHPUT_ROW.sub(lambda m: row, text, count=1)
+    return text
+
+
+def profile_figures(g: Included, root: Optional[pathlib.Path], runs: list) -> dict:
+    """The silicon table's normalized profile (silicon_table.from_synth) of a gates section:
+    its out/synth JSON, out/pnr/PROFILE.json when routed, the regression's PSNRs."""
+    name = g.data.get("profile", g.anchor.split("-", 1)[1])
+    pnr_file = root / "pnr" / f"{name}.json" if root else None
+    pnr = json.loads(pnr_file.read_text()) if pnr_file and pnr_file.exists() else None
+    psnr = {scene_stem(r): r["vs_reference"]["psnr"] for r in runs
+            if r.get("profile") == name and (r.get("vs_reference") or {}).get("psnr") is not None}
+    return silicon_table.from_synth({"profile": name, **g.data}, pnr, psnr or None)
+
+
+def collect(out_dir, argv=None) -> Report:
+    """Everything the main job (scripts/run.sh) left under out_dir (ARGV: the command line the
+    provenance records, default sys.argv)."""
     root = pathlib.Path(out_dir)
     rep = Report("pst: main job report", root)
+    rep.main_job = True
+    rep.provenance = provenance.collect(SCHEMA, argv)
+    rep.baseline_check = _optional_json(root / "baseline_check.json", "baseline check result")
+    rep.silicon_source = _optional_json(root / "synth" / "source.json", "silicon source")
     path = root / "regress.json"
     if path.exists():
         rep.regress_ran = True
@@ -264,8 +415,11 @@ def collect(out_dir) -> Report:
     names = ["full", "full_2clk", "full_1clk", "reduced", "balanced"]
     names += sorted({r["profile"] for r in rep.runs} - set(names))
     for name in names:
-        rep.gates.append(read_included(f"Gates and timing: {name}", f"gates-{name}", synth / f"{name}.md", root,
-                                       f"not synthesized: scripts/synth.py {name}", synth / f"{name}.json"))
+        g = read_included(f"Gates and timing: {name}", f"gates-{name}", synth / f"{name}.md", root,
+                          f"not synthesized: scripts/synth.py {name}", synth / f"{name}.json")
+        if g.data and g.text is not None:
+            g.text = one_throughput(g.text, profile_figures(g, root, rep.runs))
+        rep.gates.append(g)
     figs = root / "figures"
     rep.figures.append(read_included("Figure 11", "fig11", figs / "fig11.md", root,
                                      "not built: scripts/figures.py fig11"))
@@ -294,11 +448,12 @@ def collect(out_dir) -> Report:
     return rep
 
 
-def collect_runs(runs_dirs: list, root: pathlib.Path, title: str) -> Report:
+def collect_runs(runs_dirs: list, root: pathlib.Path, title: str, argv=None) -> Report:
     """One `pst regress --html` or `pst render --profile ... --html` run: (run, image folder)
     pairs; the ground truth of a scene is <image folder>/../truth.png when present (the
     layout of `pst render SCENE --truth N` beside `pst render SCENE --profile P`)."""
     rep = Report(title, root)
+    rep.provenance = provenance.collect(SCHEMA, argv)
     rep.regress_ran = True
     rep.runs = [r for r, _ in runs_dirs]
     # Only a folder named after the scene: <dir>/<scene>/<profile>/ beside <dir>/<scene>/truth.png.
@@ -340,14 +495,7 @@ def gate_summary(gates: list, root: Optional[pathlib.Path] = None, runs: list = 
         return None
     order = {n: i for i, n in enumerate(silicon_table.PROFILES)}
     present.sort(key=lambda g: order.get(g.data.get("profile"), len(order)))
-    profiles = []
-    for g in present:
-        name = g.data.get("profile", g.anchor.split("-", 1)[1])
-        pnr_file = root / "pnr" / f"{name}.json" if root else None
-        pnr = json.loads(pnr_file.read_text()) if pnr_file and pnr_file.exists() else None
-        psnr = {scene_stem(r): r["vs_reference"]["psnr"] for r in runs
-                if r.get("profile") == name and (r.get("vs_reference") or {}).get("psnr") is not None}
-        profiles.append(silicon_table.from_synth({"profile": name, **g.data}, pnr, psnr or None))
+    profiles = [profile_figures(g, root, runs) for g in present]
     t = Table(columns=["figure"] + [p["profile"] for p in profiles], rows=[])
     t.fmt = [""] * (len(profiles) + 1)
     for row in silicon_table.rows(profiles):

@@ -18,7 +18,8 @@ try:
 except ImportError:     # report.md does not need it: report.py says what is missing
     markdown = None
 
-from .report_data import Report, Table, failures_first, gate_summary, regress_table, rel, scene_stem
+from . import provenance
+from .report_data import Report, Table, failures_first, gate_summary, regress_table, rel, scene_stem, verdicts
 
 ASSETS = pathlib.Path(__file__).resolve().parent.parent / "viewer"
 MIME = {".png": "image/png", ".jpg": "image/jpeg", ".jpeg": "image/jpeg", ".gif": "image/gif",
@@ -144,6 +145,30 @@ ATLAS_VIEWER_HELP = ("The run's images in the viewer (as the scenes' in Images: 
                      "N x N atlas is scaled to the render's size, zoom in to see its texels.")
 
 
+def verdict_html(v) -> str:
+    cls = {True: "status-pass", False: "status-fail"}.get(v.ok, "")
+    status = f'<span class="{cls}">{esc(v.status)}</span>' if cls else esc(v.status)
+    return (f'<span class="verdict" data-label="{esc(v.label)}" data-status="{esc(v.status)}">{esc(v.label)}: '
+            f'{status}{" (" + esc(v.detail) + ")" if v.detail else ""}</span>')
+
+
+def top(rep: Report) -> str:
+    """The main job's verdicts (as report_md.top) and the provenance, with the provenance also
+    as JSON (`<script type="application/json" id="provenance">`)."""
+    out = []
+    if rep.main_job:
+        reg, base, silicon = verdicts(rep)
+        out.append(f'<div class="verdicts"><p>{verdict_html(reg)} · {verdict_html(base)}</p>')
+        if base.items:
+            out.append('<ul class="moved">' + "".join(f"<li>{esc(i)}</li>" for i in base.items) + "</ul>")
+        out.append(f"<p>{verdict_html(silicon)}</p></div>\n")
+    if rep.provenance:
+        data = json.dumps(rep.provenance, sort_keys=True).replace("</", "<\\/")
+        out.append(f'<p class="provenance">Provenance: {esc(provenance.line(rep.provenance))}</p>\n'
+                   f'<script type="application/json" id="provenance">{data}</script>\n')
+    return "".join(out)
+
+
 def render(rep: Report, embed_all: bool = False) -> str:
     css = (ASSETS / "viewer.css").read_text()
     js = (ASSETS / "viewer.js").read_text().replace("</", "<\\/")   # no end tag inside <script>
@@ -216,7 +241,7 @@ def render(rep: Report, embed_all: bool = False) -> str:
 <header><h1>{esc(rep.title)}</h1><div>{esc(stamp)}{". " + esc(rep.subtitle) if rep.subtitle else ""}</div></header>
 <nav>{" ".join(nav)}</nav>
 <main>
-{"".join(body)}</main>
+{top(rep)}{"".join(body)}</main>
 <script>
 {js}</script>
 </body>

@@ -24,10 +24,29 @@ def included(inc) -> str:
     return out + inc.text + "\n\n"
 
 
+def top(rep: Report) -> str:
+    """The main job's verdicts (the regression's and the baseline check's side by side, the
+    baseline's moved figures under them, where the silicon figures came from) and the
+    provenance."""
+    from .report_data import verdicts
+    from . import provenance
+    out = []
+    if rep.main_job:
+        reg, base, silicon = verdicts(rep)
+        out.append(" · ".join(f"**{v.label}: {v.status}**" + (f" ({v.detail})" if v.detail else "")
+                              for v in (reg, base)) + "\n")
+        if base.items:
+            out.append("\n".join(f"- {i}" for i in base.items) + "\n")
+        out.append(f"{silicon.label}: {silicon.status}" + (f" ({silicon.detail})" if silicon.detail else "") + ".\n")
+    if rep.provenance:
+        out.append(f"Provenance: {provenance.line(rep.provenance)}.\n")
+    return "\n".join(out)
+
+
 def render(rep: Report, image_links) -> str:
     """`image_links(run)`: the (label, path) image links of a regression row."""
     from .report_data import regress_table, gate_summary
-    out = [f"# {rep.title}\n",
+    out = [f"# {rep.title}\n", top(rep),
            "Contents: RTL regression (bit-exact against the golden model, error against the double "
            "reference), gate counts (Yosys), Figure 11 (reference | full | reduced), Figure 10 "
            "(texture-coordinate precision), the default precision sweep, the reference renders. "

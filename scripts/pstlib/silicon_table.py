@@ -78,6 +78,18 @@ def _clock(p: dict):
     return p["fmax_mhz"], "pre-layout"
 
 
+def throughput(p: dict):
+    """The one throughput of profile P, the table's "Mpixel/s at that clock": (Mpixel/s, MHz,
+    basis), basis "post-route[...]", "derated (post-route ratio x R)" or "pre-layout"; None
+    without a clock or clocks per pixel."""
+    mhz, basis = _clock(p)
+    if not (mhz and p["clocks_per_pixel"]):
+        return None
+    if basis == "derated":
+        basis = f"derated (post-route ratio x {p['derate']:.3f})"
+    return mhz / p["clocks_per_pixel"], mhz, basis
+
+
 def rows(profiles: list) -> list:
     """[label, value per profile] rows (values as text, '-' when unknown)."""
     def col(f):

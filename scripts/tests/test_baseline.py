@@ -106,3 +106,79 @@ def test_stage_paths_are_recorded_not_checked():
     for p in cur.values():
         p["stage_path_ns"] = {"octave stage [A] -> [B]": 99.0}
     assert baseline.compare(BASE, cur) == []
+
+
+def test_check_baseline_json_on_every_exit_path(tmp_path):
+    """--json FILE: the result (pass, fail with the moved figures, error) as JSON, always."""
+    out = tmp_path / "out"
+    (out / "synth").mkdir(parents=True)
+    s = {"logic_ge": 100, "blocks": {}, "flip_flops": 1, "memory_ge": 2, "total_ge": 102, "rom_bits": 8,
+         "ram_bits": 9, "clocks_per_pixel": 1, "timing": dict(SIGNOFF_MET, fmax_mhz=50.0), "tools": {"yosys": "y"}}
+    (out / "synth" / "reduced.json").write_text(json.dumps(s))
+    (out / "regress.json").write_text(json.dumps(
+        [{"scene": "scenes/a.toml", "profile": "reduced", "vs_reference": {"psnr": 40.0}}]))
+    bfile = tmp_path / "baseline.json"
+    bfile.write_text(json.dumps({"tolerance": 0.02, "tools": {"yosys": "y"},
+                                 "profiles": baseline.collect({"reduced": s}, json.loads((out / "regress.json").read_text()))}))
+    res = tmp_path / "check.json"
+    cmd = ["/usr/bin/python3", str(SCRIPTS / "check_baseline.py"), "--out", str(out), "--baseline", str(bfile),
+           "--json", str(res)]
+
+    def result(rc):
+        r = subprocess.run(cmd, capture_output=True, text=True)
+        assert r.returncode == rc, r.stdout + r.stderr
+        data = json.loads(res.read_text())
+        assert data["schema"] == 1 and data["exit_status"] == rc
+        assert set(data["provenance"]) >= {"schema", "commit", "tools", "command"}
+        assert not list(tmp_path.glob(".check*"))        # atomic: no temporary left
+        return data
+
+    ok = result(0)
+    assert ok["status"] == "pass" and ok["moved"] == [] and ok["figures_checked"] == 10 and ok["tolerance"] == 0.02
+    s["logic_ge"] = 103
+    (out / "synth" / "reduced.json").write_text(json.dumps(s))
+    bad = result(1)
+    assert bad["status"] == "fail"
+    assert bad["moved"] == [{"figure": "reduced.logic_ge", "baseline": 100, "current": 103, "change": 0.03}]
+    s["logic_ge"] = 97
+    (out / "synth" / "reduced.json").write_text(json.dumps(s))
+    assert result(1)["moved"][0]["change"] == -0.03                          # a fall, signed
+    s["logic_ge"] = 100
+    s["timing"] = dict(s["timing"], hold={"wns_ns": -0.05, "violations": 2, "worst": {
+        "slack_ns": -0.05, "startpoint": "a/q", "endpoint": "b/d", "stage": "s"}})
+    (out / "synth" / "reduced.json").write_text(json.dumps(s))
+    signoff = result(1)
+    assert signoff["status"] == "fail" and signoff["moved"] == []
+    assert signoff["signoff_failures"][0]["profile"] == "reduced"
+    assert "hold" in signoff["signoff_failures"][0]["error"]
+    (out / "regress.json").unlink()
+    err = result(2)
+    assert err["status"] == "error" and any("regress.json: missing" in m for m in err["messages"])
+    (out / "regress.json").write_text("{not json")
+    assert result(2)["status"] == "error"        # an exception: still a result
+
+
+def test_restore_writes_the_silicon_source(tmp_path):
+    """--restore: OUT/synth/source.json says the figures came from the record (with the digest)
+    while the inputs stand, and that they did not when an input changed."""
+    from pstlib.synth import record
+    out = tmp_path / "out"
+    bfile = tmp_path / "baseline.json"
+    base = {"tolerance": 0.02, "tools": {}, "profiles": {}, "inputs": record.inputs(None)}
+    bfile.write_text(json.dumps(base))
+    res = tmp_path / "restore.json"
+    cmd = ["/usr/bin/python3", str(SCRIPTS / "check_baseline.py"), "--restore", "--out", str(out),
+           "--baseline", str(bfile), "--rom-dir", str(tmp_path / "no_rom"), "--json", str(res)]
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    assert r.returncode == 0, r.stdout + r.stderr
+    src = json.loads((out / "synth" / "source.json").read_text())
+    assert src["source"] == "record" and src["digest"] == record.digest.summary(base["inputs"], {})
+    assert json.loads(res.read_text())["status"] == "pass"
+    base["inputs"]["rtl/gone.sv"] = "0" * 64
+    bfile.write_text(json.dumps(base))
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    assert r.returncode == 1
+    src = json.loads((out / "synth" / "source.json").read_text())
+    assert src["source"] == "none" and "rtl/gone.sv removed" in src["stale"]
+    data = json.loads(res.read_text())
+    assert data["status"] == "fail" and "rtl/gone.sv removed" in data["stale"]

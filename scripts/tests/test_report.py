@@ -170,7 +170,7 @@ def test_html_page_self_contained(tmp_path):
     page = report_html.render(rep)
     assert not re.search(r"<(script|link|img)[^>]+(src|href)=\"https?:", page)   # no network
     scripts = re.findall(r"<script[^>]*>(.*?)</script>", page, flags=re.S)
-    specs = [json.loads(s) for s in scripts if s.startswith("{")]
+    specs = [json.loads(s) for s in scripts if s.startswith("{") and '"layers"' in s]     # the viewers'
     assert [s["name"] for s in specs] == ["a", "b", "c"]   # c: a reference render alone
     assert all(l["src"].startswith("data:image/png;base64,") for s in specs for l in s["layers"])
     assert 'id="scene-a"' in page and 'id="gates"' in page and 'id="fig11"' in page
@@ -219,3 +219,156 @@ def test_sweep_page_puts_the_points_side_by_side(tmp_path):
     assert [l["label"] for l in specs[0]["layers"]] == [
         "reference", "base (golden)", "base_octaves_2 (golden)", "|base - reference| x8", "|base_octaves_2 - reference| x8"]
     assert 'id="sweep"' in text and '<img class="plot" src="knobs/octaves.png"' in text
+
+
+# The report's top: the regression's and the baseline check's verdicts side by side, where the
+# silicon figures came from, the provenance.
+
+def passing_out(tmp: pathlib.Path) -> pathlib.Path:
+    out = make_out(tmp)
+    runs = [run("a", "full", 0, 40.0), run("b", "full", 0, 50.0)]
+    (out / "regress.json").write_text(json.dumps(runs))
+    return out
+
+
+def top_of(md: str) -> str:
+    return md.split("## RTL regression")[0]
+
+
+MOVED = {"schema": 1, "status": "fail", "tolerance": 0.02, "figures_checked": 120,
+         "moved": [{"figure": "reduced.fmax_mhz", "baseline": 116.6, "current": 113.2, "change": -0.0292},
+                   {"figure": "reduced.block_ge.isqrt", "baseline": 1000, "current": 1076, "change": 0.076}],
+         "signoff_failures": [], "tool_mismatches": [], "stale": [], "messages": []}
+
+
+def test_top_shows_a_failed_baseline_beside_a_passed_regression(tmp_path):
+    out = passing_out(tmp_path)
+    (out / "baseline_check.json").write_text(json.dumps(MOVED))
+    rep = report_data.collect(out)
+    top = top_of(report_md.render(rep, lambda r: []))
+    assert "**Regression: PASSED** (2 runs) · **Baseline: FAILED** (2 figures moved beyond 2 %)" in top
+    assert "- reduced.fmax_mhz: 116.6 -> 113.2 (-2.9 %)" in top
+    assert "- reduced.block_ge.isqrt: 1000 -> 1076 (+7.6 %)" in top
+    page = report_html.render(rep)
+    head = page.split('<section id="regression">')[0]
+    assert 'data-label="Regression" data-status="PASSED"' in head
+    assert 'data-label="Baseline" data-status="FAILED"' in head
+    assert '<span class="status-fail">FAILED</span> (2 figures moved beyond 2 %)' in head
+    assert "<li>reduced.fmax_mhz: 116.6 -&gt; 113.2 (-2.9 %)</li>" in head
+
+
+def test_top_baseline_passed_not_run_and_error(tmp_path):
+    out = passing_out(tmp_path)
+    top = top_of(report_md.render(report_data.collect(out), lambda r: []))
+    assert "**Regression: PASSED** (2 runs) · **Baseline: not run**" in top
+    (out / "baseline_check.json").write_text(json.dumps(dict(MOVED, status="pass", moved=[])))
+    top = top_of(report_md.render(report_data.collect(out), lambda r: []))
+    assert "**Baseline: PASSED** (120 figures within 2 %)" in top
+    (out / "baseline_check.json").write_text(json.dumps(dict(MOVED, status="error", moved=[],
+                                                             messages=["error: out/regress.json: missing"])))
+    top = top_of(report_md.render(report_data.collect(out), lambda r: []))
+    assert "**Baseline: ERROR** (error: out/regress.json: missing)" in top
+    (out / "baseline_check.json").write_text("{not json")
+    assert "**Baseline: ERROR**" in top_of(report_md.render(report_data.collect(out), lambda r: []))
+
+
+def test_top_failed_regression(tmp_path):
+    top = top_of(report_md.render(report_data.collect(make_out(tmp_path)), lambda r: []))
+    assert "**Regression: FAILED** (2 of 4 runs with mismatches) · **Baseline: not run**" in top
+
+
+def test_top_says_where_the_silicon_figures_came_from(tmp_path):
+    out = passing_out(tmp_path)
+    md = report_md.render(report_data.collect(out), lambda r: [])
+    assert "Silicon figures: synthesized in this run." in top_of(md)
+    (out / "synth" / "source.json").write_text(json.dumps({"source": "record", "digest": "0123456789abcdef"}))
+    rep = report_data.collect(out)
+    md = report_md.render(rep, lambda r: [])
+    assert ("Silicon figures: from the silicon record (inputs unchanged since the baseline, digest "
+            "0123456789abcdef).") in top_of(md)
+    assert 'data-status="from the silicon record"' in report_html.render(rep)
+    (out / "synth" / "source.json").write_text(json.dumps({"source": "none", "stale": ["rtl/pst_top.sv changed"]}))
+    md = report_md.render(report_data.collect(out), lambda r: [])
+    assert "Silicon figures: not from the record (the inputs changed since the baseline: rtl/pst_top.sv changed" in md
+
+
+def test_provenance_in_md_and_html(tmp_path):
+    rep = report_data.collect(passing_out(tmp_path), argv=["scripts/report.py", "out"])
+    p = rep.provenance
+    assert p["schema"] == report_data.SCHEMA and p["command"] == "scripts/report.py out"
+    assert set(p["tools"]) == {"verilator", "yosys", "opensta", "python"} and p["commit"]
+    md = report_md.render(rep, lambda r: [])
+    assert f"Provenance: commit {p['commit']};" in top_of(md) and "command `scripts/report.py out`" in md
+    page = report_html.render(rep)
+    data = re.search(r'<script type="application/json" id="provenance">(.*?)</script>', page, flags=re.S).group(1)
+    assert json.loads(data) == p
+
+
+def synth_record(name="full", fmax=121.8, cpp=3, derate=0.904) -> dict:
+    """A synthesis record (scripts/synth.py's JSON) with the fields its Markdown reads."""
+    mpix = fmax / cpp
+    derated = round(fmax * derate, 1)
+    worst = {"stage": "octave stage [A] -> [B]", "startpoint": "a", "endpoint": "b", "through": [],
+             "arrival_ns": 8.0, "cells": 10}
+    return {
+        "profile": name, "library": {"ge_um2": 24.0}, "seconds": {"yosys": 1, "memories": 1, "sta": 1},
+        "tools": {"yosys": "Yosys 0.23", "opensta": "2.0.17"}, "logic_ge": 1000, "logic_area_um2": 24000,
+        "memory_ge": 10, "memory_area_um2": 240, "total_ge": 1010, "total_area_mm2": 0.024, "flip_flops": 5,
+        "rom_bits": 1, "ram_bits": 2, "paper_gates": None, "logic_ge_cells_lib": None, "clocks_per_pixel": cpp,
+        "clocks_per_pixel_regress": None, "blocks": {}, "memories": [], "fmax_mhz": fmax,
+        "fmax_derated_mhz": derated, "fmax_derate": {"ratio": derate, "profile": "reduced", "source": "pnr"},
+        "throughput": {"fmax_mhz": fmax, "fmax_basis": "pre-layout", "mpixel_s": round(mpix, 2),
+                       "realtime_mpixel_s": 36.9, "meets_realtime": mpix >= 36.9, "area_time_ge_clocks": 3000,
+                       "fmax_derated_mhz": derated, "mpixel_s_derated": round(derated / cpp, 2),
+                       "meets_realtime_derated": derated / cpp >= 36.9},
+        "mpixel_s": round(mpix, 2), "worst_path_ns": 8.0,
+        "timing": {"fmax_mhz": fmax, "wns_ns": 1.0, "period_ns": 10, "worst": worst,
+                   "constraints": {"setup_uncertainty_ns": 0.4, "hold_uncertainty_ns": 0.1, "max_transition_ns": 1.2,
+                                   "period_ns": 10, "clock_transition_ns": 0.35, "input_transition_ns": 0.2},
+                   "hold": {"wns_ns": 0.1, "violations": 0, "stages": []},
+                   "max_transition": {"violations": 0, "worst": {"transition_ns": 0.5, "pin": "p"}},
+                   "max_capacitance": {"violations": 0, "checked": 9,
+                                       "worst": {"load_pf": 0.1, "limit_pf": 0.2, "pin": "p"}},
+                   "stages": []},
+    }
+
+
+def test_one_throughput_per_profile(tmp_path):
+    """scripts/synth.py's Markdown states a pre-layout and a derated throughput (40.60 and 36.70
+    Mpixel/s for full); the report states one, the silicon table's, labelled with its basis."""
+    from pstlib.synth import report as synth_report
+    out = passing_out(tmp_path)
+    rec = synth_record()
+    (out / "synth" / "full.json").write_text(json.dumps(rec))
+    md_in = synth_report.markdown(rec)
+    assert "40.60 Mpixel/s" in md_in and "36.70 Mpixel/s" in md_in      # the two figures of the input
+    (out / "synth" / "full.md").write_text(md_in)
+    rep = report_data.collect(out)
+    md = report_md.render(rep, lambda r: [])
+    section = md.split("## Gates and timing: full\n")[1].split("\n## ")[0]
+    figures = [m for m in re.findall(r"([\d.,]+) Mpixel/s", section) if m != "36.9"]   # 36.9: the real-time bar
+    assert figures == ["36.70"], figures
+    assert "| throughput, derated (post-route ratio x 0.904) (the summary's: 110.1 MHz / 3 clocks per pixel) | " \
+           "36.70 Mpixel/s (misses 640x480 60 Hz depth 2: 36.9 Mpixel/s) |" in section
+    t = report_data.gate_summary(rep.gates, rep.root, rep.runs)
+    row = next(r for r in t.rows if r[0] == "Mpixel/s at that clock")
+    assert row[t.columns.index("full")] == "36.70"                          # the same figure
+    page = report_html.render(rep)
+    full = page.split('<section id="gates-full">')[1].split("</section>")[0]
+    assert [m for m in re.findall(r"([\d.,]+) Mpixel/s", full) if m != "36.9"] == ["36.70"]
+
+
+def test_one_throughput_pre_layout_without_derate(tmp_path):
+    from pstlib.synth import report as synth_report
+    out = passing_out(tmp_path)
+    rec = synth_record()
+    for k in ("fmax_derated_mhz", "fmax_derate"):
+        del rec[k]
+    for k in ("fmax_derated_mhz", "mpixel_s_derated", "meets_realtime_derated"):
+        del rec["throughput"][k]
+    (out / "synth" / "full.json").write_text(json.dumps(rec))
+    (out / "synth" / "full.md").write_text(synth_report.markdown(rec))
+    md = report_md.render(report_data.collect(out), lambda r: [])
+    section = md.split("## Gates and timing: full\n")[1].split("\n## ")[0]
+    assert [m for m in re.findall(r"([\d.,]+) Mpixel/s", section) if m != "36.9"] == ["40.60"]
+    assert "| throughput, pre-layout (the summary's: 121.8 MHz / 3 clocks per pixel) | 40.60 Mpixel/s (meets" in section
