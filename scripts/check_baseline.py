@@ -56,6 +56,7 @@ def main() -> int:
     ap.add_argument("--stale", action="store_true", help="exit 1 when an input changed since the baseline")
     ap.add_argument("--restore", action="store_true", help="OUT/synth from the record while the baseline stands")
     ap.add_argument("--rom-dir", default=str(ROOT / "build" / "rom"), help="the ROM images (default build/rom)")
+    ap.add_argument("--records", default=str(record.RECORDS), help="the silicon record (default scripts/synth/records)")
     ap.add_argument("--json", metavar="FILE", help="also write the result as JSON (on every exit path)")
     args = ap.parse_args()
     res = {"schema": SCHEMA, "status": "error", "mode": ("update" if args.update else "add" if args.add else
@@ -96,6 +97,7 @@ def check(args, res: dict) -> int:
     out = pathlib.Path(args.out)
     path = pathlib.Path(args.baseline)
     rom_dir = pathlib.Path(args.rom_dir)
+    records = pathlib.Path(args.records)
     if (args.update or args.add) and not list(rom_dir.glob("*.memh")):
         say(res, f"error: {rom_dir}: no ROM images (build first)", err=True)
         return 2
@@ -104,9 +106,9 @@ def check(args, res: dict) -> int:
         say(res, f"error: {path}: no baseline (write one with --update)", err=True)
         return 2
     if args.stale or args.restore:
-        return check_stale(base, path, out, rom_dir if rom_dir.is_dir() else None, args.restore, res)
+        return check_stale(base, path, out, rom_dir if rom_dir.is_dir() else None, args.restore, res, records)
     if args.add:
-        return add_profile(base, path, out, args.add, rom_dir, res)
+        return add_profile(base, path, out, args.add, rom_dir, res, records)
     names = PROFILES if args.update or base is None else tuple(base["profiles"])
     synth, tools = {}, {}
     for n in names:
@@ -127,8 +129,8 @@ def check(args, res: dict) -> int:
     if args.update:
         path.write_text(json.dumps({"tolerance": baseline.TOLERANCE, "tools": tools, "profiles": current,
                                     "inputs": record.inputs(rom_dir)}, indent=2, sort_keys=True) + "\n")
-        record.save(out / "synth", names)
-        say(res, f"baseline: wrote {path} and the record {record.RECORDS.relative_to(ROOT)}")
+        record.save(out / "synth", names, records)
+        say(res, f"baseline: wrote {path} and the record {records}")
         return 0
     tol = base.get("tolerance", baseline.TOLERANCE)
     res["tolerance"] = tol
@@ -162,12 +164,13 @@ def check(args, res: dict) -> int:
     return 1
 
 
-def check_stale(base: dict, path: pathlib.Path, out: pathlib.Path, rom_dir, restore: bool, res: dict) -> int:
+def check_stale(base: dict, path: pathlib.Path, out: pathlib.Path, rom_dir, restore: bool, res: dict,
+                records: pathlib.Path) -> int:
     """--stale and --restore: does the baseline (and its record) stand for the tree?"""
     why = record.stale(base, rom_dir)
-    gone = record.missing(base["profiles"])
+    gone = record.missing(base["profiles"], records)
     if gone:
-        why.append(f"no record of {', '.join(gone)} in {record.RECORDS.relative_to(ROOT)}")
+        why.append(f"no record of {', '.join(gone)} in {records}")
     res["stale"] = why
     source = out / "synth" / "source.json"
     if why:
@@ -179,20 +182,20 @@ def check_stale(base: dict, path: pathlib.Path, out: pathlib.Path, rom_dir, rest
                  "then scripts/check_baseline.py --update")
         return 1
     if restore:
-        record.restore(out / "synth", base["profiles"])
+        record.restore(out / "synth", base["profiles"], records)
         res["digest"] = record.digest.summary(base["inputs"], {})
         atomic.write_text(source, json.dumps({"schema": SCHEMA, "source": "record", "digest": res["digest"],
                                               "baseline": str(path), "profiles": sorted(base["profiles"]),
                                               "inputs": len(base["inputs"])}, indent=2) + "\n")
         say(res, f"baseline: inputs unchanged since {path.name} (digest {record.digest.summary(base['inputs'], {})}): "
-                 f"silicon figures of {', '.join(base['profiles'])} from {record.RECORDS.relative_to(ROOT)}")
+                 f"silicon figures of {', '.join(base['profiles'])} from {records}")
     else:
         say(res, f"baseline: {path.name} stands for this tree ({len(base['inputs'])} inputs unchanged)")
     return 0
 
 
-def add_profile(base: dict, path: pathlib.Path, out: pathlib.Path, name: str, rom_dir: pathlib.Path,
-                res: dict) -> int:
+def add_profile(base: dict, path: pathlib.Path, out: pathlib.Path, name: str, rom_dir: pathlib.Path, res: dict,
+                records: pathlib.Path) -> int:
     """--add NAME: NAME's figures from OUT/synth/NAME.json (and OUT/regress.json's PSNRs when
     present, else the baseline's own) into the baseline, which must have been made with the
     same tools."""
@@ -227,8 +230,12 @@ def add_profile(base: dict, path: pathlib.Path, out: pathlib.Path, name: str, ro
                  f"and rewrite it with --update", err=True)
         return 1
     base["profiles"].update(new)
+    md = out / "synth" / f"{name}.md"
+    if not md.exists():
+        say(res, f"error: {md}: missing (run scripts/synth.py {name})", err=True)
+        return 2
     path.write_text(json.dumps(base, indent=2, sort_keys=True) + "\n")
-    record.save(out / "synth", [name])
+    record.save(out / "synth", [name], records)
     say(res, f"baseline: {name} added to {path} and the record")
     return 0
 

@@ -4,6 +4,7 @@ import json
 import subprocess
 
 from pstlib import baseline
+from pstlib.synth import record
 from pstlib.paths import ROOT
 
 SCRIPTS = ROOT / "scripts"
@@ -75,9 +76,14 @@ def test_check_baseline_cli_tools_signoff_and_add(tmp_path):
          "tools": {"yosys": "y", "opensta": "2.0.17"}}
     (out / "synth" / "reduced.json").write_text(json.dumps(s))
     (out / "regress.json").write_text("[]")
+    rom, records = tmp_path / "rom", tmp_path / "records"
+    rom.mkdir()
+    (rom / "t.memh").write_text("00\n")
     bfile = tmp_path / "baseline.json"
-    bfile.write_text(json.dumps({"tolerance": 0.02, "tools": s["tools"], "profiles": baseline.collect({"reduced": s}, [])}))
-    cmd = ["/usr/bin/python3", str(SCRIPTS / "check_baseline.py"), "--out", str(out), "--baseline", str(bfile)]
+    bfile.write_text(json.dumps({"tolerance": 0.02, "tools": s["tools"], "profiles": baseline.collect({"reduced": s}, []),
+                                 "inputs": record.inputs(rom)}))
+    cmd = ["/usr/bin/python3", str(SCRIPTS / "check_baseline.py"), "--out", str(out), "--baseline", str(bfile),
+           "--rom-dir", str(rom), "--records", str(records)]
     assert subprocess.run(cmd, capture_output=True, text=True).returncode == 0
     # another OpenSTA: not comparable, said so
     other = dict(s, tools={"yosys": "y", "opensta": "2.1.0"})
@@ -94,11 +100,42 @@ def test_check_baseline_cli_tools_signoff_and_add(tmp_path):
     # --add: one more profile, the others untouched
     (out / "synth" / "reduced.json").write_text(json.dumps(s))
     (out / "synth" / "balanced.json").write_text(json.dumps(dict(s, logic_ge=500)))
+    (out / "synth" / "balanced.md").write_text("# balanced\n")
     before = json.loads(bfile.read_text())["profiles"]["reduced"]
     assert subprocess.run(cmd + ["--add", "balanced"], capture_output=True, text=True).returncode == 0
     after = json.loads(bfile.read_text())["profiles"]
     assert after["reduced"] == before and after["balanced"]["logic_ge"] == 500
     assert subprocess.run(cmd, capture_output=True, text=True).returncode == 0
+    assert (records / "balanced.json").exists() and not (records / "reduced.json").exists()
+    # --add refuses once an input of the synthesis changed: the digest stands for every profile
+    (rom / "t.memh").write_text("01\n")
+    r = subprocess.run(cmd + ["--add", "balanced"], capture_output=True, text=True)
+    assert r.returncode == 1 and "rom/t.memh changed" in r.stderr
+
+
+def test_stale_names_what_changed_and_restore_copies_the_record(tmp_path):
+    rom, records, out = tmp_path / "rom", tmp_path / "records", tmp_path / "out"
+    rom.mkdir()
+    records.mkdir()
+    (rom / "t.memh").write_text("00\n")
+    for suffix in ("json", "md"):
+        (records / f"reduced.{suffix}").write_text("{}" if suffix == "json" else "# reduced\n")
+    bfile = tmp_path / "baseline.json"
+    bfile.write_text(json.dumps({"tolerance": 0.02, "tools": {}, "profiles": {"reduced": {}},
+                                 "inputs": record.inputs(rom)}))
+    cmd = ["/usr/bin/python3", str(SCRIPTS / "check_baseline.py"), "--out", str(out), "--baseline", str(bfile),
+           "--rom-dir", str(rom), "--records", str(records)]
+    r = subprocess.run(cmd + ["--stale"], capture_output=True, text=True)
+    assert r.returncode == 0, r.stdout + r.stderr
+    r = subprocess.run(cmd + ["--restore"], capture_output=True, text=True)
+    assert r.returncode == 0 and (out / "synth" / "reduced.md").read_text() == "# reduced\n"
+    (rom / "t.memh").write_text("01\n")
+    r = subprocess.run(cmd + ["--stale"], capture_output=True, text=True)
+    assert r.returncode == 1 and "rom/t.memh changed" in r.stdout
+    (records / "reduced.md").unlink()
+    (rom / "t.memh").write_text("00\n")
+    r = subprocess.run(cmd + ["--stale"], capture_output=True, text=True)
+    assert r.returncode == 1 and "no record of reduced" in r.stdout
 
 
 def test_stage_paths_are_recorded_not_checked():

@@ -53,22 +53,22 @@ def stale(base: dict, rom_dir=None) -> list:
     return digest.stale(recorded, now)
 
 
-def missing(profiles) -> list:
+def missing(profiles, records: pathlib.Path = RECORDS) -> list:
     """The profiles whose record files are absent."""
-    return [p for p in profiles if not all((RECORDS / f"{p}.{s}").exists() for s in ("json", "md"))]
+    return [p for p in profiles if not all((records / f"{p}.{s}").exists() for s in ("json", "md"))]
 
 
-def save(out_synth: pathlib.Path, profiles) -> None:
+def save(out_synth: pathlib.Path, profiles, records: pathlib.Path = RECORDS) -> None:
     """Copies OUT_SYNTH/PROFILE.{json,md} into the record (with the baseline's update)."""
-    RECORDS.mkdir(parents=True, exist_ok=True)
+    records.mkdir(parents=True, exist_ok=True)
     for p in profiles:
         for s in ("json", "md"):
-            shutil.copyfile(out_synth / f"{p}.{s}", RECORDS / f"{p}.{s}")
+            shutil.copyfile(out_synth / f"{p}.{s}", records / f"{p}.{s}")
 
 
-def restore(out_synth: pathlib.Path, profiles) -> None:
+def restore(out_synth: pathlib.Path, profiles, records: pathlib.Path = RECORDS) -> None:
     """Copies the record's PROFILE.{json,md} into OUT_SYNTH (the main job without --synth)."""
     out_synth.mkdir(parents=True, exist_ok=True)
     for p in profiles:
         for s in ("json", "md"):
-            shutil.copyfile(RECORDS / f"{p}.{s}", out_synth / f"{p}.{s}")
+            shutil.copyfile(records / f"{p}.{s}", out_synth / f"{p}.{s}")
