@@ -4,6 +4,9 @@
 #   scripts/build.sh pst ...    only these targets (the main job needs only the `pst` tool)
 set -euo pipefail
 cd "$(dirname "$0")/.."
+# ccache keyed on paths relative to the checkout, so that another clone of the tree (CI's) hits
+# the cache a build of this one filled.
+export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$PWD}" CCACHE_NOHASHDIR="${CCACHE_NOHASHDIR:-true}"
 GEN=()
 if command -v ninja >/dev/null 2>&1; then GEN=(-G Ninja); fi
 if [ ! -f build/CMakeCache.txt ]; then
