@@ -66,7 +66,19 @@ Image8 runCpu(const Program& prog, const Tables& tables, const Image8& s, const 
                 std::swap(st.img[p.dst].px, st.img[p.src].px);
                 break;
             case Op::Clear:
-                std::fill(dst.begin(), dst.end(), 0);
+                std::fill(dst.begin(), dst.end(), uint8_t(p.k0));
+                break;
+            case Op::RcShiftLeft: {
+                std::vector<uint8_t> out(n);  // dst may be src (5.3 shifts tex_corrnan in place)
+                for (size_t i = 0; i < n; ++i) out[i] = uint8_t(rc::shiftLeft(src[i]));
+                dst.swap(out);
+                break;
+            }
+            case Op::RcIncWrap:
+                for (size_t i = 0; i < n; ++i) dst[i] = uint8_t(rc::incWrap(src[i], p.k0, p.k1));
+                break;
+            case Op::RcBlendHiBit:
+                for (size_t i = 0; i < n; ++i) dst[i] = uint8_t(rc::blendHiBit(src[i], dst[i], p.k0, p.k1, p.alpha));
                 break;
         }
     }

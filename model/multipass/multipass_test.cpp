@@ -175,5 +175,108 @@ TEST(Multipass, ToFixedWraps) {
     EXPECT_EQ(toFixed(1.03, f), 16);
 }
 
+// ---- Section 5: the register-combiner variant ----
+
+TEST(MultipassRc, PassCounts) {
+    // Per axis b_i shifts (the weight) + 1 (the +1 corner); per corner 3 b_i randoms +
+    // 3 (b_i - 1) shifts, 8 randoms + 7 shifts, 3 weights, 1 add.
+    for (int bf = 1; bf <= 7; ++bf) {
+        Params p;
+        p.variant = Variant::Rc;
+        p.format.bf = bf;
+        const int bi = 8 - bf;
+        EXPECT_EQ(rcProgram(p).draws(), 3 * (bi + 1) + 8 * (3 * bi + 3 * (bi - 1) + 15 + 4)) << "b_f " << bf;
+    }
+    Params p;
+    p.variant = Variant::Rc;
+    EXPECT_EQ(rcProgram(p).draws(), 335);  // b_f = 4; the paper's is 375 (docs/MULTIPASS.md)
+    p.format.bf = 8;
+    EXPECT_THROW(rcProgram(p), std::invalid_argument);
+    p.format.bf = 4;
+    p.interp = Interp::Scurve;
+    EXPECT_THROW(rcProgram(p), std::invalid_argument);
+}
+
+// 5.2's routine is the logical shift left the paper names it: (2c) mod 256, every byte.
+TEST(MultipassRc, ShiftLeftIsLogical) {
+    for (int c = 0; c < 256; ++c) ASSERT_EQ(rc::shiftLeft(c), (2 * c) & 255) << c;
+}
+
+// The +1 corner: its top b_i bits are K + 1 mod 2^b_i for every byte and b_f.
+TEST(MultipassRc, IncWrapTopBits) {
+    for (int bf = 1; bf <= 7; ++bf)
+        for (int c = 0; c < 256; ++c) {
+            const int bi = 8 - bf, k1 = 256 - (1 << bf) - 32;
+            ASSERT_EQ(rc::incWrap(c, 1 << bf, k1) >> bf, ((c >> bf) + 1) & ((1 << bi) - 1)) << bf << " " << c;
+        }
+}
+
+// The register-combiner noise written directly (not as passes): the lattice value of
+// (i, j, k) is two bit-serial randomizations (5.3) -- twelve (3 b_i) blends by the bits of
+// i, j, k (high bit first, s t r interleaved), then eight by the bits of the result -- each
+// blend acc = round(a c / 255) + round((255 - a) acc / 255), c = ranone or ranzero; the
+// noise is the sum over the corners of the lattice value times the weights F << b_i or
+// 255 - that, each multiply rounded to the nearest byte, as Figure 3.
+struct RcReference {
+    RcConstants c;
+    int bf, bi;
+    explicit RcReference(const Params& p) : c(rcConstants(p)), bf(p.format.bf), bi(p.format.bi()) {}
+    static int lerp(int col, int acc) {
+        const int a = RcConstants::alpha;
+        return int(std::lround(a * col / 255.0)) + int(std::lround((255 - a) * acc / 255.0));
+    }
+    int lattice(int i, int j, int k) const {
+        const int K[3] = {i, j, k};
+        int acc = RcConstants::start;
+        for (int kk = 0; kk < bi; ++kk)
+            for (int a = 0; a < 3; ++a)
+                acc = lerp((K[a] >> (bi - 1 - kk) & 1) ? c.ranone[a][kk] : c.ranzero[a][kk], acc);
+        int acc2 = RcConstants::start;
+        for (int b = 0; b < 8; ++b) acc2 = lerp((acc >> (7 - b) & 1) ? c.ranone2[b] : c.ranzero2[b], acc2);
+        return acc2;
+    }
+    int noise(int S, int T, int R) const {
+        const int v[3] = {S, T, R}, cells = 1 << bi;
+        int sum = 0;
+        for (int corner = 0; corner < 8; ++corner) {
+            int K[3];
+            for (int a = 0; a < 3; ++a) K[a] = ((v[a] >> bf) + (corner >> a & 1)) % cells;
+            int x = lattice(K[0], K[1], K[2]);
+            for (int a = 0; a < 3; ++a) {
+                const int w = (v[a] << bi) & 255;  // F 2^b_i
+                x = int(std::lround(x * double((corner >> a & 1) ? w : 255 - w) / 255.0));
+            }
+            sum = std::min(255, sum + x);
+        }
+        return sum;
+    }
+};
+
+TEST(MultipassRc, CpuModelEqualsTheDirectFormula) {
+    const Input in = randomInput(64, 64, 4242);
+    for (int bf = 1; bf <= 7; ++bf) {
+        Params p;
+        p.variant = Variant::Rc;
+        p.format.bf = bf;
+        const RcReference ref(p);
+        const Image8 n = runCpu(rcProgram(p), makeTables(p), in.s, in.t, in.r);
+        int bad = 0;
+        for (size_t i = 0; i < n.px.size(); ++i)
+            bad += n.px[i] != ref.noise(in.s.px[i], in.t.px[i], in.r.px[i]);
+        EXPECT_EQ(bad, 0) << "b_f " << bf;
+    }
+}
+
+// At a lattice point (fraction 0) the noise is the lattice value; the lattice wraps.
+TEST(MultipassRc, LatticePointsAndWrap) {
+    Params p;
+    p.variant = Variant::Rc;
+    const RcReference ref(p);
+    Image8 s{16, 1, {}}, t = s, r = s;
+    for (int i = 0; i < 16; ++i) s.px.push_back(uint8_t(i << 4)), t.px.push_back(uint8_t((15 - i) << 4)), r.px.push_back(uint8_t((i * 7 & 15) << 4));
+    const Image8 n = runCpu(rcProgram(p), makeTables(p), s, t, r);
+    for (int i = 0; i < 16; ++i) EXPECT_EQ(n.px[i], ref.lattice(i, 15 - i, i * 7 & 15)) << i;
+}
+
 }  // namespace
 }  // namespace pst::multipass

@@ -62,6 +62,48 @@ void main() {
 }
 )";
 
+// One register-combiner pass (section 5; model/multipass/cpu_model.h namespace rc): the two
+// general combiner stages and the final combiner in the 9-bit signed integer arithmetic the
+// CPU model assumes, tex0 = src, tex1 = dst; the byte is written as byte / 255, which the
+// float -> UNORM8 conversion stores exactly.
+const char* kCombiner = R"(#version 300 es
+precision highp float;
+precision highp int;
+uniform highp sampler2D tex0;
+uniform highp sampler2D tex1;
+uniform int op;  // 0 shift left (5.2), 1 +1 corner with wrap, 2 blend by the high bit (5.3)
+uniform int k0;
+uniform int k1;
+uniform int alpha;
+out vec4 color;
+int clamp9(int k) { return clamp(k, -255, 255); }
+int mul(int a, int b) {
+    int p = a * b;
+    int q = (abs(p) * 2 + 255) / 510;
+    return clamp9(p < 0 ? -q : q);
+}
+const int kHalf = 128;
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    int c = int(texelFetch(tex0, p, 0).r * 255.0 + 0.5);
+    int out8;
+    if (op == 0) {
+        int spareA = mul(c, 255), spareRgb = clamp9(mul(c, 255) - kHalf);
+        out8 = clamp9(2 * (spareA < kHalf ? mul(c, 255) : mul(spareRgb, 255)));
+    } else if (op == 1) {
+        int sum = clamp9(mul(c, 255) + mul(k0, 255));
+        int a = clamp9(4 * (mul(c, 255) - mul(k1, 255)));
+        out8 = a < kHalf ? mul(sum, 255) : mul(0, 0);
+    } else {
+        int acc = int(texelFetch(tex1, p, 0).r * 255.0 + 0.5);
+        int spareA = mul(c, 255), col = spareA < kHalf ? mul(k0, 255) : mul(k1, 255);
+        out8 = mul(alpha, col) + mul(255 - alpha, acc);
+    }
+    float y = float(clamp(out8, 0, 255)) / 255.0;
+    color = vec4(y, y, y, 1.0);
+}
+)";
+
 void check(const char* what) {
     const GLenum e = glGetError();
     if (e != GL_NO_ERROR) {
@@ -134,8 +176,8 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 struct GlMultipass::Impl {
     int w, h;
     GLuint fbo = 0, vao = 0;
-    GLuint transfer = 0, blend = 0;
-    GLint tScale, tBias, tUseMap, bOp;
+    GLuint transfer = 0, blend = 0, combiner = 0;
+    GLint tScale, tBias, tUseMap, bOp, cOp, cK0, cK1, cAlpha;
     std::array<GLuint, kImageCount> img{};  // the texture holding each image now
     GLuint scratch = 0;                     // the next render target of a ping-pong pass
     std::array<GLuint, kTableCount> table{};
@@ -158,6 +200,20 @@ struct GlMultipass::Impl {
         glUniform1i(tUseMap, p.table != NoTable);
         bind(0, img[p.src]);
         bind(1, table[p.table != NoTable ? p.table : 0]);
+        draw();
+        std::swap(scratch, img[p.dst]);
+    }
+
+    // A register-combiner pass into scratch, which then becomes dst (dst may be src).
+    void runCombiner(const Pass& p) {
+        target(scratch);
+        glUseProgram(combiner);
+        glUniform1i(cOp, p.op == Op::RcShiftLeft ? 0 : p.op == Op::RcIncWrap ? 1 : 2);
+        glUniform1i(cK0, p.k0);
+        glUniform1i(cK1, p.k1);
+        glUniform1i(cAlpha, p.alpha);
+        bind(0, img[p.src]);
+        bind(1, img[p.dst]);
         draw();
         std::swap(scratch, img[p.dst]);
     }
@@ -209,6 +265,14 @@ GlMultipass::GlMultipass(int width, int height) : impl_(new Impl) {
     glUniform1i(glGetUniformLocation(m.blend, "dst"), 0);
     glUniform1i(glGetUniformLocation(m.blend, "src"), 1);
     m.bOp = glGetUniformLocation(m.blend, "op");
+    m.combiner = link(kCombiner);
+    glUseProgram(m.combiner);
+    glUniform1i(glGetUniformLocation(m.combiner, "tex0"), 0);
+    glUniform1i(glGetUniformLocation(m.combiner, "tex1"), 1);
+    m.cOp = glGetUniformLocation(m.combiner, "op");
+    m.cK0 = glGetUniformLocation(m.combiner, "k0");
+    m.cK1 = glGetUniformLocation(m.combiner, "k1");
+    m.cAlpha = glGetUniformLocation(m.combiner, "alpha");
     for (GLuint& t : m.img) t = makeTexture(width, height);
     m.scratch = makeTexture(width, height);
     for (GLuint& t : m.table) t = makeTexture(256, 1);
@@ -233,6 +297,7 @@ GlMultipass::~GlMultipass() {
     glDeleteVertexArrays(1, &m.vao);
     glDeleteProgram(m.transfer);
     glDeleteProgram(m.blend);
+    glDeleteProgram(m.combiner);
 }
 
 Image8 GlMultipass::run(const Program& prog, const Tables& tables, const Image8& s, const Image8& t,
@@ -263,9 +328,12 @@ Image8 GlMultipass::run(const Program& prog, const Tables& tables, const Image8&
                 case Op::Save: std::swap(m.img[p.dst], m.img[p.src]); break;
                 case Op::Clear:
                     m.target(m.img[p.dst]);
-                    glClearColor(0.f, 0.f, 0.f, 1.f);
+                    glClearColor(p.k0 / 255.f, p.k0 / 255.f, p.k0 / 255.f, 1.f);
                     glClear(GL_COLOR_BUFFER_BIT);
                     break;
+                case Op::RcShiftLeft:
+                case Op::RcIncWrap:
+                case Op::RcBlendHiBit: m.runCombiner(p); break;
                 default: m.runBlend(p, arith); break;
             }
         }
@@ -303,7 +371,7 @@ std::vector<float> gpuNoise(const std::vector<glm::dvec3>& coords, const Params&
         r.px[i] = toFixed(coords[i].z, params.format);
     }
     GlMultipass gl(w, h);
-    const Image8 n = gl.run(sgiProgram(params), makeTables(params), s, t, r, arith, 1, timing);
+    const Image8 n = gl.run(makeProgram(params), makeTables(params), s, t, r, arith, 1, timing);
     std::vector<float> out(coords.size());
     for (size_t i = 0; i < coords.size(); ++i) out[i] = n.px[i] / 255.0f;
     return out;
