@@ -8,8 +8,7 @@
 
 namespace pst::multipass {
 
-int latticeValue(const Params& params, const Tables& T, const RcConstants& c, int i, int j, int k) {
-    if (params.variant == Variant::Sgi) return T[Nran][T[Sran][i] + T[Tran][j] + T[Rran][k]];
+int rcFirstStage(const Params& params, const RcConstants& c, int i, int j, int k) {
     const int bi = params.format.bi(), K[3] = {i, j, k};
     int acc = RcConstants::start;
     for (int kk = 0; kk < bi; ++kk)
@@ -17,6 +16,12 @@ int latticeValue(const Params& params, const Tables& T, const RcConstants& c, in
             const int bit = K[a] >> (bi - 1 - kk) & 1;
             acc = rc::blendHiBit(bit ? 255 : 0, acc, c.ranzero[a][kk], c.ranone[a][kk], RcConstants::alpha);
         }
+    return acc;
+}
+
+int latticeValue(const Params& params, const Tables& T, const RcConstants& c, int i, int j, int k) {
+    if (params.variant == Variant::Sgi) return T[Nran][T[Sran][i] + T[Tran][j] + T[Rran][k]];
+    const int acc = rcFirstStage(params, c, i, j, k);
     int acc2 = RcConstants::start;
     for (int b = 0; b < 8; ++b)
         acc2 = rc::blendHiBit((acc << b) & 128 ? 255 : 0, acc2, c.ranzero2[b], c.ranone2[b], RcConstants::alpha);

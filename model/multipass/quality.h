@@ -15,6 +15,10 @@ namespace pst::multipass {
 // combiners the two bit-serial randomizations of section 5.3 with the combiner rounding.
 int latticeValue(const Params& params, const Tables& tables, const RcConstants& rc, int i, int j, int k);
 
+// The register-combiner lattice before section 5.3's second step: tex_corrnan, the twelve
+// (3 b_i) blends by the bits of i, j, k (Figure 11 (a)).
+int rcFirstStage(const Params& params, const RcConstants& rc, int i, int j, int k);
+
 // Figure 3 in double precision on the variant's lattice values: the weighted sum of the
 // eight corners' lattice values / 255, weights u, 1 - u (SCURVE(u) for Interp::Scurve), u the
 // variant's weight in exact arithmetic: SGI F / (2^b_f - 1) (section 4.2's fracshift),

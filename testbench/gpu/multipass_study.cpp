@@ -1,0 +1,239 @@
+// pst_multipass_study: the measurements of docs/MULTIPASS.md's generated sections, as one JSON
+// record (docs/data/multipass.json; scripts/gen_docs.py renders it, scripts/pstlib/multipass_doc.py).
+//
+//   build/pst_multipass_study --out docs/data/multipass.json [--frames 5] [--quick]
+//
+// quality: per variant (sgi linear, sgi scurve, rc) and b_f = 1..7 (b = 8): the noise of the
+//   passes on OpenGL ES (checked against the CPU model) at random coordinates, against Figure 3
+//   in double on the variant's own lattice (what 8 bits and b_f cost), against Rayshade's value
+//   noise (model/noise.h, linear, corners Value) and the chip's golden noise (model/golden,
+//   profile balanced with noise interp linear, corner value) at the same points: moments,
+//   excess kurtosis (white/uniform -1.2, Gaussian 0), a histogram, the Kolmogorov-Smirnov
+//   distance between distributions; and the lattice correlations of Figures 6 and 11.
+// Exit 0, 1 when the GL output differs from the CPU model, 2 on errors (no EGL device).
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <random>
+
+#include "cpu_model.h"
+#include "egl_context.h"
+#include "gl_multipass.h"
+#include "noise.h"
+#include "noise_fx.h"
+#include "profile.h"
+#include "quality.h"
+#include "source_dir.h"
+
+using namespace pst::multipass;
+using nlohmann::json;
+
+namespace {
+
+double loadAverage() {
+    double l = -1;
+    if (FILE* f = std::fopen("/proc/loadavg", "r")) {
+        if (std::fscanf(f, "%lf", &l) != 1) l = -1;
+        std::fclose(f);
+    }
+    return l;
+}
+
+json summaryJson(const Summary& s) {
+    return {{"mean", s.mean}, {"stddev", s.stddev}, {"excess_kurtosis", s.excessKurtosis},
+            {"min", s.min}, {"max", s.max}, {"histogram", s.histogram}};
+}
+
+// Kolmogorov-Smirnov distance: max |F_a - F_b| of the empirical distributions.
+double ksDistance(std::vector<double> a, std::vector<double> b) {
+    std::sort(a.begin(), a.end());
+    std::sort(b.begin(), b.end());
+    size_t i = 0, j = 0;
+    double d = 0;
+    while (i < a.size() && j < b.size()) {
+        const double x = std::min(a[i], b[j]);
+        while (i < a.size() && a[i] <= x) ++i;
+        while (j < b.size() && b[j] <= x) ++j;
+        d = std::max(d, std::fabs(double(i) / a.size() - double(j) / b.size()));
+    }
+    return d;
+}
+
+double rms(const std::vector<double>& a, const std::vector<double>& b) {
+    double sq = 0;
+    for (size_t i = 0; i < a.size(); ++i) sq += (a[i] - b[i]) * (a[i] - b[i]);
+    return std::sqrt(sq / a.size());
+}
+
+// Figures 6 and 11: correlation between lattice values of neighbouring lattice points (i, i+1
+// along one axis, the three axes pooled) and of points sharing two coordinates (i and i + d,
+// d a fixed odd stride); over the whole 2^b_i cube. f(i, j, k) the lattice function.
+template <class F>
+json latticeCorrelation(int cells, F f) {
+    std::vector<double> a, b, c, d, all;
+    const int stride = std::max(1, cells / 2 - 1) | 1;
+    for (int i = 0; i < cells; ++i)
+        for (int j = 0; j < cells; ++j)
+            for (int k = 0; k < cells; ++k) {
+                const double v = f(i, j, k);
+                all.push_back(v);
+                for (int ax = 0; ax < 3; ++ax) {
+                    const int n1[3] = {(i + (ax == 0)) % cells, (j + (ax == 1)) % cells, (k + (ax == 2)) % cells};
+                    const int n2[3] = {(i + stride * (ax == 0)) % cells, (j + stride * (ax == 1)) % cells,
+                                       (k + stride * (ax == 2)) % cells};
+                    a.push_back(v), b.push_back(f(n1[0], n1[1], n1[2]));
+                    c.push_back(v), d.push_back(f(n2[0], n2[1], n2[2]));
+                }
+            }
+    const Summary s = summarize(all, 0.0, 1.0, 16);
+    return {{"neighbour", correlation(a, b)}, {"shared_two_coords", correlation(c, d)},
+            {"stddev", s.stddev}, {"excess_kurtosis", s.excessKurtosis}};
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"Measurements of the multipass noise (Hart 2001) for docs/MULTIPASS.md"};
+    std::string out;
+    int size = 256, frames = 5;
+    bool quick = false;
+    uint32_t seed = 1;
+    app.add_option("--out", out, "JSON record (docs/data/multipass.json)")->required();
+    app.add_option("--size", size, "quality sample: size x size random coordinates")->check(CLI::Range(16, 1024));
+    app.add_option("--frames", frames, "timed frames per configuration (min of N reported)")->check(CLI::Range(1, 100));
+    app.add_option("--seed", seed, "tables' and coordinates' seed");
+    app.add_flag("--quick", quick, "b_f 2, 4, 6 only and smaller samples (a smoke run)");
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e) == 0 ? 0 : 2;
+    }
+    if (quick) size = std::min(size, 64);
+    json j;
+    int differing = 0;
+    try {
+        pst::gpu::EglContext ctx;
+        j["renderer"] = ctx.renderer();
+        j["gl_version"] = ctx.version();
+        j["seed"] = seed;
+        j["load_average_1min_start"] = loadAverage();
+
+        // ---- quality ----
+        std::mt19937 gen(seed);
+        Image8 s{size, size, {}}, t = s, r = s;
+        for (Image8* im : {&s, &t, &r})
+            for (int i = 0; i < size * size; ++i) im->px.push_back(uint8_t(gen() & 255));
+        pst::gpu::GlMultipass gl(size, size);
+        pst::Profile chip = pst::loadNamedProfile("balanced", pst::sourceDir());
+        chip.noiseInterp = pst::NoiseInterp::Linear;
+        chip.noiseCorner = pst::NoiseCorner::Value;
+        chip.noise = pst::hardwareNoise(chip);
+        pst::NoiseOptions ro;
+        ro.interp = pst::NoiseInterp::Linear;
+        ro.corner = pst::NoiseCorner::Value;
+        json q = json::array();
+        std::vector<int> bfs = quick ? std::vector<int>{2, 4, 6} : std::vector<int>{1, 2, 3, 4, 5, 6, 7};
+        struct Config {
+            Variant variant;
+            Interp interp;
+            const char* name;
+        };
+        for (const Config& cfg : {Config{Variant::Sgi, Interp::Linear, "sgi"}, Config{Variant::Sgi, Interp::Scurve, "sgi_scurve"},
+                                  Config{Variant::Rc, Interp::Linear, "rc"}})
+            for (int bf : bfs) {
+                Params p;
+                p.variant = cfg.variant;
+                p.interp = cfg.interp;
+                p.format.bf = bf;
+                p.seed = seed;
+                const Program prog = makeProgram(p);
+                const Tables tables = makeTables(p);
+                const RcConstants rcc = rcConstants(p);
+                const Image8 g = gl.run(prog, tables, s, t, r, pst::gpu::BlendArith::Shader);
+                const Image8 cpu = runCpu(prog, tables, s, t, r);
+                int diff = 0;
+                for (size_t i = 0; i < g.px.size(); ++i) diff += g.px[i] != cpu.px[i];
+                differing += diff;
+                std::vector<double> noise, ideal, ray, fx;
+                ro.interp = cfg.interp == Interp::Scurve ? pst::NoiseInterp::Scurve : pst::NoiseInterp::Linear;
+                chip.noiseInterp = ro.interp;
+                chip.noise = pst::hardwareNoise(chip);
+                for (size_t i = 0; i < g.px.size(); ++i) {
+                    const int c[3] = {s.px[i], t.px[i], r.px[i]};
+                    noise.push_back(g.px[i] / 255.0);
+                    ideal.push_back(idealNoise(p, tables, rcc, c[0], c[1], c[2]));
+                    // Rayshade and the chip at the same point (lattice units: the byte / 2^b_f)
+                    ray.push_back(pst::noise(glm::dvec3(c[0], c[1], c[2]) / double(1 << bf), ro) + 0.5);
+                    int lat[3];
+                    int64_t frac[3], n, grad[3];
+                    for (int a = 0; a < 3; ++a) {
+                        lat[a] = ((c[a] >> bf) + 1000000) % 4096;  // after Rayshade's 1e6 offset
+                        frac[a] = int64_t(c[a] & ((1 << bf) - 1)) << (chip.noiseLatticeFrac - bf);
+                    }
+                    pst::noiseFx(chip, lat, frac, &n, grad);
+                    fx.push_back(std::ldexp(double(n), -chip.noiseOutFrac) + 0.5);
+                }
+                json e;
+                e["variant"] = cfg.name;
+                e["b"] = Format::b;
+                e["b_f"] = bf;
+                e["draws"] = prog.draws();
+                e["gl_pixels_differing_from_cpu_model"] = diff;
+                e["samples"] = noise.size();
+                e["rms_vs_ideal_lsb"] = rms(noise, ideal) * 255;
+                double mx = 0;
+                for (size_t i = 0; i < noise.size(); ++i) mx = std::max(mx, std::fabs(noise[i] - ideal[i]));
+                e["max_vs_ideal_lsb"] = mx * 255;
+                e["noise"] = summaryJson(summarize(noise, 0, 1, 16));
+                e["rayshade"] = summaryJson(summarize(ray, 0, 1, 16));
+                e["chip"] = summaryJson(summarize(fx, 0, 1, 16));
+                e["ks_vs_rayshade"] = ksDistance(noise, ray);
+                e["ks_chip_vs_rayshade"] = ksDistance(fx, ray);
+                e["rms_pointwise_vs_rayshade"] = rms(noise, ray);  // different random fields
+                e["rms_chip_vs_rayshade"] = rms(fx, ray);          // the same field: fixed-point error
+                // Figures 6 / 11: the lattice before and after the final randomization.
+                const int cells = 1 << p.format.bi();
+                const Tables& T = tables;
+                if (cfg.variant == Variant::Sgi)
+                    e["lattice_before_final"] = latticeCorrelation(cells, [&](int i, int jj, int k) {
+                        return (T[Sran][i] + T[Tran][jj] + T[Rran][k]) / 255.0;
+                    });
+                else
+                    e["lattice_before_final"] = latticeCorrelation(cells, [&](int i, int jj, int k) {
+                        return rcFirstStage(p, rcc, i, jj, k) / 255.0;
+                    });
+                e["lattice"] = latticeCorrelation(cells, [&](int i, int jj, int k) {
+                    return latticeValue(p, T, rcc, i, jj, k) / 255.0;
+                });
+                e["lattice_rayshade"] = latticeCorrelation(cells, [&](int i, int jj, int k) {
+                    const int m = pst::noiseHash(i + 1000000, jj + 1000000, k + 1000000, pst::NoiseHash::Rayshade);
+                    return 0.5 * pst::NoiseTables::get().value[m] + 0.5;  // Value corner 0.5 R, shifted
+                });
+                std::fprintf(stderr, "quality %s b_f %d: %d draws, %d differ, rms vs ideal %.2f LSB\n", cfg.name, bf,
+                             prog.draws(), diff, rms(noise, ideal) * 255);
+                q.push_back(e);
+            }
+        j["quality"] = q;
+        j["quality_samples"] = size * size;
+        j["load_average_1min_end"] = loadAverage();
+    } catch (const pst::gpu::EglUnavailable& e) {
+        std::cerr << "error: " << e.what() << "\n";
+        return 2;
+    } catch (const std::exception& e) {
+        std::cerr << "error: " << e.what() << "\n";
+        return 2;
+    }
+    std::ofstream o(out);
+    o << j.dump(1) << "\n";
+    if (!o) {
+        std::cerr << "error: cannot write " << out << "\n";
+        return 2;
+    }
+    return differing ? 1 : 0;
+}
