@@ -62,6 +62,9 @@ Image8 runCpu(const Program& prog, const Tables& tables, const Image8& s, const 
             case Op::BlendMulInv:
                 for (size_t i = 0; i < n; ++i) dst[i] = mulUnorm(dst[i], 255 - src[i]);
                 break;
+            case Op::BlendXor:
+                for (size_t i = 0; i < n; ++i) dst[i] = uint8_t(dst[i] ^ src[i]);
+                break;
             case Op::Save:
                 std::swap(st.img[p.dst].px, st.img[p.src].px);
                 break;

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "cpu_model.h"
+#include "noise.h"
 #include "program.h"
 #include "tables.h"
 
@@ -276,6 +277,49 @@ TEST(MultipassRc, LatticePointsAndWrap) {
     for (int i = 0; i < 16; ++i) s.px.push_back(uint8_t(i << 4)), t.px.push_back(uint8_t((15 - i) << 4)), r.px.push_back(uint8_t((i * 7 & 15) << 4));
     const Image8 n = runCpu(rcProgram(p), makeTables(p), s, t, r);
     for (int i = 0; i < 16; ++i) EXPECT_EQ(n.px[i], ref.lattice(i, 15 - i, i * 7 & 15)) << i;
+}
+
+// ---- Section 6.3's proposal: exclusive-or randomization (Variant::Xor) ----
+
+TEST(MultipassXor, PassCounts) {
+    Params p;
+    p.variant = Variant::Xor;
+    EXPECT_EQ(xorProgram(p).draws(), 3 * 4 + 4 + 8 * 9);
+    p.interp = Interp::Scurve;
+    EXPECT_EQ(xorProgram(p).draws(), 3 * 8 + 4 + 8 * 9);
+}
+
+// Rayshade's value noise with the 8-bit hash (model/noise.h: NoiseHash::Perm256, corners
+// Value) is the reference, pointwise: n + 1/2 against the byte / 255. At lattice points the
+// weights are exactly 0 and 1 and the only error is the value table's byte (<= 1/2 LSB);
+// elsewhere, as CpuModelWithinBoundOfFigure3: 12 LSB of product roundings, 3 of weights.
+TEST(MultipassXor, EqualsRayshadePerm256ValueNoise) {
+    NoiseOptions ro;
+    ro.interp = NoiseInterp::Linear;
+    ro.corner = NoiseCorner::Value;
+    ro.hash = NoiseHash::Perm256;
+    for (int bf = 1; bf <= 7; ++bf) {
+        Params p;
+        p.variant = Variant::Xor;
+        p.format.bf = bf;
+        const Input in = randomInput(64, 64, 77 + bf);
+        Image8 s = in.s, t = in.t, r = in.r;
+        for (int i = 0; i < 64; ++i)  // the first row: lattice points
+            s.px[i] &= uint8_t(~0u << bf), t.px[i] &= uint8_t(~0u << bf), r.px[i] &= uint8_t(~0u << bf);
+        Stats stats;
+        const Image8 n = runCpu(xorProgram(p), makeTables(p), s, t, r, &stats);
+        EXPECT_GE(stats.minTieMargin, 1.0 / 512) << "b_f " << bf;
+        double sq = 0, mx = 0;
+        for (size_t i = 0; i < n.px.size(); ++i) {
+            const glm::dvec3 q = glm::dvec3(s.px[i], t.px[i], r.px[i]) / double(1 << bf);
+            const double e = std::fabs(n.px[i] / 255.0 - (noise(q, ro) + 0.5)) * 255;
+            if (i < 64) ASSERT_LE(e, 0.5 + 1e-9) << "lattice point " << i << " b_f " << bf;
+            sq += e * e, mx = std::max(mx, e);
+        }
+        std::printf("xor b_f %d: vs Rayshade (Perm256, value, linear) rms %.2f LSB, max %.2f LSB\n", bf,
+                    std::sqrt(sq / n.px.size()), mx);
+        EXPECT_LE(mx, 15.0) << "b_f " << bf;
+    }
 }
 
 }  // namespace

@@ -10,7 +10,8 @@ const char* imageName(int image) {
     static const char* const names[kImageCount] = {
         "tex_s", "tex_t", "tex_r", "tex_si", "tex_ti", "tex_ri", "tex_sf", "tex_tf", "tex_rf",
         "tex_sin", "tex_tin", "tex_rin", "tex_noise", "framebuffer", "tex_s1", "tex_t1", "tex_r1",
-        "tex_scomp", "tex_tcomp", "tex_rcomp", "tex_corrnan", "tex_corrnanran"};
+        "tex_scomp", "tex_tcomp", "tex_rcomp", "tex_corrnan", "tex_corrnanran", "tex_toff0", "tex_toff1",
+        "tex_roff0", "tex_roff1"};
     return image >= 0 && image < kImageCount ? names[image] : "?";
 }
 
@@ -21,6 +22,7 @@ const char* opName(Op op) {
         case Op::BlendSub: return "blend_subtract";
         case Op::BlendMul: return "blend_multiply";
         case Op::BlendMulInv: return "blend_multiply_inverse";
+        case Op::BlendXor: return "blend_xor";
         case Op::Save: return "savetex";
         case Op::Clear: return "clear";
         case Op::RcShiftLeft: return "rc_shift_left";
@@ -189,8 +191,58 @@ Program rcProgram(const Params& params) {
     return prog;
 }
 
+Program xorProgram(const Params& params) {
+    const Format& f = params.format;
+    if (f.bf < 1 || f.bf > Format::b - 1)
+        throw std::invalid_argument("multipass: the exclusive-or variant needs b_f in 1.." + std::to_string(Format::b - 1));
+    Program prog;
+    auto& P = prog.passes;
+    const int coord[3] = {TexS, TexT, TexR}, integer[3] = {TexSI, TexTI, TexRI},
+              weight[3] = {TexSF, TexTF, TexRF};
+    // Rayshade's lattice index is floor(x) + 1e6; the hash reads its low 8 bits: K + 64 (+1).
+    // K + 65 <= 2^b_i + 64 < 256, so the offsets never wrap.
+    const int off = 1000000 & 255;
+    for (int a = 0; a < 3; ++a) {
+        P.push_back(transfer(integer[a], coord[a], 1.0 / f.shift(), shiftRightBias(f)));
+        P.push_back(transfer(Fb, integer[a], f.shift()));
+        P.push_back(blend(Op::BlendSub, Fb, coord[a]));
+        // Rayshade's weight u = F / 2^b_f: scale 255 / 2^b_f. F 255 / 2^b_f is a multiple of
+        // 2^-b_f and hits a rounding tie at F = 2^(b_f - 1); a bias of 2^-(b_f + 1) LSB rounds
+        // those up and keeps every value 2^-(b_f + 1) LSB from a tie.
+        P.push_back(transfer(weight[a], Fb, 255.0 / f.shift(), 1.0 / (2 << f.bf) / 255.0));
+        if (params.interp == Interp::Scurve) {
+            P.push_back(transfer(Fb, weight[a], -0.5, 0.75));
+            P.push_back(blend(Op::BlendMul, Fb, weight[a]));
+            P.push_back(blend(Op::BlendMul, Fb, weight[a]));
+            P.push_back(transfer(weight[a], Fb, 4.0));
+        }
+    }
+    const int offImg[2][2] = {{TexTOff0, TexTOff1}, {TexROff0, TexROff1}};
+    for (int a = 1; a < 3; ++a)
+        for (int bit = 0; bit < 2; ++bit)
+            P.push_back(transfer(offImg[a - 1][bit], integer[a], 1.0, (off + bit) / 255.0));
+    P.push_back(blend(Op::Clear, TexNoise, TexNoise));
+    for (int k = 0; k < 8; ++k) {
+        const int bs = k & 1, bt = k >> 1 & 1, br = k >> 2 & 1;
+        P.push_back(transfer(Fb, TexSI, 1.0, (off + bs) / 255.0, Perm));  // P[i]
+        P.push_back(blend(Op::BlendXor, Fb, offImg[0][bt]));               // ^ j
+        P.push_back(transfer(Fb, Fb, 1.0, 0.0, Perm));                     // P[.]
+        P.push_back(blend(Op::BlendXor, Fb, offImg[1][br]));               // ^ k
+        P.push_back(transfer(Fb, Fb, 1.0, 0.0, ValuePerm));                // V[P[.]]
+        for (int a = 0; a < 3; ++a)
+            P.push_back(blend((k >> a & 1) ? Op::BlendMul : Op::BlendMulInv, Fb, weight[a]));
+        P.push_back(blend(Op::BlendAdd, Fb, TexNoise));
+        P.push_back(blend(Op::Save, TexNoise, Fb));
+    }
+    return prog;
+}
+
 Program makeProgram(const Params& params) {
-    return params.variant == Variant::Rc ? rcProgram(params) : sgiProgram(params);
+    switch (params.variant) {
+        case Variant::Rc: return rcProgram(params);
+        case Variant::Xor: return xorProgram(params);
+        default: return sgiProgram(params);
+    }
 }
 
 }  // namespace pst::multipass

@@ -31,7 +31,12 @@ enum class Interp { Linear, Scurve };
 
 // Which of the paper's implementations: section 4's SGI PixelTransfer/PixelMap program, or
 // section 5's GeForce2 register-combiner program (bit-serial randomization, Gaussian noise).
-enum class Variant { Sgi, Rc };
+// Xor: section 6.3's proposal, exclusive-or blending (GLSL integer operations here; GLES has no
+// glLogicOp): the lattice index hashed as the chip's 8-bit hash (model/noise.h, Perm256:
+// P[P[P[i] ^ j] ^ k] of the lattice indices after Rayshade's 1e6 offset) by PixelMap lookups
+// and XOR blends, the value 0.5 R[m] + 1/2 by one more lookup: Rayshade's value noise
+// (NoiseHash::Perm256, corners Value) pointwise, in 8 bits.
+enum class Variant { Sgi, Rc, Xor };
 
 struct Params {
     Format format;
@@ -53,12 +58,16 @@ enum Image : int {
     TexSComp, TexTComp, TexRComp,  // tex_comp[comp]: the corner's integer image being shifted
     TexCorrnan,              // tex_corrnan: 12 single-bit randomizations of the corner (5.3)
     TexCorrnanran,           // tex_corrnanran: 8 more, on the bits of tex_corrnan (5.3)
+    // Exclusive-or variant only: t and r integer parts + Rayshade's offset (+1 for the far corner)
+    TexTOff0, TexTOff1, TexROff0, TexROff1,
     kImageCount
 };
 const char* imageName(int image);
 
 // The paper's tables (section 4.3): sran, tran, rran (uniform in [0, 1/3]) and nran.
-enum Table : int { Sran, Tran, Rran, Nran, kTableCount, NoTable = -1 };
+// Perm: Rayshade's 256-entry permutation (model/noise.h NoiseTables::perm); ValuePerm:
+// the byte round((0.5 R[P[m]] + 1/2) 255), the last lookup of the Xor variant.
+enum Table : int { Sran, Tran, Rran, Nran, Perm, ValuePerm, kTableCount, NoTable = -1 };
 
 enum class Op {
     Transfer,     // dst = map(clamp(scale src + bias)): blendtex with PixelTransfer (scale, bias)
@@ -67,6 +76,7 @@ enum class Op {
     BlendSub,     // dst = clamp(src - dst):  BlendEquation(SUBTRACT), BlendFunc(ONE, ONE) (4.2)
     BlendMul,     // dst = dst src:           BlendFunc(ZERO, SRC_COLOR)   (section 4.3, weights)
     BlendMulInv,  // dst = dst (1 - src):     BlendFunc(ZERO, ONE_MINUS_SRC_COLOR)
+    BlendXor,     // dst = dst ^ src (bytes): LogicOp(XOR), section 6.3's proposal
     Save,         // savetex: dst = src, src undefined afterwards (render to texture: a rename)
     Clear,        // dst = the byte k0 (0: "Initialize texture noise = black", Figure 3)
     // Register combiners (section 5, NV_register_combiners on a GeForce2: two general
@@ -114,7 +124,12 @@ RcConstants rcConstants(const Params& params);
 // 7 shifts, 3 weight multiplies, 1 add. b_f = 4: 15 + 8 x 40 = 335 draws (the paper: 375).
 Program rcProgram(const Params& params);
 
-// The variant's program (params.variant); SCURVE is the SGI variant's only.
+// Section 6.3's proposal as a Program (b_f in 1..7): the SGI decomposition with the weight
+// u = F / 2^b_f (Rayshade's), per axis t, r two offset images, per corner 9 draws: P lookup, XOR,
+// P, XOR, V(P) lookup, 3 weights, the add. 12 + 4 + 72 = 88 draws (+12 with SCURVE).
+Program xorProgram(const Params& params);
+
+// The variant's program (params.variant); SCURVE is not the register combiners'.
 Program makeProgram(const Params& params);
 
 // Section 4.2's shift right: the paper rounds with a PixelTransfer bias of -0.5/255 where the

@@ -21,6 +21,10 @@ int rcFirstStage(const Params& params, const RcConstants& c, int i, int j, int k
 
 int latticeValue(const Params& params, const Tables& T, const RcConstants& c, int i, int j, int k) {
     if (params.variant == Variant::Sgi) return T[Nran][T[Sran][i] + T[Tran][j] + T[Rran][k]];
+    if (params.variant == Variant::Xor) {
+        const int off = 1000000 & 255;  // Rayshade's lattice offset, low 8 bits
+        return T[ValuePerm][T[Perm][T[Perm][(i + off) & 255] ^ ((j + off) & 255)] ^ ((k + off) & 255)];
+    }
     const int acc = rcFirstStage(params, c, i, j, k);
     int acc2 = RcConstants::start;
     for (int b = 0; b < 8; ++b)
@@ -36,6 +40,7 @@ double idealNoise(const Params& params, const Tables& T, const RcConstants& c, i
     for (int a = 0; a < 3; ++a) {
         K[a] = v[a] >> f.bf;
         u[a] = params.variant == Variant::Sgi ? double(v[a] & m) / m : double(v[a] & m) / (1 << f.bf);
+        // (Rc: F << b_i / 255 = u 256/255 is the weight the passes use; Xor: u exactly)
         if (params.interp == Interp::Scurve) u[a] = u[a] * u[a] * (3 - 2 * u[a]);
     }
     double n = 0;
@@ -45,7 +50,7 @@ double idealNoise(const Params& params, const Tables& T, const RcConstants& c, i
         for (int a = 0; a < 3; ++a) {
             const int bit = corner >> a & 1;
             w *= bit ? u[a] : 1 - u[a];
-            L[a] = (K[a] + bit) % cells;
+            L[a] = params.variant == Variant::Xor ? K[a] + bit : (K[a] + bit) % cells;
         }
         n += w * latticeValue(params, T, c, L[0], L[1], L[2]) / 255.0;
     }

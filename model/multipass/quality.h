@@ -12,7 +12,9 @@ namespace pst::multipass {
 
 // The lattice value (a byte) of the integer point (i, j, k), 0 <= i, j, k < 2^b_i, as the
 // variant computes it: SGI nran[sran[i] + tran[j] + rran[k]] (section 4.3); register
-// combiners the two bit-serial randomizations of section 5.3 with the combiner rounding.
+// combiners the two bit-serial randomizations of section 5.3 with the combiner rounding;
+// exclusive or the byte of 0.5 R[m] + 1/2, m Rayshade's Perm256 hash of (i, j, k) + 1e6
+// (0 <= i, j, k <= 2^b_i: this variant's lattice does not wrap).
 int latticeValue(const Params& params, const Tables& tables, const RcConstants& rc, int i, int j, int k);
 
 // The register-combiner lattice before section 5.3's second step: tex_corrnan, the twelve

@@ -1,6 +1,8 @@
 // The random tables of the SGI multipass noise (Hart 2001, section 4.3): sran, tran, rran,
 // uniform random values in [0, 1/3] indexed by the integer parts of s, t, r (their sum stays
 // in [0, 1]), and nran, the final randomization of the sum (Figure 6 (d)), uniform in [0, 1].
+// Perm and ValuePerm (the exclusive-or variant) are Rayshade's permutation P and the byte of
+// 0.5 R[P[m]] + 1/2 (model/noise.h), whatever the seed.
 // Entries are stored as the framebuffer stores them: 8-bit UNORM bytes (0..85 and 0..255).
 #pragma once
 

@@ -48,7 +48,7 @@ precision highp float;
 precision highp int;
 uniform highp sampler2D dst;
 uniform highp sampler2D src;
-uniform int op;  // 0 add, 1 subtract (src - dst), 2 multiply, 3 multiply by 1 - src
+uniform int op;  // 0 add, 1 subtract (src - dst), 2 multiply, 3 multiply by 1 - src, 4 xor
 out vec4 color;
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
@@ -56,7 +56,8 @@ void main() {
     if (op == 0) y = d + s;
     else if (op == 1) y = s - d;
     else if (op == 2) y = d * s;
-    else y = d * (1.0 - s);
+    else if (op == 3) y = d * (1.0 - s);
+    else y = float(uint(d * 255.0 + 0.5) ^ uint(s * 255.0 + 0.5)) / 255.0;  // 6.3: exclusive or
     y = clamp(y, 0.0, 1.0);
     color = vec4(y, y, y, 1.0);
 }
@@ -219,8 +220,10 @@ struct GlMultipass::Impl {
     }
 
     void runBlend(const Pass& p, BlendArith arith) {
-        int op = p.op == Op::BlendAdd ? 0 : p.op == Op::BlendSub ? 1 : p.op == Op::BlendMul ? 2 : 3;
-        if (arith == BlendArith::Shader) {
+        int op = p.op == Op::BlendAdd ? 0 : p.op == Op::BlendSub ? 1 : p.op == Op::BlendMul ? 2
+                 : p.op == Op::BlendMulInv ? 3 : 4;
+        // GLES has no glLogicOp: the exclusive or is always a shader (GLSL integers).
+        if (arith == BlendArith::Shader || op == 4) {
             target(scratch);
             glUseProgram(blend);
             glUniform1i(bOp, op);

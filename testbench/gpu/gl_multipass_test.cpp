@@ -84,13 +84,15 @@ int main() {
             for (int i = 0; i < w * h; ++i) im->px.push_back(uint8_t(gen() & 255));
         int failures = blendOps();
         pst::gpu::GlMultipass gl(w, h);
+        for (Variant variant : {Variant::Sgi, Variant::Xor})
         for (Interp interp : {Interp::Linear, Interp::Scurve})
             for (int bf = 1; bf <= 7; ++bf) {
                 Params p;
                 p.format.bf = bf;
                 p.interp = interp;
+                p.variant = variant;
                 p.seed = seed;
-                const Program prog = sgiProgram(p);
+                const Program prog = makeProgram(p);
                 const Tables tables = makeTables(p);
                 Stats stats;
                 const Image8 cpu = runCpu(prog, tables, s, t, r, &stats);
@@ -100,8 +102,8 @@ int main() {
                 }
                 for (BlendArith arith : {BlendArith::Shader, BlendArith::Blend}) {
                     char what[96];
-                    std::snprintf(what, sizeof what, "sgi %s b_f %d, blends as %s:",
-                                  interp == Interp::Linear ? "linear" : "scurve", bf,
+                    std::snprintf(what, sizeof what, "%s %s b_f %d, blends as %s:",
+                                  variant == Variant::Sgi ? "sgi" : "xor", interp == Interp::Linear ? "linear" : "scurve", bf,
                                   arith == BlendArith::Shader ? "shaders" : "glBlendFunc");
                     const bool exact = arith == BlendArith::Shader;
                     failures += compare(what, gl.run(prog, tables, s, t, r, arith), cpu, exact);
@@ -125,7 +127,7 @@ int main() {
             }
         }
         // An atlas: coordinates on a sphere of radius 7 around (8, 8, 8), through gpuNoise.
-        for (Variant variant : {Variant::Sgi, Variant::Rc}) {
+        for (Variant variant : {Variant::Sgi, Variant::Rc, Variant::Xor}) {
         Params p;
         p.variant = variant;
         std::vector<glm::dvec3> coords;
@@ -142,7 +144,8 @@ int main() {
         const Image8 cpu = runCpu(makeProgram(p), makeTables(p), as, at, ar);
         Image8 g{int(n.size()), 1, {}};
         for (float v : n) g.px.push_back(uint8_t(std::lround(v * 255.0f)));
-        failures += compare(variant == Variant::Sgi ? "atlas (sphere), gpuNoise, sgi:" : "atlas (sphere), gpuNoise, rc:",
+        failures += compare(variant == Variant::Sgi ? "atlas (sphere), gpuNoise, sgi:"
+                            : variant == Variant::Rc ? "atlas (sphere), gpuNoise, rc:" : "atlas (sphere), gpuNoise, xor:",
                             g, cpu, true);
         }
         std::printf("%s\n", failures ? "FAILED" : "PASSED: GL output (blends as shaders) equals the CPU model bit for bit; glBlendFunc within the GL spec");

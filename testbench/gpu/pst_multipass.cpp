@@ -52,8 +52,8 @@ int main(int argc, char** argv) {
     std::string variant = "sgi", interp = "linear", arith = "shader", out, json;
     bool check = false;
     app.add_option("--size", size, "image width and height (pixels)")->check(CLI::Range(1, 4096));
-    app.add_option("--variant", variant, "pass algorithm: sgi (section 4) or rc (section 5, register combiners)")
-        ->check(CLI::IsMember({"sgi", "rc"}));
+    app.add_option("--variant", variant, "pass algorithm: sgi (section 4), rc (section 5, register combiners) or xor (section 6.3, exclusive-or hash)")
+        ->check(CLI::IsMember({"sgi", "rc", "xor"}));
     app.add_option("--bf", bf, "fraction bits b_f of the 8-bit coordinates (b_i = 8 - b_f)")->check(CLI::Range(1, 8));
     app.add_option("--interp", interp, "linear (Figure 3) or scurve (section 7, 4 more passes per axis)")
         ->check(CLI::IsMember({"linear", "scurve"}));
@@ -75,7 +75,7 @@ int main(int argc, char** argv) {
     params.format.bf = bf;
     params.interp = interp == "scurve" ? Interp::Scurve : Interp::Linear;
     params.seed = seed;
-    params.variant = variant == "rc" ? Variant::Rc : Variant::Sgi;
+    params.variant = variant == "rc" ? Variant::Rc : variant == "xor" ? Variant::Xor : Variant::Sgi;
     const Format& f = params.format;
     // Figure 4's plane: s, t from 0 to 2^b_i over the image (every byte value at size 256), r fixed.
     Image8 s{size, size, {}}, t = s, rr = s;
