@@ -183,8 +183,22 @@ struct GlMultipass::Impl {
     GLuint scratch = 0;                     // the next render target of a ping-pong pass
     std::array<GLuint, kTableCount> table{};
 
+    bool copy = false;  // section 6.2: every draw into fbTex, then glCopyTexSubImage2D
+    GLuint fbTex = 0;
+
     void target(GLuint tex) {
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, tex, 0);
+    }
+    // A pass's draw goes to scratch (render to texture) or to the framebuffer texture (copy).
+    void begin() { target(copy ? fbTex : scratch); }
+    void end(int dst) {
+        if (!copy) {
+            std::swap(scratch, img[dst]);
+            return;
+        }
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D, img[dst]);
+        glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, w, h);
     }
     void bind(int unit, GLuint tex) {
         glActiveTexture(GL_TEXTURE0 + unit);
@@ -194,7 +208,7 @@ struct GlMultipass::Impl {
 
     // PixelTransfer into scratch, which then becomes dst (dst may be src: in-place CopyPixels).
     void runTransfer(const Pass& p) {
-        target(scratch);
+        begin();
         glUseProgram(transfer);
         glUniform1f(tScale, float(p.scale));
         glUniform1f(tBias, float(p.bias));
@@ -202,12 +216,12 @@ struct GlMultipass::Impl {
         bind(0, img[p.src]);
         bind(1, table[p.table != NoTable ? p.table : 0]);
         draw();
-        std::swap(scratch, img[p.dst]);
+        end(p.dst);
     }
 
     // A register-combiner pass into scratch, which then becomes dst (dst may be src).
     void runCombiner(const Pass& p) {
-        target(scratch);
+        begin();
         glUseProgram(combiner);
         glUniform1i(cOp, p.op == Op::RcShiftLeft ? 0 : p.op == Op::RcIncWrap ? 1 : 2);
         glUniform1i(cK0, p.k0);
@@ -216,7 +230,7 @@ struct GlMultipass::Impl {
         bind(0, img[p.src]);
         bind(1, img[p.dst]);
         draw();
-        std::swap(scratch, img[p.dst]);
+        end(p.dst);
     }
 
     void runBlend(const Pass& p, BlendArith arith) {
@@ -224,15 +238,16 @@ struct GlMultipass::Impl {
                  : p.op == Op::BlendMulInv ? 3 : 4;
         // GLES has no glLogicOp: the exclusive or is always a shader (GLSL integers).
         if (arith == BlendArith::Shader || op == 4) {
-            target(scratch);
+            begin();
             glUseProgram(blend);
             glUniform1i(bOp, op);
             bind(0, img[p.dst]);
             bind(1, img[p.src]);
             draw();
-            std::swap(scratch, img[p.dst]);
+            end(p.dst);
             return;
         }
+        if (copy) throw std::logic_error("multipass: glCopyTexSubImage2D mode needs shader blends");
         if (p.src == p.dst) throw std::logic_error("multipass: a blend cannot read its own target");
         // The paper's way: blendtex(src) with BlendEquation/BlendFunc into the target.
         target(img[p.dst]);
@@ -278,6 +293,7 @@ GlMultipass::GlMultipass(int width, int height) : impl_(new Impl) {
     m.cAlpha = glGetUniformLocation(m.combiner, "alpha");
     for (GLuint& t : m.img) t = makeTexture(width, height);
     m.scratch = makeTexture(width, height);
+    m.fbTex = makeTexture(width, height);
     for (GLuint& t : m.table) t = makeTexture(256, 1);
     glGenFramebuffers(1, &m.fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, m.fbo);
@@ -296,6 +312,7 @@ GlMultipass::~GlMultipass() {
     glDeleteTextures(GLsizei(m.img.size()), m.img.data());
     glDeleteTextures(GLsizei(m.table.size()), m.table.data());
     glDeleteTextures(1, &m.scratch);
+    glDeleteTextures(1, &m.fbTex);
     glDeleteFramebuffers(1, &m.fbo);
     glDeleteVertexArrays(1, &m.vao);
     glDeleteProgram(m.transfer);
@@ -303,12 +320,18 @@ GlMultipass::~GlMultipass() {
     glDeleteProgram(m.combiner);
 }
 
+void GlMultipass::setCopyTexSubImage(bool on) { impl_->copy = on; }
+
 Image8 GlMultipass::run(const Program& prog, const Tables& tables, const Image8& s, const Image8& t,
                         const Image8& r, BlendArith arith, int frames, Timing* timing) {
     Impl& m = *impl_;
     for (const Image8* im : {&s, &t, &r})
         if (im->width != m.w || im->height != m.h || im->px.size() != size_t(m.w) * m.h)
             throw std::invalid_argument("multipass: input image size differs from the context's");
+    // (another user of the context, e.g. singlePassNoise, may have bound its own objects)
+    glBindFramebuffer(GL_FRAMEBUFFER, m.fbo);
+    glBindVertexArray(m.vao);
+    glViewport(0, 0, m.w, m.h);
     Timing tm;
     glFinish();
     auto t0 = std::chrono::steady_clock::now();
@@ -356,6 +379,112 @@ Image8 GlMultipass::run(const Program& prog, const Tables& tables, const Image8&
     check("readback");
     Image8 out{m.w, m.h, std::vector<uint8_t>(size_t(m.w) * m.h)};
     for (size_t i = 0; i < out.px.size(); ++i) out.px[i] = rgba[4 * i];
+    if (timing) *timing = tm;
+    return out;
+}
+
+namespace {
+
+// One draw: Rayshade's value noise with the 8-bit hash (Variant::Xor's noise) in float.
+const char* kSinglePass = R"(#version 300 es
+precision highp float;
+precision highp int;
+uniform highp sampler2D s;
+uniform highp sampler2D t;
+uniform highp sampler2D r;
+uniform highp sampler2D perm;   // P (bytes / 255)
+uniform highp sampler2D value;  // 0.5 R[P[m]] + 1/2 (bytes / 255)
+uniform int bf;
+uniform int scurve;
+out vec4 color;
+int P(int i) { return int(texelFetch(perm, ivec2(i & 255, 0), 0).r * 255.0 + 0.5); }
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    int c[3];
+    c[0] = int(texelFetch(s, p, 0).r * 255.0 + 0.5);
+    c[1] = int(texelFetch(t, p, 0).r * 255.0 + 0.5);
+    c[2] = int(texelFetch(r, p, 0).r * 255.0 + 0.5);
+    int K[3];
+    float u[3];
+    for (int a = 0; a < 3; ++a) {
+        K[a] = (c[a] >> bf) + 64;  // Rayshade's lattice index + 1e6, low 8 bits
+        u[a] = float(c[a] & ((1 << bf) - 1)) / float(1 << bf);
+        if (scurve != 0) u[a] = u[a] * u[a] * (3.0 - 2.0 * u[a]);
+    }
+    float n = 0.0;
+    for (int k = 0; k < 8; ++k) {
+        int bx = k & 1, by = (k >> 1) & 1, bz = (k >> 2) & 1;
+        int x = P(P(K[0] + bx) ^ ((K[1] + by) & 255)) ^ ((K[2] + bz) & 255);
+        float v = texelFetch(value, ivec2(x, 0), 0).r;
+        n += v * (bx == 1 ? u[0] : 1.0 - u[0]) * (by == 1 ? u[1] : 1.0 - u[1]) * (bz == 1 ? u[2] : 1.0 - u[2]);
+    }
+    color = vec4(n, n, n, 1.0);
+}
+)";
+
+}  // namespace
+
+Image8 singlePassNoise(const Image8& s, const Image8& t, const Image8& r, const Params& params, int frames,
+                       Timing* timing) {
+    const int w = s.width, h = s.height;
+    const GLuint prog = link(kSinglePass);
+    GLuint tex[5], fbo, vao, target = makeTexture(w, h);
+    for (int i = 0; i < 3; ++i) tex[i] = makeTexture(w, h);
+    tex[3] = makeTexture(256, 1);
+    tex[4] = makeTexture(256, 1);
+    const Tables tables = makeTables(params);
+    Timing tm;
+    glFinish();
+    auto t0 = std::chrono::steady_clock::now();
+    upload(tex[0], w, h, s.px.data());
+    upload(tex[1], w, h, t.px.data());
+    upload(tex[2], w, h, r.px.data());
+    upload(tex[3], 256, 1, tables[Perm].data());
+    upload(tex[4], 256, 1, tables[ValuePerm].data());
+    glFinish();
+    tm.msUpload = msSince(t0);
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target, 0);
+    glGenVertexArrays(1, &vao);
+    glBindVertexArray(vao);
+    glViewport(0, 0, w, h);
+    glDisable(GL_DITHER);
+    glDisable(GL_BLEND);
+    glUseProgram(prog);
+    const char* names[5] = {"s", "t", "r", "perm", "value"};
+    for (int i = 0; i < 5; ++i) {
+        glUniform1i(glGetUniformLocation(prog, names[i]), i);
+        glActiveTexture(GL_TEXTURE0 + i);
+        glBindTexture(GL_TEXTURE_2D, tex[i]);
+    }
+    glUniform1i(glGetUniformLocation(prog, "bf"), params.format.bf);
+    glUniform1i(glGetUniformLocation(prog, "scurve"), params.interp == Interp::Scurve);
+    tm.draws = 1;
+    tm.frames = std::max(1, frames);
+    double total = 0;
+    tm.msPerFrameMin = 1e300;
+    for (int f = 0; f < tm.frames; ++f) {
+        t0 = std::chrono::steady_clock::now();
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        glFinish();
+        const double ms = msSince(t0);
+        total += ms;
+        tm.msPerFrameMin = std::min(tm.msPerFrameMin, ms);
+    }
+    tm.msPerFrame = total / tm.frames;
+    check("single pass");
+    std::vector<uint8_t> rgba(size_t(w) * h * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    Image8 out{w, h, std::vector<uint8_t>(size_t(w) * h)};
+    for (size_t i = 0; i < out.px.size(); ++i) out.px[i] = rgba[4 * i];
+    glDeleteTextures(5, tex);
+    glDeleteTextures(1, &target);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteVertexArrays(1, &vao);
+    glDeleteProgram(prog);
+    check("single pass readback");
     if (timing) *timing = tm;
     return out;
 }

@@ -47,6 +47,12 @@ class GlMultipass {
     GlMultipass(const GlMultipass&) = delete;
     GlMultipass& operator=(const GlMultipass&) = delete;
 
+    // Section 6.2: savetex as the paper did it, glCopyTexSubImage2D. When on, every draw renders
+    // into one framebuffer texture and is then copied into its destination image's texture
+    // (shader blends only); when off (the default), render to texture: the draw's target
+    // becomes the image (a rename).
+    void setCopyTexSubImage(bool on);
+
     // Runs the program `frames` times on the same input (the result is the same every frame;
     // more frames for timing) and reads tex_noise back.
     multipass::Image8 run(const multipass::Program& prog, const multipass::Tables& tables,
@@ -58,6 +64,13 @@ class GlMultipass {
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
+
+// The upper bound of section 6's proposals: the same noise as Variant::Xor (Rayshade's value
+// noise with the 8-bit hash, model/noise.h Perm256, corners Value; linear or SCURVE weights of
+// u = F / 2^b_f) in one draw of one fragment shader, float arithmetic, the tables as textures,
+// written to RGBA8. Needs a current context. Returns the bytes; timing as GlMultipass::run.
+multipass::Image8 singlePassNoise(const multipass::Image8& s, const multipass::Image8& t, const multipass::Image8& r,
+                                  const multipass::Params& params, int frames = 1, Timing* timing = nullptr);
 
 // For an atlas of solid-texture coordinates (the `pst atlas` filler): the noise n in [0, 1]
 // (the byte / 255) at each coordinate, quantized by multipass::toFixed, on the GPU. Opens its

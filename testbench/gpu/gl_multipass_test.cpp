@@ -16,6 +16,7 @@
 #include "cpu_model.h"
 #include "egl_context.h"
 #include "gl_multipass.h"
+#include "noise.h"
 
 using namespace pst::multipass;
 using pst::gpu::BlendArith;
@@ -126,6 +127,41 @@ int main() {
                 failures += compare(what, gl.run(prog, tables, s, t, r, arith), cpu, arith == BlendArith::Shader);
             }
         }
+        // Section 6.2: savetex as glCopyTexSubImage2D after every draw gives the same bytes.
+        gl.setCopyTexSubImage(true);
+        for (Variant variant : {Variant::Sgi, Variant::Rc, Variant::Xor}) {
+            Params p;
+            p.variant = variant;
+            p.seed = seed;
+            const Program prog = makeProgram(p);
+            const Tables tables = makeTables(p);
+            failures += compare(variant == Variant::Sgi ? "sgi b_f 4, glCopyTexSubImage2D:"
+                                : variant == Variant::Rc ? "rc b_f 4, glCopyTexSubImage2D:" : "xor b_f 4, glCopyTexSubImage2D:",
+                                gl.run(prog, tables, s, t, r, BlendArith::Shader), runCpu(prog, tables, s, t, r), true);
+        }
+        gl.setCopyTexSubImage(false);
+        // The single-pass shader against Rayshade's value noise (model/noise.h, Perm256): the
+        // value bytes (<= 1/2 LSB, weighted) and the output rounding (1/2 LSB): <= 1 LSB.
+        for (Interp interp : {Interp::Linear, Interp::Scurve})
+            for (int bf : {1, 4, 7}) {
+                Params p;
+                p.format.bf = bf;
+                p.interp = interp;
+                pst::NoiseOptions ro;
+                ro.interp = interp == Interp::Scurve ? pst::NoiseInterp::Scurve : pst::NoiseInterp::Linear;
+                ro.corner = pst::NoiseCorner::Value;
+                ro.hash = pst::NoiseHash::Perm256;
+                const Image8 g = pst::gpu::singlePassNoise(s, t, r, p);
+                double mx = 0;
+                for (size_t i = 0; i < g.px.size(); ++i) {
+                    const glm::dvec3 q = glm::dvec3(s.px[i], t.px[i], r.px[i]) / double(1 << bf);
+                    mx = std::max(mx, std::fabs(g.px[i] - (pst::noise(q, ro) + 0.5) * 255.0));
+                }
+                const bool ok = mx <= 1.0 + 1e-3;
+                std::printf("single pass %s b_f %d vs Rayshade (Perm256, value): max %.3f LSB%s\n",
+                            interp == Interp::Linear ? "linear" : "scurve", bf, mx, ok ? "" : "  FAIL (> 1 LSB)");
+                failures += !ok;
+            }
         // An atlas: coordinates on a sphere of radius 7 around (8, 8, 8), through gpuNoise.
         for (Variant variant : {Variant::Sgi, Variant::Rc, Variant::Xor}) {
         Params p;
