@@ -71,10 +71,11 @@ inline int blendHiBit(int c, int acc, int k0, int k1, int alpha) {
 }
 }  // namespace rc
 
-// A luminance image of bytes, row-major (the paper's R = G = B images).
+// A luminance image, row-major (the paper's R = G = B images): b-bit UNORM values (bytes at
+// the paper's b = 8; Program::b).
 struct Image8 {
     int width = 0, height = 0;
-    std::vector<uint8_t> px;
+    std::vector<uint32_t> px;
 };
 
 struct Stats {

@@ -27,7 +27,7 @@ Input randomInput(int w, int h, uint32_t seed) {
         im->width = w;
         im->height = h;
         im->px.resize(size_t(w) * h);
-        for (uint8_t& v : im->px) v = uint8_t(gen() & 255);
+        for (uint32_t& v : im->px) v = gen() & 255;
     }
     return in;
 }
@@ -320,6 +320,39 @@ TEST(MultipassXor, EqualsRayshadePerm256ValueNoise) {
                     std::sqrt(sq / n.px.size()), mx);
         EXPECT_LE(mx, 15.0) << "b_f " << bf;
     }
+}
+
+// Section 6.1's precision: the exclusive-or variant at b = 10, 16 and 24 (the packed 24-bit
+// luminance) against Rayshade, the error bound of the test above in units of 1/(2^b - 1).
+TEST(MultipassXor, WiderFormatsApproachRayshade) {
+    NoiseOptions ro;
+    ro.interp = NoiseInterp::Linear;
+    ro.corner = NoiseCorner::Value;
+    ro.hash = NoiseHash::Perm256;
+    std::mt19937 gen(99);
+    for (int b : {10, 16, 24})
+        for (int bi : {4, 7}) {
+            Params p;
+            p.variant = Variant::Xor;
+            p.format.b = b;
+            p.format.bf = b - bi;
+            const double M = p.format.max();
+            Image8 s{32, 32, {}}, t = s, r = s;
+            for (Image8* im : {&s, &t, &r})
+                for (int i = 0; i < 32 * 32; ++i) im->px.push_back(gen() & uint32_t(M));
+            Stats stats;
+            const Image8 n = runCpu(xorProgram(p), makeTables(p), s, t, r, &stats);
+            EXPECT_GT(stats.minTieMargin, 0.0) << "b " << b;
+            double mx = 0, sq = 0;
+            for (size_t i = 0; i < n.px.size(); ++i) {
+                const glm::dvec3 q = glm::dvec3(s.px[i], t.px[i], r.px[i]) / double(1 << p.format.bf);
+                const double e = std::fabs(n.px[i] / M - (noise(q, ro) + 0.5)) * M;
+                mx = std::max(mx, e), sq += e * e;
+            }
+            std::printf("xor b %d b_i %d: vs Rayshade rms %.2f, max %.2f (1/(2^b - 1) units)\n", b, bi,
+                        std::sqrt(sq / n.px.size()), mx);
+            EXPECT_LE(mx, 15.0) << "b " << b << " b_i " << bi;
+        }
 }
 
 }  // namespace

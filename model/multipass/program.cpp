@@ -38,9 +38,9 @@ int Program::draws() const {
     return n;
 }
 
-double shiftRightBias(const Format& f) { return -(0.5 - 1.0 / (2 << f.bf)) / 255.0; }
+double shiftRightBias(const Format& f) { return -(0.5 - 1.0 / (2 << f.bf)) / f.max(); }
 
-double fracShift(const Format& f) { return 255.0 / ((1 << f.bf) - 1); }
+double fracShift(const Format& f) { return double(f.max()) / ((1 << f.bf) - 1); }
 
 namespace {
 
@@ -67,8 +67,9 @@ Pass blend(Op op, int dst, int src) {
 
 Program sgiProgram(const Params& params) {
     const Format& f = params.format;
-    if (f.bf < 1 || f.bf > Format::b)
-        throw std::invalid_argument("multipass: b_f must be in 1.." + std::to_string(Format::b));
+    if (f.b != 8) throw std::invalid_argument("multipass: the SGI variant is built for b = 8");
+    if (f.bf < 1 || f.bf > f.b)
+        throw std::invalid_argument("multipass: b_f must be in 1.." + std::to_string(f.b));
     Program prog;
     auto& P = prog.passes;
     const int coord[3] = {TexS, TexT, TexR}, integer[3] = {TexSI, TexTI, TexRI},
@@ -142,8 +143,9 @@ Pass rc(Op op, int dst, int src, int k0 = 0, int k1 = 0, int alpha = 0) {
 
 Program rcProgram(const Params& params) {
     const Format& f = params.format;
-    if (f.bf < 1 || f.bf > Format::b - 1)
-        throw std::invalid_argument("multipass: register combiners need b_f in 1.." + std::to_string(Format::b - 1));
+    if (f.b != 8) throw std::invalid_argument("multipass: register combiners store 8 bits (b = 8)");
+    if (f.bf < 1 || f.bf > f.b - 1)
+        throw std::invalid_argument("multipass: register combiners need b_f in 1.." + std::to_string(f.b - 1));
     if (params.interp != Interp::Linear)
         throw std::invalid_argument("multipass: the register-combiner variant interpolates linearly (section 5)");
     const RcConstants c = rcConstants(params);
@@ -193,9 +195,13 @@ Program rcProgram(const Params& params) {
 
 Program xorProgram(const Params& params) {
     const Format& f = params.format;
-    if (f.bf < 1 || f.bf > Format::b - 1)
-        throw std::invalid_argument("multipass: the exclusive-or variant needs b_f in 1.." + std::to_string(Format::b - 1));
+    if (f.b < 8 || f.b > 24) throw std::invalid_argument("multipass: the exclusive-or variant needs b in 8..24");
+    // The offset index K + 65 must fit: b_i <= 7 at b = 8; 2^b_i + 65 <= 2^b - 1 above.
+    if (f.bf < 1 || f.bi() < 1 || (1 << f.bi()) + 65 > f.max())
+        throw std::invalid_argument("multipass: the exclusive-or variant needs b_f >= 1 and 2^b_i + 65 < 2^b");
+    const double M = f.max();
     Program prog;
+    prog.b = f.b;
     auto& P = prog.passes;
     const int coord[3] = {TexS, TexT, TexR}, integer[3] = {TexSI, TexTI, TexRI},
               weight[3] = {TexSF, TexTF, TexRF};
@@ -206,10 +212,10 @@ Program xorProgram(const Params& params) {
         P.push_back(transfer(integer[a], coord[a], 1.0 / f.shift(), shiftRightBias(f)));
         P.push_back(transfer(Fb, integer[a], f.shift()));
         P.push_back(blend(Op::BlendSub, Fb, coord[a]));
-        // Rayshade's weight u = F / 2^b_f: scale 255 / 2^b_f. F 255 / 2^b_f is a multiple of
+        // Rayshade's weight u = F / 2^b_f: scale M / 2^b_f (M = 2^b - 1). F M / 2^b_f is a multiple of
         // 2^-b_f and hits a rounding tie at F = 2^(b_f - 1); a bias of 2^-(b_f + 1) LSB rounds
         // those up and keeps every value 2^-(b_f + 1) LSB from a tie.
-        P.push_back(transfer(weight[a], Fb, 255.0 / f.shift(), 1.0 / (2 << f.bf) / 255.0));
+        P.push_back(transfer(weight[a], Fb, M / f.shift(), 1.0 / (2 << f.bf) / M));
         if (params.interp == Interp::Scurve) {
             P.push_back(transfer(Fb, weight[a], -0.5, 0.75));
             P.push_back(blend(Op::BlendMul, Fb, weight[a]));
@@ -220,11 +226,11 @@ Program xorProgram(const Params& params) {
     const int offImg[2][2] = {{TexTOff0, TexTOff1}, {TexROff0, TexROff1}};
     for (int a = 1; a < 3; ++a)
         for (int bit = 0; bit < 2; ++bit)
-            P.push_back(transfer(offImg[a - 1][bit], integer[a], 1.0, (off + bit) / 255.0));
+            P.push_back(transfer(offImg[a - 1][bit], integer[a], 1.0, (off + bit) / M));
     P.push_back(blend(Op::Clear, TexNoise, TexNoise));
     for (int k = 0; k < 8; ++k) {
         const int bs = k & 1, bt = k >> 1 & 1, br = k >> 2 & 1;
-        P.push_back(transfer(Fb, TexSI, 1.0, (off + bs) / 255.0, Perm));  // P[i]
+        P.push_back(transfer(Fb, TexSI, 1.0, (off + bs) / M, Perm));  // P[i]
         P.push_back(blend(Op::BlendXor, Fb, offImg[0][bt]));               // ^ j
         P.push_back(transfer(Fb, Fb, 1.0, 0.0, Perm));                     // P[.]
         P.push_back(blend(Op::BlendXor, Fb, offImg[1][br]));               // ^ k

@@ -17,12 +17,15 @@
 namespace pst::multipass {
 
 // Section 3: a coordinate is a b-bit channel value, fixed point with b_i integer and b_f
-// fractional bits (b = b_i + b_f). The framebuffer here is RGBA8 as in the paper: b = 8.
+// fractional bits (b = b_i + b_f). The framebuffer is RGBA8 as in the paper (b = 8); section
+// 6.1's precision proposal runs the exclusive-or variant at b = 10 (RGB10_A2), 16 (R16) and 24
+// (the packed 24-bit luminance, CPU model only).
 struct Format {
-    static constexpr int b = 8;
+    int b = 8;
     int bf = 4;  // the paper's Figure 4 uses b_f = 4
     int bi() const { return b - bf; }
     int shift() const { return 1 << bf; }  // section 4.2: shift = 1 << b_f
+    int max() const { return (1 << b) - 1; }  // the UNORM scale: value v means v / max
 };
 
 // Interpolation of the corner values: linear (Figure 3) or SCURVE(u) = uu(3 - 2u) by four
@@ -100,6 +103,7 @@ struct Pass {
 };
 
 struct Program {
+    int b = 8;  // the images' UNORM bits (Format::b)
     std::vector<Pass> passes;
     int draws() const;  // passes that draw (the paper's pass count); Save and Clear do not
 };

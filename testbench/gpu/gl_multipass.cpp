@@ -33,11 +33,19 @@ uniform highp sampler2D map;
 uniform float scale;
 uniform float bias;
 uniform int useMap;
+uniform float M;  // 2^b - 1
+uniform int quantize;  // b != 8: round here and write the code k as (k + qOff) / qDen (Impl::quantize)
+uniform float qOff;
+uniform float qDen;
 out vec4 color;
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     float y = clamp(texelFetch(src, p, 0).r * scale + bias, 0.0, 1.0);
-    if (useMap != 0) y = texelFetch(map, ivec2(int(floor(y * 255.0 + 0.5)), 0), 0).r;
+    if (useMap != 0) {
+        int i = int(floor(y * M + 0.5));  // the map: 256 entries per row
+        y = texelFetch(map, ivec2(i & 255, i >> 8), 0).r;
+    }
+    if (quantize != 0) y = (floor(y * M + 0.5) + qOff) / qDen;
     color = vec4(y, y, y, 1.0);
 }
 )";
@@ -49,16 +57,29 @@ precision highp int;
 uniform highp sampler2D dst;
 uniform highp sampler2D src;
 uniform int op;  // 0 add, 1 subtract (src - dst), 2 multiply, 3 multiply by 1 - src, 4 xor
+uniform float M;  // 2^b - 1
+uniform int quantize;
+uniform float qOff;
+uniform float qDen;
 out vec4 color;
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     float d = texelFetch(dst, p, 0).r, s = texelFetch(src, p, 0).r, y;
     if (op == 0) y = d + s;
     else if (op == 1) y = s - d;
+    else if (op >= 2 && op <= 3 && quantize != 0) {
+        // b > 8: round(D S / M) in integers (D S < 2^32 up to b = 16); float32 cannot resolve
+        // how close D S / M comes to a half at b = 16 (a multiple of 1/M LSB)
+        uint D = uint(d * M + 0.5), S = uint(s * M + 0.5), m = uint(M);
+        if (op == 3) S = m - S;
+        uint p = D * S, q = p / m;
+        y = float(q + (2u * (p - q * m) >= m ? 1u : 0u)) / M;
+    }
     else if (op == 2) y = d * s;
     else if (op == 3) y = d * (1.0 - s);
-    else y = float(uint(d * 255.0 + 0.5) ^ uint(s * 255.0 + 0.5)) / 255.0;  // 6.3: exclusive or
+    else y = float(uint(d * M + 0.5) ^ uint(s * M + 0.5)) / M;  // 6.3: exclusive or
     y = clamp(y, 0.0, 1.0);
+    if (quantize != 0) y = (floor(y * M + 0.5) + qOff) / qDen;
     color = vec4(y, y, y, 1.0);
 }
 )";
@@ -146,26 +167,65 @@ GLuint link(const char* fragment) {
     return prog;
 }
 
-GLuint makeTexture(int w, int h) {
+#ifndef GL_R16_EXT
+#define GL_R16_EXT 0x822A
+#endif
+
+GLenum internalFormat(TargetFormat f) {
+    return f == TargetFormat::RGB10A2 ? GL_RGB10_A2 : f == TargetFormat::R16 ? GL_R16_EXT : GL_RGBA8;
+}
+
+GLuint makeTexture(int w, int h, TargetFormat f = TargetFormat::RGBA8) {
     GLuint tex;
     glGenTextures(1, &tex);
     glBindTexture(GL_TEXTURE_2D, tex);
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, w, h);
+    glTexStorage2D(GL_TEXTURE_2D, 1, internalFormat(f), w, h);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     return tex;
 }
 
-// Luminance bytes -> RGBA8 texels (R = G = B = v, A = 255).
-void upload(GLuint tex, int w, int h, const uint8_t* lum) {
-    std::vector<uint8_t> rgba(size_t(w) * h * 4);
-    for (size_t i = 0; i < size_t(w) * h; ++i) {
-        rgba[4 * i] = rgba[4 * i + 1] = rgba[4 * i + 2] = lum[i];
-        rgba[4 * i + 3] = 255;
-    }
+// Luminance values -> texels of the format (R = G = B = v, A = 1; R16: R only).
+void upload(GLuint tex, int w, int h, const uint32_t* lum, TargetFormat f = TargetFormat::RGBA8) {
+    const size_t n = size_t(w) * h;
     glBindTexture(GL_TEXTURE_2D, tex);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    if (f == TargetFormat::RGBA8) {
+        std::vector<uint8_t> rgba(n * 4);
+        for (size_t i = 0; i < n; ++i) {
+            rgba[4 * i] = rgba[4 * i + 1] = rgba[4 * i + 2] = uint8_t(lum[i]);
+            rgba[4 * i + 3] = 255;
+        }
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    } else if (f == TargetFormat::RGB10A2) {
+        std::vector<uint32_t> px(n);
+        for (size_t i = 0; i < n; ++i) px[i] = lum[i] | lum[i] << 10 | lum[i] << 20 | 3u << 30;
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_INT_2_10_10_10_REV, px.data());
+    } else {
+        std::vector<uint16_t> px(lum, lum + n);
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RED, GL_UNSIGNED_SHORT, px.data());
+    }
+}
+
+// The R channel of the bound framebuffer's w x h pixels as values of the format.
+std::vector<uint32_t> readback(int w, int h, TargetFormat f) {
+    const size_t n = size_t(w) * h;
+    std::vector<uint32_t> out(n);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    if (f == TargetFormat::RGBA8) {
+        std::vector<uint8_t> rgba(n * 4);
+        glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+        for (size_t i = 0; i < n; ++i) out[i] = rgba[4 * i];
+    } else if (f == TargetFormat::RGB10A2) {
+        std::vector<uint32_t> px(n);
+        glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_INT_2_10_10_10_REV, px.data());
+        for (size_t i = 0; i < n; ++i) out[i] = px[i] & 1023;
+    } else {
+        std::vector<uint16_t> px(n * 4);  // EXT_texture_norm16: RGBA / UNSIGNED_SHORT
+        glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_SHORT, px.data());
+        for (size_t i = 0; i < n; ++i) out[i] = px[4 * i];
+    }
+    return out;
 }
 
 double msSince(std::chrono::steady_clock::time_point t0) {
@@ -174,8 +234,24 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 
 }  // namespace
 
+int formatBits(TargetFormat f) { return f == TargetFormat::RGB10A2 ? 10 : f == TargetFormat::R16 ? 16 : 8; }
+const char* formatName(TargetFormat f) {
+    return f == TargetFormat::RGB10A2 ? "RGB10_A2" : f == TargetFormat::R16 ? "R16_EXT" : "RGBA8";
+}
+
 struct GlMultipass::Impl {
     int w, h;
+    TargetFormat fmt = TargetFormat::RGBA8;
+    float M = 255.f;
+    // The specification stores a float y as "one of the two closest" UNORM values to y M,
+    // rounding to nearest preferred. llvmpipe rounds on RGBA8 and R16 but stores floor(1024 y)
+    // on RGB10_A2 (measured: y = 0.98 LSB stores 0; y = 772.25 LSB stores 773), which is
+    // always one of the two closest to 1023 y, so conforming. For b != 8 the shaders
+    // therefore round themselves and write the code k as a value both rules store as k:
+    // (k + 1/2) / 1024 on RGB10_A2 (round(1023 y) = floor(1024 y) = k), (k + 1/4) / M on
+    // R16. (RGBA8 keeps the paper's way: the framebuffer's conversion rounds.)
+    bool quantize = false;
+    float qOff = 0.f, qDen = 1.f;
     GLuint fbo = 0, vao = 0;
     GLuint transfer = 0, blend = 0, combiner = 0;
     GLint tScale, tBias, tUseMap, bOp, cOp, cK0, cK1, cAlpha;
@@ -266,11 +342,16 @@ struct GlMultipass::Impl {
     }
 };
 
-GlMultipass::GlMultipass(int width, int height) : impl_(new Impl) {
+GlMultipass::GlMultipass(int width, int height, TargetFormat format) : impl_(new Impl) {
     Impl& m = *impl_;
     if (width < 1 || height < 1) throw std::invalid_argument("multipass: empty image");
     m.w = width;
     m.h = height;
+    m.fmt = format;
+    m.M = float((1 << formatBits(format)) - 1);
+    m.quantize = format != TargetFormat::RGBA8;
+    m.qOff = format == TargetFormat::RGB10A2 ? 0.5f : 0.25f;
+    m.qDen = format == TargetFormat::RGB10A2 ? m.M + 1.f : m.M;
     m.transfer = link(kTransfer);
     m.blend = link(kBlend);
     glUseProgram(m.transfer);
@@ -279,10 +360,18 @@ GlMultipass::GlMultipass(int width, int height) : impl_(new Impl) {
     m.tScale = glGetUniformLocation(m.transfer, "scale");
     m.tBias = glGetUniformLocation(m.transfer, "bias");
     m.tUseMap = glGetUniformLocation(m.transfer, "useMap");
+    glUniform1f(glGetUniformLocation(m.transfer, "M"), m.M);
+    glUniform1i(glGetUniformLocation(m.transfer, "quantize"), m.quantize);
+    glUniform1f(glGetUniformLocation(m.transfer, "qOff"), m.qOff);
+    glUniform1f(glGetUniformLocation(m.transfer, "qDen"), m.qDen);
     glUseProgram(m.blend);
     glUniform1i(glGetUniformLocation(m.blend, "dst"), 0);
     glUniform1i(glGetUniformLocation(m.blend, "src"), 1);
     m.bOp = glGetUniformLocation(m.blend, "op");
+    glUniform1f(glGetUniformLocation(m.blend, "M"), m.M);
+    glUniform1i(glGetUniformLocation(m.blend, "quantize"), m.quantize);
+    glUniform1f(glGetUniformLocation(m.blend, "qOff"), m.qOff);
+    glUniform1f(glGetUniformLocation(m.blend, "qDen"), m.qDen);
     m.combiner = link(kCombiner);
     glUseProgram(m.combiner);
     glUniform1i(glGetUniformLocation(m.combiner, "tex0"), 0);
@@ -291,17 +380,17 @@ GlMultipass::GlMultipass(int width, int height) : impl_(new Impl) {
     m.cK0 = glGetUniformLocation(m.combiner, "k0");
     m.cK1 = glGetUniformLocation(m.combiner, "k1");
     m.cAlpha = glGetUniformLocation(m.combiner, "alpha");
-    for (GLuint& t : m.img) t = makeTexture(width, height);
-    m.scratch = makeTexture(width, height);
-    m.fbTex = makeTexture(width, height);
-    for (GLuint& t : m.table) t = makeTexture(256, 1);
+    for (GLuint& t : m.img) t = makeTexture(width, height, format);
+    m.scratch = makeTexture(width, height, format);
+    m.fbTex = makeTexture(width, height, format);
+    for (GLuint& t : m.table) t = makeTexture(256, (int(m.M) + 1) / 256, format);
     glGenFramebuffers(1, &m.fbo);
     glBindFramebuffer(GL_FRAMEBUFFER, m.fbo);
     glGenVertexArrays(1, &m.vao);
     glBindVertexArray(m.vao);
     m.target(m.scratch);
     if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE)
-        throw std::runtime_error("GL: an RGBA8 texture is not a complete render target");
+        throw std::runtime_error(std::string("GL: a ") + formatName(format) + " texture is not a complete render target");
     glViewport(0, 0, width, height);
     glDisable(GL_DITHER);  // dithering may change the UNORM conversion (GL ES 3.2 section 15.1.7)
     check("setup");
@@ -325,6 +414,8 @@ void GlMultipass::setCopyTexSubImage(bool on) { impl_->copy = on; }
 Image8 GlMultipass::run(const Program& prog, const Tables& tables, const Image8& s, const Image8& t,
                         const Image8& r, BlendArith arith, int frames, Timing* timing) {
     Impl& m = *impl_;
+    if (prog.b != formatBits(m.fmt))
+        throw std::invalid_argument("multipass: the program's b differs from the target format's bits");
     for (const Image8* im : {&s, &t, &r})
         if (im->width != m.w || im->height != m.h || im->px.size() != size_t(m.w) * m.h)
             throw std::invalid_argument("multipass: input image size differs from the context's");
@@ -335,10 +426,14 @@ Image8 GlMultipass::run(const Program& prog, const Tables& tables, const Image8&
     Timing tm;
     glFinish();
     auto t0 = std::chrono::steady_clock::now();
-    upload(m.img[TexS], m.w, m.h, s.px.data());
-    upload(m.img[TexT], m.w, m.h, t.px.data());
-    upload(m.img[TexR], m.w, m.h, r.px.data());
-    for (int i = 0; i < kTableCount; ++i) upload(m.table[i], 256, 1, tables[i].data());
+    upload(m.img[TexS], m.w, m.h, s.px.data(), m.fmt);
+    upload(m.img[TexT], m.w, m.h, t.px.data(), m.fmt);
+    upload(m.img[TexR], m.w, m.h, r.px.data(), m.fmt);
+    for (int i = 0; i < kTableCount; ++i) {
+        std::vector<uint32_t> tb = tables[i];  // (b > 8: sran .. nran unused, zero)
+        tb.resize(size_t(m.M) + 1, 0);
+        upload(m.table[i], 256, (int(m.M) + 1) / 256, tb.data(), m.fmt);
+    }
     glFinish();
     tm.msUpload = msSince(t0);
     check("upload");
@@ -354,7 +449,7 @@ Image8 GlMultipass::run(const Program& prog, const Tables& tables, const Image8&
                 case Op::Save: std::swap(m.img[p.dst], m.img[p.src]); break;
                 case Op::Clear:
                     m.target(m.img[p.dst]);
-                    glClearColor(p.k0 / 255.f, p.k0 / 255.f, p.k0 / 255.f, 1.f);
+                    glClearColor(p.k0 / m.M, p.k0 / m.M, p.k0 / m.M, 1.f);
                     glClear(GL_COLOR_BUFFER_BIT);
                     break;
                 case Op::RcShiftLeft:
@@ -372,13 +467,9 @@ Image8 GlMultipass::run(const Program& prog, const Tables& tables, const Image8&
     check("passes");
     t0 = std::chrono::steady_clock::now();
     m.target(m.img[TexNoise]);
-    std::vector<uint8_t> rgba(size_t(m.w) * m.h * 4);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, m.w, m.h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+    Image8 out{m.w, m.h, readback(m.w, m.h, m.fmt)};
     tm.msReadback = msSince(t0);
     check("readback");
-    Image8 out{m.w, m.h, std::vector<uint8_t>(size_t(m.w) * m.h)};
-    for (size_t i = 0; i < out.px.size(); ++i) out.px[i] = rgba[4 * i];
     if (timing) *timing = tm;
     return out;
 }
@@ -474,11 +565,7 @@ Image8 singlePassNoise(const Image8& s, const Image8& t, const Image8& r, const 
     }
     tm.msPerFrame = total / tm.frames;
     check("single pass");
-    std::vector<uint8_t> rgba(size_t(w) * h * 4);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-    Image8 out{w, h, std::vector<uint8_t>(size_t(w) * h)};
-    for (size_t i = 0; i < out.px.size(); ++i) out.px[i] = rgba[4 * i];
+    Image8 out{w, h, readback(w, h, TargetFormat::RGBA8)};
     glDeleteTextures(5, tex);
     glDeleteTextures(1, &target);
     glDeleteFramebuffers(1, &fbo);
@@ -496,7 +583,7 @@ std::vector<float> gpuNoise(const std::vector<glm::dvec3>& coords, const Params&
     // Lay the coordinates out as rows of up to 1024 pixels; the padding is coordinate 0.
     const int w = int(std::min<size_t>(coords.size(), 1024));
     const int h = int((coords.size() + w - 1) / w);
-    Image8 s{w, h, std::vector<uint8_t>(size_t(w) * h, 0)}, t = s, r = s;
+    Image8 s{w, h, std::vector<uint32_t>(size_t(w) * h, 0)}, t = s, r = s;
     for (size_t i = 0; i < coords.size(); ++i) {
         s.px[i] = toFixed(coords[i].x, params.format);
         t.px[i] = toFixed(coords[i].y, params.format);

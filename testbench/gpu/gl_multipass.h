@@ -30,6 +30,12 @@ namespace pst::gpu {
 //           so a driver may differ from round(D S / 255) by an LSB per multiply.
 enum class BlendArith { Shader, Blend };
 
+// The images' texture format (section 6.1's precision): RGBA8 (b = 8, the paper's), RGB10_A2
+// (b = 10), R16_EXT (b = 16, GL_EXT_texture_norm16). The program's Program::b must match.
+enum class TargetFormat { RGBA8, RGB10A2, R16 };
+int formatBits(TargetFormat f);
+const char* formatName(TargetFormat f);
+
 struct Timing {
     int draws = 0;           // draw calls per frame (the paper's passes)
     int frames = 0;          // frames timed
@@ -42,7 +48,7 @@ struct Timing {
 class GlMultipass {
   public:
     // Needs a current context (EglContext); width x height images.
-    GlMultipass(int width, int height);
+    GlMultipass(int width, int height, TargetFormat format = TargetFormat::RGBA8);
     ~GlMultipass();
     GlMultipass(const GlMultipass&) = delete;
     GlMultipass& operator=(const GlMultipass&) = delete;

@@ -10,6 +10,12 @@
 //   profile balanced with noise interp linear, corner value) at the same points: moments,
 //   excess kurtosis (white/uniform -1.2, Gaussian 0), a histogram, the Kolmogorov-Smirnov
 //   distance between distributions; and the lattice correlations of Figures 6 and 11.
+// proposals (section 6): per configuration (variant; render to texture or glCopyTexSubImage2D
+//   after every draw; the single-pass shader) at 256 x 256 and 1024 x 1024: draws, the minimum
+//   over --frames frames of the passes' time (glFinish to glFinish; the machine is shared, so
+//   the min, with the load average), pixels differing from the CPU model, RMS vs Figure 3 in
+//   double on the variant's lattice and, where the lattice is Rayshade's (xor, single pass),
+//   pointwise RMS vs Rayshade's value noise with the 8-bit hash (model/noise.h Perm256).
 // Exit 0, 1 when the GL output differs from the CPU model, 2 on errors (no EGL device).
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
@@ -108,6 +114,8 @@ int main(int argc, char** argv) {
     app.add_option("--size", size, "quality sample: size x size random coordinates")->check(CLI::Range(16, 1024));
     app.add_option("--frames", frames, "timed frames per configuration (min of N reported)")->check(CLI::Range(1, 100));
     app.add_option("--seed", seed, "tables' and coordinates' seed");
+    std::vector<int> sizes{256, 1024};
+    app.add_option("--sizes", sizes, "proposals: image sizes");
     app.add_flag("--quick", quick, "b_f 2, 4, 6 only and smaller samples (a smoke run)");
     try {
         app.parse(argc, argv);
@@ -181,7 +189,7 @@ int main(int argc, char** argv) {
                 }
                 json e;
                 e["variant"] = cfg.name;
-                e["b"] = Format::b;
+                e["b"] = p.format.b;
                 e["b_f"] = bf;
                 e["draws"] = prog.draws();
                 e["gl_pixels_differing_from_cpu_model"] = diff;
@@ -222,6 +230,92 @@ int main(int argc, char** argv) {
         j["quality"] = q;
         j["quality_samples"] = size * size;
         j["load_average_1min_end"] = loadAverage();
+
+        // ---- proposals ----
+        json pr;
+        pr["load_average_1min_start"] = loadAverage();
+        pr["frames"] = frames;
+        json rows = json::array();
+        pst::NoiseOptions rp;
+        rp.interp = pst::NoiseInterp::Linear;
+        rp.corner = pst::NoiseCorner::Value;
+        rp.hash = pst::NoiseHash::Perm256;
+        for (int n : quick ? std::vector<int>{64} : sizes) {
+            std::mt19937 g2(seed + n);
+            Image8 ps{n, n, {}}, pt = ps, pr3 = ps;
+            for (Image8* im : {&ps, &pt, &pr3})
+                for (int i = 0; i < n * n; ++i) im->px.push_back(uint8_t(g2() & 255));
+            pst::gpu::GlMultipass gln(n, n);
+            auto quality = [&](json& row, const Image8& g, const Params& p, bool rayshade) {
+                const Tables tables = makeTables(p);
+                const RcConstants rcc = rcConstants(p);
+                double sq = 0, sqr = 0;
+                for (size_t i = 0; i < g.px.size(); ++i) {
+                    const int c[3] = {ps.px[i], pt.px[i], pr3.px[i]};
+                    const double e = g.px[i] / 255.0 - idealNoise(p, tables, rcc, c[0], c[1], c[2]);
+                    sq += e * e;
+                    if (rayshade) {
+                        const double er = g.px[i] / 255.0 -
+                                          (pst::noise(glm::dvec3(c[0], c[1], c[2]) / double(1 << p.format.bf), rp) + 0.5);
+                        sqr += er * er;
+                    }
+                }
+                row["rms_vs_ideal_lsb"] = std::sqrt(sq / g.px.size()) * 255;
+                row["rms_vs_rayshade_lsb"] = rayshade ? json(std::sqrt(sqr / g.px.size()) * 255) : json(nullptr);
+            };
+            struct Cfg {
+                Variant v;
+                bool copy;
+                const char* name;
+            };
+            for (const Cfg& cfg : {Cfg{Variant::Sgi, false, "SGI (4), render to texture"},
+                                   Cfg{Variant::Sgi, true, "SGI (4), glCopyTexSubImage2D per draw"},
+                                   Cfg{Variant::Rc, false, "register combiners (5), render to texture"},
+                                   Cfg{Variant::Rc, true, "register combiners (5), glCopyTexSubImage2D per draw"},
+                                   Cfg{Variant::Xor, false, "exclusive-or hash (6.3), render to texture"},
+                                   Cfg{Variant::Xor, true, "exclusive-or hash (6.3), glCopyTexSubImage2D per draw"}}) {
+                Params p;
+                p.variant = cfg.v;
+                p.seed = seed;
+                const Program prog = makeProgram(p);
+                const Tables tables = makeTables(p);
+                gln.setCopyTexSubImage(cfg.copy);
+                const int fr = n > 256 ? std::max(1, frames / 2) : frames;
+                gln.run(prog, tables, ps, pt, pr3, pst::gpu::BlendArith::Shader);  // warm-up
+                pst::gpu::Timing tm;
+                const Image8 g = gln.run(prog, tables, ps, pt, pr3, pst::gpu::BlendArith::Shader, fr, &tm);
+                const Image8 cpu = runCpu(prog, tables, ps, pt, pr3);
+                int diff = 0;
+                for (size_t i = 0; i < g.px.size(); ++i) diff += g.px[i] != cpu.px[i];
+                differing += diff;
+                json row{{"name", cfg.name}, {"target", "RGBA8"}, {"size", n}, {"b_f", p.format.bf},
+                         {"draws", tm.draws}, {"frames", fr}, {"ms_min", tm.msPerFrameMin},
+                         {"ms_mean", tm.msPerFrame}, {"ms_per_draw", tm.msPerFrameMin / tm.draws},
+                         {"gl_pixels_differing", diff}};
+                quality(row, g, p, cfg.v == Variant::Xor);
+                std::fprintf(stderr, "proposals %s %d: %d draws, min %.1f ms\n", cfg.name, n, tm.draws, tm.msPerFrameMin);
+                rows.push_back(row);
+            }
+            gln.setCopyTexSubImage(false);
+            {
+                Params p;
+                p.variant = Variant::Xor;
+                pst::gpu::Timing tm;
+                pst::gpu::singlePassNoise(ps, pt, pr3, p, 1);  // warm-up (compiles the shader)
+                const Image8 g = pst::gpu::singlePassNoise(ps, pt, pr3, p, frames, &tm);
+                json row{{"name", "single-pass fragment shader (the exclusive-or variant's noise, float)"},
+                         {"target", "RGBA8"}, {"size", n}, {"b_f", p.format.bf}, {"draws", 1}, {"frames", frames},
+                         {"ms_min", tm.msPerFrameMin}, {"ms_mean", tm.msPerFrame}, {"ms_per_draw", tm.msPerFrameMin},
+                         {"gl_pixels_differing", nullptr}};
+                quality(row, g, p, true);
+                std::fprintf(stderr, "proposals single pass %d: min %.2f ms\n", n, tm.msPerFrameMin);
+                rows.push_back(row);
+            }
+        }
+        pr["rows"] = rows;
+        pr["load_average_1min_end"] = loadAverage();
+        pr["notes"] = json::array();
+        j["proposals"] = pr;
     } catch (const pst::gpu::EglUnavailable& e) {
         std::cerr << "error: " << e.what() << "\n";
         return 2;

@@ -114,7 +114,7 @@ int main(int argc, char** argv) {
     }
     j["variant"] = variant;
     j["size"] = size;
-    j["b"] = Format::b;
+    j["b"] = f.b;
     j["b_i"] = f.bi();
     j["b_f"] = f.bf;
     j["interp"] = interp;
@@ -164,7 +164,8 @@ int main(int argc, char** argv) {
     if (!out.empty()) {
         auto img = OIIO::ImageOutput::create(out);
         OIIO::ImageSpec spec(size, size, 1, OIIO::TypeDesc::UINT8);
-        if (!img || !img->open(out, spec) || !img->write_image(OIIO::TypeDesc::UINT8, noise.px.data()) ||
+        const std::vector<uint8_t> bytes(noise.px.begin(), noise.px.end());
+        if (!img || !img->open(out, spec) || !img->write_image(OIIO::TypeDesc::UINT8, bytes.data()) ||
             !img->close()) {
             std::cerr << "error: cannot write " << out << "\n";
             return 2;
