@@ -52,7 +52,7 @@ double idealNoise(const Params& params, const Tables& T, const RcConstants& c, i
             w *= bit ? u[a] : 1 - u[a];
             L[a] = params.variant == Variant::Xor ? K[a] + bit : (K[a] + bit) % cells;
         }
-        n += w * latticeValue(params, T, c, L[0], L[1], L[2]) / 255.0;
+        n += w * latticeValue(params, T, c, L[0], L[1], L[2]) / double(f.max());
     }
     return n;
 }

@@ -85,17 +85,45 @@ def proposals_markdown(root: Path) -> str:
          "the passes alone (glFinish to glFinish), and still noisy. Error vs Rayshade is pointwise only where the "
          "lattice is Rayshade's own (the integer-hash rows); elsewhere it is the distance to Figure 3 in double on "
          "the variant's lattice.", "",
-         "| configuration | target | size | draws | ms / frame (min) | ms / draw | GL pixels differing from its "
-         "model | RMS vs Figure 3 (LSB) | RMS vs Rayshade (LSB) |",
-         "|---|---|---:|---:|---:|---:|---:|---:|---:|"]
+         "| configuration | target | size | b_f | draws | ms / frame (min) | ms / draw | GL pixels differing from its "
+         "model | RMS vs Figure 3 (1/255) | RMS vs Rayshade (1/255) |",
+         "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
 
     def num(v, fmt):
-        return "-" if v is None else format(v, fmt)
+        if v is None:
+            return "-"
+        if fmt == ".4f" and 0 < abs(v) < 1e-3:
+            return format(v, ".1e")
+        return format(v, fmt)
 
     for r in p["rows"]:
-        L.append(f"| {r['name']} | {r['target']} | {r['size']} | {r['draws']} | {num(r.get('ms_min'), '.2f')} | "
-                 f"{num(r.get('ms_per_draw'), '.3f')} | {num(r.get('gl_pixels_differing'), 'd')} | "
-                 f"{num(r.get('rms_vs_ideal_lsb'), '.2f')} | {num(r.get('rms_vs_rayshade_lsb'), '.2f')} |")
+        diff = num(r.get('gl_pixels_differing'), 'd')
+        if r.get("gl_max_difference_lsb_of_b"):
+            diff += f" (at most {r['gl_max_difference_lsb_of_b']} LSB of b bits)"
+        L.append(f"| {r['name']} | {r['target']} | {r['size']} | {r['b_f']} | {r['draws']} | "
+                 f"{num(r.get('ms_min'), '.2f')} | {num(r.get('ms_per_draw'), '.3f')} | {diff} | "
+                 f"{num(r.get('rms_vs_ideal_lsb'), '.4f')} | {num(r.get('rms_vs_rayshade_lsb'), '.4f')} |")
+    # The cost of glCopyTexSubImage2D per draw: the copy rows against their render-to-texture rows.
+    rtt = {(r["name"].split(",")[0], r["size"]): r for r in p["rows"] if r["name"].endswith("render to texture")}
+    cp = [r for r in p["rows"] if r["name"].endswith("glCopyTexSubImage2D per draw")]
+    if cp:
+        L += ["", "glCopyTexSubImage2D (the paper's savetex, section 6.2) against render to texture, per draw "
+              "(difference of the two rows' minimum frame times / draws):", "",
+              "| variant | size | render to texture ms / draw | with a copy ms / draw | the copy's cost ms / draw |",
+              "|---|---:|---:|---:|---:|"]
+        for r in cp:
+            base = rtt.get((r["name"].split(",")[0], r["size"]))
+            if base:
+                L.append(f"| {r['name'].split(',')[0]} | {r['size']} | {base['ms_per_draw']:.3f} | {r['ms_per_draw']:.3f} | "
+                         f"{(r['ms_min'] - base['ms_min']) / r['draws']:+.3f} |")
+    iso = p.get("isolated", [])
+    if iso:
+        L += ["", f"The same two operations timed in isolation (the minimum over {p['frames']} repetitions of a batch, "
+              "per operation): one glCopyTexSubImage2D of a whole RGBA8 image from the framebuffer texture into a "
+              "texture, and one PixelTransfer draw (scale, bias, no map) rendered to a texture:", "",
+              "| size | glCopyTexSubImage2D ms | one pass drawn ms | copy / draw |", "|---:|---:|---:|---:|"]
+        for r in iso:
+            L.append(f"| {r['size']} | {r['copy_ms']:.3f} | {r['draw_ms']:.3f} | {r['copy_ms'] / r['draw_ms']:.2f} |")
     notes = p.get("notes", [])
     if notes:
         L += [""] + [f"- {n}" for n in notes]

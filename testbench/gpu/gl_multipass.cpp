@@ -411,6 +411,50 @@ GlMultipass::~GlMultipass() {
 
 void GlMultipass::setCopyTexSubImage(bool on) { impl_->copy = on; }
 
+double GlMultipass::copyMs(int count, int reps) {
+    Impl& m = *impl_;
+    glBindFramebuffer(GL_FRAMEBUFFER, m.fbo);
+    m.target(m.fbTex);
+    double best = 1e300;
+    for (int r = 0; r < reps; ++r) {
+        glFinish();
+        const auto t0 = std::chrono::steady_clock::now();
+        for (int i = 0; i < count; ++i) {
+            glActiveTexture(GL_TEXTURE0);
+            glBindTexture(GL_TEXTURE_2D, m.img[i & 1 ? TexSI : TexTI]);
+            glCopyTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, 0, 0, m.w, m.h);
+        }
+        glFinish();
+        best = std::min(best, msSince(t0) / count);
+    }
+    check("copy timing");
+    return best;
+}
+
+double GlMultipass::drawMs(int count, int reps) {
+    Impl& m = *impl_;
+    glBindFramebuffer(GL_FRAMEBUFFER, m.fbo);
+    glBindVertexArray(m.vao);
+    glViewport(0, 0, m.w, m.h);
+    Pass p;
+    p.op = Op::Transfer;
+    p.scale = 0.5;
+    double best = 1e300;
+    for (int r = 0; r < reps; ++r) {
+        glFinish();
+        const auto t0 = std::chrono::steady_clock::now();
+        for (int i = 0; i < count; ++i) {
+            p.src = i & 1 ? TexSI : TexTI;
+            p.dst = i & 1 ? TexTI : TexSI;
+            m.runTransfer(p);
+        }
+        glFinish();
+        best = std::min(best, msSince(t0) / count);
+    }
+    check("draw timing");
+    return best;
+}
+
 Image8 GlMultipass::run(const Program& prog, const Tables& tables, const Image8& s, const Image8& t,
                         const Image8& r, BlendArith arith, int frames, Timing* timing) {
     Impl& m = *impl_;

@@ -59,6 +59,12 @@ class GlMultipass {
     // becomes the image (a rename).
     void setCopyTexSubImage(bool on);
 
+    // Section 6.2 in isolation: the time of one glCopyTexSubImage2D of a whole image (fbTex to an
+    // image texture) and of one PixelTransfer draw (scale and bias, no map), each the minimum over
+    // `reps` repetitions of `count` operations between glFinish calls, divided by `count`.
+    double copyMs(int count, int reps);
+    double drawMs(int count, int reps);
+
     // Runs the program `frames` times on the same input (the result is the same every frame;
     // more frames for timing) and reads tex_noise back.
     multipass::Image8 run(const multipass::Program& prog, const multipass::Tables& tables,

@@ -55,7 +55,7 @@ int blendOps() {
                 const int D = i & 255, S = i >> 8, Se = op == Op::BlendMulInv ? 255 - S : S;
                 exactDiffer += g.px[i] != cpu.px[i];
                 if (op == Op::BlendMul || op == Op::BlendMulInv)  // the two bytes nearest D S / 255
-                    outside += g.px[i] != D * Se / 255 && g.px[i] != (D * Se + 254) / 255;
+                    outside += int(g.px[i]) != D * Se / 255 && int(g.px[i]) != (D * Se + 254) / 255;
             }
             const bool mul = op == Op::BlendMul || op == Op::BlendMulInv;
             const bool ok = arith == BlendArith::Shader || !mul ? exactDiffer == 0 : outside == 0;

@@ -173,7 +173,7 @@ int main(int argc, char** argv) {
                 chip.noiseInterp = ro.interp;
                 chip.noise = pst::hardwareNoise(chip);
                 for (size_t i = 0; i < g.px.size(); ++i) {
-                    const int c[3] = {s.px[i], t.px[i], r.px[i]};
+                    const int c[3] = {int(s.px[i]), int(t.px[i]), int(r.px[i])};
                     noise.push_back(g.px[i] / 255.0);
                     ideal.push_back(idealNoise(p, tables, rcc, c[0], c[1], c[2]));
                     // Rayshade and the chip at the same point (lattice units: the byte / 2^b_f)
@@ -251,7 +251,7 @@ int main(int argc, char** argv) {
                 const RcConstants rcc = rcConstants(p);
                 double sq = 0, sqr = 0;
                 for (size_t i = 0; i < g.px.size(); ++i) {
-                    const int c[3] = {ps.px[i], pt.px[i], pr3.px[i]};
+                    const int c[3] = {int(ps.px[i]), int(pt.px[i]), int(pr3.px[i])};
                     const double e = g.px[i] / 255.0 - idealNoise(p, tables, rcc, c[0], c[1], c[2]);
                     sq += e * e;
                     if (rayshade) {
@@ -298,6 +298,14 @@ int main(int argc, char** argv) {
             }
             gln.setCopyTexSubImage(false);
             {
+                // 6.2 in isolation: one copy vs one draw (min over repetitions)
+                const int count = n > 256 ? 10 : 50;
+                gln.copyMs(count, 1), gln.drawMs(count, 1);  // warm-up
+                const double c = gln.copyMs(count, frames), d = gln.drawMs(count, frames);
+                pr["isolated"].push_back({{"size", n}, {"copy_ms", c}, {"draw_ms", d}, {"count", count}, {"reps", frames}});
+                std::fprintf(stderr, "isolated %d: copy %.3f ms, draw %.3f ms\n", n, c, d);
+            }
+            {
                 Params p;
                 p.variant = Variant::Xor;
                 pst::gpu::Timing tm;
@@ -309,6 +317,75 @@ int main(int argc, char** argv) {
                          {"gl_pixels_differing", nullptr}};
                 quality(row, g, p, true);
                 std::fprintf(stderr, "proposals single pass %d: min %.2f ms\n", n, tm.msPerFrameMin);
+                rows.push_back(row);
+            }
+        }
+        // Section 6.1: the exclusive-or variant at b = 8, 10, 16 on GL and 24 (the packed 24-bit
+        // luminance: L = R << 16 | G << 8 | B inside a combiner of 16.8 fixed point, modelled as
+        // 24-bit UNORM images; no GL target) with b_i = 4 (16 cells, the paper's Figure 4) and
+        // b_f = b - 4; errors in units of 1/255 for comparison across b.
+        {
+            const int n = quick ? 64 : 256;
+            struct Prec {
+                int b;
+                const char* target;
+                bool gl;
+                pst::gpu::TargetFormat fmt;
+            };
+            for (const Prec& pc : {Prec{8, "RGBA8", true, pst::gpu::TargetFormat::RGBA8},
+                                   Prec{10, "RGB10_A2", true, pst::gpu::TargetFormat::RGB10A2},
+                                   Prec{16, "R16_EXT", true, pst::gpu::TargetFormat::R16},
+                                   Prec{24, "packed 24-bit luminance (CPU model)", false, pst::gpu::TargetFormat::RGBA8}}) {
+                Params p;
+                p.variant = Variant::Xor;
+                p.format.b = pc.b;
+                p.format.bf = pc.b - 4;
+                const uint32_t M = uint32_t(p.format.max());
+                std::mt19937 g3(seed + 7);
+                Image8 ps{n, n, {}}, pt = ps, pr3 = ps;
+                for (Image8* im : {&ps, &pt, &pr3})
+                    for (int i = 0; i < n * n; ++i) im->px.push_back(g3() & M);
+                const Program prog = xorProgram(p);
+                const Tables tables = makeTables(p);
+                Stats stats;
+                const Image8 cpu = runCpu(prog, tables, ps, pt, pr3, &stats);
+                Image8 g = cpu;
+                json row{{"name", std::string("exclusive-or hash (6.3), b = ") + std::to_string(pc.b) + ", b_i 4"},
+                         {"target", pc.target}, {"size", n}, {"b", pc.b}, {"b_f", p.format.bf}, {"draws", prog.draws()},
+                         {"min_tie_margin_lsb", stats.minTieMargin}};
+                if (pc.gl) {
+                    pst::gpu::GlMultipass glp(n, n, pc.fmt);
+                    glp.run(prog, tables, ps, pt, pr3, pst::gpu::BlendArith::Shader);
+                    pst::gpu::Timing tm;
+                    g = glp.run(prog, tables, ps, pt, pr3, pst::gpu::BlendArith::Shader, frames, &tm);
+                    int diff = 0, maxd = 0;
+                    for (size_t i = 0; i < g.px.size(); ++i) {
+                        diff += g.px[i] != cpu.px[i];
+                        maxd = std::max<int>(maxd, std::abs(int64_t(g.px[i]) - int64_t(cpu.px[i])));
+                    }
+                    row["frames"] = frames;
+                    row["ms_min"] = tm.msPerFrameMin;
+                    row["ms_mean"] = tm.msPerFrame;
+                    row["ms_per_draw"] = tm.msPerFrameMin / tm.draws;
+                    row["gl_pixels_differing"] = diff;
+                    row["gl_max_difference_lsb_of_b"] = maxd;
+                } else {
+                    row["ms_min"] = nullptr;
+                    row["ms_per_draw"] = nullptr;
+                    row["gl_pixels_differing"] = nullptr;
+                }
+                const RcConstants rcc = rcConstants(p);
+                double sq = 0, sqr = 0;
+                for (size_t i = 0; i < g.px.size(); ++i) {
+                    const uint32_t c[3] = {ps.px[i], pt.px[i], pr3.px[i]};
+                    const double v = g.px[i] / double(M);
+                    const double e = v - idealNoise(p, tables, rcc, int(c[0]), int(c[1]), int(c[2]));
+                    const double er = v - (pst::noise(glm::dvec3(c[0], c[1], c[2]) / double(1 << p.format.bf), rp) + 0.5);
+                    sq += e * e, sqr += er * er;
+                }
+                row["rms_vs_ideal_lsb"] = std::sqrt(sq / g.px.size()) * 255;
+                row["rms_vs_rayshade_lsb"] = std::sqrt(sqr / g.px.size()) * 255;
+                std::fprintf(stderr, "precision b %d: rms vs Rayshade %.4f (1/255)\n", pc.b, std::sqrt(sqr / g.px.size()) * 255);
                 rows.push_back(row);
             }
         }

@@ -145,7 +145,7 @@ int main(int argc, char** argv) {
     ro.corner = pst::NoiseCorner::Value;
     const RcConstants rcc = rcConstants(params);
     for (size_t i = 0; i < noise.px.size(); ++i) {
-        const int c[3] = {s.px[i], t.px[i], rr.px[i]};
+        const int c[3] = {int(s.px[i]), int(t.px[i]), int(rr.px[i])};
         const double ideal = idealNoise(params, tables, rcc, c[0], c[1], c[2]);
         const double e = noise.px[i] / 255.0 - ideal;
         sq += e * e;
