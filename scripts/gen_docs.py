@@ -12,10 +12,14 @@ beside them (pstlib/handfigures.py):
                         register-map    the register map (pstlib/contract.py)
   docs/PROFILES.md      profile-keys    every key of a profile file (pstlib/contract.py)
   docs/ARCHITECTURE.md  rtl-modules     every file under rtl/ with what its header comment says
+  docs/MULTIPASS.md     multipass-quality, multipass-proposals
+                                        the multipass noise's quality and the paper's proposals
+                                        measured (pstlib/multipass_doc.py)
 
 Sources: scripts/synth/baseline.json (scripts/check_baseline.py --update or --add after a
 synthesis), scripts/synth/layout_derate.json (scripts/pnr.py --update-derate),
 scripts/synth/noise_units.json (by hand from scripts/synth.py and scripts/fidelity.py runs),
+docs/data/multipass.json (build/pst_multipass_study --out docs/data/multipass.json),
 rtl/**/*.sv{,h}, rtl/contract.toml and rtl/configs/*.toml.
 
     scripts/gen_docs.py --write            # rewrite the stale sections
@@ -31,7 +35,7 @@ import json
 import sys
 from pathlib import Path
 
-from pstlib import contract, docgen, handfigures, noise_units, rtl_modules, silicon_table
+from pstlib import contract, docgen, handfigures, multipass_doc, noise_units, rtl_modules, silicon_table
 from pstlib.docgen import Section
 from pstlib.paths import ROOT
 
@@ -99,6 +103,8 @@ SECTIONS = [
     Section("docs/HARDWARE.md", "register-map", lambda root: contract.hardware_md_table(_contract(root))),
     Section("docs/PROFILES.md", "profile-keys", lambda root: contract.profile_keys_md(_contract(root), root)),
     Section("docs/ARCHITECTURE.md", "rtl-modules", rtl_modules.markdown),
+    Section("docs/MULTIPASS.md", "multipass-quality", multipass_doc.quality_markdown),
+    Section("docs/MULTIPASS.md", "multipass-proposals", multipass_doc.proposals_markdown),
 ]
 
 

@@ -30,6 +30,12 @@ namespace pst::gpu {
 //           so a driver may differ from round(D S / 255) by an LSB per multiply.
 enum class BlendArith { Shader, Blend };
 
+// The images' texture format (section 6.1's precision): RGBA8 (b = 8, the paper's), RGB10_A2
+// (b = 10), R16_EXT (b = 16, GL_EXT_texture_norm16). The program's Program::b must match.
+enum class TargetFormat { RGBA8, RGB10A2, R16 };
+int formatBits(TargetFormat f);
+const char* formatName(TargetFormat f);
+
 struct Timing {
     int draws = 0;           // draw calls per frame (the paper's passes)
     int frames = 0;          // frames timed
@@ -42,10 +48,22 @@ struct Timing {
 class GlMultipass {
   public:
     // Needs a current context (EglContext); width x height images.
-    GlMultipass(int width, int height);
+    GlMultipass(int width, int height, TargetFormat format = TargetFormat::RGBA8);
     ~GlMultipass();
     GlMultipass(const GlMultipass&) = delete;
     GlMultipass& operator=(const GlMultipass&) = delete;
+
+    // Section 6.2: savetex as the paper did it, glCopyTexSubImage2D. When on, every draw renders
+    // into one framebuffer texture and is then copied into its destination image's texture
+    // (shader blends only); when off (the default), render to texture: the draw's target
+    // becomes the image (a rename).
+    void setCopyTexSubImage(bool on);
+
+    // Section 6.2 in isolation: the time of one glCopyTexSubImage2D of a whole image (fbTex to an
+    // image texture) and of one PixelTransfer draw (scale and bias, no map), each the minimum over
+    // `reps` repetitions of `count` operations between glFinish calls, divided by `count`.
+    double copyMs(int count, int reps);
+    double drawMs(int count, int reps);
 
     // Runs the program `frames` times on the same input (the result is the same every frame;
     // more frames for timing) and reads tex_noise back.
@@ -58,6 +76,13 @@ class GlMultipass {
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
+
+// The upper bound of section 6's proposals: the same noise as Variant::Xor (Rayshade's value
+// noise with the 8-bit hash, model/noise.h Perm256, corners Value; linear or SCURVE weights of
+// u = F / 2^b_f) in one draw of one fragment shader, float arithmetic, the tables as textures,
+// written to RGBA8. Needs a current context. Returns the bytes; timing as GlMultipass::run.
+multipass::Image8 singlePassNoise(const multipass::Image8& s, const multipass::Image8& t, const multipass::Image8& r,
+                                  const multipass::Params& params, int frames = 1, Timing* timing = nullptr);
 
 // For an atlas of solid-texture coordinates (the `pst atlas` filler): the noise n in [0, 1]
 // (the byte / 255) at each coordinate, quantized by multipass::toFixed, on the GPU. Opens its

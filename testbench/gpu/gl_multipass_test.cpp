@@ -16,6 +16,7 @@
 #include "cpu_model.h"
 #include "egl_context.h"
 #include "gl_multipass.h"
+#include "noise.h"
 
 using namespace pst::multipass;
 using pst::gpu::BlendArith;
@@ -32,7 +33,7 @@ int compare(const char* what, const Image8& gl, const Image8& cpu, bool mustEqua
     std::printf("%-44s %6zu pixels, %d differ%s", what, gl.px.size(), bad, bad ? "" : "\n");
     if (bad)
         std::printf(" (first at x %d y %d: GL %d, CPU model %d)%s\n", first % gl.width, first / gl.width,
-                    gl.px[first], cpu.px[first], mustEqual ? "" : " [allowed by the GL spec]");
+                    gl.px[first], cpu.px[first], mustEqual ? "" : " [not required: allowed by the GL spec or below float32 resolution]");
     return mustEqual && bad ? 1 : 0;
 }
 
@@ -54,7 +55,7 @@ int blendOps() {
                 const int D = i & 255, S = i >> 8, Se = op == Op::BlendMulInv ? 255 - S : S;
                 exactDiffer += g.px[i] != cpu.px[i];
                 if (op == Op::BlendMul || op == Op::BlendMulInv)  // the two bytes nearest D S / 255
-                    outside += g.px[i] != D * Se / 255 && g.px[i] != (D * Se + 254) / 255;
+                    outside += int(g.px[i]) != D * Se / 255 && int(g.px[i]) != (D * Se + 254) / 255;
             }
             const bool mul = op == Op::BlendMul || op == Op::BlendMulInv;
             const bool ok = arith == BlendArith::Shader || !mul ? exactDiffer == 0 : outside == 0;
@@ -84,13 +85,15 @@ int main() {
             for (int i = 0; i < w * h; ++i) im->px.push_back(uint8_t(gen() & 255));
         int failures = blendOps();
         pst::gpu::GlMultipass gl(w, h);
+        for (Variant variant : {Variant::Sgi, Variant::Xor})
         for (Interp interp : {Interp::Linear, Interp::Scurve})
             for (int bf = 1; bf <= 7; ++bf) {
                 Params p;
                 p.format.bf = bf;
                 p.interp = interp;
+                p.variant = variant;
                 p.seed = seed;
-                const Program prog = sgiProgram(p);
+                const Program prog = makeProgram(p);
                 const Tables tables = makeTables(p);
                 Stats stats;
                 const Image8 cpu = runCpu(prog, tables, s, t, r, &stats);
@@ -100,15 +103,95 @@ int main() {
                 }
                 for (BlendArith arith : {BlendArith::Shader, BlendArith::Blend}) {
                     char what[96];
-                    std::snprintf(what, sizeof what, "sgi %s b_f %d, blends as %s:",
-                                  interp == Interp::Linear ? "linear" : "scurve", bf,
+                    std::snprintf(what, sizeof what, "%s %s b_f %d, blends as %s:",
+                                  variant == Variant::Sgi ? "sgi" : "xor", interp == Interp::Linear ? "linear" : "scurve", bf,
                                   arith == BlendArith::Shader ? "shaders" : "glBlendFunc");
                     const bool exact = arith == BlendArith::Shader;
                     failures += compare(what, gl.run(prog, tables, s, t, r, arith), cpu, exact);
                 }
             }
+        // Section 5's register-combiner variant: every combiner pass in integer arithmetic,
+        // the weights' multiplies and the sum as shaders (exact) or glBlendFunc (reported).
+        for (int bf = 1; bf <= 7; ++bf) {
+            Params p;
+            p.variant = Variant::Rc;
+            p.format.bf = bf;
+            p.seed = seed;
+            const Program prog = rcProgram(p);
+            const Tables tables = makeTables(p);
+            const Image8 cpu = runCpu(prog, tables, s, t, r);
+            for (BlendArith arith : {BlendArith::Shader, BlendArith::Blend}) {
+                char what[96];
+                std::snprintf(what, sizeof what, "rc b_f %d (%d draws), blends as %s:", bf, prog.draws(),
+                              arith == BlendArith::Shader ? "shaders" : "glBlendFunc");
+                failures += compare(what, gl.run(prog, tables, s, t, r, arith), cpu, arith == BlendArith::Shader);
+            }
+        }
+        // Section 6.2: savetex as glCopyTexSubImage2D after every draw gives the same bytes.
+        gl.setCopyTexSubImage(true);
+        for (Variant variant : {Variant::Sgi, Variant::Rc, Variant::Xor}) {
+            Params p;
+            p.variant = variant;
+            p.seed = seed;
+            const Program prog = makeProgram(p);
+            const Tables tables = makeTables(p);
+            failures += compare(variant == Variant::Sgi ? "sgi b_f 4, glCopyTexSubImage2D:"
+                                : variant == Variant::Rc ? "rc b_f 4, glCopyTexSubImage2D:" : "xor b_f 4, glCopyTexSubImage2D:",
+                                gl.run(prog, tables, s, t, r, BlendArith::Shader), runCpu(prog, tables, s, t, r), true);
+        }
+        gl.setCopyTexSubImage(false);
+        // The single-pass shader against Rayshade's value noise (model/noise.h, Perm256): the
+        // value bytes (<= 1/2 LSB, weighted) and the output rounding (1/2 LSB): <= 1 LSB.
+        for (Interp interp : {Interp::Linear, Interp::Scurve})
+            for (int bf : {1, 4, 7}) {
+                Params p;
+                p.format.bf = bf;
+                p.interp = interp;
+                pst::NoiseOptions ro;
+                ro.interp = interp == Interp::Scurve ? pst::NoiseInterp::Scurve : pst::NoiseInterp::Linear;
+                ro.corner = pst::NoiseCorner::Value;
+                ro.hash = pst::NoiseHash::Perm256;
+                const Image8 g = pst::gpu::singlePassNoise(s, t, r, p);
+                double mx = 0;
+                for (size_t i = 0; i < g.px.size(); ++i) {
+                    const glm::dvec3 q = glm::dvec3(s.px[i], t.px[i], r.px[i]) / double(1 << bf);
+                    mx = std::max(mx, std::fabs(g.px[i] - (pst::noise(q, ro) + 0.5) * 255.0));
+                }
+                const bool ok = mx <= 1.0 + 1e-3;
+                std::printf("single pass %s b_f %d vs Rayshade (Perm256, value): max %.3f LSB%s\n",
+                            interp == Interp::Linear ? "linear" : "scurve", bf, mx, ok ? "" : "  FAIL (> 1 LSB)");
+                failures += !ok;
+            }
+        // Section 6.1's precision: the exclusive-or variant on RGB10_A2 and R16_EXT images.
+        // Exact where the model keeps every PixelTransfer value at least 2^-5 LSB from a
+        // rounding tie (at b = 16 a float32 ulp near 1 is 2^-8 LSB; the multiplies are done in
+        // integers); below that float32 cannot decide a tie's side: reported, not required.
+        for (auto [fmt, bf] : {std::pair{pst::gpu::TargetFormat::RGB10A2, 6}, std::pair{pst::gpu::TargetFormat::R16, 4},
+                               std::pair{pst::gpu::TargetFormat::R16, 12}}) {
+            Params p;
+            p.variant = Variant::Xor;
+            p.format.b = pst::gpu::formatBits(fmt);
+            p.format.bf = bf;
+            const uint32_t M = uint32_t(p.format.max());
+            Image8 ws{w, h, {}}, wt = ws, wr = ws;
+            for (Image8* im : {&ws, &wt, &wr})
+                for (int i = 0; i < w * h; ++i) im->px.push_back(gen() & M);
+            const Program prog = xorProgram(p);
+            const Tables tables = makeTables(p);
+            Stats stats;
+            const Image8 cpu = runCpu(prog, tables, ws, wt, wr, &stats);
+            pst::gpu::GlMultipass glw(w, h, fmt);
+            char what[96];
+            std::snprintf(what, sizeof what, "xor %s b %d b_f %d (tie margin %.1e):", pst::gpu::formatName(fmt),
+                          p.format.b, bf, stats.minTieMargin);
+            const Image8 g = glw.run(prog, tables, ws, wt, wr, BlendArith::Shader);
+            const bool exact = stats.minTieMargin >= 1.0 / 32 - 1e-12;
+            failures += compare(what, g, cpu, exact);
+        }
         // An atlas: coordinates on a sphere of radius 7 around (8, 8, 8), through gpuNoise.
+        for (Variant variant : {Variant::Sgi, Variant::Rc, Variant::Xor}) {
         Params p;
+        p.variant = variant;
         std::vector<glm::dvec3> coords;
         Image8 as{int(w * h), 1, {}}, at = as, ar = as;
         for (int i = 0; i < w * h; ++i) {
@@ -120,10 +203,13 @@ int main() {
             ar.px.push_back(toFixed(coords.back().z, p.format));
         }
         const std::vector<float> n = pst::gpu::gpuNoise(coords, p);
-        const Image8 cpu = runCpu(sgiProgram(p), makeTables(p), as, at, ar);
+        const Image8 cpu = runCpu(makeProgram(p), makeTables(p), as, at, ar);
         Image8 g{int(n.size()), 1, {}};
         for (float v : n) g.px.push_back(uint8_t(std::lround(v * 255.0f)));
-        failures += compare("atlas (sphere), gpuNoise:", g, cpu, true);
+        failures += compare(variant == Variant::Sgi ? "atlas (sphere), gpuNoise, sgi:"
+                            : variant == Variant::Rc ? "atlas (sphere), gpuNoise, rc:" : "atlas (sphere), gpuNoise, xor:",
+                            g, cpu, true);
+        }
         std::printf("%s\n", failures ? "FAILED" : "PASSED: GL output (blends as shaders) equals the CPU model bit for bit; glBlendFunc within the GL spec");
         return failures ? 1 : 0;
     } catch (const pst::gpu::EglUnavailable& e) {

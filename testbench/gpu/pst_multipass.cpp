@@ -18,6 +18,7 @@
 #include "egl_context.h"
 #include "gl_multipass.h"
 #include "noise.h"
+#include "quality.h"
 
 using namespace pst::multipass;
 using pst::gpu::BlendArith;
@@ -51,7 +52,8 @@ int main(int argc, char** argv) {
     std::string variant = "sgi", interp = "linear", arith = "shader", out, json;
     bool check = false;
     app.add_option("--size", size, "image width and height (pixels)")->check(CLI::Range(1, 4096));
-    app.add_option("--variant", variant, "pass algorithm: sgi (section 4)")->check(CLI::IsMember({"sgi"}));
+    app.add_option("--variant", variant, "pass algorithm: sgi (section 4), rc (section 5, register combiners) or xor (section 6.3, exclusive-or hash)")
+        ->check(CLI::IsMember({"sgi", "rc", "xor"}));
     app.add_option("--bf", bf, "fraction bits b_f of the 8-bit coordinates (b_i = 8 - b_f)")->check(CLI::Range(1, 8));
     app.add_option("--interp", interp, "linear (Figure 3) or scurve (section 7, 4 more passes per axis)")
         ->check(CLI::IsMember({"linear", "scurve"}));
@@ -73,6 +75,7 @@ int main(int argc, char** argv) {
     params.format.bf = bf;
     params.interp = interp == "scurve" ? Interp::Scurve : Interp::Linear;
     params.seed = seed;
+    params.variant = variant == "rc" ? Variant::Rc : variant == "xor" ? Variant::Xor : Variant::Sgi;
     const Format& f = params.format;
     // Figure 4's plane: s, t from 0 to 2^b_i over the image (every byte value at size 256), r fixed.
     Image8 s{size, size, {}}, t = s, rr = s;
@@ -82,7 +85,13 @@ int main(int argc, char** argv) {
             t.px.push_back(uint8_t(y * 256 / size));
             rr.px.push_back(toFixed(r, f));
         }
-    const Program prog = sgiProgram(params);
+    Program prog;
+    try {
+        prog = makeProgram(params);
+    } catch (const std::invalid_argument& e) {
+        std::cerr << "error: " << e.what() << "\n";
+        return 2;
+    }
     const Tables tables = makeTables(params);
     nlohmann::json j;
     Image8 noise;
@@ -105,7 +114,7 @@ int main(int argc, char** argv) {
     }
     j["variant"] = variant;
     j["size"] = size;
-    j["b"] = Format::b;
+    j["b"] = f.b;
     j["b_i"] = f.bi();
     j["b_f"] = f.bf;
     j["interp"] = interp;
@@ -134,23 +143,10 @@ int main(int argc, char** argv) {
     pst::NoiseOptions ro;
     ro.interp = params.interp == Interp::Scurve ? pst::NoiseInterp::Scurve : pst::NoiseInterp::Linear;
     ro.corner = pst::NoiseCorner::Value;
-    const int m = (1 << f.bf) - 1;
+    const RcConstants rcc = rcConstants(params);
     for (size_t i = 0; i < noise.px.size(); ++i) {
-        const int c[3] = {s.px[i], t.px[i], rr.px[i]};
-        int K[3];
-        double u[3];
-        for (int a = 0; a < 3; ++a) {
-            K[a] = c[a] >> f.bf;
-            u[a] = double(c[a] & m) / m;
-            if (params.interp == Interp::Scurve) u[a] = u[a] * u[a] * (3 - 2 * u[a]);
-        }
-        double ideal = 0;
-        for (int k = 0; k < 8; ++k) {
-            double w = 1;
-            for (int a = 0; a < 3; ++a) w *= (k >> a & 1) ? u[a] : 1 - u[a];
-            ideal += w * tables[Nran][tables[Sran][K[0] + (k & 1)] + tables[Tran][K[1] + (k >> 1 & 1)] +
-                                      tables[Rran][K[2] + (k >> 2 & 1)]] / 255.0;
-        }
+        const int c[3] = {int(s.px[i]), int(t.px[i]), int(rr.px[i])};
+        const double ideal = idealNoise(params, tables, rcc, c[0], c[1], c[2]);
         const double e = noise.px[i] / 255.0 - ideal;
         sq += e * e;
         maxErr = std::max(maxErr, std::fabs(e));
@@ -168,7 +164,8 @@ int main(int argc, char** argv) {
     if (!out.empty()) {
         auto img = OIIO::ImageOutput::create(out);
         OIIO::ImageSpec spec(size, size, 1, OIIO::TypeDesc::UINT8);
-        if (!img || !img->open(out, spec) || !img->write_image(OIIO::TypeDesc::UINT8, noise.px.data()) ||
+        const std::vector<uint8_t> bytes(noise.px.begin(), noise.px.end());
+        if (!img || !img->open(out, spec) || !img->write_image(OIIO::TypeDesc::UINT8, bytes.data()) ||
             !img->close()) {
             std::cerr << "error: cannot write " << out << "\n";
             return 2;
