@@ -387,10 +387,11 @@ SceneObject parseObject(const Ctx& c, const toml::table& t, const std::string& p
         const std::string full = file[0] == '/' ? file : (std::filesystem::path(c.file).parent_path() / file).string();
         o.meshSource = c.at(fn, join(path, "file")) + ": " + full;
         make = [&c, fn, full, field = join(path, "file")] {
+            // The reader's InputError names the file (and line): "PATH:LINE: KEYWORD: what".
             try {
                 return loadObjMesh(full, kMaxSceneNumber, kMaxSceneTriangles);
             } catch (const std::runtime_error& e) {
-                c.fail(fn, field, full + ": " + e.what());
+                c.fail(fn, field, e.what());
             }
         };
     } else {
