@@ -220,7 +220,7 @@ private:
             }
             for (size_t k = 1; k + 1 < face_.size(); ++k) {
                 if (mesh_.triangles.size() >= lim_.maxTriangles)
-                    fail(kw, "more than " + std::to_string(lim_.maxTriangles) + " triangles (the OBJ limit)");
+                    fail(kw, "more than " + std::to_string(lim_.maxTriangles) + " triangles (" + lim_.triangleLimit + ")");
                 mesh_.triangles.push_back({face_[0], face_[k], face_[k + 1]});
             }
         } else if (kw == "o" || kw == "g" || kw == "s" || kw == "mg" || kw == "usemtl" || kw == "mtllib" ||

@@ -51,6 +51,7 @@ struct ObjLimits {
     uint64_t maxBytes = kMaxObjBytes;
     size_t maxVertices = kMaxObjVertices;
     size_t maxTriangles = kMaxObjTriangles;
+    std::string triangleLimit = "the OBJ limit";  // what maxTriangles is, for the message
 };
 
 // Reads the file at `path`: refuses anything but a regular file by kind before opening it

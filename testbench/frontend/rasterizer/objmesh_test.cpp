@@ -171,6 +171,9 @@ TEST(ObjMesh, LimitsCheckedWhileReading) {
     lim.maxTriangles = 2;
     EXPECT_EQ(refusal(std::string(kTri) + "v 1 1 0\nf 1 2 3\nf 1 2 3 4\n", lim),
               "m.obj:6: f: more than 2 triangles (the OBJ limit)");
+    lim.maxTriangles = 0;  // what a scene's budget leaves (scene.cpp)
+    lim.triangleLimit = "what the scene's limit leaves";
+    EXPECT_EQ(refusal(std::string(kTri) + "f 1 2 3\n", lim), "m.obj:4: f: more than 0 triangles (what the scene's limit leaves)");
     lim = ObjLimits();
     lim.maxBytes = 100;
     std::string comments;
