@@ -23,9 +23,11 @@
 // limits.maxBytes bytes read (the input is streamed through a 64 KiB buffer, never held), lines
 // of at most kMaxObjLine bytes, at most maxVertices positions and maxTriangles triangles. The
 // heap in use while reading stays below
-//     72 bytes x vertices + 36 bytes x triangles + 1 MiB
-// (positions 24 bytes each and triangles 12, vectors doubling; the texcoords copy at the end),
-// so at the default limits (2^22 vertices, kMaxSceneTriangles = 2^22 triangles) below 433 MiB
+//     72 bytes x vertices + 36 bytes x triangles + 2 MiB
+// (positions 24 bytes each and triangles 12, vectors doubling; the texcoords copy at the end;
+// the line-sized scratch: the 64 KiB buffer, the line, its tokens and a face's corners, under
+// 1.2 MiB with their growth), so at the default limits (2^22 vertices, kMaxSceneTriangles =
+// 2^22 triangles) below 434 MiB
 // whatever the input; a 1M-face mesh (0.5M vertices) adds 35 MiB at peak, an endless input
 // 2 MiB (objmesh_test measures both).
 //
