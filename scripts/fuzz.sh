@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Fuzzes the input parsers (scene, texture block, fragment file, profile) with libFuzzer:
+# Fuzzes the input parsers (scene, texture block, fragment file, profile, OBJ mesh) with libFuzzer:
 # clang 14 with AddressSanitizer + UndefinedBehaviorSanitizer, build tree build-fuzz/
-# (-DPST_FUZZ=ON), seed corpus from scenes/, rtl/configs/ and testbench/verify/fuzz/seeds/.
+# (-DPST_FUZZ=ON), seed corpus from scenes/ (its .obj meshes too), rtl/configs/ and
+# testbench/verify/fuzz/seeds/.
 #   scripts/fuzz.sh                    every target, PST_FUZZ_SECONDS (default 60) s each
 #   scripts/fuzz.sh scene 600          one target for 600 s
 #   PST_FUZZ_RUNS=1000000 scripts/fuzz.sh   a fixed number of executions per target instead
@@ -16,7 +17,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh >/dev/null
 SECS=${2:-${PST_FUZZ_SECONDS:-60}}
-TARGETS=(scene texture fragments profile)
+TARGETS=(scene texture fragments profile obj)
 if [ $# -ge 1 ]; then TARGETS=("$1"); fi
 B=build-fuzz
 if [ ! -f $B/CMakeCache.txt ]; then
@@ -26,8 +27,9 @@ fi
 cmake --build $B -j2 --target "${TARGETS[@]/#/fuzz_}"
 
 # Seeds: scene files; each scene's texture tables as texture blocks; profiles; fragments.
-mkdir -p $B/seeds/scene $B/seeds/texture $B/seeds/profile $B/seeds/fragments
+mkdir -p $B/seeds/scene $B/seeds/texture $B/seeds/profile $B/seeds/fragments $B/seeds/obj
 cp scenes/*.toml $B/seeds/scene/
+find scenes -name '*.obj' -exec cp {} $B/seeds/obj/ \;
 cp rtl/configs/*.toml sim/test_profiles/*.toml $B/seeds/profile/
 cp testbench/verify/fuzz/seeds/fragments/* $B/seeds/fragments/
 /usr/bin/python3 - "$B/seeds/texture" scenes/*.toml <<'PY'

@@ -15,7 +15,7 @@ PACKAGES=(
   ffmpeg                            # pst animate: frames -> video (VP9 webm)
   slurm-wlm slurm-client munge      # scripts/search.py --backend slurm; ctest -L slurm (scripts/slurm_local.sh)
   lcov                            # scripts/coverage.sh: genhtml
-  libtinyobjloader-dev libmetis-dev # pst atlas: OBJ meshes (mesh = "obj"), the multiresolution atlas's partition
+  libmetis-dev                     # pst atlas: the multiresolution atlas's partition
   libfftw3-dev libeigen3-dev       # model/subband: spectral noise tiles (FFT), least-squares weights
   z3 python3-z3                    # scripts/mul_proof.py: the multiplier forms' proof (with Yosys's ABC)
   libegl-dev libgles-dev libegl-mesa0 libgl1-mesa-dri  # pst_multipass: OpenGL ES 3 through EGL without a display (llvmpipe)

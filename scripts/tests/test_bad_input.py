@@ -413,3 +413,74 @@ def test_12_bandlimit_the_profile_cannot_do_names_the_line(tmp_path, bandlimit, 
     out = tmp_path / "out"
     refused(["render", s, "--profile", "reduced", "--model", "golden", "--size", 8, "-o", out, "-q"],
             re.escape(str(s)) + r":\d+: " + pattern, [out])
+
+
+# 13. OBJ meshes read strictly (issue 41): every malformed coordinate or index, a short face, a
+# file that is not a regular file refused with the OBJ's own line (`error: SCENE:LINE:
+# objects[0].file: PATH:LINE: KEYWORD: what`), exit 2, nothing written; a byte-order mark and
+# CRLF line ends read as plain LF text.
+TRI = "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
+OBJ = 'mesh = "obj"\nfile = "m.obj"'
+
+
+@pytest.mark.parametrize("obj,pattern", [
+    ("v 0 one 1\n", r":1: v: y 'one' is not a number"),
+    ("v 0 1 nan\n", r":1: v: z 'nan' is not finite"),
+    ("v 0 inf 1\n", r":1: v: y 'inf' is not finite"),
+    ("v 0 1\n", r":1: v: expected x y z \(or x y z w, x y z r g b\), got 2 values"),
+    ("v 0 1.0abc 1\n", r":1: v: y '1\.0abc' is not a number \(trailing 'abc'\)"),
+    (TRI + "f 1 2 4294967299\n", r":4: f: vertex index '4294967299' out of range \(3 vertices defined above\)"),
+    (TRI + "f 1 2 3abc\n", r":4: f: vertex index '3abc' is not an integer"),
+    (TRI + "f 1 2 3.7\n", r":4: f: vertex index '3\.7' is not an integer"),
+    (TRI + "f 0 1 2\n", r":4: f: vertex index 0 \(OBJ indices count from 1, or back from -1\)"),
+    (TRI + "f 1 2 4\n", r":4: f: vertex index '4' out of range \(3 vertices defined above\)"),
+    (TRI + "f -1 -2 -4\n", r":4: f: vertex index '-4' out of range \(3 vertices defined above\)"),
+    (TRI + "f 1 2 3\nf 1\n", r":5: f: a face needs at least 3 vertices, got 1"),
+    (TRI + "f 1 2\n", r":4: f: a face needs at least 3 vertices, got 2"),
+    ("v 0 0 0\rv 1 0 0\rv 0 1 0\rf 1 2 3\r", r":1: a carriage return inside the line \(lines end in LF or CRLF\)"),
+    (TRI + "\0\n", r":4: control character 0x00 \(not a text file\?\)"),
+    (TRI, r": no faces"),
+    ("DIR", r": not a regular file \(a directory\)"),
+    ("FIFO", r": not a regular file \(a FIFO\)"),
+])
+def test_13_obj_refused_with_its_line(tmp_path, obj, pattern):
+    s = scene(tmp_path, object=OBJ)
+    m = tmp_path / "m.obj"
+    if obj == "DIR":
+        m.mkdir()
+    elif obj == "FIFO":
+        os.mkfifo(m)  # opening it would block: refused by kind, unopened
+    else:
+        m.write_bytes(obj.encode())
+    out = tmp_path / "out"
+    refused(["render", s, "-o", out, "-q"],
+            re.escape(str(s)) + r":\d+: objects\[0\]\.file: " + re.escape(str(m)) + pattern, [out])
+
+
+# A device is refused by kind, not read until memory runs out (it used to grow to 2 GB).
+def test_13_obj_device_refused_by_kind(tmp_path):
+    s = scene(tmp_path, object='mesh = "obj"\nfile = "/dev/zero"')
+    out = tmp_path / "out"
+    for mode in (["render", s, "-o", out, "-q"], ["atlas", s, "--size", 16, "-o", out, "-q"]):
+        refused(mode, re.escape(str(s)) + r":\d+: objects\[0\]\.file: /dev/zero: not a regular file "
+                r"\(a character device\)", [out])
+
+
+# A byte-order mark no longer hides the first line (every index shifted by one, another
+# triangle drawn): with it, and with CRLF line ends, the image is the plain file's.
+def test_13_obj_bom_and_crlf_read_as_plain(tmp_path):
+    plain = "v -0.5 0 -0.5\nv 0.5 0 -0.5\nv 0.5 0 0.5\nv -0.5 0 0.5\nf 1 2 3\n"  # the plane y = 0, as PLANE
+    images = {}
+    for name, data in [("plain", plain.encode()), ("bom", b"\xef\xbb\xbf" + plain.encode()),
+                       ("bom_crlf", b"\xef\xbb\xbf" + plain.replace("\n", "\r\n").encode())]:
+        d = tmp_path / name
+        d.mkdir()
+        s = scene(d, object=OBJ)
+        (d / "m.obj").write_bytes(data)
+        rc, err = pst("render", s, "-o", d / "out", "-q")
+        assert rc == 0, err
+        pngs = sorted((d / "out").glob("*.png"))
+        assert pngs, f"no image in {d / 'out'}"
+        images[name] = pngs[0].read_bytes()
+    assert images["bom"] == images["plain"]
+    assert images["bom_crlf"] == images["plain"]

@@ -8,6 +8,7 @@
 #include <glm/mat2x2.hpp>
 
 #include "input_error.h"
+#include "mesh.h"
 
 namespace pst {
 
@@ -206,8 +207,7 @@ std::vector<int> Atlas::owners() const {
 
 void prepareTriangles(std::vector<AtlasTriangle>& tris) {
     for (AtlasTriangle& t : tris) {
-        const double e = t.longestEdge();
-        if (!(t.area() > 1e-12 * e * e))
+        if (zeroArea(t.x[0], t.x[1], t.x[2]))  // sceneTriangles never gives one
             throw InputError("triangle " + std::to_string(t.index) + " of object " + std::to_string(t.object) +
                              ": degenerate (zero area)");
         rightAngleOppositeLongest(t);

@@ -89,7 +89,8 @@ struct Atlas {
 // The smallest legs the packer gives a chart (texels).
 constexpr int kMinLegs = 1;
 
-// Refuses a degenerate triangle (InputError "triangle N of object K: ...") and rotates each
+// Refuses a degenerate triangle (mesh.h: zeroArea; InputError "triangle N of object K: ...":
+// sceneTriangles skips them, so only a caller's own triangles can be) and rotates each
 // triangle's vertices so that x[0], the chart's right angle, is opposite the longest edge.
 void prepareTriangles(std::vector<AtlasTriangle>& triangles);
 

@@ -43,15 +43,19 @@ inline void over(float* dst, const glm::dvec4& src) {
 
 }  // namespace
 
-std::vector<AtlasTriangle> sceneTriangles(const Scene& scene) {
+std::vector<AtlasTriangle> sceneTriangles(const Scene& scene, size_t* skipped) {
     std::vector<AtlasTriangle> out;
+    if (skipped) *skipped = 0;
     for (size_t o = 0; o < scene.objects.size(); ++o) {
         const SceneObject& obj = scene.objects[o];
         if (obj.layer != 0) continue;
         for (size_t i = 0; i < obj.mesh.triangles.size(); ++i) {
             const auto& tr = obj.mesh.triangles[i];
-            // A built-in tessellation's collapsed quad is skipped; a user's mesh file gets no such pass.
-            if (obj.name != "obj" && (tr[0] == tr[1] || tr[1] == tr[2] || tr[2] == tr[0])) continue;
+            // A zero-area triangle has no chart (mesh.h: zeroArea, the rule shared with render).
+            if (zeroArea(obj.mesh.positions[tr[0]], obj.mesh.positions[tr[1]], obj.mesh.positions[tr[2]])) {
+                if (skipped) ++*skipped;
+                continue;
+            }
             AtlasTriangle t;
             t.object = int(o);
             t.index = int(i);

@@ -11,11 +11,11 @@
 
 namespace pst {
 
-// The triangles of the scene's layer-0 objects (world positions, texture-space s). Triangles
-// with a repeated vertex index in a built-in mesh (a tessellation's collapsed quad at a pole)
-// have no surface and are skipped; any other zero-area triangle, and every one of an OBJ mesh,
-// is left for buildAtlas to refuse.
-std::vector<AtlasTriangle> sceneTriangles(const Scene& scene);
+// The triangles of the scene's layer-0 objects (world positions, texture-space s). A zero-area
+// triangle (mesh.h: zeroArea, the rule render follows too) has no surface and gets no chart: it
+// is skipped, and counted in *skipped when given. Its index (AtlasTriangle::index) stays its
+// index in the object's mesh.
+std::vector<AtlasTriangle> sceneTriangles(const Scene& scene, size_t* skipped = nullptr);
 
 // The scene with its layer-0 objects only (what the atlas covers).
 Scene opaqueLayer(const Scene& scene);

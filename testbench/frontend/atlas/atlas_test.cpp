@@ -247,6 +247,25 @@ TEST(Atlas, SeamFreeChartsReadOnlyTheirOwnTexels) {
     }
 }
 
+// The rule render shares (mesh.h: zeroArea): a zero-area triangle of any mesh, an OBJ's
+// included, gets no chart; sceneTriangles skips and counts it, and the atlas builds.
+TEST(Atlas, SceneTrianglesSkipZeroAreaTriangles) {
+    Scene scene;
+    SceneObject o;
+    o.name = "obj";
+    o.mesh.positions = {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}};
+    o.mesh.texcoords = o.mesh.positions;
+    o.mesh.triangles = {{0, 1, 3}, {0, 1, 2}, {0, 0, 1}, {1, 2, 3}};  // collinear, repeated corner
+    scene.objects.push_back(o);
+    size_t skipped = 99;
+    const std::vector<AtlasTriangle> tris = sceneTriangles(scene, &skipped);
+    EXPECT_EQ(skipped, 2u);
+    ASSERT_EQ(tris.size(), 2u);
+    EXPECT_EQ(tris[0].index, 0);  // indices stay the mesh's
+    EXPECT_EQ(tris[1].index, 3);
+    EXPECT_NO_THROW(buildAtlas(tris, opts(AtlasKind::Uniform, 64, Magnification::Nearest)));
+}
+
 TEST(Atlas, RefusesDegenerateTrianglesAndOverfullSizes) {
     std::vector<AtlasTriangle> tris = {rightTriangle(1, 1, 0), rightTriangle(1, 1, 1)};
     tris[1].x[2] = 0.5 * (tris[1].x[0] + tris[1].x[1]);  // collinear

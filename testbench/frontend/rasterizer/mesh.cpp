@@ -36,6 +36,12 @@ void addQuad(Mesh& m, uint32_t a, uint32_t b, uint32_t c, uint32_t d) {
 
 }  // namespace
 
+size_t zeroAreaTriangles(const Mesh& m) {
+    size_t n = 0;
+    for (const auto& t : m.triangles) n += zeroArea(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
+    return n;
+}
+
 // Mesh::transformed: positions by `model`, texcoords by `texture`. A mirroring model matrix
 // (negative determinant) would turn the triangles clockwise, so their winding is reversed.
 Mesh Mesh::transformed(const glm::dmat4& model, const glm::dmat4& texture) const {

@@ -8,6 +8,9 @@
 #include <cstdint>
 #include <vector>
 
+#include <algorithm>
+
+#include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
@@ -21,6 +24,18 @@ struct Mesh {
     // A copy with positions mapped by `model` and texcoords by `texture` (both affine).
     Mesh transformed(const glm::dmat4& model, const glm::dmat4& texture) const;
 };
+
+// The one rule for degenerate triangles (scenes/README.md, "Zero-area triangles"): a triangle
+// whose area is at most 1e-12 of its longest edge squared (a repeated corner, three collinear
+// corners, a sliver thinner than rounding) covers no sample and has no surface to texture.
+// Render (rasterizer.cpp: scanMesh, rasterize) and the atlas (atlas_render.h: sceneTriangles)
+// both skip it; the OBJ reader keeps it (it is valid OBJ). Relative, so scale-invariant.
+inline bool zeroArea(const glm::dvec3& a, const glm::dvec3& b, const glm::dvec3& c) {
+    const double e = std::max({glm::length(b - a), glm::length(c - b), glm::length(a - c)});
+    return !(0.5 * glm::length(glm::cross(b - a, c - a)) > 1e-12 * e * e);
+}
+// The triangles of `m` zeroArea skips.
+size_t zeroAreaTriangles(const Mesh& m);
 
 // Utah teapot: Newell's 32 bicubic Bezier patches, each split into `subdiv` x `subdiv` quads
 // (two triangles each). Object space: about 6.4 wide, 3.15 high, base at y = 0, spout toward +x.

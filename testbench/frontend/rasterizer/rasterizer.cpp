@@ -222,6 +222,8 @@ void scanMeshImpl(const Camera& camera, const Mesh& mesh, int objectId, const Sa
         verts[i] = {viewProj * glm::dvec4(mesh.positions[i], 1.0), mesh.texcoords[i]};
 
     for (const auto& tri : mesh.triangles) {
+        // A zero-area triangle (mesh.h: zeroArea, the rule shared with the atlas) covers nothing.
+        if (zeroArea(mesh.positions[tri[0]], mesh.positions[tri[1]], mesh.positions[tri[2]])) continue;
         // Near clipping into a polygon of up to 4 vertices, fanned into 1 or 2 triangles.
         ClipVertex in[3] = {verts[tri[0]], verts[tri[1]], verts[tri[2]]};
         ClipVertex poly[4];

@@ -183,6 +183,31 @@ TEST(Rasterizer, BackFacesAreDrawn) {
     for (const Fragment& f : fb.fragments()) EXPECT_EQ(f.object, 0);
 }
 
+// A zero-area triangle (mesh.h: zeroArea, the rule the atlas shares) is skipped even where its
+// rounding-thin sliver would cover a sample: a sliver +-h about y = 0, sampled on that row.
+TEST(Rasterizer, ZeroAreaTrianglesAreSkipped) {
+    const Camera cam = makeCamera({0.0, 0.0, 3.0}, {0.0, 0.0, 0.0}, 32, 32);
+    auto sliver = [](double h) {
+        Mesh m;
+        m.positions = {{-1.0, -h, 0.0}, {1.0, -h, 0.0}, {0.0, h, 0.0}};
+        m.texcoords = m.positions;
+        m.triangles = {{0, 1, 2}};
+        return m;
+    };
+    // Samples at y + 0: the row whose samples lie on world y = 0 (the screen's centre line).
+    auto covered = [&](const Mesh& m) {
+        size_t n = 0;
+        for (const Fragment& f : render(cam, m, shifted(0.0, -0.5)).fragments()) n += f.object >= 0;
+        return n;
+    };
+    EXPECT_GT(covered(sliver(1e-3)), 0u);
+    EXPECT_FALSE(zeroArea(sliver(1e-3).positions[0], sliver(1e-3).positions[1], sliver(1e-3).positions[2]));
+    const Mesh thin = sliver(1e-13);  // area 2e-13, longest edge 2: 5e-14 of its square
+    EXPECT_TRUE(zeroArea(thin.positions[0], thin.positions[1], thin.positions[2]));
+    EXPECT_EQ(zeroAreaTriangles(thin), 1u);
+    EXPECT_EQ(covered(thin), 0u);
+}
+
 // ---- Z-buffer and occluder ----------------------------------------------------------------
 
 // A unit quad in the plane z = zPlane centred at x = cx (texcoords = world position).

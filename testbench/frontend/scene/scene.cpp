@@ -25,6 +25,9 @@ struct Ctx {
     std::string file;
     bool meshes = true;   // false: check the objects' keys and values only, build no meshes
     bool tables = true;   // false: check the colour maps' keys and values only, build no tables
+    // Triangles of the objects built so far: an OBJ file may add what kMaxSceneTriangles leaves,
+    // refused while it is read (so the scene's meshes never hold more).
+    mutable size_t triangles = 0;
 
     // "FILE:LINE: FIELD" of node n (":LINE" when the node has a line), a message's prefix.
     std::string at(const toml::node* n, const std::string& field) const { return inputWhere(file, lineOf(n), field); }
@@ -387,10 +390,17 @@ SceneObject parseObject(const Ctx& c, const toml::table& t, const std::string& p
         const std::string full = file[0] == '/' ? file : (std::filesystem::path(c.file).parent_path() / file).string();
         o.meshSource = c.at(fn, join(path, "file")) + ": " + full;
         make = [&c, fn, full, field = join(path, "file")] {
+            // The reader's InputError names the file (and line): "PATH:LINE: KEYWORD: what".
             try {
-                return loadObjMesh(full, kMaxSceneNumber, kMaxSceneTriangles);
+                ObjLimits lim;
+                lim.maxCoord = kMaxSceneNumber;
+                lim.maxTriangles = kMaxSceneTriangles - std::min(c.triangles, kMaxSceneTriangles);
+                if (c.triangles > 0)
+                    lim.triangleLimit = "what the scene's " + std::to_string(kMaxSceneTriangles) +
+                                        "-triangle limit leaves after the objects above";
+                return loadObjMesh(full, lim);
             } catch (const std::runtime_error& e) {
-                c.fail(fn, field, full + ": " + e.what());
+                c.fail(fn, field, e.what());
             }
         };
     } else {
@@ -662,6 +672,7 @@ Scene buildScene(const Ctx& c, const toml::table& root, const std::string& path,
         sc.objects.push_back(parseObject(c, *oa->get(i)->as_table(),
                                          "objects[" + std::to_string(i) + "]", textureIndex));
         triangles += sc.objects.back().mesh.triangles.size();
+        c.triangles = triangles;
         if (triangles > kMaxSceneTriangles)
             c.fail(oa->get(i), "objects[" + std::to_string(i) + "]",
                    "the scene's meshes exceed " + std::to_string(kMaxSceneTriangles) +

@@ -100,6 +100,30 @@ TEST(Scene, EveryPaperSceneParses) {
     EXPECT_EQ(loadScene(sourceDir() + "/scenes/zoneplate.toml").camera.width, 256);
 }
 
+// Render and atlas skip zero-area triangles (mesh.h: zeroArea); no scene of the repository has
+// one, so the rule changed none of their images.
+TEST(Scene, NoSceneHasZeroAreaTriangles) {
+    int scenes = 0;
+    size_t triangles = 0;
+    for (const auto& e : std::filesystem::recursive_directory_iterator(sourceDir() + "/scenes")) {
+        if (e.path().extension() != ".toml") continue;
+        SCOPED_TRACE(e.path().string());
+        Scene s;
+        try {
+            s = loadScene(e.path().string());
+        } catch (const InputError&) {
+            continue;  // not a scene (a profile or texture block kept beside one)
+        }
+        ++scenes;
+        for (const SceneObject& o : s.objects) {
+            EXPECT_EQ(zeroAreaTriangles(o.mesh), 0u) << o.meshSource;
+            triangles += o.mesh.triangles.size();
+        }
+    }
+    EXPECT_GT(scenes, 9);
+    EXPECT_GT(triangles, 10000u);
+}
+
 TEST(Scene, ErrorsNameFileLineAndField) {
     std::string t = kMinimal;
     // Bad value: line of the offending key.

@@ -47,6 +47,24 @@ TEST(FuzzCorpus, Scene) { replay("scene", fuzz::scene); }
 TEST(FuzzCorpus, Texture) { replay("texture", fuzz::texture); }
 TEST(FuzzCorpus, Fragments) { replay("fragments", fuzz::fragments); }
 TEST(FuzzCorpus, Profile) { replay("profile", fuzz::profile); }
+TEST(FuzzCorpus, Obj) { replay("obj", fuzz::obj); }
+
+// The OBJ corpus holds meshes the reader accepts and inputs it refuses, so replaying it is not
+// vacuous either way.
+TEST(FuzzCorpus, ObjAcceptedAndRefused) {
+    int accepted = 0, refused = 0;
+    replay("obj", [&](const std::string& text) {
+        std::istringstream in(text);
+        try {
+            (void)readObjMesh(in, "fuzz.obj");
+            ++accepted;
+        } catch (const InputError&) {
+            ++refused;
+        }
+    });
+    EXPECT_GT(accepted, 0);
+    EXPECT_GT(refused, 0);
+}
 
 // checkScene refuses exactly what parseScene refuses, with the same message (the triangle
 // bound aside, which needs the meshes: no kept input comes near it).
