@@ -8,9 +8,9 @@ beside them (pstlib/handfigures.py):
                         stage-timing    critical path per stage and profile
                         layout-derate   post-route / pre-layout Fmax per routed block
                         noise-units     the noise units' silicon and quality (pstlib/noise_units.py)
-                        cycles          cycles per stage and pixel of every profile (pstlib/contract.py)
-                        register-map    the register map (pstlib/contract.py)
-  docs/PROFILES.md      profile-keys    every key of a profile file (pstlib/contract.py)
+                        cycles          cycles per stage and pixel of every profile (pstlib/contractgen/markdown.py)
+                        register-map    the register map (pstlib/contractgen/markdown.py)
+  docs/PROFILES.md      profile-keys    every key of a profile file (pstlib/contractgen/markdown.py)
   docs/ARCHITECTURE.md  rtl-modules     every file under rtl/ with what its header comment says
   docs/MULTIPASS.md     multipass-quality, multipass-proposals
                                         the multipass noise's quality and the paper's proposals
@@ -35,7 +35,7 @@ import json
 import sys
 from pathlib import Path
 
-from pstlib import contract, docgen, handfigures, multipass_doc, noise_units, rtl_modules, silicon_table
+from pstlib import contract, contractgen, docgen, handfigures, multipass_doc, noise_units, rtl_modules, silicon_table
 from pstlib.docgen import Section
 from pstlib.paths import ROOT
 
@@ -99,9 +99,9 @@ SECTIONS = [
     Section("docs/HARDWARE.md", "stage-timing", lambda root: silicon_table.stages_markdown(baseline_profiles(root))),
     Section("docs/HARDWARE.md", "layout-derate", derate_markdown),
     Section("docs/HARDWARE.md", "noise-units", lambda root: noise_units.markdown(noise_units.load(root))),
-    Section("docs/HARDWARE.md", "cycles", lambda root: contract.cycles_md_table(_contract(root), root)),
-    Section("docs/HARDWARE.md", "register-map", lambda root: contract.hardware_md_table(_contract(root))),
-    Section("docs/PROFILES.md", "profile-keys", lambda root: contract.profile_keys_md(_contract(root), root)),
+    Section("docs/HARDWARE.md", "cycles", lambda root: contractgen.cycles_md_table(_contract(root), root)),
+    Section("docs/HARDWARE.md", "register-map", lambda root: contractgen.hardware_md_table(_contract(root))),
+    Section("docs/PROFILES.md", "profile-keys", lambda root: contractgen.profile_keys_md(_contract(root), root)),
     Section("docs/ARCHITECTURE.md", "rtl-modules", rtl_modules.markdown),
     Section("docs/MULTIPASS.md", "multipass-quality", multipass_doc.quality_markdown),
     Section("docs/MULTIPASS.md", "multipass-proposals", multipass_doc.proposals_markdown),
