@@ -14,7 +14,8 @@ import subprocess
 import sys
 import tempfile
 
-from pstlib import atomic, bench
+from pstlib import atomic
+from pstlib.report import bench
 from pstlib.paths import ROOT
 
 

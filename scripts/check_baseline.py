@@ -38,7 +38,9 @@ import pathlib
 import sys
 import traceback
 
-from pstlib import atomic, baseline, provenance
+from pstlib import atomic
+from pstlib.validation import baseline
+from pstlib.report import provenance
 from pstlib.paths import ROOT
 from pstlib.synth import record, report
 

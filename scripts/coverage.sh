@@ -35,5 +35,5 @@ genhtml --quiet --output-directory $O/html --title "pst RTL coverage" $O/merged.
   cat $O/genhtml.txt; exit 1; }
 # Annotated sources (verilator_coverage marks points below the minimum with %000000).
 verilator_coverage --annotate $O/annotated --annotate-min 1 $O/merged.dat > $O/annotate.txt
-(cd scripts && /usr/bin/python3 -m pstlib.coverage "../$O/merged.dat" "../$O/report.md")
+(cd scripts && /usr/bin/python3 -m pstlib.validation.coverage "../$O/merged.dat" "../$O/report.md")
 echo "coverage: $O/report.md, $O/html/index.html, annotated sources in $O/annotated/"

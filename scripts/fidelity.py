@@ -10,7 +10,8 @@ import argparse
 import json
 import sys
 
-from pstlib import atomic, fidelity, flicker
+from pstlib import atomic
+from pstlib.figures import fidelity, flicker
 
 
 def main(argv=None):

@@ -19,9 +19,9 @@ written to a temporary name in its folder and renamed into place.
 import argparse
 import sys
 
-from pstlib.fig10 import fig10, parse_bits, parse_crop
-from pstlib.fig11 import fig11
-from pstlib.figdata import InputMissing
+from pstlib.figures.fig10 import fig10, parse_bits, parse_crop
+from pstlib.figures.fig11 import fig11
+from pstlib.figures.figdata import InputMissing
 from pstlib.paths import ROOT, profile_path
 
 

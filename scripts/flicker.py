@@ -9,7 +9,8 @@ import argparse
 import sys
 from pathlib import Path
 
-from pstlib import atomic, flicker
+from pstlib import atomic
+from pstlib.figures import flicker
 
 
 def main(argv=None):

@@ -7,13 +7,13 @@ Writes OUT/train/train_NNN.toml, OUT/valid/valid_NNN.toml (scene files `pst rend
 `pst regress` read; 512 x 512 unless --size overrides) and OUT/manifest.json (each scene's
 features: octave count, matrix kind, lacunarity, quadric kind, filter, wrap, interpolation,
 mesh). The same seed gives the same files byte for byte; the training and validation sets come
-from separate random streams. What is drawn: scripts/pstlib/scenegen.py. Exit 2 on bad arguments.
+from separate random streams. What is drawn: scripts/pstlib/validation/scenegen.py. Exit 2 on bad arguments.
 """
 import argparse
 import pathlib
 import sys
 
-from pstlib import scenegen
+from pstlib.validation import scenegen
 from pstlib.paths import ROOT
 
 

@@ -10,7 +10,7 @@ The work is split as `pst regress --list` gives it: one shard per scene x profil
 profile and chunk of at least C random fragments, cut where a segment of the random stream
 starts (`--random C --from K`: the shards simulate what one process would, each fragment once;
 default C: 1M, or fewer so that each local worker gets at least two shards). Each shard is one `pst regress` with its own
-JSON, JUnit and log in OUT/shards/ (scripts/pstlib/regress_shards.py). A shard that leaves no
+JSON, JUnit and log in OUT/shards/ (scripts/pstlib/backends/regress_shards.py). A shard that leaves no
 complete result (killed, crashed, timed out) is run again alone, up to --retries times; a
 later run of the same command runs only the shards without a complete result (a shard that
 failed with a mismatch or an RTL assertion has one: it is not re-run). --shard NAME runs
@@ -19,7 +19,7 @@ profile, the first failure: shard, seed, fragment, replay command, the assertion
 simulator named), OUT/merged.xml (JUnit: every shard's test cases, an error case per shard
 without a result) and the summary on stdout.
 
---backend slurm submits the shards as an sbatch job array (scripts/pstlib/slurm.py, shared
+--backend slurm submits the shards as an sbatch job array (scripts/pstlib/backends/slurm.py, shared
 with scripts/search.py; run it from a checkout on a file system the compute nodes share) and
 waits for it; --pst-arg passes an argument to every shard's `pst regress` (--pst-arg=--probes,
 --pst-arg=--batch=512, --pst-arg=--stall-rate=0.2).
@@ -38,10 +38,10 @@ import sys
 import time
 
 from pstlib import atomic
-from pstlib import regress_shards as R
-from pstlib import slurm
+from pstlib.backends import regress_shards as R
+from pstlib.backends import slurm
 from pstlib.paths import ROOT
-from pstlib.explore.local import run_points, say, stop_children
+from pstlib.backends.local import run_points, say, stop_children
 
 
 class ArgError(Exception):

@@ -4,13 +4,13 @@
     /usr/bin/python3 scripts/report.py out                      Markdown report on stdout
     /usr/bin/python3 scripts/report.py out --md out/report.md --html out/report.html
         Collects out/ (regress.json and its images, out/synth/*.json|md, out/figures, out/sweep,
-        the reference renders) once (pstlib.report_data) and writes both renderings: report.md
+        the reference renders) once (pstlib.report.data) and writes both renderings: report.md
         (tables, links) and report.html (sortable tables, an image viewer per scene, every
         section with an anchor; one file, no network, opens from file://). At the top of both:
         the regression's and the baseline check's results side by side (out/baseline_check.json,
         scripts/check_baseline.py --json; "not run" without it), where the silicon figures came
         from (out/synth/source.json: the record; absent: synthesized in this run) and the
-        provenance (pstlib/provenance.py: commit, tool versions, command line, schema).
+        provenance (pstlib/report/provenance.py: commit, tool versions, command line, schema).
 
     /usr/bin/python3 scripts/report.py --html FILE --regress JSON [--images DIR]
     /usr/bin/python3 scripts/report.py --html FILE --summary DIR/summary.json [...]
@@ -27,7 +27,7 @@ import os
 import pathlib
 import sys
 
-from pstlib import report_data, report_html, report_md
+from pstlib.report import data as report_data, html as report_html, md as report_md
 
 
 def write_atomic(path: pathlib.Path, text: str) -> None:

@@ -17,9 +17,9 @@ Fmax derated by the routed profile's post-route / pre-layout ratio where there i
 --max-loss DB adds the texture-by-texture rule: every training scene within DB of the
 class's start profile (the worst scene alone hides a step colour map or a mod wrap that a
 cut spoils); the walk's merit is then GE saved per dB lost on the scene that loses most.
-Every front point is judged on the held-out validation set (scripts/pstlib/valset.py, seeds
+Every front point is judged on the held-out validation set (scripts/pstlib/validation/valset.py, seeds
 --valid-seed, apart from the training seeds) by the rule of acceptance
-(scripts/pstlib/acceptance.py): every validation scene within 1 dB of the class's start
+(scripts/pstlib/validation/acceptance.py): every validation scene within 1 dB of the class's start
 profile there; front.md gives its largest loss, the scene, and pass / FAIL.
 Knobs: the fraction bits of every format (coord, jacobian, matrix, amplitude, offset, quadric,
 f, grad, width), the noise unit's value/lattice/out fractions and guard bits, the reciprocal
@@ -40,7 +40,7 @@ are not recomputed), points.csv, front.csv, front.md, front.png (area against wo
 PSNR per class, the validation PSNR of each front point beside), rtl/ (the RTL check of every
 front point: verilated into build-search/, `pst regress --size --rtl-size`, 0 mismatches).
 
---backend slurm submits each batch of points as an sbatch job array (scripts/pstlib/explore/slurm.py:
+--backend slurm submits each batch of points as an sbatch job array (scripts/pstlib/backends/slurm.py:
 --partition, --account, --time, --slurm-arg) and collects the same per-point results; a failed
 or cancelled task is rerun by the next run of the same command.
 
@@ -59,7 +59,7 @@ import sys
 
 from pstlib.explore.search import KNOB_NAMES
 from pstlib.explore.search_run import run, settings, worker
-from pstlib import slurm
+from pstlib.backends import slurm
 from pstlib.paths import ROOT
 
 

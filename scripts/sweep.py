@@ -49,7 +49,7 @@ Code: scripts/pstlib/explore/ (sweep.py the knobs and points, sweep_run.py the r
 one point, store.py the results and their reuse, rtlcheck.py, local.py the backend).
 
 Outputs in --out: sweep.csv, sweep.md (table, cheapest setting within 1 dB per knob: every scene
-within 1 dB of the base's PSNR there, the rule of scripts/pstlib/acceptance.py; failures),
+within 1 dB of the base's PSNR there, the rule of scripts/pstlib/validation/acceptance.py; failures),
 ge_vs_psnr_reference.png, ge_vs_psnr_truth.png, knobs/<knob>.png. Exit status: 0, 1 if any
 point (render, synthesis, RTL check) failed, 2 on bad arguments, 130 when interrupted (Ctrl-C,
 or SIGTERM in the background; running children are stopped).

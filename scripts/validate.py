@@ -7,7 +7,7 @@
     scripts/validate.py --train PROFILE... [--seed 1]   the same strata on training seeds
 
 PROFILE: a name (rtl/configs/NAME.toml: full_exact, full, balanced, reduced, ...) or a profile
-file. The set (scripts/pstlib/valset.py): COUNT scenes in eight strata (step-sensitive colour
+file. The set (scripts/pstlib/validation/valset.py): COUNT scenes in eight strata (step-sensitive colour
 maps, a full quadric under a step map, planes to the horizon, rotated marble with a clamped map,
 general affine octaves with a full quadric, axis-aligned octaves at non-power-of-two
 frequencies, clamped step maps, plain draws), every filter kind, both wraps, seeds
@@ -15,7 +15,7 @@ frequencies, clamped step maps, plain draws), every filter kind, both wraps, see
 --model golden` with every profile and full_exact (the golden model only: no RTL build needed);
 PSNR against the double reference.
 
-The rule (scripts/pstlib/acceptance.py): a profile passes when on every scene its PSNR is within
+The rule (scripts/pstlib/validation/acceptance.py): a profile passes when on every scene its PSNR is within
 1 dB of full_exact's on that scene. Writes OUT/validate.md and OUT/validate.json (per profile
 worst and median PSNR, worst loss against full_exact with the scene and its features, per
 stratum worst loss, every scene's PSNR), OUT/scenes/ and OUT/renders/.
@@ -33,7 +33,7 @@ import os
 import pathlib
 import sys
 
-from pstlib import valset, validation
+from pstlib.validation import valset, validate as validation
 from pstlib.paths import ROOT
 
 

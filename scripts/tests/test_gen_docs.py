@@ -1,4 +1,4 @@
-"""The docs' generated sections (scripts/gen_docs.py, pstlib/docgen.py, pstlib/rtl_modules.py):
+"""The docs' generated sections (scripts/gen_docs.py, pstlib/docs/docgen.py, pstlib/docs/rtl_modules.py):
 the committed docs are the generated ones, every RTL file appears in the module table, and a
 file without a header comment is an error naming it."""
 import shutil
@@ -6,7 +6,7 @@ import subprocess
 
 import pytest
 
-from pstlib import docgen, rtl_modules
+from pstlib.docs import docgen, rtl_modules
 from pstlib.paths import PY, ROOT
 
 GEN = ROOT / "scripts" / "gen_docs.py"

@@ -1,6 +1,6 @@
 // pst report viewer: sortable tables and per-scene image viewers (toggle, before/after slider,
 // zoom that shows pixels as pixels, value under the cursor). Plain JS, no network; inlined into
-// the page by scripts/pstlib/report_html.py. A viewer is a div.pv holding a JSON script element
+// the page by scripts/pstlib/report/html.py. A viewer is a div.pv holding a JSON script element
 // {"name": scene, "layers": [{"label", "kind", "src"}], "a": index, "b": index}, its images as
 // data: URIs, so the canvas stays readable (getImageData) from file://.
 "use strict";

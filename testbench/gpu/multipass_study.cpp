@@ -1,5 +1,5 @@
 // pst_multipass_study: the measurements of docs/MULTIPASS.md's generated sections, as one JSON
-// record (docs/data/multipass.json; scripts/gen_docs.py renders it, scripts/pstlib/multipass_doc.py).
+// record (docs/data/multipass.json; scripts/gen_docs.py renders it, scripts/pstlib/docs/multipass_doc.py).
 //
 //   build/pst_multipass_study --out docs/data/multipass.json [--frames 5] [--quick]
 //

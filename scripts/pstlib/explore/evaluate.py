@@ -21,7 +21,7 @@ import tomllib
 from .. import atomic, contract
 from ..fmt import tail
 from ..synth import flow, inputs, liberty
-from .local import run
+from ..backends.local import run
 from .results import psnr as summary_psnr
 from .store import Store, read_json, reusable
 

@@ -4,7 +4,7 @@ checked on the RTL."""
 import math
 import pathlib
 
-from .. import acceptance
+from ..validation import acceptance
 
 PSNR_CAP = 100.0        # PSNR of an exact match (rms 0) in the means
 

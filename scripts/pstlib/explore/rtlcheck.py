@@ -9,7 +9,7 @@ import time
 from .. import atomic
 from ..fmt import tail
 from ..paths import ROOT
-from .local import run, say
+from ..backends.local import run, say
 from .store import read_json
 
 

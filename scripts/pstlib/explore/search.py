@@ -31,7 +31,7 @@ import dataclasses
 import tomllib
 
 from .. import contract, tomledit
-from ..acceptance import passes, scene_loss      # the rule of acceptance, one place (scene_loss re-exported)
+from ..validation.acceptance import passes, scene_loss      # the rule of acceptance, one place (scene_loss re-exported)
 from .point import Point, values_key
 from .sweep import _apply_key, _format_frac, _set_format_frac
 

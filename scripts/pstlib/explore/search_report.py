@@ -5,7 +5,8 @@ import csv
 import io
 import pathlib
 
-from .. import acceptance, atomic
+from ..validation import acceptance
+from .. import atomic
 from .search import pareto
 
 
@@ -67,7 +68,7 @@ def markdown(title: str, frows: list, targets: dict, best: dict, stats: dict, ma
     tol = acceptance.TOLERANCE_DB
     L = [f"# {title}\n", "Least logic area (OSU018 GE, per-module synthesis cache) subject to the worst training-scene "
          "PSNR against the double reference and clocks per pixel; every front point judged on the held-out validation "
-         f"set by the rule of acceptance (scripts/pstlib/acceptance.py: every validation scene within {tol:g} dB of "
+         f"set by the rule of acceptance (scripts/pstlib/validation/acceptance.py: every validation scene within {tol:g} dB of "
          "the class's start profile there) and checked on the RTL (`pst regress`, 0 mismatches).\n"]
     L.append("| class (clk/px <=) | target PSNR dB | best point | logic GE | worst train dB | worst valid dB |")
     L.append("|---:|---:|---|---:|---:|---:|")
@@ -99,7 +100,7 @@ def markdown(title: str, frows: list, targets: dict, best: dict, stats: dict, ma
     L.append(f"Search: {stats['points']} points evaluated ({stats['synthesized']} synthesized, "
              f"{stats['modules_synthesized']} module syntheses, the rest from the cache) in {stats['wall_s']:.0f} s wall: "
              f"{stats['points_per_hour']:.1f} points per hour. Scenes: {stats['train']} training, {stats['valid']} "
-             f"validation (scripts/pstlib/valset.py) at {stats['size']} x {stats['size']}.\n")
+             f"validation (scripts/pstlib/validation/valset.py) at {stats['size']} x {stats['size']}.\n")
     return "\n".join(L) + "\n"
 
 

@@ -9,14 +9,16 @@ import pathlib
 import shutil
 import time
 
-from .. import acceptance, atomic, contract, scenegen, valset
+from ..validation import acceptance, scenegen, valset
+from .. import atomic, contract
 from ..fmt import tail
 from ..paths import ROOT, profile_path
 from ..synth import flow
 from . import evaluate as E
 from . import search as S
-from . import search_report, slurm
-from .local import STOP, run_points, say, stop_children
+from . import search_report
+from ..backends import slurm_search as slurm
+from ..backends.local import STOP, run_points, say, stop_children
 from .rtlcheck import rtl_check
 from .store import Store, read_json
 

@@ -88,7 +88,7 @@ def write_reports(s, out, base, rows, knobs, skipped, rtl, title, elapsed):
                   f"{'' if r is base else fnum(dt, 2)} | {vsb(r)} | {rc} |")
     md += ["", "## Cheapest setting within 1 dB of the base", "",
            "Per knob, among its values (the base's included) that pass the rule of acceptance against the base "
-           "(scripts/pstlib/acceptance.py: every scene's PSNR vs reference within 1 dB of the base's on that scene): "
+           "(scripts/pstlib/validation/acceptance.py: every scene's PSNR vs reference within 1 dB of the base's on that scene): "
            "the lowest logic GE, ties broken by ROM bits.", ""]
     lines = []
     for k in knobs if base["status"] == "ok" else []:

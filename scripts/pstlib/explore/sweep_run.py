@@ -10,7 +10,7 @@ from ..contract import ProfileError, read_profile
 from ..fmt import fnum, kge, tail
 from ..paths import ROOT, profile_path
 from . import evaluate
-from .local import STOP, run_points, say, stop_children
+from ..backends.local import STOP, run_points, say, stop_children
 from .plots import plot_all
 from .results import PSNR_CAP, psnr_vs_base, row_of, rtl_subset, summarize
 from .rtlcheck import rtl_check

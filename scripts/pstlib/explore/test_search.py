@@ -8,7 +8,7 @@ import pytest
 from pstlib import contract
 from pstlib.explore import evaluate, search_report, search_run
 from pstlib.explore import search as S
-from pstlib.explore import slurm
+from pstlib.backends import slurm_search as slurm
 from pstlib.paths import ROOT
 
 FULL = ROOT / "rtl" / "configs" / "full_1clk.toml"   # a one-clock start: the walks below keep cpp 1
