@@ -46,3 +46,12 @@ def stop_children() -> None:
             os.killpg(p.pid, signal.SIGTERM)
         except ProcessLookupError:
             pass
+
+
+_print_lock = threading.Lock()
+
+
+def say(msg: str) -> None:
+    """One line of progress, whole, from any thread (the backends' and the jobs' printing)."""
+    with _print_lock:
+        print(msg, flush=True)

@@ -2,17 +2,8 @@
 process groups an interrupt (Ctrl-C, SIGTERM) stops."""
 import concurrent.futures
 import signal
-import threading
 
-from ..procs import STOP, run, stop_children  # noqa: F401  (the backend's child processes)
-
-_print_lock = threading.Lock()
-
-
-def say(msg: str) -> None:
-    with _print_lock:
-        print(msg, flush=True)
-
+from ..procs import STOP, run, say, stop_children  # noqa: F401  (the backend's child processes and printing)
 
 def run_points(todo: list, jobs: int, cached, work, failed, report) -> dict:
     """Name -> result of every point of TODO: cached(pt) where it gives one, else work(pt) on JOBS

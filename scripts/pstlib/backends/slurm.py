@@ -1,8 +1,8 @@
 """SLURM job arrays for the scripts: a job script with one task per name, submitted with sbatch
 and followed with squeue until no task is left. Each task writes its own result (atomically);
 the caller reads them afterwards, and what a failed or cancelled task did not write is the
-caller's to retry. Used by the design-space search (explore/slurm.py) and the sharded regression
-(regress_shards.py).
+caller's to retry. Used by the design-space search (search_job_script, run_search_array below) and the sharded
+regression (regress_shards.py).
 
 Pointing it at a real cluster: run the script on a login node whose sbatch/squeue reach the
 cluster (SLURM_CONF or /etc/slurm/slurm.conf), from a checkout on a file system the compute
@@ -16,8 +16,8 @@ import time
 
 from .. import atomic
 from ..paths import ROOT
-from .local import say
-from ..procs import STOP
+from ..paths import PY
+from ..procs import STOP, say
 
 POLL_S = 2.0
 
@@ -98,3 +98,26 @@ def run_array(sdir: pathlib.Path, prefix: str, names: list, command, what="task(
     say(f"    sbatch: job {job}, array of {len(names)} {what} ({script.name})")
     wait(job)
     return job
+
+
+# The design-space search's points as a job array: the driver writes the array job, submits it,
+# follows it until no task is left, then reads the per-point results the tasks wrote
+# (OUT/results/NAME.json, atomic). A task that failed or was cancelled leaves no complete
+# result; the driver records the point as failed and the next run of the same command
+# resubmits it. The tasks run scripts/search.py worker with the same paths (build/pst, the ROM
+# images, the module cache, OUT).
+def search_job_script(out: pathlib.Path, batch: str, n: int, which, partition=None, account=None, time_limit=None,
+               extra=(), python=PY) -> str:
+    return array_script(f"pst-search-{batch}", n, f"{out}/slurm/{batch}_%a.log", _search_command(out, batch, which, python),
+                              partition, account, time_limit, extra)
+
+
+def _search_command(out, batch, which, python=PY) -> str:
+    return f"{python} {ROOT / 'scripts' / 'search.py'} worker {out} {batch}.names {','.join(which)}"
+
+
+def run_search_array(out: pathlib.Path, names: list, which, partition=None, account=None, time_limit=None,
+              extra=()) -> str:
+    """Evaluates NAMES as one array job (search_job_script's cluster options); returns its job id."""
+    return run_array(out / "slurm", "pst-search", names, lambda batch: _search_command(out, batch, which),
+                           "point(s)", partition, account, time_limit, extra)

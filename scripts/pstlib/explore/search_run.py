@@ -17,7 +17,7 @@ from ..synth import flow
 from . import evaluate as E
 from . import search as S
 from . import search_report
-from ..backends import slurm_search as slurm
+from ..backends import slurm
 from ..backends.local import STOP, run_points, say, stop_children
 from .rtlcheck import rtl_check
 from .store import Store, read_json
@@ -222,7 +222,7 @@ def make_evaluator(s: SearchSettings, job: Job, stats: dict):
                 res[p.name] = cached(p)
                 report(p, res[p.name], "cached")
         if todo:
-            slurm.run_array(s.out, [p.name for p in todo], which, **s.slurm)
+            slurm.run_search_array(s.out, [p.name for p in todo], which, **s.slurm)
         for p in todo:
             r = store.get(p.name)
             if not E.search_reusable(r, p.sha, job.settings, which):

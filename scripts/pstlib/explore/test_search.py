@@ -8,7 +8,7 @@ import pytest
 from pstlib import contract
 from pstlib.explore import evaluate, search_report, search_run
 from pstlib.explore import search as S
-from pstlib.backends import slurm_search as slurm
+from pstlib.backends import slurm
 from pstlib.paths import ROOT
 
 FULL = ROOT / "rtl" / "configs" / "full_1clk.toml"   # a one-clock start: the walks below keep cpp 1
@@ -235,13 +235,13 @@ def test_per_class_arguments(tmp_path):
 
 
 def test_slurm_job_script_names_the_cluster_options(tmp_path):
-    s = slurm.job_script(tmp_path, "b1", 5, ("train", "valid"), partition="gpu", account="hw",
+    s = slurm.search_job_script(tmp_path, "b1", 5, ("train", "valid"), partition="gpu", account="hw",
                                 time_limit="00:30:00", extra=["--mem=4G"])
     lines = s.splitlines()
     assert lines[0] == "#!/bin/sh" and "#SBATCH --array=0-4" in lines
     assert {"#SBATCH --partition=gpu", "#SBATCH --account=hw", "#SBATCH --time=00:30:00", "#SBATCH --mem=4G"} <= set(lines)
     assert lines[-1].endswith(f"worker {tmp_path} b1.names train,valid")
-    assert "--partition" not in slurm.job_script(tmp_path, "b1", 1, ("train",))
+    assert "--partition" not in slurm.search_job_script(tmp_path, "b1", 1, ("train",))
 
 
 def test_fmax_is_asked_only_of_feasible_candidates_and_enforced():
