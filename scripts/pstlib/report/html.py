@@ -20,7 +20,8 @@ except ImportError:     # report.md does not need it: report.py says what is mis
 
 from ..paths import ROOT
 from . import provenance
-from .data import Report, Table, failures_first, gate_summary, regress_table, rel, scene_stem, verdicts
+from .data import Report, Table, failures_first, gate_summary, regress_table, rel, scene_stem
+from .verdicts import verdicts
 
 ASSETS = ROOT / "scripts" / "viewer"
 MIME = {".png": "image/png", ".jpg": "image/jpeg", ".jpeg": "image/jpeg", ".gif": "image/gif",

@@ -28,7 +28,7 @@ def top(rep: Report) -> str:
     """The main job's verdicts (the regression's and the baseline check's side by side, the
     baseline's moved figures under them, where the silicon figures came from) and the
     provenance."""
-    from .data import verdicts
+    from .verdicts import verdicts
     from . import provenance
     out = []
     if rep.main_job:
