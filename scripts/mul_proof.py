@@ -14,7 +14,8 @@ The proof takes minutes (ctest -L formal runs it whole). Its record, sim/formal/
 keeps the widths proven and digests of what the proof was made from (scripts/pstlib/mulproof.py:
 PROOF_INPUTS, ELABORATION_INPUTS, the tool versions):
 
-    scripts/mul_proof.py --record     # prove every width, then write the record
+    scripts/mul_proof.py --record     # prove every width, then write the record (with --cached:
+                                      # the widths the record still stands for are not proven again)
     scripts/mul_proof.py --cached     # the default test suite's check: widths from the record while
                                       # the RTL and profiles are unchanged (else Yosys elaborates
                                       # them again); a width is taken as proven from the record only
@@ -49,9 +50,8 @@ def main(argv=None) -> int:
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--rom-dir", default=str(ROOT / "build" / "rom"))
     ap.add_argument("--out", default=str(ROOT / "out" / "mul_proof"))
-    mode = ap.add_mutually_exclusive_group()
-    mode.add_argument("--record", action="store_true", help=f"prove every width, then write {mulproof.RECORD.name}")
-    mode.add_argument("--cached", action="store_true", help="take what the record still stands for, prove the rest")
+    ap.add_argument("--record", action="store_true", help=f"write {mulproof.RECORD.name} once every width is proven")
+    ap.add_argument("--cached", action="store_true", help="take what the record still stands for, prove the rest")
     a = ap.parse_args(argv)
     if a.jobs < 1:
         print("error: --jobs: must be >= 1", file=sys.stderr)
