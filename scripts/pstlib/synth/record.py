@@ -26,12 +26,14 @@ INPUTS = ("rtl/**/*.sv", "rtl/**/*.svh", "rtl/contract.toml", "rtl/configs/*.tom
           "scripts/synth.py", "scripts/pstlib/synth/[!t]*.py", "scripts/pstlib/synth/tools.py",
           "scripts/pstlib/contract.py", "scripts/synth/pst.sdc", "scripts/synth/cells.lib",
           "scripts/synth/mem_standin_*.v", "scripts/synth/layout_derate.json")
+# Matched by INPUTS but not read by a synthesis: this file (the record's own bookkeeping).
+NOT_INPUTS = ("scripts/pstlib/synth/record.py",)
 
 
 def inputs(rom_dir=None) -> dict:
     """{path: SHA-256} of INPUTS, the ROM images of ROM_DIR (as rom/NAME) and the cell library
     (as lib/NAME)."""
-    out = digest.inputs(INPUTS)
+    out = {k: v for k, v in digest.inputs(INPUTS).items() if k not in NOT_INPUTS}
     if rom_dir is not None:
         for p in sorted(pathlib.Path(rom_dir).glob("*.memh")):
             out[f"rom/{p.name}"] = hashlib.sha256(p.read_bytes()).hexdigest()
@@ -63,7 +65,9 @@ def save(out_synth: pathlib.Path, profiles, records: pathlib.Path = RECORDS) -> 
     records.mkdir(parents=True, exist_ok=True)
     for p in profiles:
         for s in ("json", "md"):
-            shutil.copyfile(out_synth / f"{p}.{s}", records / f"{p}.{s}")
+            # paths inside the checkout kept relative to it: the record reads the same in any clone
+            text = (out_synth / f"{p}.{s}").read_text().replace(f"{ROOT}/", "")
+            (records / f"{p}.{s}").write_text(text)
 
 
 def restore(out_synth: pathlib.Path, profiles, records: pathlib.Path = RECORDS) -> None:
