@@ -24,6 +24,7 @@ import time
 import xml.etree.ElementTree as ET
 
 from . import atomic
+from .provenance import regress_runs
 from .procs import run
 
 SHARDS = "shards"
@@ -124,7 +125,7 @@ def paths(out: pathlib.Path, name: str) -> dict:
 
 def _parses(p: dict) -> bool:
     try:
-        runs = json.loads(p["json"].read_text())
+        runs = regress_runs(json.loads(p["json"].read_text()))
         ET.parse(p["xml"])
     except (OSError, ValueError, ET.ParseError):
         return False
@@ -210,7 +211,7 @@ def merge(out: pathlib.Path, plan: list, pst: str, attempts=None) -> dict:
             missing.append(s.name)
             continue
         shards[s.name] |= {"rc": rec["rc"], "seconds": rec.get("seconds"), "host": rec.get("host")}
-        for r in json.loads(paths(out, s.name)["json"].read_text()):
+        for r in regress_runs(json.loads(paths(out, s.name)["json"].read_text())):
             runs.append(r | {"shard": s.name})
         if rec["rc"] != 0:
             failed.append(s.name)

@@ -8,7 +8,7 @@ import re
 from dataclasses import dataclass, field
 from typing import Optional
 
-from . import silicon_table
+from . import provenance, silicon_table
 
 
 class InputError(Exception):
@@ -86,6 +86,7 @@ class Report:
     subtitle: str = ""
     runs_title: str = "RTL regression"
     runs: list = field(default_factory=list)   # hardware runs (regress.json entries)
+    provenance: dict = field(default_factory=dict)   # regress.json's schema, commit, tool versions, command line
     regress_ran: bool = False
     scenes: list = field(default_factory=list)  # of SceneView
     notes: list = field(default_factory=list)   # driver notes
@@ -242,7 +243,9 @@ def collect(out_dir) -> Report:
     path = root / "regress.json"
     if path.exists():
         rep.regress_ran = True
-        rep.runs = load_json(path)
+        doc = load_json(path)
+        rep.provenance = provenance.of(doc)
+        rep.runs = provenance.regress_runs(doc)
         if not isinstance(rep.runs, list) or not all(isinstance(r, dict) and "scene" in r and "profile" in r
                                                       for r in rep.runs):
             raise InputError(f"{path}: expected a list of runs with scene and profile (pst regress -o)")
