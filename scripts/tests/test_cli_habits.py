@@ -232,3 +232,19 @@ def test_html_page_records_provenance(tmp_path):
     commit = json.loads((tmp_path / "p" / "regress.json").read_text())["commit"]
     assert re.search(r'<div class="provenance" data-schema="2">commit <code>' + re.escape(commit) + r"</code>; compiler [^;]*pst \d", html)
     assert "verilator Verilator" in html and "regress" in html
+
+
+@pytest.mark.parametrize("args,pattern", [
+    (["render", ZONE, "--model", "golden"], r"--model: needs --profile"),
+    (["render", ZONE, "--gap-rate", "0.2"], r"--gap-rate: needs --profile"),
+    (["render", ZONE, "--profile", "reduced", "--model", "golden", "--sim-seed", "3"], r"--sim-seed: needs --model rtl"),
+    (["atlas", ZONE, "--stall-rate", "0.2"], r"--stall-rate: needs --profile"),
+    (["animate", FIRE, "--model", "golden"], r"--model: needs --profile"),
+    (["eval", "-t", ZONE, "-f", ZONE, "--profile", "full"], r"--profile: needs --model golden or rtl"),
+    (["regress", "--random", "10", "--gap-rate", "0.2"], r"--gap-rate: not with --random"),
+])
+def test_options_that_would_do_nothing_are_refused(tmp_path, args, pattern):
+    out = tmp_path / "o"
+    r = pst(*args, *(["-o", out] if args[0] != "regress" else []), "-q")
+    assert r.returncode == 2 and re.search("error: " + pattern, r.stderr), r.stderr
+    assert not out.exists()

@@ -36,7 +36,8 @@ Command registerAnimate(CLI::App& app) {
                         "and bandlimit replaced), with its flicker")
         ->delimiter(',');
     animate->add_flag("-q,--quiet", flags->second, "No progress on stderr");
-    return {animate, [an, variants, flags]() {
+    return {animate, [an, variants, flags, animate]() {
+                if (an->profiles.empty()) refuseGiven(animate, {"--model"}, "needs --profile (without it no hardware model runs)");
                 checkOutDir("-o", an->outDir);
                 checkCreatableDir("-o", an->outDir.empty() ? "out" : an->outDir);
                 an->video = !flags->first;

@@ -196,7 +196,8 @@ Command registerAtlas(CLI::App& app) {
     atlasCmd->add_option("-j,--threads", at->threads, "Threads (0: all cores)")->check(CLI::Range(0, 256));
     atlasCmd->add_flag("-q,--quiet", at->quiet, "No progress on stderr");
     addSimOptions(atlasCmd, *hw);
-    return {atlasCmd, [at, hw]() {
+    return {atlasCmd, [at, hw, atlasCmd]() {
+                refuseHardwareOptionsWithoutModel(atlasCmd, *hw);
                 checkOutDir("-o", at->outDir);
                 checkCreatableDir("-o", at->outDir.empty() ? "out" : at->outDir);
                 return runAtlas(*at, *hw);

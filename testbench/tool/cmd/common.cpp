@@ -36,6 +36,22 @@ void addSimOptions(CLI::App* sc, HwArgs& hw) {
     sc->add_option("--timeout", hw.sim.timeoutCycles, "Cycle limit of one stream (0 = automatic)");
 }
 
+const std::vector<std::string> kSimOptions{"--sim-seed", "--gap-rate", "--stall-rate", "--timeout"};
+
+void refuseGiven(const CLI::App* app, const std::vector<std::string>& names, const std::string& why) {
+    for (const auto& n : names)
+        if (app->count(n) > 0) throw InputError(n + ": " + why);
+}
+
+void refuseHardwareOptionsWithoutModel(const CLI::App* app, const HwArgs& hw) {
+    if (hw.profiles.empty()) {
+        std::vector<std::string> names = kSimOptions;
+        names.insert(names.begin(), "--model");
+        refuseGiven(app, names, "needs --profile (it sets the hardware model's run; without --profile none runs)");
+    }
+    if (hw.model != "rtl") refuseGiven(app, kSimOptions, "needs --model rtl (the golden model has no cycles)");
+}
+
 std::string profileHelp(const std::string& what) {
     std::string list;
     for (const auto& n : rtlProfiles()) list += (list.empty() ? "" : ", ") + n;

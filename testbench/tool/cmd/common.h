@@ -47,6 +47,13 @@ struct HwArgs {
 
 // --sim-seed, --gap-rate, --stall-rate, --timeout into hw.sim.
 void addSimOptions(CLI::App* sc, HwArgs& hw);
+extern const std::vector<std::string> kSimOptions;
+// A flag that would do nothing in this mode is refused, not ignored (41 part 4): the first of
+// `names` given on the command line, with `why`.
+void refuseGiven(const CLI::App* app, const std::vector<std::string>& names, const std::string& why);
+// The hardware options of a command whose models run only with --profile: --model and the
+// simulation options need --profile, the simulation options need --model rtl.
+void refuseHardwareOptionsWithoutModel(const CLI::App* app, const HwArgs& hw);
 // The help text of --profile: `what`, then the profiles this build verilated (its registry).
 std::string profileHelp(const std::string& what);
 

@@ -94,7 +94,9 @@ Command registerEval(CLI::App& app) {
     eval->add_option("--profile", hw->profiles, profileHelp("Hardware profile for --model golden|rtl (default full)"))
         ->allow_extra_args(false);
     eval->add_flag("-q,--quiet", a->quiet, "Nothing on stderr but errors and warnings (eval prints no progress)");
-    return {eval, [a, hw]() {
+    return {eval, [a, hw, eval]() {
+                if (a->model == "reference")
+                    refuseGiven(eval, {"--profile"}, "needs --model golden or rtl (the reference model has no profile)");
                 if (a->model != "reference" && hw->profiles.empty()) hw->profiles = {"full"};
                 checkOutFile("-o", a->out);
                 checkNotInput("-o", a->out, {a->texPath, a->fragPath});

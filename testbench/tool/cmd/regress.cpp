@@ -75,6 +75,7 @@ int run(RegressCli& c) {
         if (!a.waves.empty())
             throw InputError("--waves: not with --random (replay the failing segment with render --trace, or use scene mode)");
         if (regress->get_option("--size")->count()) throw InputError("--size: not with --random");
+        refuseGiven(regress, kSimOptions, "not with --random (each random segment draws its own gaps and stalls from --seed)");
         if (c.rnd.from + c.rndCount > (uint64_t(1) << 32))
             throw InputError("--from: fragment indices are 32-bit tags (from + N <= 2^32)");
         c.rnd.fragments = c.rndCount;

@@ -179,6 +179,7 @@ Command registerRender(CLI::App& app) {
                 if (hw->sim.traceStart > hw->sim.traceEnd)
                     throw InputError("--trace-start: " + std::to_string(hw->sim.traceStart) + " is after --trace-end " +
                                      std::to_string(hw->sim.traceEnd));
+                refuseHardwareOptionsWithoutModel(render, *hw);
                 checkOutDir("-o", ra->outDir);
                 checkCreatableDir("-o", ra->outDir.empty() ? "out" : ra->outDir);
                 checkNotInput("--trace", hw->trace, {ra->scene});
