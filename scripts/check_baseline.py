@@ -22,6 +22,7 @@ import sys
 
 from pstlib import baseline
 from pstlib.paths import ROOT
+from pstlib.provenance import regress_runs
 from pstlib.synth import report
 
 PROFILES = ("reduced", "full", "full_2clk", "full_1clk")
@@ -58,7 +59,7 @@ def main() -> int:
     if not reg_path.exists():
         print(f"error: {reg_path}: missing (run pst regress)", file=sys.stderr)
         return 2
-    current = baseline.collect(synth, json.loads(reg_path.read_text()))
+    current = baseline.collect(synth, regress_runs(json.loads(reg_path.read_text())))
     if args.update:
         path.write_text(json.dumps({"tolerance": baseline.TOLERANCE, "tools": tools, "profiles": current},
                                    indent=2, sort_keys=True) + "\n")
@@ -107,7 +108,7 @@ def add_profile(base: dict, path: pathlib.Path, out: pathlib.Path, name: str) ->
             print(f"error: {n}: synthesized with {t}, the baseline with {base.get('tools')}", file=sys.stderr)
         return 1
     reg_path = out / "regress.json"
-    regress = json.loads(reg_path.read_text()) if reg_path.exists() else []
+    regress = regress_runs(json.loads(reg_path.read_text())) if reg_path.exists() else []
     new = baseline.collect(synth, regress)
     # The PSNRs come from the regression, not the synthesis: kept when this run has none.
     for k in ("psnr_db", "regress_size"):
