@@ -72,11 +72,24 @@ def default_chunk(count: int, workers: int, largest: int = 1_000_000) -> int:
 
 def plan_random(profiles: list, starts: list, count: int, seed: int, first: int, chunk: int, batch: int = 0,
                 extra=()) -> list:
-    """One shard per profile and chunk (chunks()); EXTRA: more `pst regress` arguments for every shard."""
+    """One shard per profile and chunk (chunks()); EXTRA: more `pst regress` arguments for every shard,
+    but --inject-assert=I only for the shards whose fragments hold I (pst refuses a self-test
+    index outside its run: it could not fire)."""
     b = ("--batch", str(batch)) if batch else ()
     return [Shard(f"random-{p}-{k:010d}", ("--random", str(n), "--seed", str(seed), "--from", str(k), *b,
-                                           "--profile", p, "-q", *extra), p, first=k, count=n)
+                                           "--profile", p, "-q", *_for_chunk(extra, k, n)), p, first=k, count=n)
             for p in profiles for k, n in chunks(first, count, starts, chunk)]
+
+
+def _for_chunk(extra, first: int, count: int) -> list:
+    """EXTRA without an --inject-assert=I whose I is outside fragments [first, first + count)."""
+    out = []
+    for x in extra:
+        m = re.fullmatch(r"--inject-assert=(\d+)", str(x))
+        if m and not first <= int(m.group(1)) < first + count:
+            continue
+        out.append(x)
+    return out
 
 
 def plan_scenes(runs: list, size: int, extra=()) -> list:

@@ -248,3 +248,14 @@ def test_options_that_would_do_nothing_are_refused(tmp_path, args, pattern):
     r = pst(*args, *(["-o", out] if args[0] != "regress" else []), "-q")
     assert r.returncode == 2 and re.search("error: " + pattern, r.stderr), r.stderr
     assert not out.exists()
+
+
+def test_inject_assert_refused_outside_the_run():
+    asserted = re.search(r"with assertions: ([^\n]+)", version()).group(1).split(", ")
+    if asserted == ["none"]:
+        pytest.skip("no profile of this build is verilated with assertions")
+    r = pst("regress", "--random", 100, "--profile", asserted[0], "--inject-assert", 500, "-q")
+    assert r.returncode == 2 and re.search(r"--inject-assert: fragment 500 is outside the run \(fragments 0\.\.99\)",
+                                           r.stderr), r.stderr
+    r = pst("regress", "--random", 100, "--profile", asserted[0], "--inject-assert", 50, "-q")
+    assert r.returncode == 1 and "RTL assertion" in r.stdout, r.stdout   # inside: it fires

@@ -80,6 +80,14 @@ int run(RegressCli& c) {
             throw InputError("--from: fragment indices are 32-bit tags (from + N <= 2^32)");
         c.rnd.fragments = c.rndCount;
         c.rnd.injectAssert = a.injectAssert;
+        if (a.injectAssert != UINT64_MAX) {
+            const std::vector<uint64_t> starts = segmentStarts(c.rnd);
+            const uint64_t first = starts.empty() ? c.rnd.from : starts.front(), end = c.rnd.from + c.rndCount;
+            if (a.injectAssert < first || a.injectAssert >= end)
+                throw InputError("--inject-assert: fragment " + std::to_string(a.injectAssert) + " is outside the run "
+                                 "(fragments " + std::to_string(first) + ".." + std::to_string(end - 1) +
+                                 "); the self-test could not fire");
+        }
         if (!a.injectFault.empty()) c.rnd.fault = unitByName(a.injectFault);
         if (a.list) {
             for (const auto& n : hw.profiles) std::cout << "profile " << profileByName(n, true).name << "\n";
