@@ -77,7 +77,8 @@ def test_compare_thresholds_difference_image_json(images):
     mx = float(re.search(r"max (\S+)", r.stdout).group(1))
     assert 0 < mx <= 1 and psnr > 0
     r = pst("compare", a, b, "--fail-psnr", psnr + 1)
-    assert r.returncode == 1 and "FAILED: psnr" in r.stdout, r.stdout
+    assert r.returncode == 1 and re.search(r"FAILED: psnr [0-9.]+ dB is below --fail-psnr [0-9.]+\n", r.stdout), r.stdout
+    assert "000000" not in r.stdout   # numbers printed short
     assert pst("compare", a, b, "--fail-psnr", psnr - 1).returncode == 0
     r = pst("compare", a, b, "--fail-max", mx / 2)
     assert r.returncode == 1 and "is above --fail-max" in r.stdout, r.stdout

@@ -2,6 +2,7 @@
 // ImageBufAlgo::compare), like idiff: thresholds that fail the run (exit 1), a difference image
 // (ImageBufAlgo::absdiff) and a JSON record.
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <memory>
 
@@ -36,6 +37,13 @@ Image readFiniteImage(const std::string& path) {
     return img;
 }
 
+// A number as a message prints it: short (%g), not std::to_string's six decimals.
+std::string shortNumber(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.6g", v);
+    return buf;
+}
+
 int runCompare(const CompareArgs& c, bool psnrGate, bool maxGate) {
     const Image A = readFiniteImage(c.a), B = readFiniteImage(c.b);
     if (A.width != B.width || A.height != B.height || A.channels < 3 || B.channels < 3)
@@ -48,10 +56,10 @@ int runCompare(const CompareArgs& c, bool psnrGate, bool maxGate) {
     std::vector<std::string> failed;
     // Identical images have an infinite PSNR: never below a threshold.
     if (psnrGate && d.psnr < c.failPsnr)
-        failed.push_back("psnr " + std::to_string(d.psnr) + " dB is below --fail-psnr " + std::to_string(c.failPsnr));
+        failed.push_back("psnr " + shortNumber(d.psnr) + " dB is below --fail-psnr " + shortNumber(c.failPsnr));
     if (maxGate && d.maxError > c.failMax)
-        failed.push_back("max " + std::to_string(d.maxError) + " at pixel (" + std::to_string(d.maxX) + ", " +
-                         std::to_string(d.maxY) + ") is above --fail-max " + std::to_string(c.failMax));
+        failed.push_back("max " + shortNumber(d.maxError) + " at pixel (" + std::to_string(d.maxX) + ", " +
+                         std::to_string(d.maxY) + ") is above --fail-max " + shortNumber(c.failMax));
     if (!c.diffOut.empty()) {
         writeImage(absDiffRgb(A, B, c.diffScale), c.diffOut);
         if (!c.quiet) std::cerr << "difference image: " << c.diffOut << "\n";
