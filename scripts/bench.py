@@ -17,6 +17,7 @@ import tempfile
 from pstlib import atomic
 from pstlib.report import bench
 from pstlib.paths import ROOT
+from pstlib.pstjson import regress_runs
 
 
 def main(argv=None) -> int:
@@ -53,7 +54,7 @@ def main(argv=None) -> int:
                     print(f"error: {p}: pst regress {' '.join(args)} exited {r.returncode}:\n{r.stdout[-2000:]}{r.stderr[-2000:]}",
                           file=sys.stderr)
                     return 1
-                recs = json.loads(js.read_text())
+                recs = regress_runs(json.loads(js.read_text()))
                 if not recs:   # the profile does not run this scene (another noise basis): skipped
                     print(f"| {p} | {' '.join(args)} | skipped: pst regress ran nothing |", flush=True)
                     continue

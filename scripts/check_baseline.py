@@ -42,6 +42,7 @@ from pstlib import atomic
 from pstlib.validation import baseline
 from pstlib.report import provenance
 from pstlib.paths import ROOT
+from pstlib.pstjson import regress_runs
 from pstlib.synth import record, report
 
 PROFILES = ("reduced", "full", "full_2clk", "full_1clk")
@@ -127,7 +128,7 @@ def check(args, res: dict) -> int:
     if not reg_path.exists():
         say(res, f"error: {reg_path}: missing (run pst regress)", err=True)
         return 2
-    current = baseline.collect(synth, json.loads(reg_path.read_text()))
+    current = baseline.collect(synth, regress_runs(json.loads(reg_path.read_text())))
     if args.update:
         path.write_text(json.dumps({"tolerance": baseline.TOLERANCE, "tools": tools, "profiles": current,
                                     "inputs": record.inputs(rom_dir)}, indent=2, sort_keys=True) + "\n")
@@ -218,7 +219,7 @@ def add_profile(base: dict, path: pathlib.Path, out: pathlib.Path, name: str, ro
             say(res, f"error: {n}: synthesized with {t}, the baseline with {base.get('tools')}", err=True)
         return 1
     reg_path = out / "regress.json"
-    regress = json.loads(reg_path.read_text()) if reg_path.exists() else []
+    regress = regress_runs(json.loads(reg_path.read_text())) if reg_path.exists() else []
     new = baseline.collect(synth, regress)
     # The PSNRs come from the regression, not the synthesis: kept when this run has none.
     for k in ("psnr_db", "regress_size"):

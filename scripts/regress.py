@@ -22,7 +22,8 @@ without a result) and the summary on stdout.
 --backend slurm submits the shards as an sbatch job array (scripts/pstlib/backends/slurm.py, shared
 with scripts/search.py; run it from a checkout on a file system the compute nodes share) and
 waits for it; --pst-arg passes an argument to every shard's `pst regress` (--pst-arg=--probes,
---pst-arg=--batch=512, --pst-arg=--stall-rate=0.2).
+--pst-arg=--batch=512; scene shards: --pst-arg=--stall-rate=0.2, which --random refuses: its
+segments draw their own gaps and stalls).
 
 Exit status: 0 when every shard passed; 1 on a failure or a shard still without a result;
 2 on bad arguments (nothing written); 130 when interrupted.

@@ -27,6 +27,7 @@ import os
 import pathlib
 import sys
 
+from pstlib import pstjson
 from pstlib.report import data as report_data, html as report_html, md as report_md
 
 
@@ -55,8 +56,11 @@ def page(args) -> report_data.Report:
     html_path = pathlib.Path(args.html)
     root = html_path.parent if str(html_path.parent) else pathlib.Path(".")
     pairs = []
+    prov = {}
     if args.regress:
-        runs = load_json(pathlib.Path(args.regress))
+        doc = load_json(pathlib.Path(args.regress))
+        prov = pstjson.of(doc)
+        runs = pstjson.regress_runs(doc)
         if not isinstance(runs, list) or not all(isinstance(r, dict) and "scene" in r and "profile" in r
                                                   for r in runs):
             raise InputError(f"{args.regress}: expected a list of runs with scene and profile (pst regress -o)")
@@ -68,6 +72,7 @@ def page(args) -> report_data.Report:
         if not isinstance(run, dict) or "scene" not in run or "profile" not in run:
             raise InputError(f"{p}: expected one run with scene and profile (pst render --profile)")
         pairs.append((run, p.parent))
+        prov = prov or pstjson.of(run)
     if args.sweep:
         # A sweep's folder (scripts/sweep.py --out): renders/<point>/<scene>/summary.json beside
         # golden.png, reference.png, difference.png; its sweep.md as a section.
@@ -83,6 +88,7 @@ def page(args) -> report_data.Report:
             pairs.append((run, p.parent))
     title = "pst regress" if args.regress else "precision sweep" if args.sweep else "pst render --profile"
     rep = report_data.collect_runs(pairs, root, title)
+    rep.provenance = prov
     rep.subtitle = f"{len(rep.runs)} runs"
     if args.summary:
         rep.runs_title = "Hardware runs"

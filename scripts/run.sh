@@ -44,8 +44,8 @@ for scene in scenes/*.toml; do
 done
 echo "== RTL regression at ${SIZE}x${SIZE}"
 rc=0
-./build/pst regress --size "$SIZE" --profile full --profile full_2clk --profile full_1clk --profile reduced -o out/regress.json --images out \
-  --junit out/regress.junit.xml || rc=$?
+./build/pst regress --size "$SIZE" --profile full --profile full_2clk --profile full_1clk --profile reduced -o out/regress.json \
+  --junit out/regress.junit.xml --images out || rc=$?
 echo "== animation: seascape fly-in, 24 frames at 64x64 through the reference and full's RTL, flicker vs a 4x4 truth"
 ./build/pst animate scenes/seascape.toml --frames 24 --size 64 --truth 4 --profile full -o out/anim/seascape -q || rc=1
 mkdir -p out/animations

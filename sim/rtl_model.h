@@ -67,6 +67,9 @@ public:
                                      std::map<uint32_t, ProbeFx>* probes = nullptr) = 0;
     virtual uint64_t cycles() const = 0;       // since construction
     virtual uint64_t busyCycles() const = 0;   // cycles spent inside run()
+    // The cycle (cycles()' count) at which each pixel of the last run() came out, in order: where
+    // a mismatching pixel's waves are (regress --waves).
+    virtual const std::vector<uint64_t>& outCycles() const { static const std::vector<uint64_t> none; return none; }
 };
 
 std::unique_ptr<RtlModel> makeRtlModel(const std::string& profile, const SimOptions& options = {});

@@ -63,6 +63,7 @@ public:
     const std::string& profile() const override { return name_; }
     uint64_t cycles() const override { return cycle_; }
     uint64_t busyCycles() const override { return busy_; }
+    const std::vector<uint64_t>& outCycles() const override { return outCycles_; }
 
     void reset() override {
         current();
@@ -93,6 +94,8 @@ public:
         current();
         std::vector<PixelFx> out;
         out.reserve(frags.size());
+        outCycles_.clear();
+        outCycles_.reserve(frags.size());
         size_t next = 0;
         try {
             stream(frags, activeOctaves, probes, out, next);
@@ -146,7 +149,10 @@ private:
             check();
             const bool fragTaken = offering && top_->frag_ready_o;
             const bool pixelTaken = top_->out_valid_o && top_->out_ready_i;
-            if (pixelTaken) out.push_back(sample());
+            if (pixelTaken) {
+                out.push_back(sample());
+                outCycles_.push_back(cycle_);
+            }
             if (probes && top_->probe_valid_o) sampleProbes(*probes, activeOctaves);
             if (probes && top_->probe_q_valid_o)
                 (*probes)[top_->probe_q_tag_o].q = port::getSigned(top_->probe_q_o, 0, p_.f.width());
@@ -265,6 +271,7 @@ private:
     std::unique_ptr<VerilatedFstC> trace_;
     bool traceOpen_ = false;
     uint64_t cycle_ = 0;
+    std::vector<uint64_t> outCycles_;   // of the last run()
     uint64_t busy_ = 0;
     uint64_t taken_ = 0;          // fragments taken since construction
     bool violated_ = false;       // the busyWriteAfter self-test has written

@@ -62,7 +62,7 @@ fi
 "$pst" regress --random $n --seed $seed --profile "$profile" -q -o "$work/single.json" > /dev/null
 "$py" - "$out/merged.json" "$work/single.json" "$killed" <<'PY'
 import json, sys
-m, single, killed = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))[0], sys.argv[3]
+m, single, killed = json.load(open(sys.argv[1])), json.load(open(sys.argv[2]))["runs"][0], sys.argv[3]
 assert m["passed"] and m["complete"], m["missing"]
 assert m["shards"][killed]["attempts"] == 2, m["shards"][killed]
 assert all(s["attempts"] == 1 for k, s in m["shards"].items() if k != killed), m["shards"]

@@ -283,7 +283,9 @@ def test_7_random_writes_its_summary(tmp_path):
                         "-o", str(out), "-q"], capture_output=True, text=True, timeout=300,
                        env=dict(os.environ, PST_SOURCE_DIR=str(ROOT)))
     assert r.returncode == 0, r.stdout + r.stderr
-    runs = json.loads(out.read_text())
+    doc = json.loads(out.read_text())
+    assert doc["schema"] == 2 and doc["command_line"][1:3] == ["regress", "--random"]
+    runs = doc["runs"]
     assert [x["profile"] for x in runs] == ["reduced"]
     run = runs[0]
     assert run["seed"] == 5 and run["mismatches"] == 0 and run["passed"] is True and run["first_bad"] is None

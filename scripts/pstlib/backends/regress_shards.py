@@ -25,6 +25,7 @@ import xml.etree.ElementTree as ET
 
 from .. import atomic
 from ..procs import run
+from ..pstjson import regress_runs
 
 SHARDS = "shards"
 
@@ -71,11 +72,24 @@ def default_chunk(count: int, workers: int, largest: int = 1_000_000) -> int:
 
 def plan_random(profiles: list, starts: list, count: int, seed: int, first: int, chunk: int, batch: int = 0,
                 extra=()) -> list:
-    """One shard per profile and chunk (chunks()); EXTRA: more `pst regress` arguments for every shard."""
+    """One shard per profile and chunk (chunks()); EXTRA: more `pst regress` arguments for every shard,
+    but --inject-assert=I only for the shards whose fragments hold I (pst refuses a self-test
+    index outside its run: it could not fire)."""
     b = ("--batch", str(batch)) if batch else ()
     return [Shard(f"random-{p}-{k:010d}", ("--random", str(n), "--seed", str(seed), "--from", str(k), *b,
-                                           "--profile", p, "-q", *extra), p, first=k, count=n)
+                                           "--profile", p, "-q", *_for_chunk(extra, k, n)), p, first=k, count=n)
             for p in profiles for k, n in chunks(first, count, starts, chunk)]
+
+
+def _for_chunk(extra, first: int, count: int) -> list:
+    """EXTRA without an --inject-assert=I whose I is outside fragments [first, first + count)."""
+    out = []
+    for x in extra:
+        m = re.fullmatch(r"--inject-assert=(\d+)", str(x))
+        if m and not first <= int(m.group(1)) < first + count:
+            continue
+        out.append(x)
+    return out
 
 
 def plan_scenes(runs: list, size: int, extra=()) -> list:
@@ -124,7 +138,7 @@ def paths(out: pathlib.Path, name: str) -> dict:
 
 def _parses(p: dict) -> bool:
     try:
-        runs = json.loads(p["json"].read_text())
+        runs = regress_runs(json.loads(p["json"].read_text()))
         ET.parse(p["xml"])
     except (OSError, ValueError, ET.ParseError):
         return False
@@ -210,7 +224,7 @@ def merge(out: pathlib.Path, plan: list, pst: str, attempts=None) -> dict:
             missing.append(s.name)
             continue
         shards[s.name] |= {"rc": rec["rc"], "seconds": rec.get("seconds"), "host": rec.get("host")}
-        for r in json.loads(paths(out, s.name)["json"].read_text()):
+        for r in regress_runs(json.loads(paths(out, s.name)["json"].read_text())):
             runs.append(r | {"shard": s.name})
         if rec["rc"] != 0:
             failed.append(s.name)

@@ -289,3 +289,9 @@ def test_bad_arguments_exit_2_and_write_nothing(fake, args, msg):
     r, runs = fake(*args)
     assert r.returncode == 2 and msg in r.stderr and runs == []
     assert not fake.out.exists()
+
+
+def test_inject_assert_goes_only_to_the_shard_holding_it():
+    plan = R.plan_random(["p"], [0, 100, 200], 300, 1, 0, 100, 0, ["--inject-assert=150", "--probes"])
+    held = [s.first for s in plan if "--inject-assert=150" in s.args]
+    assert held == [100] and all("--probes" in s.args for s in plan)

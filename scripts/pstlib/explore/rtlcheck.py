@@ -10,6 +10,7 @@ from .. import atomic
 from ..fmt import tail
 from ..paths import ROOT
 from ..backends.local import run, say
+from ..pstjson import regress_runs
 from .store import read_json
 
 
@@ -66,7 +67,7 @@ def rtl_check(out: pathlib.Path, points: dict, size: int, build_dir: pathlib.Pat
         # The profile FILE (its stem names the verilated model): `--profile NAME` alone would look
         # for rtl/configs/NAME.toml for the golden side.
         rc, so, se = run([build_dir / "pst", "regress", "--profile", pdir / f"{name}.toml", "--size", size, "-o", jpath])
-        runs = read_json(jpath) or []
+        runs = regress_runs(read_json(jpath)) or []
         r = {"name": name, "profile_sha": points[name][1], "size": size, **regress_summary(runs, rc),
              "seconds": round(time.time() - t1, 1)}
         if not r["passed"]:

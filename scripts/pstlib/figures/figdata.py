@@ -4,6 +4,8 @@ import json
 import sys
 from pathlib import Path
 
+from ..pstjson import regress_runs
+
 REGRESS_CMD = "build/pst regress --size 512 -o {out}/regress.json --images {out}"
 BUILD_CMD = "cmake --build build --target pst -j2"
 
@@ -39,7 +41,7 @@ def load_regress(path):
     if not path.exists():
         raise InputMissing(f"{rel(path)} is missing: run `{REGRESS_CMD.format(out=rel(path.parent))}` first")
     try:
-        entries = json.loads(path.read_text())
+        entries = regress_runs(json.loads(path.read_text()))
     except (OSError, json.JSONDecodeError) as e:
         raise InputMissing(f"{rel(path)}: not a regression summary ({e}): run "
                            f"`{REGRESS_CMD.format(out=rel(path.parent))}` again")

@@ -2,7 +2,7 @@
 tabulates the temporal RMS error per stream (filtered, unfiltered, each hardware profile, each
 `--variants` reference stream) and plots it over time.
 
-The metric (computed by pst, testbench/frontend/animate): per frame k >= 1 the RMS over pixels and RGB of
+The metric (computed by pst, testbench/tool/animate): per frame k >= 1 the RMS over pixels and RGB of
 (X_k - X_{k-1}) - (T_k - T_{k-1}), T the ground truth; a sequence's flicker is the RMS of that
 over its frames."""
 import json

@@ -10,6 +10,7 @@ from dataclasses import dataclass, field
 from typing import Optional
 
 from . import provenance, silicon_table
+from .. import pstjson
 from .verdicts import (Verdict, baseline_verdict, regression_verdict, silicon_verdict,  # noqa: F401  (re-exported)
                        verdict_text, verdicts)
 from ..synth.report import REALTIME_MPIX
@@ -92,6 +93,7 @@ class Report:
     subtitle: str = ""
     runs_title: str = "RTL regression"
     runs: list = field(default_factory=list)   # hardware runs (regress.json entries)
+    provenance: dict = field(default_factory=dict)   # regress.json's schema, commit, tool versions, command line
     regress_ran: bool = False
     scenes: list = field(default_factory=list)  # of SceneView
     notes: list = field(default_factory=list)   # driver notes
@@ -304,7 +306,8 @@ def collect(out_dir, argv=None) -> Report:
     path = root / "regress.json"
     if path.exists():
         rep.regress_ran = True
-        rep.runs = load_json(path)
+        doc = load_json(path)
+        rep.runs = pstjson.regress_runs(doc)   # the report's own provenance stays (the commit is the same run's)
         if not isinstance(rep.runs, list) or not all(isinstance(r, dict) and "scene" in r and "profile" in r
                                                       for r in rep.runs):
             raise InputError(f"{path}: expected a list of runs with scene and profile (pst regress -o)")

@@ -230,6 +230,14 @@ def render(rep: Report, embed_all: bool = False) -> str:
                 + table(rep.references, sortable=True))
 
     stamp = datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M UTC")
+    prov = ""
+    if rep.provenance:
+        # The run's provenance as pst recorded it (testbench/tool/reports/provenance.h).
+        pv = rep.provenance
+        tools = ", ".join(f"{k} {v}" for k, v in (pv.get("tool_versions") or {}).items())
+        prov = (f'<div class="provenance" data-schema="{esc(str(pv.get("schema", "")))}">commit '
+                f'<code>{esc(str(pv.get("commit", "?")))}</code>; {esc(tools)}; command: '
+                f'<code>{esc(" ".join(map(str, pv.get("command_line") or [])))}</code></div>')
     page = f"""<!DOCTYPE html>
 <html lang="en">
 <head>
@@ -240,7 +248,7 @@ def render(rep: Report, embed_all: bool = False) -> str:
 {css}</style>
 </head>
 <body>
-<header><h1>{esc(rep.title)}</h1><div>{esc(stamp)}{". " + esc(rep.subtitle) if rep.subtitle else ""}</div></header>
+<header><h1>{esc(rep.title)}</h1><div>{esc(stamp)}{". " + esc(rep.subtitle) if rep.subtitle else ""}</div>{prov}</header>
 <nav>{" ".join(nav)}</nav>
 <main>
 {top(rep)}{"".join(body)}</main>

@@ -4,6 +4,7 @@ import json
 import pathlib
 
 from .. import contract
+from ..pstjson import regress_runs
 from . import fanout, liberty, sta
 from .tools import ABC_CONSTR, ABC_DELAY_PS, ABC_SCRIPT, SDC, tool_version
 
@@ -35,7 +36,7 @@ def regress_cpp(regress: pathlib.Path, name: str):
     if not regress.exists():
         return None
     try:
-        runs = [r for r in json.loads(regress.read_text()) if r.get("profile") == name]
+        runs = [r for r in regress_runs(json.loads(regress.read_text())) if r.get("profile") == name]
     except (ValueError, AttributeError):
         return None
     return max((r["cycles_per_pixel"] for r in runs), default=None)

@@ -82,10 +82,11 @@ run(PST, ["render", "scenes/zoneplate.toml", "--size", "16", "--profile", "reduc
 run(PST, ["atlas", "scenes/wood_torus.toml", "--size", "256", "--image", "32", "--truth", "1", "-q",
           "-o", path.join(OUT, "atlas/wood_torus")]);
 // One run marked failed (as a mismatch would leave it): the page must put it first.
-const runs = JSON.parse(fs.readFileSync(path.join(OUT, "regress.json"), "utf8"));
+const doc = JSON.parse(fs.readFileSync(path.join(OUT, "regress.json"), "utf8"));   // provenance + runs
+const runs = doc.runs;
 const failing = runs.find((r) => r.scene.endsWith("planet.toml") && r.profile === "reduced");
 Object.assign(failing, { passed: false, mismatches: 5 });
-fs.writeFileSync(path.join(OUT, "regress.json"), JSON.stringify(runs));
+fs.writeFileSync(path.join(OUT, "regress.json"), JSON.stringify(doc));
 const HTML = path.join(OUT, "report.html");
 run(PYTHON, [path.join(SOURCE, "scripts/report.py"), OUT, "--md", path.join(OUT, "report.md"), "--html", HTML]);
 const PAGE = path.join(WORK, "page/regress.html");

@@ -80,7 +80,28 @@ ImageDiff compareRgb(const Image& a, const Image& b) {
     d.rmsError = r.rms_error;
     d.maxError = r.maxerror;
     d.psnr = r.PSNR;
+    d.maxX = r.maxx;
+    d.maxY = r.maxy;
     return d;
+}
+
+Image absDiffRgb(const Image& a, const Image& b, double scale) {
+    if (a.width != b.width || a.height != b.height || a.channels < 3 || b.channels < 3)
+        throw std::runtime_error("absDiffRgb: images differ in size or have fewer than 3 channels");
+    OIIO::ImageBuf A = toBuf(a), B = toBuf(b);
+    OIIO::ROI roi = A.roi();
+    roi.chbegin = 0;
+    roi.chend = 3;
+    OIIO::ImageBuf d = OIIO::ImageBufAlgo::absdiff(A, B, roi);
+    if (scale != 1.0) d = OIIO::ImageBufAlgo::mul(d, float(scale));
+    Image out(a.width, a.height, 4);
+    std::vector<float> rgb(size_t(a.width) * a.height * 3);
+    d.get_pixels(OIIO::ROI(0, a.width, 0, a.height, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT, rgb.data());
+    for (size_t i = 0; i < size_t(a.width) * a.height; ++i) {
+        for (int c = 0; c < 3; ++c) out.data[i * 4 + c] = rgb[i * 3 + c];
+        out.data[i * 4 + 3] = 1.0f;
+    }
+    return out;
 }
 
 void writeTextFile(const std::string& path, const std::string& text) {

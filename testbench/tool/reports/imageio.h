@@ -20,9 +20,13 @@ Image readImage(const std::string& path);
 
 struct ImageDiff {
     double meanError = 0, rmsError = 0, maxError = 0, psnr = 0;
+    int maxX = 0, maxY = 0;   // the pixel of maxError
 };
 // Over the RGB channels of two RGBA images of one size (OIIO ImageBufAlgo::compare).
 ImageDiff compareRgb(const Image& a, const Image& b);
+
+// |a - b| per RGB channel times `scale` (OIIO ImageBufAlgo::absdiff), alpha 1: a difference image.
+Image absDiffRgb(const Image& a, const Image& b, double scale = 1.0);
 
 // Writes `text` to `path` atomically (temporary file, then rename).
 void writeTextFile(const std::string& path, const std::string& text);

@@ -28,7 +28,7 @@ std::string escape(const std::string& s) {
 
 }  // namespace
 
-std::string junitXml(const std::string& suite, const std::vector<JunitCase>& cases) {
+std::string junitXml(const std::string& suite, const std::vector<JunitCase>& cases, const JunitProperties& properties) {
     size_t failures = 0, skipped = 0;
     double total = 0;
     for (const auto& c : cases) {
@@ -41,6 +41,12 @@ std::string junitXml(const std::string& suite, const std::vector<JunitCase>& cas
     std::snprintf(t, sizeof t, "%.3f", total);
     os << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<testsuites>\n<testsuite name=\"" << escape(suite)
        << "\" tests=\"" << cases.size() << "\" failures=\"" << failures << "\" errors=\"0\" skipped=\"" << skipped << "\" time=\"" << t << "\">\n";
+    if (!properties.empty()) {
+        os << "  <properties>\n";
+        for (const auto& [k, v] : properties)
+            os << "    <property name=\"" << escape(k) << "\" value=\"" << escape(v) << "\"/>\n";
+        os << "  </properties>\n";
+    }
     for (const auto& c : cases) {
         std::snprintf(t, sizeof t, "%.3f", c.seconds);
         os << "  <testcase classname=\"" << escape(c.classname) << "\" name=\"" << escape(c.name) << "\" time=\"" << t
@@ -59,9 +65,10 @@ std::string junitXml(const std::string& suite, const std::vector<JunitCase>& cas
     return os.str();
 }
 
-void writeJunit(const std::string& path, const std::string& suite, const std::vector<JunitCase>& cases) {
+void writeJunit(const std::string& path, const std::string& suite, const std::vector<JunitCase>& cases,
+                const JunitProperties& properties) {
     std::ofstream f(path);
-    f << junitXml(suite, cases);
+    f << junitXml(suite, cases, properties);
     if (!f) throw std::runtime_error(path + ": cannot write the JUnit file");
 }
 

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace pst {
@@ -17,8 +18,11 @@ struct JunitCase {
     bool skipped = false;    // neither passed nor failed; `message` says why
 };
 
-std::string junitXml(const std::string& suite, const std::vector<JunitCase>& cases);
+// `properties`: the suite's <properties> (provenance.h junitProperties()), none when empty.
+using JunitProperties = std::vector<std::pair<std::string, std::string>>;
+std::string junitXml(const std::string& suite, const std::vector<JunitCase>& cases, const JunitProperties& properties = {});
 // Writes junitXml to `path`; throws std::runtime_error if the file cannot be written.
-void writeJunit(const std::string& path, const std::string& suite, const std::vector<JunitCase>& cases);
+void writeJunit(const std::string& path, const std::string& suite, const std::vector<JunitCase>& cases,
+                const JunitProperties& properties = {});
 
 }  // namespace pst

@@ -46,7 +46,7 @@ ErrorStats compareToReference(const Image& hw, const Image& ref, int colourBits)
 
 std::vector<PixelFx> runBatch(GoldenPipeline& golden, RtlModel* rtl, Scoreboard& board,
                               const std::vector<FragmentFx>& in, int activeOctaves, bool probes,
-                              double& goldenSeconds, double& rtlSeconds) {
+                              double& goldenSeconds, double& rtlSeconds, uint64_t* firstMismatchCycle) {
     auto tg = Clock::now();
     std::vector<PixelFx> expected(in.size());
     for (size_t i = 0; i < in.size(); ++i) {
@@ -60,9 +60,14 @@ std::vector<PixelFx> runBatch(GoldenPipeline& golden, RtlModel* rtl, Scoreboard&
     std::map<uint32_t, ProbeFx> sampled;
     std::vector<PixelFx> got = rtl->run(in, activeOctaves, probes ? &sampled : nullptr);
     rtlSeconds += since(tr);
-    for (const PixelFx& px : got) {
+    const std::vector<uint64_t>& outCycles = rtl->outCycles();
+    for (size_t i = 0; i < got.size(); ++i) {
+        const PixelFx& px = got[i];
         auto it = sampled.find(px.tag);
+        const size_t before = board.mismatches() + board.unexpected();
         board.observe(px, it == sampled.end() ? nullptr : &it->second);
+        if (firstMismatchCycle && *firstMismatchCycle == UINT64_MAX && board.mismatches() + board.unexpected() > before)
+            *firstMismatchCycle = i < outCycles.size() ? outCycles[i] : rtl->cycles();
     }
     return got;
 }
@@ -119,7 +124,7 @@ HwRenderResult renderHardware(const Scene& scene, const Profile& p, RtlModel* rt
                 in.push_back(quantizeFragment(p, uint32_t(f->y * W + f->x), f->s, f->dsdx, f->dsdy));
 
             const std::vector<PixelFx> shown = runBatch(golden, rtl, board, in, prog.activeOctaves, opt.probes,
-                                                        res.goldenSeconds, res.rtlSeconds);
+                                                        res.goldenSeconds, res.rtlSeconds, &res.firstMismatchCycle);
             for (const PixelFx& px : shown) {
                 if (px.tag >= uint32_t(W) * H) continue;
                 colour[px.tag] = unpackRgba(p, px.rgba);
@@ -132,7 +137,9 @@ HwRenderResult renderHardware(const Scene& scene, const Profile& p, RtlModel* rt
             if (covered[i]) over(&res.hardware.data[i * 4], colour[i]);
     }
     if (rtl) {
+        const size_t lost0 = board.lost();
         board.finish();
+        if (res.firstMismatchCycle == UINT64_MAX && board.lost() > lost0) res.firstMismatchCycle = rtl->cycles();
         res.passed = board.passed();
         res.pixels = board.checked();
         res.mismatches = board.mismatches();

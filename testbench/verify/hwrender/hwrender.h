@@ -46,6 +46,8 @@ struct HwRenderResult {
     ErrorStats vsTruth;       // only with truthSamples > 0
     ErrorStats referenceVsTruth;  // the double reference's own error against the ground truth
     std::vector<std::string> notes;   // what the driver had to change (octaves dropped, ...)
+    uint64_t firstMismatchCycle = UINT64_MAX;  // RTL cycle at which the first mismatching pixel came
+                                               // out (for a lost pixel: the end of its batch)
 };
 
 // `rtl` may be null: golden model only (no scoreboard, no cycles).
@@ -61,7 +63,8 @@ class Scoreboard;
 // golden model's. Used by the scene render and the atlas fill.
 std::vector<PixelFx> runBatch(GoldenPipeline& golden, RtlModel* rtl, Scoreboard& board,
                               const std::vector<FragmentFx>& in, int activeOctaves, bool probes,
-                              double& goldenSeconds, double& rtlSeconds);
+                              double& goldenSeconds, double& rtlSeconds,
+                              uint64_t* firstMismatchCycle = nullptr);
 
 ErrorStats compareToReference(const Image& hardware, const Image& reference, int colourBits);
 

@@ -18,6 +18,7 @@
 #include "driver.h"
 #include "hwrender.h"
 #include "imageio.h"
+#include "provenance.h"
 #include "scene.h"
 
 extern "C" char** environ;
@@ -253,7 +254,7 @@ int runAnimate(const AnimateArgs& a) {
             }
         }
     }
-    writeTextFile((dir / "flicker.json").string(), j.dump(2) + "\n");
+    writeTextFile((dir / "flicker.json").string(), withProvenance(j).dump(2) + "\n");
     std::cout << line.str() << " -> " << dir.string() << "\n";
     for (const auto& n : notes) std::cout << "  note: " << n << "\n";
     return rc;

@@ -1,0 +1,59 @@
+// pst animate SCENE: the scene's time track: frames, videos, flicker against the ground truth
+// (testbench/tool/animate), optionally through the hardware models.
+#include <cstdio>
+#include <memory>
+
+#include <unistd.h>
+
+#include "animate.h"
+#include "common.h"
+
+namespace pst::cli {
+
+Command registerAnimate(CLI::App& app) {
+    auto an = std::make_shared<AnimateArgs>();
+    auto variants = std::make_shared<std::vector<std::string>>();
+    auto flags = std::make_shared<std::pair<bool, bool>>(false, false);   // --no-video, -q
+    auto* animate = app.add_subcommand("animate", "Render a scene's time track: PNG frames, videos, flicker.json");
+    animate->add_option("scene", an->scene, "Scene file with an [animation] track")->required()->check(CLI::ExistingFile);
+    animate->add_option("--frames", an->frames, "Frames (0: the scene's animation.frames)")->check(CLI::Range(1, 10000));
+    animate->add_option("--size", an->size, "Square image size, overrides the scene's (0: the scene's)")->check(CLI::Range(1, 4096));
+    animate->add_option("--truth", an->truth, "N x N ground truth per frame (the flicker metric needs it; 0: none)")->check(CLI::Range(1, 64));
+    animate->add_option("--fps", an->fps, "Video frame rate (0: the scene's animation.fps)")->check(kFinite & CLI::Range(0.1, 240.0));
+    animate->add_option("--profile", an->profiles, profileHelp("Also through the hardware model(s) of these profiles, scoreboarded"))
+        ->allow_extra_args(false);
+    animate->add_option("--model", an->model, "Hardware model for --profile: rtl or golden")->check(CLI::IsMember({"rtl", "golden"}));
+    animate->add_option("-o,--out", an->outDir, "Output folder (default out/anim/<scene name>)");
+    animate->add_option("-j,--threads", an->threads, "Threads (0: all cores)")->check(CLI::Range(0, 256));
+    animate->add_flag("--no-video", flags->first, "PNG frames and flicker.json only");
+    animate->add_option("--bandlimit", an->bandlimit, "Every texture's bandlimited octaves: off, footprint, isotropic or "
+                        "anisotropic (scenes/README.md; default: as the scene says)")
+        ->check(CLI::IsMember(kBandlimitNames));
+    animate->add_option("--filter", an->filter, "Every texture's filter kind: none, mip, mip_linear, sat, box or trapezoid "
+                        "(default: as the scene says)")
+        ->check(CLI::IsMember(kFilterNames));
+    animate->add_option("--variants", *variants, "Also a reference stream per KIND[+BANDLIMIT] (every texture's filter "
+                        "and bandlimit replaced), with its flicker")
+        ->delimiter(',');
+    animate->add_flag("-q,--quiet", flags->second, "No progress on stderr");
+    return {animate, [an, variants, flags, animate]() {
+                if (an->profiles.empty()) refuseGiven(animate, {"--model"}, "needs --profile (without it no hardware model runs)");
+                checkOutDir("-o", an->outDir);
+                checkCreatableDir("-o", an->outDir.empty() ? "out" : an->outDir);
+                an->video = !flags->first;
+                an->variants = parseVariants(*variants);
+                AnimateArgs* a = an.get();
+                an->loadProfile = [a](const std::string& n) { return profileByName(n, a->model == "rtl"); };
+                // One line per frame and model (rewritten in place on a terminal).
+                if (!flags->second)
+                    an->progress = [name = fs::path(an->scene).stem().string(), tty = isatty(STDERR_FILENO)](
+                                       const std::string& phase, double frac) {
+                        std::fprintf(stderr, tty ? "\r%s: %-28s %5.1f%%" : "%s: %s %.1f%%\n", name.c_str(), phase.c_str(),
+                                     100.0 * frac);
+                        if (tty && frac >= 1.0) std::fprintf(stderr, "\n");
+                    };
+                return runAnimate(*an);
+            }};
+}
+
+}  // namespace pst::cli

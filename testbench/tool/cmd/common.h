@@ -1,0 +1,142 @@
+// What the pst subcommands (testbench/tool/cmd/*.cpp) share: the registration interface, the
+// hardware-model options, profiles by name, progress on stderr, output files and checks.
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include "hwrender.h"
+#include "input_error.h"
+#include "render.h"
+#include "rtl_model.h"
+#include "scene.h"
+
+namespace pst::cli {
+
+namespace fs = std::filesystem;
+
+// A subcommand: its CLI11 app and what runs when it was given (returns the exit status:
+// 0 success, 1 failure, 2 bad input; throws InputError for bad input).
+struct Command {
+    CLI::App* app = nullptr;
+    std::function<int()> run;
+};
+
+Command registerRender(CLI::App& app);
+Command registerEval(CLI::App& app);
+Command registerRegress(CLI::App& app);
+Command registerFragments(CLI::App& app);
+Command registerCompare(CLI::App& app);
+Command registerAnimate(CLI::App& app);
+Command registerAtlas(CLI::App& app);
+
+// Hardware-model options shared by render --profile, regress, eval --model and atlas --profile.
+struct HwArgs {
+    std::vector<std::string> profiles;
+    std::string model = "rtl";      // rtl | golden
+    SimOptions sim;
+    std::string trace;
+    std::string html;               // render --profile --html: the runs' page
+};
+
+// --sim-seed, --gap-rate, --stall-rate, --timeout into hw.sim.
+void addSimOptions(CLI::App* sc, HwArgs& hw);
+extern const std::vector<std::string> kSimOptions;
+// A flag that would do nothing in this mode is refused, not ignored (41 part 4): the first of
+// `names` given on the command line, with `why`.
+void refuseGiven(const CLI::App* app, const std::vector<std::string>& names, const std::string& why);
+// The hardware options of a command whose models run only with --profile: --model and the
+// simulation options need --profile, the simulation options need --model rtl.
+void refuseHardwareOptionsWithoutModel(const CLI::App* app, const HwArgs& hw);
+// The help text of --profile: `what`, then the profiles this build verilated (its registry).
+std::string profileHelp(const std::string& what);
+
+extern const std::vector<std::string> kBandlimitNames, kFilterNames;
+// CLI11's Range lets NaN through (every comparison with NaN is false).
+extern const CLI::Validator kFinite;
+
+std::vector<FilterVariant> parseVariants(const std::vector<std::string>& specs);
+// --bandlimit and --filter: every texture of the scene gets them (a bandlimit a texture cannot
+// take is refused).
+void overrideTextures(Scene& scene, const std::string& bandlimit, const std::string& filter);
+// Every variant's bandlimit must suit every texture of the scene.
+void checkVariants(const Scene& scene, const std::vector<FilterVariant>& variants);
+
+// Progress on stderr: one rewritten line on a terminal, a line per phase otherwise.
+std::function<void(const std::string&, double)> progressPrinter(const std::string& name, bool quiet);
+
+// Progress of a run of `total` steps with an ETA on stderr (rewritten in place on a terminal,
+// a line per step otherwise); silent when quiet.
+class EtaProgress {
+public:
+    EtaProgress(std::string name, size_t total, bool quiet);
+    void step(const std::string& what);   // one more step done
+    void finish();
+
+private:
+    std::string name_;
+    size_t total_, done_ = 0;
+    double lastLine_ = 0;   // seconds at the last line printed
+    bool quiet_, tty_;
+    std::chrono::steady_clock::time_point t0_;
+};
+
+// The HTML page of hardware runs, written by scripts/report.py. Returns 0, or 1 when it fails.
+int writeHtmlPage(const std::string& page, std::vector<std::string> args);
+
+// A verilated profile by its name (rtl/configs or PST_EXTRA_PROFILE_DIR), else a name in
+// rtl/configs or a profile file. For the RTL (rtl = true) the profile must have a verilated
+// model in this build, and the same values as the file that model was built from.
+Profile profileByName(const std::string& name, bool rtl = false);
+
+// The files one command writes: if a later write fails (a full disk), the ones written so far
+// are removed again, and the folder if this command created it, so no half output is left.
+class OutputFiles {
+public:
+    explicit OutputFiles(const fs::path& dir);
+    std::string operator()(const std::string& name);
+    void keep() { keep_ = true; }
+    ~OutputFiles();
+
+private:
+    fs::path dir_;
+    bool created_;
+    bool keep_ = false;
+    std::vector<fs::path> files_;
+};
+
+// Fails (InputError) unless a trace file can be written: its folder exists.
+void checkTracePath(const std::string& trace);
+// An output file given with -o must not be an existing folder, and its folder must exist and be
+// writable.
+void checkOutFile(const std::string& flag, const std::string& path);
+// An output folder given with -o must not be a file.
+void checkOutDir(const std::string& flag, const std::string& path);
+
+// An output that is one of the run's inputs (the same file, std::filesystem::equivalent) is
+// refused before any work: it would overwrite the input.
+void checkNotInput(const std::string& flag, const std::string& out, const std::vector<std::string>& inputs);
+
+// An output folder must exist as a writable folder or be creatable: checked before any work,
+// with the path and the reason (41 part 1).
+void checkCreatableDir(const std::string& flag, const std::string& dir);
+// The folder an output file goes to (its parent) the same way.
+void checkCreatableFileDir(const std::string& flag, const std::string& file);
+
+// Whether this build verilated `profile` with its assertions (the checked flavour).
+bool asserted(const std::string& profile);
+
+// summary.json of one hardware run (without provenance).
+nlohmann::json hwJson(const std::string& scene, const Profile& p, const std::string& model,
+                      const HwRenderResult& r, int w, int h);
+
+// The first texture of the scene's objects that profile p cannot run (hardwareUnsupported), or "".
+std::string unsupportedTexture(const Scene& scene, const Profile& p);
+
+}  // namespace pst::cli
