@@ -31,7 +31,7 @@ case "${1:-}" in
 esac
 START=$(date +%s)
 scripts/setup.sh
-scripts/build.sh pst
+scripts/build.sh --named pst    # every profile the regression below runs
 mkdir -p out
 # This run's verdicts only: no previous run's baseline check or silicon source in the report.
 rm -f out/baseline_check.json out/synth/source.json

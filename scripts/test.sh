@@ -7,7 +7,9 @@ cd "$(dirname "$0")/.."
 # (scripts/sanitize.sh, its own build tree build-asan/).
 if [ "${1:-}" = "--sanitize" ]; then exec scripts/sanitize.sh; fi
 scripts/setup.sh
-scripts/build.sh
+# --all: every named profile the main job regresses verilated too (full_2clk, full_1clk), with
+# their RTL unit tests and random regressions; the default build has full and reduced.
+if [ "${1:-}" = "--all" ]; then scripts/build.sh --named; else scripts/build.sh; fi
 # JUnit XML of every test for CI servers: build/junit.xml
 # The long checks run on their own (docs/TESTING.md): ctest -L formal (the multiplier proof
 # whole; the default suite checks its record), -L long (the RTL unit tests' full random
