@@ -211,6 +211,12 @@ def test_regress_waves_on_an_injected_mismatch(tmp_path):
     assert h["vars"] > 10 and h["scopes"] > 0 and h["sections"] >= 1, h
     # Two dumps per cycle (the low phase at 2c, the edge at 2c + 1): the window and nothing else.
     assert h["start"] == 2 * first and 2 * cycle < h["end"] <= 2 * last + 1, h
+    # GTKWave's own reader (fst2vcd, from Debian's gtkwave package) opens it: the signals are
+    # declared and the value changes start at the window's first dump.
+    vcd = subprocess.run(["fst2vcd", "-f", str(fst)], capture_output=True, text=True, timeout=120)
+    assert vcd.returncode == 0, vcd.stderr
+    assert vcd.stdout.count("$var ") == h["vars"] and "$enddefinitions" in vcd.stdout
+    assert re.search(rf"^#{2 * first}$", vcd.stdout, re.M) and re.search(r"^\$scope module ", vcd.stdout, re.M)
     run = json.loads((tmp_path / "r.json").read_text())["runs"][0]
     assert run["waves"] == {"file": str(fst), "cycle": cycle, "start": first, "end": last}
     assert pst("regress", "--random", 10, "--waves", waves).returncode == 2
