@@ -1,7 +1,9 @@
 #include "profile.h"
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
+#include <vector>
 
 #include <toml++/toml.h>
 
@@ -47,12 +49,27 @@ NoiseOptions hardwareNoise(const ProfileParams& p) {
 }
 namespace {
 
+// One key's error: recorded by Reader::fail, caught where the next key starts (parseProfile), so
+// that a profile file is reported whole, every error on its own line.
+struct KeyError {};
+
 struct Reader {
     std::string path;
     const toml::table& root;
+    mutable std::vector<std::string> errors;   // "FILE:LINE: FIELD: what", in file order of the checks
 
     [[noreturn]] void fail(const toml::node* n, const std::string& field, const std::string& what) const {
-        throw inputError(path, lineOf(n), field, what);
+        std::string e = inputError(path, lineOf(n), field, what).what();
+        if (std::find(errors.begin(), errors.end(), e) == errors.end()) errors.push_back(std::move(e));
+        throw KeyError{};
+    }
+    // Runs one check; its error (if any) is recorded and the next check goes on.
+    template <typename F>
+    void each(F&& check) const {
+        try {
+            check();
+        } catch (const KeyError&) {
+        }
     }
     const toml::table& section(const char* name) const {
         const toml::node* n = root.get(name);
@@ -96,7 +113,7 @@ Profile parseProfile(const std::string& text, const std::string& path) {
     namespace c = contract;
     int v[c::kNumParams] = {};
     const toml::node* where[c::kNumParams] = {};
-    for (const c::KeySpec& k : c::kSchema) {
+    for (const c::KeySpec& k : c::kSchema) r.each([&] {
         const toml::table& t = r.section(k.section);
         const std::string field = std::string(k.section) + "." + k.key;
         where[k.param] = t.get(k.key);
@@ -132,32 +149,43 @@ Profile parseProfile(const std::string& text, const std::string& path) {
                 break;
             }
         }
-    }
+    });
     // Unknown sections and keys are errors (as in scene files), so a typo does not silently
     // leave a value at what another profile had.
     for (auto&& [sec, node] : root) {
         const std::string sname(sec.str());
         bool known = false;
         for (const c::KeySpec& k : c::kSchema) known = known || sname == k.section;
-        if (!known) r.fail(&node, sname, "unknown section");
-        for (auto&& [key, kn] : *node.as_table()) {
+        if (!known) {
+            r.each([&] { r.fail(&node, sname, "unknown section"); });
+            continue;
+        }
+        if (!node.is_table()) continue;   // reported by the key checks above ("missing table")
+        for (auto&& [key, kn] : *node.as_table()) r.each([&] {
             const std::string kname(key.str());
             const c::KeySpec* spec = nullptr;
             for (const c::KeySpec& k : c::kSchema)
                 if (sname == k.section && kname == k.key) spec = &k;
             if (!spec) r.fail(&kn, sname + "." + kname, "unknown key");
-            if (spec->kind == c::KeyKind::Format)
+            if (spec->kind == c::KeyKind::Format && kn.is_table())
                 for (auto&& [fk, fn] : *kn.as_table())
                     if (fk.str() != "int" && fk.str() != "frac")
                         r.fail(&fn, sname + "." + kname + "." + std::string(fk.str()), "unknown key (expected int, frac)");
-        }
+        });
     }
-    for (const c::Constraint& k : c::kConstraints) {
-        if (k.holds(v)) continue;
-        const std::string field = k.field;
-        const std::string::size_type dot = field.find('.');
-        const toml::node* n = root.at_path(field).node();
-        r.fail(n ? n : root.get(field.substr(0, dot)), field, k.message);
+    // The constraints between keys need every key's value: checked once every key has one.
+    if (r.errors.empty())
+        for (const c::Constraint& k : c::kConstraints) {
+            if (k.holds(v)) continue;
+            const std::string field = k.field;
+            const std::string::size_type dot = field.find('.');
+            const toml::node* n = root.at_path(field).node();
+            r.each([&] { r.fail(n ? n : root.get(field.substr(0, dot)), field, k.message); });
+        }
+    if (!r.errors.empty()) {
+        std::string all;
+        for (const std::string& e : r.errors) all += (all.empty() ? "" : "\n") + e;
+        throw InputError(all);
     }
 
     Profile p;

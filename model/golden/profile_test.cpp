@@ -6,6 +6,8 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -160,6 +162,34 @@ TEST(Profile, RejectsWhatTheContractRejects) {
     expectError("coord      = { int = 10, frac = 12 }", "coord      = { int = 30, frac = 12 }",
                 "formats.coord: int + frac must be at most 40");
     expectError("width_frac = 4", "width_frac = 25", "formats.width_frac: must be in [0, 24]");
+}
+
+// A profile file is reported whole: every key's error on its own line (FILE:LINE: FIELD: what),
+// a typo'd key beside them; the constraints between keys only once every key has a value.
+TEST(Profile, ReportsEveryErrorNotOnlyTheFirst) {
+    std::string text = readFile(reducedPath());
+    for (auto [from, to] : {std::pair<std::string, std::string>{"octaves = 5", "octaves = 17"},
+                            {"datapath = \"serial\"", "datapath = \"fast\""},
+                            {"width_frac = 4", "width_frac = 25"}}) {
+        const auto at = text.find("\n" + from);
+        ASSERT_NE(at, std::string::npos) << from;
+        text.replace(at + 1, from.size(), to);
+    }
+    text += "\n[pipeline2]\nx = 1\n";
+    try {
+        parseProfile(text, "p.toml");
+        ADD_FAILURE() << "accepted";
+    } catch (const InputError& e) {
+        std::istringstream lines(e.what());
+        std::vector<std::string> got;
+        for (std::string line; std::getline(lines, line);) got.push_back(line);
+        ASSERT_EQ(got.size(), 4u) << e.what();
+        const std::string all = e.what();
+        for (const char* want : {"pipeline.octaves: must be in [1, 16]", "pipeline.datapath: unknown value 'fast'",
+                                 "formats.width_frac: must be in [0, 24]", "pipeline2: unknown section"})
+            EXPECT_NE(all.find(want), std::string::npos) << want << " in\n" << all;
+        for (const std::string& line : got) EXPECT_EQ(line.rfind("p.toml:", 0), 0u) << line;
+    }
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cstring>
 #include <iostream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -92,7 +93,9 @@ int main(int argc, char** argv) {
         for (const cli::Command& c : commands)
             if (*c.app) return c.run();
     } catch (const InputError& e) {
-        std::cerr << "error: " << e.what() << "\n";
+        // One line per error: a profile file reports every error it has (model/golden/profile.cpp).
+        std::istringstream lines(e.what());
+        for (std::string line; std::getline(lines, line);) std::cerr << "error: " << line << "\n";
         return 2;
     } catch (const std::exception& e) {
         std::cerr << "error: " << e.what() << "\n";
