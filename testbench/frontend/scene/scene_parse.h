@@ -164,4 +164,9 @@ E getEnum(const Ctx& c, const toml::table& t, const std::string& path, const cha
 ColorMap parseColorMap(const Ctx& c, const toml::table& t, const std::string& path);
 Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string& path);
 
+// The time track (scene_animation.cpp): [animation] read and checked against the tree; one
+// track's value at time t written into the tree.
+Animation parseAnimation(const Ctx& c, toml::table& root);
+void applyTrack(toml::table& root, const Track& tr, double t);
+
 }  // namespace pst::scene_detail

@@ -154,6 +154,26 @@ TEST(Scene, ErrorsNameFileLineAndField) {
                 {"bad.toml:21:", "objects[1].filter", "unknown key"});
 }
 
+// A scene file is reported whole: the camera's, a texture's and an object's errors, each on its
+// own line with its file and line; an object using the failed texture is not reported for it.
+TEST(Scene, ReportsEveryErrorNotOnlyTheFirst) {
+    std::string bad = kMinimal;
+    bad.replace(bad.find("eye = [0.0, 0.0, 5.0]"), 21, "eye = [0.0, 5.0]");
+    bad.replace(bad.find("size = 4"), 8, "size = 6");
+    bad.replace(bad.find("mesh = \"cube\""), 13, "mesh = \"dodecahedron\"");
+    bad += "\n[[objects]]\nmesh = \"cube\"\ntexture = \"u\"\n";
+    expectError(bad, {"bad.toml:6: camera.eye", "bad.toml:9: textures.t.colormap.size", "bad.toml:15: objects[0].mesh",
+                      "objects[1].texture: no texture named 'u'"});
+    try {
+        parseScene(bad, "bad.toml");
+    } catch (const InputError& e) {
+        std::istringstream lines(e.what());
+        int n = 0;
+        for (std::string line; std::getline(lines, line); ++n) EXPECT_EQ(line.rfind("bad.toml:", 0), 0u) << line;
+        EXPECT_EQ(n, 4) << e.what();
+    }
+}
+
 // kMinimal with a noise table on line 9.
 std::string withNoise(const std::string& noise) {
     std::string t = kMinimal;
