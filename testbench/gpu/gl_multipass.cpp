@@ -3,6 +3,8 @@
 
 #include <GLES3/gl3.h>
 
+#include "gl_util.h"
+
 #include <algorithm>
 #include <array>
 #include <chrono>
@@ -15,13 +17,6 @@ using namespace pst::multipass;
 
 namespace {
 
-// A full-screen triangle from gl_VertexID (no vertex buffer).
-const char* kVertex = R"(#version 300 es
-void main() {
-    vec2 p = vec2(float((gl_VertexID << 1) & 2), float(gl_VertexID & 2));
-    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
-}
-)";
 
 // Section 4.1's blendtex with PixelTransfer (scale, bias) and PixelMap: the map is a 256 x 1
 // texture indexed by round(c 255), c the clamped scaled value (the GL's PixelMap index rule).
@@ -126,113 +121,10 @@ void main() {
 }
 )";
 
-void check(const char* what) {
-    const GLenum e = glGetError();
-    if (e != GL_NO_ERROR) {
-        char buf[16];
-        std::snprintf(buf, sizeof buf, "0x%04x", e);
-        throw std::runtime_error(std::string("GL: ") + what + ": error " + buf);
-    }
-}
-
-GLuint compile(GLenum type, const char* text) {
-    GLuint sh = glCreateShader(type);
-    glShaderSource(sh, 1, &text, nullptr);
-    glCompileShader(sh);
-    GLint ok = 0;
-    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
-    if (!ok) {
-        char log[2048];
-        glGetShaderInfoLog(sh, sizeof log, nullptr, log);
-        throw std::runtime_error(std::string("GL: shader compile: ") + log);
-    }
-    return sh;
-}
-
-GLuint link(const char* fragment) {
-    GLuint prog = glCreateProgram();
-    GLuint vs = compile(GL_VERTEX_SHADER, kVertex), fs = compile(GL_FRAGMENT_SHADER, fragment);
-    glAttachShader(prog, vs);
-    glAttachShader(prog, fs);
-    glLinkProgram(prog);
-    glDeleteShader(vs);
-    glDeleteShader(fs);
-    GLint ok = 0;
-    glGetProgramiv(prog, GL_LINK_STATUS, &ok);
-    if (!ok) {
-        char log[2048];
-        glGetProgramInfoLog(prog, sizeof log, nullptr, log);
-        throw std::runtime_error(std::string("GL: program link: ") + log);
-    }
-    return prog;
-}
-
-#ifndef GL_R16_EXT
-#define GL_R16_EXT 0x822A
-#endif
-
-GLenum internalFormat(TargetFormat f) {
-    return f == TargetFormat::RGB10A2 ? GL_RGB10_A2 : f == TargetFormat::R16 ? GL_R16_EXT : GL_RGBA8;
-}
-
-GLuint makeTexture(int w, int h, TargetFormat f = TargetFormat::RGBA8) {
-    GLuint tex;
-    glGenTextures(1, &tex);
-    glBindTexture(GL_TEXTURE_2D, tex);
-    glTexStorage2D(GL_TEXTURE_2D, 1, internalFormat(f), w, h);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    return tex;
-}
-
-// Luminance values -> texels of the format (R = G = B = v, A = 1; R16: R only).
-void upload(GLuint tex, int w, int h, const uint32_t* lum, TargetFormat f = TargetFormat::RGBA8) {
-    const size_t n = size_t(w) * h;
-    glBindTexture(GL_TEXTURE_2D, tex);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    if (f == TargetFormat::RGBA8) {
-        std::vector<uint8_t> rgba(n * 4);
-        for (size_t i = 0; i < n; ++i) {
-            rgba[4 * i] = rgba[4 * i + 1] = rgba[4 * i + 2] = uint8_t(lum[i]);
-            rgba[4 * i + 3] = 255;
-        }
-        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-    } else if (f == TargetFormat::RGB10A2) {
-        std::vector<uint32_t> px(n);
-        for (size_t i = 0; i < n; ++i) px[i] = lum[i] | lum[i] << 10 | lum[i] << 20 | 3u << 30;
-        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGBA, GL_UNSIGNED_INT_2_10_10_10_REV, px.data());
-    } else {
-        std::vector<uint16_t> px(lum, lum + n);
-        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RED, GL_UNSIGNED_SHORT, px.data());
-    }
-}
-
-// The R channel of the bound framebuffer's w x h pixels as values of the format.
-std::vector<uint32_t> readback(int w, int h, TargetFormat f) {
-    const size_t n = size_t(w) * h;
-    std::vector<uint32_t> out(n);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    if (f == TargetFormat::RGBA8) {
-        std::vector<uint8_t> rgba(n * 4);
-        glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
-        for (size_t i = 0; i < n; ++i) out[i] = rgba[4 * i];
-    } else if (f == TargetFormat::RGB10A2) {
-        std::vector<uint32_t> px(n);
-        glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_INT_2_10_10_10_REV, px.data());
-        for (size_t i = 0; i < n; ++i) out[i] = px[i] & 1023;
-    } else {
-        std::vector<uint16_t> px(n * 4);  // EXT_texture_norm16: RGBA / UNSIGNED_SHORT
-        glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_SHORT, px.data());
-        for (size_t i = 0; i < n; ++i) out[i] = px[4 * i];
-    }
-    return out;
-}
-
-double msSince(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-}
 
 }  // namespace
+
+using namespace detail;
 
 int formatBits(TargetFormat f) { return f == TargetFormat::RGB10A2 ? 10 : f == TargetFormat::R16 ? 16 : 8; }
 const char* formatName(TargetFormat f) {
@@ -518,126 +410,5 @@ Image8 GlMultipass::run(const Program& prog, const Tables& tables, const Image8&
     return out;
 }
 
-namespace {
-
-// One draw: Rayshade's value noise with the 8-bit hash (Variant::Xor's noise) in float.
-const char* kSinglePass = R"(#version 300 es
-precision highp float;
-precision highp int;
-uniform highp sampler2D s;
-uniform highp sampler2D t;
-uniform highp sampler2D r;
-uniform highp sampler2D perm;   // P (bytes / 255)
-uniform highp sampler2D value;  // 0.5 R[P[m]] + 1/2 (bytes / 255)
-uniform int bf;
-uniform int scurve;
-out vec4 color;
-int P(int i) { return int(texelFetch(perm, ivec2(i & 255, 0), 0).r * 255.0 + 0.5); }
-void main() {
-    ivec2 p = ivec2(gl_FragCoord.xy);
-    int c[3];
-    c[0] = int(texelFetch(s, p, 0).r * 255.0 + 0.5);
-    c[1] = int(texelFetch(t, p, 0).r * 255.0 + 0.5);
-    c[2] = int(texelFetch(r, p, 0).r * 255.0 + 0.5);
-    int K[3];
-    float u[3];
-    for (int a = 0; a < 3; ++a) {
-        K[a] = (c[a] >> bf) + 64;  // Rayshade's lattice index + 1e6, low 8 bits
-        u[a] = float(c[a] & ((1 << bf) - 1)) / float(1 << bf);
-        if (scurve != 0) u[a] = u[a] * u[a] * (3.0 - 2.0 * u[a]);
-    }
-    float n = 0.0;
-    for (int k = 0; k < 8; ++k) {
-        int bx = k & 1, by = (k >> 1) & 1, bz = (k >> 2) & 1;
-        int x = P(P(K[0] + bx) ^ ((K[1] + by) & 255)) ^ ((K[2] + bz) & 255);
-        float v = texelFetch(value, ivec2(x, 0), 0).r;
-        n += v * (bx == 1 ? u[0] : 1.0 - u[0]) * (by == 1 ? u[1] : 1.0 - u[1]) * (bz == 1 ? u[2] : 1.0 - u[2]);
-    }
-    color = vec4(n, n, n, 1.0);
-}
-)";
-
-}  // namespace
-
-Image8 singlePassNoise(const Image8& s, const Image8& t, const Image8& r, const Params& params, int frames,
-                       Timing* timing) {
-    const int w = s.width, h = s.height;
-    const GLuint prog = link(kSinglePass);
-    GLuint tex[5], fbo, vao, target = makeTexture(w, h);
-    for (int i = 0; i < 3; ++i) tex[i] = makeTexture(w, h);
-    tex[3] = makeTexture(256, 1);
-    tex[4] = makeTexture(256, 1);
-    const Tables tables = makeTables(params);
-    Timing tm;
-    glFinish();
-    auto t0 = std::chrono::steady_clock::now();
-    upload(tex[0], w, h, s.px.data());
-    upload(tex[1], w, h, t.px.data());
-    upload(tex[2], w, h, r.px.data());
-    upload(tex[3], 256, 1, tables[Perm].data());
-    upload(tex[4], 256, 1, tables[ValuePerm].data());
-    glFinish();
-    tm.msUpload = msSince(t0);
-    glGenFramebuffers(1, &fbo);
-    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, target, 0);
-    glGenVertexArrays(1, &vao);
-    glBindVertexArray(vao);
-    glViewport(0, 0, w, h);
-    glDisable(GL_DITHER);
-    glDisable(GL_BLEND);
-    glUseProgram(prog);
-    const char* names[5] = {"s", "t", "r", "perm", "value"};
-    for (int i = 0; i < 5; ++i) {
-        glUniform1i(glGetUniformLocation(prog, names[i]), i);
-        glActiveTexture(GL_TEXTURE0 + i);
-        glBindTexture(GL_TEXTURE_2D, tex[i]);
-    }
-    glUniform1i(glGetUniformLocation(prog, "bf"), params.format.bf);
-    glUniform1i(glGetUniformLocation(prog, "scurve"), params.interp == Interp::Scurve);
-    tm.draws = 1;
-    tm.frames = std::max(1, frames);
-    double total = 0;
-    tm.msPerFrameMin = 1e300;
-    for (int f = 0; f < tm.frames; ++f) {
-        t0 = std::chrono::steady_clock::now();
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        glFinish();
-        const double ms = msSince(t0);
-        total += ms;
-        tm.msPerFrameMin = std::min(tm.msPerFrameMin, ms);
-    }
-    tm.msPerFrame = total / tm.frames;
-    check("single pass");
-    Image8 out{w, h, readback(w, h, TargetFormat::RGBA8)};
-    glDeleteTextures(5, tex);
-    glDeleteTextures(1, &target);
-    glDeleteFramebuffers(1, &fbo);
-    glDeleteVertexArrays(1, &vao);
-    glDeleteProgram(prog);
-    check("single pass readback");
-    if (timing) *timing = tm;
-    return out;
-}
-
-std::vector<float> gpuNoise(const std::vector<glm::dvec3>& coords, const Params& params,
-                            BlendArith arith, Timing* timing) {
-    if (coords.empty()) return {};
-    EglContext ctx;
-    // Lay the coordinates out as rows of up to 1024 pixels; the padding is coordinate 0.
-    const int w = int(std::min<size_t>(coords.size(), 1024));
-    const int h = int((coords.size() + w - 1) / w);
-    Image8 s{w, h, std::vector<uint32_t>(size_t(w) * h, 0)}, t = s, r = s;
-    for (size_t i = 0; i < coords.size(); ++i) {
-        s.px[i] = toFixed(coords[i].x, params.format);
-        t.px[i] = toFixed(coords[i].y, params.format);
-        r.px[i] = toFixed(coords[i].z, params.format);
-    }
-    GlMultipass gl(w, h);
-    const Image8 n = gl.run(makeProgram(params), makeTables(params), s, t, r, arith, 1, timing);
-    std::vector<float> out(coords.size());
-    for (size_t i = 0; i < coords.size(); ++i) out[i] = n.px[i] / 255.0f;
-    return out;
-}
 
 }  // namespace pst::gpu
