@@ -88,7 +88,8 @@ AtlasFill fillStep(const AtlasArgs& a, const HwArgs& hw, const Scene& scene, con
 }
 
 // Step 3: the view texture-mapped with the atlas; seams; the per-pixel render and the truth.
-AtlasViews renderStep(const AtlasArgs& a, const Scene& scene, const AtlasLayout& L, const AtlasFill& fill, bool hardware) {
+AtlasViews renderStep(const AtlasArgs& a, const Scene& scene, const AtlasLayout& L, const AtlasFill& fill, bool hardware,
+                      const GpuFill* gpu) {
     AtlasViews v;
     v.nearest = renderWithAtlas(scene, L.atlas, fill.reference, L.owners, Magnification::Nearest);
     v.bilinear = renderWithAtlas(scene, L.atlas, fill.reference, L.owners, Magnification::Bilinear);
@@ -105,6 +106,7 @@ AtlasViews renderStep(const AtlasArgs& a, const Scene& scene, const AtlasLayout&
     v.dP = compareRgb(v.perPixel.filtered, truth);
     v.dBP = compareRgb(v.bilinear.image, v.perPixel.filtered);
     if (hardware) v.hwBilinear = renderWithAtlas(scene, L.atlas, fill.hardware, L.owners, Magnification::Bilinear);
+    if (gpu) v.gpuBilinear = renderWithAtlas(scene, L.atlas, gpu->image, L.owners, Magnification::Bilinear);
     if (a.mip) {
         v.trilinear = renderWithAtlasTrilinear(scene, L.atlas, mipLevels(fill.reference, L.owners));
         v.mixing = mipMixing(L.atlas, dualGraph(L.atlas.triangles));
@@ -114,11 +116,15 @@ AtlasViews renderStep(const AtlasArgs& a, const Scene& scene, const AtlasLayout&
 
 // Step 6: every file, or none (OutputFiles removes what it wrote when a write fails).
 void writeStep(const AtlasArgs& a, const HwArgs& hw, const fs::path& dir, const Scene& scene, const AtlasLayout& L,
-               const AtlasViews& v, const AtlasFill& fill, bool hardware, const Turntable& turn,
+               const AtlasViews& v, const AtlasFill& fill, bool hardware, const GpuFill* gpu, const Turntable& turn,
                const nlohmann::json& j, const std::string& md) {
     OutputFiles out(dir);
     writeImage(fill.reference, out("atlas.png"));
     if (hardware) writeImage(fill.hardware, out("atlas_" + hw.model + ".png"));
+    if (gpu) {
+        writeImage(gpu->image, out("atlas_gpu.png"));
+        writeImage(v.gpuBilinear.image, out("render_gpu_bilinear.png"));
+    }
     writeImage(v.nearest.image, out("render_nearest.png"));
     writeImage(v.bilinear.image, out("render_bilinear.png"));
     if (a.mip) writeImage(v.trilinear.image, out("render_trilinear.png"));
@@ -139,6 +145,10 @@ int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
         throw InputError("--magnification: '" + a.magnification + "' is not nearest or bilinear");
     ao.size = a.size;
     if (hw.profiles.size() > 1) throw InputError("--profile: atlas takes one profile");
+    const bool onGpu = a.filler == "gpu";
+    if (onGpu && !hw.profiles.empty())
+        throw InputError("--filler gpu: refuses --profile (one filler beside the host reference per run: the chip's "
+                         "with --profile, or the GPU's)");
     const Scene scene = opaqueLayer(loadScene(a.scene, a.image, a.image));
     const std::string stem = fs::path(a.scene).stem().string();
     const fs::path dir = a.outDir.empty() ? fs::path("out") / "atlas" / stem : fs::path(a.outDir);
@@ -151,15 +161,23 @@ int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
     auto say = [&](const std::string& s) {
         if (!a.quiet) std::fprintf(stderr, "%s: %s\n", stem.c_str(), s.c_str());
     };
+    // The GPU first: its refusals (no EGL device, a basis it cannot stand for) before the host's work.
+    std::optional<GpuFill> gpu;
+    if (onGpu) {
+        say("filling " + std::to_string(L.atlas.size()) + "^2 atlas on the GPU (multipass " + a.gpu.variant + ")");
+        gpu = fillAtlasGpu(scene, L.atlas, a.gpu);
+    }
     say("filling " + std::to_string(L.atlas.size()) + "^2 atlas");
     const AtlasFill fill = fillStep(a, hw, scene, L, prof);
+    const GpuFill* g = gpu ? &*gpu : nullptr;
     say("rendering");
-    const AtlasViews v = renderStep(a, scene, L, fill, prof.has_value());
+    const AtlasViews v = renderStep(a, scene, L, fill, prof.has_value(), g);
     // Step 4: the figures (atlas.json) and the summary line.
     std::ostringstream line;
     nlohmann::json j = atlasJson(a, L, v, fill, scene, line);
     int rc = 0;
     if (prof) rc = hardwareJson(hw, *prof, L, v, fill, j, line);
+    if (gpu) rc = gpuJson(*gpu, v, fill, j, line);
     // Step 5: the turntable.
     Turntable turn;
     if (a.turntable > 1) {
@@ -167,9 +185,9 @@ int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
         turntableJson(a, turn, j, line);
     }
     const std::string md = atlasMarkdown(a, L, v, fill, prof, j);
-    writeStep(a, hw, dir, scene, L, v, fill, prof.has_value(), turn, j, md);
+    writeStep(a, hw, dir, scene, L, v, fill, prof.has_value(), g, turn, j, md);
     std::cout << line.str() << " -> " << dir.string() << "\n";
-    if (rc) std::cout << fill.scoreboard;
+    if (rc && prof) std::cout << fill.scoreboard;
     return rc;
 }
 
@@ -195,9 +213,17 @@ Command registerAtlas(CLI::App& app) {
     atlasCmd->add_option("-o,--out", at->outDir, "Output folder (default out/atlas/<scene name>)");
     atlasCmd->add_option("-j,--threads", at->threads, "Threads (0: all cores)")->check(CLI::Range(0, 256));
     atlasCmd->add_flag("-q,--quiet", at->quiet, "No progress on stderr");
+    atlasCmd->add_option("--filler", at->filler, "Who fills the atlas besides the host reference: host (only it) or gpu "
+                         "(also the multipass pixel-shader noise of Hart 2001 on OpenGL ES 3 through EGL, docs/MULTIPASS.md; "
+                         "the chip fills it with --profile)")->check(CLI::IsMember({"host", "gpu"}));
+    atlasCmd->add_option("--variant", at->gpu.variant, "--filler gpu: the multipass program, sgi (section 4), rc (section 5, "
+                         "register combiners) or xor (section 6.3, exclusive-or hash)")->check(CLI::IsMember({"sgi", "rc", "xor"}));
+    atlasCmd->add_option("--bf", at->gpu.bf, "--filler gpu: fraction bits b_f of the 8-bit coordinates (b_i = 8 - b_f "
+                         "integer bits: the noise repeats every 2^b_i lattice cells)")->check(CLI::Range(1, 7));
     addSimOptions(atlasCmd, *hw);
     return {atlasCmd, [at, hw, atlasCmd]() {
                 refuseHardwareOptionsWithoutModel(atlasCmd, *hw);
+                if (at->filler != "gpu") refuseGiven(atlasCmd, {"--variant", "--bf"}, "needs --filler gpu (the multipass GPU filler's option)");
                 checkOutDir("-o", at->outDir);
                 checkCreatableDir("-o", at->outDir.empty() ? "out" : at->outDir);
                 return runAtlas(*at, *hw);

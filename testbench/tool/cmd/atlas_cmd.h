@@ -25,6 +25,8 @@ struct AtlasArgs {
     int size = 512, image = 0, truth = 4, threads = 0;
     bool quiet = false, mip = false;
     int turntable = 0;   // frames of a turn of the camera about the target (0 = none)
+    std::string filler = "host";  // host (the reference) | gpu (also the multipass GPU noise)
+    GpuFillOptions gpu;           // --variant, --bf: --filler gpu only
 };
 
 // Step 1: the atlas and the standard (not seam-free) layout of the same triangles.
@@ -39,7 +41,7 @@ struct AtlasLayout {
 // Step 3: the view texture-mapped with the atlas, the standard layout's seams, the per-pixel
 // render and the truth.
 struct AtlasViews {
-    AtlasRender nearest, bilinear, stdNearest, stdBilinear, hwBilinear, trilinear;
+    AtlasRender nearest, bilinear, stdNearest, stdBilinear, hwBilinear, trilinear, gpuBilinear;
     RenderResult perPixel;
     ImageDiff dN, dB, dP, dBP;
     std::vector<long long> mixing;   // --mip: texels averaging non-neighbours per level
@@ -57,6 +59,8 @@ nlohmann::json atlasJson(const AtlasArgs& a, const AtlasLayout& L, const AtlasVi
 // The hardware fill's figures (j["hardware"]); returns 1 when the RTL fill failed.
 int hardwareJson(const HwArgs& hw, const Profile& prof, const AtlasLayout& L, const AtlasViews& v,
                  const AtlasFill& fill, nlohmann::json& j, std::ostringstream& line);
+// The GPU fill's figures (j["gpu"]); returns 1 when a GPU value differs from the CPU model's.
+int gpuJson(const GpuFill& gpu, const AtlasViews& v, const AtlasFill& fill, nlohmann::json& j, std::ostringstream& line);
 Turntable runTurntable(const AtlasArgs& a, const Scene& scene, const AtlasLayout& L, const AtlasFill& fill,
                        const std::function<void(const std::string&)>& say);
 void turntableJson(const AtlasArgs& a, const Turntable& t, nlohmann::json& j, std::ostringstream& line);

@@ -71,7 +71,8 @@ nlohmann::json atlasJson(const AtlasArgs& a, const AtlasLayout& L, const AtlasVi
         for (const Chart& c : atlas.charts) minCell = std::min(minCell, atlas.cellSize(c.legs).x);
         j["mip"] = {{"cell", atlas.mipCell}, {"cell_min", minCell}, {"levels", v.mixing.size()}, {"mixing_texels", v.mixing}};
     }
-    j["fill"] = {{"texels", fill.texels}, {"reference_seconds", fill.referenceSeconds}};
+    j["fill"] = {{"texels", fill.texels}, {"reference_seconds", fill.referenceSeconds},
+                 {"texels_per_second", fill.referenceSeconds > 0 ? double(fill.texels) / fill.referenceSeconds : 0.0}};
     const std::string stem = fs::path(a.scene).stem().string();
     line << stem << " " << a.kind << " " << atlas.size() << ": C " << coverage(atlas) << ", S " << relativeScale(atlas)
          << ", seams nearest " << v.nearest.seamPixels << " bilinear " << v.bilinear.seamPixels << " (standard layout "
@@ -117,6 +118,30 @@ int hardwareJson(const HwArgs& hw, const Profile& prof, const AtlasLayout& L, co
     }
     j["hardware"] = f;
     return rc;
+}
+
+int gpuJson(const GpuFill& g, const AtlasViews& v, const AtlasFill& fill, nlohmann::json& j, std::ostringstream& line) {
+    const double rmsRef = compareRgb(g.image, fill.reference).rmsError;
+    const double renderTruth = compareRgb(v.gpuBilinear.image, v.perPixel.truth).rmsError;
+    const double renderPerPixel = compareRgb(v.gpuBilinear.image, v.perPixel.filtered).rmsError;
+    j["gpu"] = {{"variant", g.variant}, {"interp", g.interp}, {"b", g.b}, {"b_f", g.bf}, {"b_i", g.b - g.bf},
+                {"arith", "shader"}, {"renderer", g.renderer}, {"gl_version", g.glVersion}, {"egl_platform", g.eglPlatform},
+                {"on_gpu", "every octave's noise n(T_i s) (the multipass program, one draw per pass)"},
+                {"on_host", "T_i s quantized to b_i.b_f bytes, f = q(s) + sum_i a_i (n_i - 1/2), the colour map's point sample"},
+                {"texels", g.texels}, {"octaves", g.octaves}, {"draws_per_octave", g.drawsPerOctave}, {"draws", g.draws},
+                {"seconds", g.seconds}, {"pass_seconds", g.passSeconds},
+                {"texels_per_second", g.seconds > 0 ? double(g.texels) / g.seconds : 0.0},
+                {"texels_per_second_passes", g.passSeconds > 0 ? double(g.texels) / g.passSeconds : 0.0},
+                {"cpu_model", {{"noise_values", g.noiseValues}, {"mismatches", g.cpuModelMismatches},
+                               {"seconds", g.cpuModelSeconds}}},
+                {"vs_reference", {{"rms", rmsRef}}},
+                {"render_bilinear_rms_vs_truth", renderTruth},
+                {"render_bilinear_rms_vs_per_pixel", renderPerPixel},
+                {"notes", g.notes}};
+    line << "; GPU " << g.variant << " (" << g.draws << " draws, " << g.octaves << " octaves) "
+         << (g.seconds > 0 ? double(g.texels) / g.seconds : 0.0) << " texels/s, " << g.cpuModelMismatches
+         << " values differing from the CPU model, RMS vs truth " << renderTruth << ", vs per pixel " << renderPerPixel;
+    return g.cpuModelMismatches == 0 ? 0 : 1;
 }
 
 // The turntable: the camera turned about its up axis through the target, the atlas (filled
@@ -221,6 +246,22 @@ std::string atlasMarkdown(const AtlasArgs& a, const AtlasLayout& L, const AtlasV
         md << "Fill rate " << j["hardware"]["fill_hz_at_fmax"].get<double>() << " Hz; the paper's host (Table 3) at "
            << atlas.size() << "^2: " << j["hardware"]["paper_table3_host_hz"]["octaves_1"].get<double>() << " Hz (1 octave), "
            << j["hardware"]["paper_table3_host_hz"]["octaves_4"].get<double>() << " Hz (4 octaves).\n";
+    if (j.contains("gpu")) {
+        const auto& g = j["gpu"];
+        md << "\n![atlas filled on the GPU](atlas_gpu.png) ![textured from it, bilinear](render_gpu_bilinear.png)\n\n"
+           << "Fill on the GPU (Hart 2001 multipass, variant " << g["variant"].get<std::string>() << ", "
+           << g["interp"].get<std::string>() << ", b_f " << g["b_f"].get<int>() << ", "
+           << g["renderer"].get<std::string>() << "): " << g["texels"].get<long long>() << " texels, "
+           << g["octaves"].get<int>() << " octave runs of " << g["draws_per_octave"].get<int>() << " draws ("
+           << g["draws"].get<int>() << " in all), " << g["texels_per_second"].get<double>() << " texels/s ("
+           << g["texels_per_second_passes"].get<double>() << " in the passes alone; the host reference "
+           << j["fill"]["texels_per_second"].get<double>() << "); " << g["cpu_model"]["mismatches"].get<long long>()
+           << " of " << g["cpu_model"]["noise_values"].get<long long>() << " noise values differ from the CPU model.\n\n"
+           << "| RMS, render from the GPU atlas (bilinear) | value |\n|---|---|\n"
+           << "| vs " << a.truth << "x" << a.truth << " truth | " << g["render_bilinear_rms_vs_truth"].get<double>() << " |\n"
+           << "| vs the per-pixel render | " << g["render_bilinear_rms_vs_per_pixel"].get<double>() << " |\n"
+           << "| GPU atlas vs host atlas (texels) | " << g["vs_reference"]["rms"].get<double>() << " |\n";
+    }
     return md.str();
 }
 
