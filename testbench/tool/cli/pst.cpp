@@ -88,13 +88,21 @@ int main(int argc, char** argv) {
         const int rc = app.exit(e);
         return rc == 0 ? 0 : 2;
     }
+    // SIGINT, SIGTERM: the run unwinds (its Outputs remove their temporary folders), then ends by
+    // the signal (issue 41 part 2).
+    cli::installInterruptHandlers();
     try {
         for (const cli::Command& c : commands)
             if (*c.app) return c.run();
+    } catch (const Interrupted& e) {
+        cli::endByInterrupt(e.signal);
     } catch (const InputError& e) {
+        if (const int sig = gInterruptSignal.load()) cli::endByInterrupt(sig);
         std::cerr << "error: " << e.what() << "\n";
         return 2;
     } catch (const std::exception& e) {
+        // A failure caused by the stop request (an interrupted write) is the stop.
+        if (const int sig = gInterruptSignal.load()) cli::endByInterrupt(sig);
         std::cerr << "error: " << e.what() << "\n";
         return 1;
     }
