@@ -486,3 +486,36 @@ def test_13_obj_bom_and_crlf_read_as_plain(tmp_path):
         images[name] = pngs[0].read_bytes()
     assert images["bom"] == images["plain"]
     assert images["bom_crlf"] == images["plain"]
+
+
+# 41 part 5: messages that say the truth.
+# --variants lists the bandlimits it takes (it listed fade, widen and match, which it refused).
+def test_41_5_variants_list_only_what_they_take(tmp_path):
+    out = tmp_path / "out"
+    refused(["render", scene(tmp_path), "--variants", "sat+fade", "-o", out, "-q"],
+            r"--variants: 'fade' is not a bandlimit \(off, footprint, isotropic, anisotropic\)$", [out])
+
+
+# regress has no --model: its refusal of a profile without a verilated model does not suggest it.
+def test_41_5_regress_suggests_no_option_it_lacks(tmp_path):
+    other = profile_copy(tmp_path, "other")
+    out = tmp_path / "r.json"
+    rc, err = pst("regress", scene(tmp_path), "--profile", other, "--size", 4, "-o", out)
+    assert rc == 2, err
+    assert re.search(r"^error: " + re.escape(str(other)) + r": profile 'other' has no verilated model", err, re.M), err
+    assert "--model" not in err, err
+    assert not out.exists()
+    # render has --model: there it is suggested.
+    rc, err = pst("render", scene(tmp_path), "--profile", other, "-o", tmp_path / "o", "-q")
+    assert rc == 2 and "or use --model golden" in err, err
+
+
+# A number in a message is printed short (1e308 was printed in 316 digits).
+@pytest.mark.parametrize("kw,got", [
+    (dict(background="[1e308, 0.0, 0.0]"), "1e+308"),
+    (dict(amplitude="1234567.5"), "1234567.5"),
+])
+def test_41_5_numbers_printed_short(tmp_path, kw, got):
+    out = tmp_path / "out"
+    refused(["render", scene(tmp_path, **kw), "-o", out, "-q"],
+            r".*magnitude must be at most 1e6 \(got " + re.escape(got) + r"\)$", [out])

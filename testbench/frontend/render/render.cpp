@@ -6,6 +6,8 @@
 #include <cmath>
 #include <thread>
 
+#include "interrupt.h"
+
 namespace pst {
 namespace {
 
@@ -75,7 +77,7 @@ bool parseVariant(const std::string& spec, FilterVariant* out, std::string* why)
         return false;
     }
     if (plus != std::string::npos && !parseBandlimit(spec.substr(plus + 1), &v.bandlimit)) {
-        *why = "'" + spec.substr(plus + 1) + "' is not a bandlimit (off, fade, widen, match, footprint, isotropic, anisotropic)";
+        *why = "'" + spec.substr(plus + 1) + "' is not a bandlimit (off, footprint, isotropic, anisotropic)";
         return false;
     }
     *out = v;
@@ -86,13 +88,15 @@ void parallelRows(int n, int threads, const std::function<void(int)>& body) {
     int t = threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()));
     t = std::min(t, std::max(1, n));
     std::atomic<int> next{0};
+    // A stop request (SIGINT, SIGTERM: interrupt.h) ends every worker after its current row.
     auto worker = [&] {
-        for (int y; (y = next.fetch_add(1)) < n;) body(y);
+        for (int y; !interrupted() && (y = next.fetch_add(1)) < n;) body(y);
     };
     std::vector<std::thread> pool;
     for (int i = 1; i < t; ++i) pool.emplace_back(worker);
     worker();
     for (auto& th : pool) th.join();
+    throwIfInterrupted();
 }
 
 std::vector<Fragment> sceneFragments(const Scene& scene, int layer) {

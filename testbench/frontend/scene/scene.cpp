@@ -322,7 +322,7 @@ void checkScene(const std::string& text, const std::string& path) {
 }
 
 Scene parseSceneAt(const std::string& text, const std::string& path, double t, int width, int height) {
-    if (!std::isfinite(t) || t < 0 || t > 1) throw InputError(path + ": time " + std::to_string(t) + " is not in [0, 1]");
+    if (!std::isfinite(t) || t < 0 || t > 1) throw InputError(path + ": time " + shortNumber(t) + " is not in [0, 1]");
     const Ctx c{path};
     toml::table root = parseToml(text, path);
     Animation an = parseAnimation(c, root);

@@ -60,7 +60,7 @@ inline double asNumber(const Ctx& c, const toml::node& n, const std::string& fie
     // Every number of a scene is a coordinate, a coefficient, an angle or a colour: a bound far
     // beyond any of them keeps products and squares finite (no NaN or infinite pixels).
     if (std::abs(v) > kMaxSceneNumber)
-        c.fail(&n, field, "magnitude must be at most 1e6 (got " + std::to_string(v) + ")");
+        c.fail(&n, field, "magnitude must be at most 1e6 (got " + shortNumber(v) + ")");
     return v;
 }
 

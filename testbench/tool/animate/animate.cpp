@@ -2,8 +2,10 @@
 #include "animate.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -18,6 +20,7 @@
 #include "driver.h"
 #include "hwrender.h"
 #include "imageio.h"
+#include "interrupt.h"
 #include "provenance.h"
 #include "scene.h"
 
@@ -28,15 +31,21 @@ namespace fs = std::filesystem;
 namespace pst {
 namespace {
 
-// Runs argv[0] from the PATH; true on exit status 0.
+// Runs argv[0] from the PATH; true on exit status 0. A stop request (interrupt.h) while it runs
+// is passed on to it (the signal handlers do not restart waitpid).
 bool spawn(std::vector<std::string> args) {
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
     pid_t pid;
+    if (posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0) return false;
     int status = 0;
-    return posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ) == 0 &&
-           waitpid(pid, &status, 0) >= 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    bool passedOn = false;
+    while (waitpid(pid, &status, 0) < 0) {
+        if (errno != EINTR) return false;
+        if (const int sig = gInterruptSignal.load(); sig && !passedOn) kill(pid, sig), passedOn = true;
+    }
+    return WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
 bool onPath(const std::string& exe) {
@@ -90,6 +99,10 @@ double temporalRms(const Image& prev, const Image& cur, const Image& truthPrev, 
     return n ? std::sqrt(s / double(3 * n)) : 0.0;
 }
 
+std::string animateOutDir(const AnimateArgs& a) {
+    return a.outDir.empty() ? (fs::path("out") / "anim" / fs::path(a.scene).stem()).string() : a.outDir;
+}
+
 int runAnimate(const AnimateArgs& a) {
     // --bandlimit and --filter: every texture of every frame.
     auto overrideTextures = [&a](Scene& sc) {
@@ -123,7 +136,7 @@ int runAnimate(const AnimateArgs& a) {
             if (std::string why = hardwareUnsupported(profiles.back(), still.textures[o.texture]); !why.empty())
                 throw InputError(why);
     }
-    const fs::path dir = a.outDir.empty() ? fs::path("out") / "anim" / stem : fs::path(a.outDir);
+    const fs::path shown = animateOutDir(a), dir = a.writeDir.empty() ? shown : fs::path(a.writeDir);
 
     std::vector<Stream> streams{{"filtered"}, {"unfiltered"}};
     for (const auto& p : profiles) {
@@ -147,6 +160,7 @@ int runAnimate(const AnimateArgs& a) {
     const auto t0 = std::chrono::steady_clock::now();
     const double steps = double(frames) * (1 + profiles.size());
     for (int k = 0; k < frames; ++k) {
+        throwIfInterrupted();   // SIGINT, SIGTERM: between frames (and rows, in render)
         const double t = frames > 1 ? double(k) / double(frames - 1) : 0.0;
         Scene scene = loadSceneAt(a.scene, t, a.size, a.size);
         overrideTextures(scene);
@@ -247,15 +261,16 @@ int runAnimate(const AnimateArgs& a) {
                         (dir / d / "frame_%04d.png").string(), "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
                         "-c:v", "libvpx-vp9", "-pix_fmt", "yuv420p", "-b:v", "0", "-crf", "30",
                         "-deadline", "realtime", "-cpu-used", "8", "-row-mt", "1", out})) {
-                std::cerr << "error: ffmpeg did not write " << out << "\n";
-                rc = std::max(rc, 1);
+                throwIfInterrupted();
+                throw std::runtime_error("ffmpeg did not write " + (shown / (d + ".webm")).string() +
+                                         " (nothing of this run is written)");
             } else {
                 j["videos"][d] = d + ".webm";
             }
         }
     }
     writeTextFile((dir / "flicker.json").string(), withProvenance(j).dump(2) + "\n");
-    std::cout << line.str() << " -> " << dir.string() << "\n";
+    std::cout << line.str() << " -> " << shown.string() << "\n";
     for (const auto& n : notes) std::cout << "  note: " << n << "\n";
     return rc;
 }

@@ -13,7 +13,10 @@
 namespace pst {
 
 struct AnimateArgs {
-    std::string scene, outDir;   // outDir default: out/anim/<scene name>
+    std::string scene, outDir;   // outDir default: animateOutDir
+    // Where the files are written while the run lasts (the CLI's output transaction: a temporary
+    // folder moved to outDir when the run succeeds); "": outDir itself.
+    std::string writeDir;
     int frames = 0;              // 0: the scene's [animation] frames
     int size = 0;                // square size; 0: the scene's
     int truth = 0;               // n x n ground truth per frame (needed for the flicker metric)
@@ -35,7 +38,11 @@ struct AnimateArgs {
 // part of the change from frame to frame that the true (area-averaged) image does not have.
 double temporalRms(const Image& prev, const Image& cur, const Image& truthPrev, const Image& truthCur);
 
-// Returns the exit status: 0, or 1 on any RTL mismatch or a failed video.
+// The output folder: outDir, or out/anim/<scene name>.
+std::string animateOutDir(const AnimateArgs& args);
+
+// Returns the exit status: 0, or 1 on any RTL mismatch. A failed video throws (no output is
+// whole without it); so does a stop request (SIGINT, SIGTERM: interrupt.h), between frames.
 int runAnimate(const AnimateArgs& args);
 
 }  // namespace pst

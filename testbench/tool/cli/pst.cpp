@@ -89,15 +89,23 @@ int main(int argc, char** argv) {
         const int rc = app.exit(e);
         return rc == 0 ? 0 : 2;
     }
+    // SIGINT, SIGTERM: the run unwinds (its Outputs remove their temporary folders), then ends by
+    // the signal (issue 41 part 2).
+    cli::installInterruptHandlers();
     try {
         for (const cli::Command& c : commands)
             if (*c.app) return c.run();
+    } catch (const Interrupted& e) {
+        cli::endByInterrupt(e.signal);
     } catch (const InputError& e) {
-        // One line per error: a profile file reports every error it has (model/golden/profile.cpp).
+        if (const int sig = gInterruptSignal.load()) cli::endByInterrupt(sig);
+        // One line per error: a profile or scene file reports every error it has.
         std::istringstream lines(e.what());
         for (std::string line; std::getline(lines, line);) std::cerr << "error: " << line << "\n";
         return 2;
     } catch (const std::exception& e) {
+        // A failure caused by the stop request (an interrupted write) is the stop.
+        if (const int sig = gInterruptSignal.load()) cli::endByInterrupt(sig);
         std::cerr << "error: " << e.what() << "\n";
         return 1;
     }

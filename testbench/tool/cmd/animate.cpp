@@ -52,7 +52,12 @@ Command registerAnimate(CLI::App& app) {
                                      100.0 * frac);
                         if (tty && frac >= 1.0) std::fprintf(stderr, "\n");
                     };
-                return runAnimate(*an);
+                // One output transaction: every frame, video and flicker.json, or none of them.
+                Outputs outputs;
+                an->writeDir = outputs.dir("-o", animateOutDir(*an));
+                const int rc = runAnimate(*an);
+                outputs.commit();
+                return rc;
             }};
 }
 

@@ -114,11 +114,11 @@ AtlasViews renderStep(const AtlasArgs& a, const Scene& scene, const AtlasLayout&
     return v;
 }
 
-// Step 6: every file, or none (OutputFiles removes what it wrote when a write fails).
+// Step 6: every file, into the output transaction's folder `dir` (moved into place by the commit).
 void writeStep(const AtlasArgs& a, const HwArgs& hw, const fs::path& dir, const Scene& scene, const AtlasLayout& L,
                const AtlasViews& v, const AtlasFill& fill, bool hardware, const GpuFill* gpu, const Turntable& turn,
                const nlohmann::json& j, const std::string& md) {
-    OutputFiles out(dir);
+    auto out = [&dir](const std::string& name) { return (dir / name).string(); };
     writeImage(fill.reference, out("atlas.png"));
     if (hardware) writeImage(fill.hardware, out("atlas_" + hw.model + ".png"));
     if (gpu) {
@@ -135,7 +135,6 @@ void writeStep(const AtlasArgs& a, const HwArgs& hw, const fs::path& dir, const 
     for (const auto& [name, img] : turn.frames) writeImage(img, out(name));
     writeTextFile(out("atlas.json"), withProvenance(j).dump(2) + "\n");
     writeTextFile(out("atlas.md"), md);
-    out.keep();
 }
 
 int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
@@ -152,6 +151,8 @@ int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
     const Scene scene = opaqueLayer(loadScene(a.scene, a.image, a.image));
     const std::string stem = fs::path(a.scene).stem().string();
     const fs::path dir = a.outDir.empty() ? fs::path("out") / "atlas" / stem : fs::path(a.outDir);
+    Outputs outputs;   // every file, or none
+    const fs::path staged = outputs.dir("-o", dir.string());
     const AtlasLayout L = buildLayout(a, scene, ao);
     std::optional<Profile> prof;
     if (!hw.profiles.empty()) {
@@ -185,7 +186,8 @@ int runAtlas(const AtlasArgs& a, const HwArgs& hw) {
         turntableJson(a, turn, j, line);
     }
     const std::string md = atlasMarkdown(a, L, v, fill, prof, j);
-    writeStep(a, hw, dir, scene, L, v, fill, prof.has_value(), g, turn, j, md);
+    writeStep(a, hw, staged, scene, L, v, fill, prof.has_value(), g, turn, j, md);
+    outputs.commit();
     std::cout << line.str() << " -> " << dir.string() << "\n";
     if (rc && prof) std::cout << fill.scoreboard;
     return rc;

@@ -157,6 +157,7 @@ Turntable runTurntable(const AtlasArgs& a, const Scene& scene, const AtlasLayout
     const std::vector<Image> levels = a.mip ? mipLevels(fill.reference, L.owners) : std::vector<Image>();
     const int n = a.turntable;
     for (int k = 0; k < n; ++k) {
+        throwIfInterrupted();   // SIGINT, SIGTERM: between frames
         say("turntable frame " + std::to_string(k + 1) + "/" + std::to_string(n));
         Scene v = scene;
         const glm::dmat4 turn = glm::rotate(glm::dmat4(1.0), 2.0 * M_PI * k / n, scene.camera.up);

@@ -1,12 +1,16 @@
 #include "common.h"
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <csignal>
 #include <cstring>
 #include <iostream>
 
+#include <pthread.h>
+#include <signal.h>
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -127,24 +131,32 @@ void EtaProgress::finish() {
     if (!quiet_ && tty_ && done_) std::fprintf(stderr, "\n");
 }
 
-int writeHtmlPage(const std::string& page, std::vector<std::string> args) {
-    const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-    args.insert(args.begin(), {python, sourceDir() + "/scripts/report.py", "--html", page});
+bool spawnAndWait(std::vector<std::string> args) {
     std::vector<char*> argv;
     for (auto& a : args) argv.push_back(a.data());
     argv.push_back(nullptr);
     pid_t pid;
+    if (posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0) return false;
     int status = 0;
-    if (posix_spawnp(&pid, python.c_str(), nullptr, nullptr, argv.data(), environ) != 0 ||
-        waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-        std::cerr << "error: --html: " << args[1] << " did not write " << page << "\n";
-        return 1;
+    bool passedOn = false;
+    while (waitpid(pid, &status, 0) < 0) {
+        if (errno != EINTR) return false;
+        // A stop request (the handlers do not restart waitpid): the child stops too.
+        if (const int sig = gInterruptSignal.load(); sig && !passedOn) kill(pid, sig), passedOn = true;
     }
-    std::cout << "page: " << page << "\n";
-    return 0;
+    return WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
-Profile profileByName(const std::string& name, bool rtl) {
+void writeHtmlPage(const std::string& page, const std::string& shown, std::vector<std::string> args) {
+    const std::string python = fs::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+    const std::string script = sourceDir() + "/scripts/report.py";
+    args.insert(args.begin(), {python, script, "--html", page});
+    const bool ok = spawnAndWait(args);
+    throwIfInterrupted();
+    if (!ok) throw std::runtime_error("--html: " + script + " did not write '" + shown + "' (nothing of this run is written)");
+}
+
+Profile profileByName(const std::string& name, bool rtl, bool hasModelOption) {
     const std::string built = isProfileFile(name) ? "" : rtlProfilePath(name);
     Profile p = built.empty() ? loadNamedProfile(name, sourceDir()) : loadProfile(built);
     if (!rtl) return p;
@@ -153,7 +165,8 @@ Profile profileByName(const std::string& name, bool rtl) {
         std::string list;
         for (const auto& n : rtlProfiles()) list += (list.empty() ? "" : ", ") + n;
         throw InputError(p.path + ": profile '" + p.name + "' has no verilated model in this build (verilated: " + list +
-                         "; add it with -DPST_PROFILES or -DPST_EXTRA_PROFILE_DIR, or use --model golden)");
+                         "; add it with -DPST_PROFILES or -DPST_EXTRA_PROFILE_DIR" +
+                         (hasModelOption ? ", or use --model golden)" : ")"));
     }
     const Profile v = loadProfile(verilated);
     if (std::string key = profileDifference(p, v); !key.empty())
@@ -162,19 +175,129 @@ Profile profileByName(const std::string& name, bool rtl) {
     return p;
 }
 
-OutputFiles::OutputFiles(const fs::path& dir) : dir_(dir), created_(!fs::exists(dir)) { fs::create_directories(dir); }
+namespace {
 
-std::string OutputFiles::operator()(const std::string& name) {
-    const fs::path f = dir_ / name;
-    if (!fs::exists(f)) files_.push_back(f);   // never remove what was there before
+extern "C" void onStopSignal(int sig) { gInterruptSignal.store(sig); }
+
+// SIGINT and SIGTERM held back (the commit's renames are not cut short).
+struct BlockStopSignals {
+    sigset_t old;
+    BlockStopSignals() {
+        sigset_t s;
+        sigemptyset(&s);
+        sigaddset(&s, SIGINT);
+        sigaddset(&s, SIGTERM);
+        sigaddset(&s, SIGHUP);
+        pthread_sigmask(SIG_BLOCK, &s, &old);
+    }
+    ~BlockStopSignals() { pthread_sigmask(SIG_SETMASK, &old, nullptr); }
+};
+
+// The path made absolute and normal, without a trailing separator.
+fs::path normalPath(const std::string& p) {
+    fs::path a = fs::absolute(p).lexically_normal();
+    if (a.filename().empty() && a.has_parent_path() && a != a.root_path()) a = a.parent_path();
+    return a;
+}
+
+}  // namespace
+
+void installInterruptHandlers() {
+    struct sigaction sa {};
+    sa.sa_handler = onStopSignal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESETHAND;   // no SA_RESTART: a wait for a child returns and passes it on
+    sigaction(SIGINT, &sa, nullptr);
+    sigaction(SIGTERM, &sa, nullptr);
+    sigaction(SIGHUP, &sa, nullptr);   // the terminal closed
+}
+
+void endByInterrupt(int sig) {
+    std::cout.flush();
+    std::fprintf(stderr, "pst: stopped by %s; this run's outputs were not written\n",
+                 sig == SIGINT ? "SIGINT" : sig == SIGTERM ? "SIGTERM" : sig == SIGHUP ? "SIGHUP" : "a signal");
+    std::fflush(stderr);
+    std::signal(sig, SIG_DFL);
+    sigset_t s;
+    sigemptyset(&s);
+    sigaddset(&s, sig);
+    pthread_sigmask(SIG_UNBLOCK, &s, nullptr);
+    std::raise(sig);
+    std::_Exit(128 + sig);
+}
+
+fs::path Outputs::staged(const std::string& flag, const std::string& target, bool isDir) {
+    std::error_code ec;
+    const fs::path p = normalPath(target);
+    for (const Stage& s : stages_) {
+        const fs::path rel = p.lexically_relative(s.root);
+        if (!rel.empty() && *rel.begin() != "..") return rel == "." ? s.tmp : s.tmp / rel;
+    }
+    // The folder the output goes to, and the nearest folder on the way that exists.
+    fs::path existing = isDir ? p : p.parent_path(), missing;
+    while (!fs::exists(existing, ec) && existing.has_parent_path() && existing.parent_path() != existing)
+        missing = existing, existing = existing.parent_path();
+    if (!fs::is_directory(existing, ec))
+        throw InputError(flag + ": '" + target + "' cannot be written: '" + existing.string() + "' is not a folder");
+    const std::string pid = std::to_string(getpid());
+    Stage s;
+    s.missing = !missing.empty();
+    s.root = s.missing ? missing : existing;
+    s.tmp = existing / (s.missing ? "." + missing.filename().string() + ".pst-tmp-" + pid : ".pst-tmp-" + pid);
+    fs::remove_all(s.tmp, ec);   // a dead run's of the same process id
+    if (!fs::create_directory(s.tmp, ec))
+        throw InputError(flag + ": '" + target + "' cannot be written: cannot make a folder in '" + existing.string() +
+                         "' (" + ec.message() + ")");
+    stages_.push_back(s);
+    return staged(flag, target, isDir);
+}
+
+std::string Outputs::dir(const std::string& flag, const std::string& target) {
+    const fs::path d = staged(flag, target, true);
+    fs::create_directories(d);
+    return d.string();
+}
+
+std::string Outputs::file(const std::string& flag, const std::string& target) {
+    if (target.empty() || target == "-") return target;
+    const fs::path f = staged(flag, target, false);
+    fs::create_directories(f.parent_path());
     return f.string();
 }
 
-OutputFiles::~OutputFiles() {
-    if (keep_) return;
+void Outputs::commit() {
+    throwIfInterrupted();
+    const BlockStopSignals hold;
+    // Every destination checked before the first file moves: a file cannot replace a folder,
+    // nor go under a file.
+    std::vector<std::pair<fs::path, fs::path>> moves;   // (staged file, destination)
+    for (const Stage& s : stages_) {
+        if (s.missing && !fs::exists(s.root)) continue;   // renamed whole below
+        for (const auto& e : fs::recursive_directory_iterator(s.tmp)) {
+            if (e.is_directory()) continue;
+            const fs::path dest = s.root / e.path().lexically_relative(s.tmp);
+            if (fs::is_directory(dest)) throw std::runtime_error(dest.string() + ": is a folder; the file cannot be written");
+            for (fs::path d = dest.parent_path(); !d.empty() && d != s.root.parent_path(); d = d.parent_path())
+                if (fs::exists(d) && !fs::is_directory(d))
+                    throw std::runtime_error(dest.string() + ": '" + d.string() + "' is a file, not a folder");
+            moves.emplace_back(e.path(), dest);
+        }
+    }
+    for (const Stage& s : stages_)
+        if (s.missing && !fs::exists(s.root)) fs::rename(s.tmp, s.root);
+    for (const auto& [from, to] : moves) {
+        fs::create_directories(to.parent_path());
+        fs::rename(from, to);
+    }
+    committed_ = true;
     std::error_code ec;
-    for (const auto& f : files_) fs::remove(f, ec);
-    if (created_) fs::remove(dir_, ec);   // only if empty
+    for (const Stage& s : stages_) fs::remove_all(s.tmp, ec);
+}
+
+Outputs::~Outputs() {
+    if (committed_) return;
+    std::error_code ec;
+    for (const Stage& s : stages_) fs::remove_all(s.tmp, ec);
 }
 
 void checkTracePath(const std::string& trace) {
@@ -184,9 +307,14 @@ void checkTracePath(const std::string& trace) {
     if (fs::is_directory(trace)) throw InputError("--trace: '" + trace + "' is a folder, not a file");
 }
 
+void checkNotFolder(const std::string& flag, const std::string& path) {
+    if (!path.empty() && path != "-" && fs::is_directory(path))
+        throw InputError(flag + ": '" + path + "' is a folder; give a file name");
+}
+
 void checkOutFile(const std::string& flag, const std::string& path) {
     if (path.empty() || path == "-") return;
-    if (fs::is_directory(path)) throw InputError(flag + ": '" + path + "' is a folder; give a file name");
+    checkNotFolder(flag, path);
     // The file's folder must be there (the writers do not make it), checked before any work.
     const fs::path dir = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
     std::error_code ec;

@@ -13,6 +13,7 @@
 
 #include "hwrender.h"
 #include "input_error.h"
+#include "interrupt.h"
 #include "render.h"
 #include "rtl_model.h"
 #include "scene.h"
@@ -87,35 +88,70 @@ private:
     std::chrono::steady_clock::time_point t0_;
 };
 
-// The HTML page of hardware runs, written by scripts/report.py. Returns 0, or 1 when it fails.
-int writeHtmlPage(const std::string& page, std::vector<std::string> args);
+// The HTML page of hardware runs, written by scripts/report.py to `page` (a path in the run's
+// Outputs; `shown` is the path the user gave, for the messages). Throws when it fails (the run's
+// outputs are then discarded).
+void writeHtmlPage(const std::string& page, const std::string& shown, std::vector<std::string> args);
 
 // A verilated profile by its name (rtl/configs or PST_EXTRA_PROFILE_DIR), else a name in
 // rtl/configs or a profile file. For the RTL (rtl = true) the profile must have a verilated
-// model in this build, and the same values as the file that model was built from.
-Profile profileByName(const std::string& name, bool rtl = false);
+// model in this build, and the same values as the file that model was built from. The refusal
+// suggests --model golden only where the command has that option (hasModelOption).
+Profile profileByName(const std::string& name, bool rtl = false, bool hasModelOption = true);
 
-// The files one command writes: if a later write fails (a full disk), the ones written so far
-// are removed again, and the folder if this command created it, so no half output is left.
-class OutputFiles {
+// One output transaction per run (issue 41 part 2): outputs are whole or absent. Every file of
+// the run is written into a temporary folder on the target's filesystem -- `.NAME.pst-tmp-PID`
+// beside a folder that does not exist yet (the first missing one on the way), `.pst-tmp-PID`
+// inside one that does -- and commit() moves it into place: the whole folder by one rename when
+// the target did not exist, else file by file (each an atomic rename; files of the target that
+// this run did not write are kept). Not committed (an error, a refused input, a failed report
+// step, SIGINT or SIGTERM: interrupt.h), the destructor removes the temporary folders.
+class Outputs {
 public:
-    explicit OutputFiles(const fs::path& dir);
-    std::string operator()(const std::string& name);
-    void keep() { keep_ = true; }
-    ~OutputFiles();
+    Outputs() = default;
+    Outputs(const Outputs&) = delete;
+    Outputs& operator=(const Outputs&) = delete;
+    ~Outputs();
+
+    // Where to write the folder `target` (given with `flag`): a temporary folder, made now, so a
+    // folder that cannot be made is refused here (InputError, with the path and the reason)
+    // before any work.
+    std::string dir(const std::string& flag, const std::string& target);
+    // Where to write the file `target` ("" and "-", stdout, are returned as they are).
+    std::string file(const std::string& flag, const std::string& target);
+    // Moves every file into place (SIGINT and SIGTERM held back meanwhile). A destination that
+    // is a folder, or under a file, fails the commit before anything is moved.
+    void commit();
 
 private:
-    fs::path dir_;
-    bool created_;
-    bool keep_ = false;
-    std::vector<fs::path> files_;
+    struct Stage {
+        fs::path root;   // the folder the files go to (made by the commit when missing)
+        fs::path tmp;    // the temporary folder holding them
+        bool missing;    // root did not exist: the commit renames tmp to root
+    };
+    fs::path staged(const std::string& flag, const std::string& target, bool isDir);
+    std::vector<Stage> stages_;
+    bool committed_ = false;
 };
+
+// SIGINT, SIGTERM and SIGHUP record the signal (interrupt.h) for the run to unwind; a second one ends the
+// process at once.
+void installInterruptHandlers();
+// After a run stopped by `sig` unwound (its outputs removed): says so and ends the process by
+// the same signal (exit status 128 + sig in a shell).
+[[noreturn]] void endByInterrupt(int sig);
+
+// Runs args (args[0] from the PATH); true on exit status 0. A stop request while it runs is
+// passed on to it, and the caller's check (throwIfInterrupted) ends the run.
+bool spawnAndWait(std::vector<std::string> args);
 
 // Fails (InputError) unless a trace file can be written: its folder exists.
 void checkTracePath(const std::string& trace);
 // An output file given with -o must not be an existing folder, and its folder must exist and be
 // writable.
 void checkOutFile(const std::string& flag, const std::string& path);
+// An output file whose folder may be made (--html) must not be an existing folder.
+void checkNotFolder(const std::string& flag, const std::string& path);
 // An output folder given with -o must not be a file.
 void checkOutDir(const std::string& flag, const std::string& path);
 

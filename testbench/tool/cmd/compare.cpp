@@ -60,10 +60,8 @@ int runCompare(const CompareArgs& c, bool psnrGate, bool maxGate) {
     if (maxGate && d.maxError > c.failMax)
         failed.push_back("max " + shortNumber(d.maxError) + " at pixel (" + std::to_string(d.maxX) + ", " +
                          std::to_string(d.maxY) + ") is above --fail-max " + shortNumber(c.failMax));
-    if (!c.diffOut.empty()) {
-        writeImage(absDiffRgb(A, B, c.diffScale), c.diffOut);
-        if (!c.quiet) std::cerr << "difference image: " << c.diffOut << "\n";
-    }
+    Outputs outputs;   // the difference image and the JSON record, or neither
+    if (!c.diffOut.empty()) writeImage(absDiffRgb(A, B, c.diffScale), outputs.file("--diff-out", c.diffOut));
     if (!c.json.empty()) {
         nlohmann::json j = {{"a", c.a}, {"b", c.b}, {"width", A.width}, {"height", A.height},
                             {"mean", d.meanError}, {"rms", d.rmsError}, {"max", d.maxError},
@@ -72,8 +70,10 @@ int runCompare(const CompareArgs& c, bool psnrGate, bool maxGate) {
                             {"fail_psnr", psnrGate ? nlohmann::json(c.failPsnr) : nlohmann::json(nullptr)},
                             {"fail_max", maxGate ? nlohmann::json(c.failMax) : nlohmann::json(nullptr)},
                             {"passed", failed.empty()}, {"failures", failed}};
-        writeTextFile(c.json, withProvenance(j).dump(2) + "\n");
+        writeTextFile(outputs.file("--json", c.json), withProvenance(j).dump(2) + "\n");
     }
+    outputs.commit();
+    if (!c.diffOut.empty() && !c.quiet) std::cerr << "difference image: " << c.diffOut << "\n";
     for (const auto& f : failed) std::cout << "FAILED: " << f << "\n";
     return failed.empty() ? 0 : 1;
 }

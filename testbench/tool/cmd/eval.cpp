@@ -20,8 +20,13 @@ struct EvalArgs {
 };
 
 void emit(const std::string& outPath, const std::string& text) {
-    if (outPath.empty() || outPath == "-") std::cout << text;
-    else writeTextFile(outPath, text);
+    if (outPath.empty() || outPath == "-") {
+        std::cout << text;
+        return;
+    }
+    Outputs outputs;   // the whole file, or none
+    writeTextFile(outputs.file("-o", outPath), text);
+    outputs.commit();
 }
 
 int runEval(const EvalArgs& a, const HwArgs& hw) {

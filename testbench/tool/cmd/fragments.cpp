@@ -25,7 +25,11 @@ int runFragments(const FragArgs& a) {
     std::ostringstream os;
     writeFragments(os, recs);
     if (a.out.empty() || a.out == "-") std::cout << os.str();
-    else writeTextFile(a.out, os.str());
+    else {
+        Outputs outputs;   // the whole file, or none
+        writeTextFile(outputs.file("-o", a.out), os.str());
+        outputs.commit();
+    }
     return 0;
 }
 

@@ -41,6 +41,7 @@ int run(RegressCli& c) {
     checkCreatableDir("--waves", a.waves);
     checkCreatableDir("--images", a.images);
     checkCreatableFileDir("--html", a.html);
+    checkNotFolder("--html", a.html);
     for (const auto& [flag, out] : {std::pair<const char*, std::string>{"-o", a.out}, {"--junit", a.junit}, {"--html", a.html}})
         checkNotInput(flag, out, a.scenes);
     if (!a.out.empty()) checkNotInput("--junit", a.junit, {a.out});
@@ -48,7 +49,7 @@ int run(RegressCli& c) {
     if (a.injectAssert != UINT64_MAX) {
         std::vector<std::string> without;
         for (const auto& n : hw.profiles)
-            if (!asserted(profileByName(n, true).name)) without.push_back(n);
+            if (!asserted(profileByName(n, true, false).name)) without.push_back(n);
         if (!without.empty())
             throw InputError("--inject-assert: profile '" + without[0] + "' is verilated here without assertions, so "
                              "the self-test cannot fire (configure with -DPST_SIM_ASSERT=ON, or give a test profile)");
@@ -90,11 +91,17 @@ int run(RegressCli& c) {
         }
         if (!a.injectFault.empty()) c.rnd.fault = unitByName(a.injectFault);
         if (a.list) {
-            for (const auto& n : hw.profiles) std::cout << "profile " << profileByName(n, true).name << "\n";
+            for (const auto& n : hw.profiles) std::cout << "profile " << profileByName(n, true, false).name << "\n";
             for (uint64_t s : segmentStarts(c.rnd)) std::cout << "segment " << s << "\n";
             return 0;
         }
-        return runRegressRandom(a, hw, c.rnd);
+        Outputs outputs;   // -o and --junit, or neither
+        RegressArgs staged = a;
+        staged.out = outputs.file("-o", a.out);
+        staged.junit = outputs.file("--junit", a.junit);
+        const int rc = runRegressRandom(staged, hw, c.rnd);
+        outputs.commit();
+        return rc;
     }
     if (a.scenes.empty()) {
         for (const auto& e : fs::directory_iterator(fs::path(sourceDir()) / "scenes"))
@@ -104,18 +111,32 @@ int run(RegressCli& c) {
     if (a.injectAssert != UINT64_MAX) hw.sim.busyWriteAfter = a.injectAssert + 1;
     if (a.list) {
         std::vector<std::string> names;
-        for (const auto& n : hw.profiles) names.push_back(profileByName(n, true).name);
+        for (const auto& n : hw.profiles) names.push_back(profileByName(n, true, false).name);
         for (const auto& sc : a.scenes)
             for (const auto& n : names) std::cout << sc << "\t" << n << "\n";
         return 0;
     }
-    if (a.html.empty()) return runRegressScenes(a, hw);
-    const fs::path page(a.html), dir = page.parent_path().empty() ? fs::path(".") : page.parent_path();
+    // --html: the JSON (default beside the page) and the images (default the page's folder) too.
     RegressArgs withPage = a;
-    if (withPage.out.empty()) withPage.out = (dir / (page.stem().string() + ".json")).string();
-    if (withPage.images.empty()) withPage.images = dir.string();
-    const int rc = runRegressScenes(withPage, hw);
-    return std::max(rc, writeHtmlPage(a.html, {"--regress", withPage.out, "--images", withPage.images}));
+    if (!a.html.empty()) {
+        const fs::path page(a.html), dir = page.parent_path().empty() ? fs::path(".") : page.parent_path();
+        if (withPage.out.empty()) withPage.out = (dir / (page.stem().string() + ".json")).string();
+        if (withPage.images.empty()) withPage.images = dir.string();
+    }
+    // One output transaction: the images, the waves, -o, --junit and the page, or none of them.
+    Outputs outputs;
+    const std::string page = outputs.file("--html", a.html);   // first: a page that cannot be written is named as such
+    RegressArgs staged = withPage;
+    if (!withPage.images.empty()) staged.images = outputs.dir("--images", withPage.images);
+    if (!withPage.waves.empty()) staged.waves = outputs.dir("--waves", withPage.waves);
+    staged.wavesShown = withPage.waves;
+    staged.out = outputs.file("-o", withPage.out);
+    staged.junit = outputs.file("--junit", withPage.junit);
+    const int rc = runRegressScenes(staged, hw);
+    if (!a.html.empty()) writeHtmlPage(page, a.html, {"--regress", staged.out, "--images", staged.images});
+    outputs.commit();
+    if (!a.html.empty()) std::cout << "page: " << a.html << "\n";
+    return rc;
 }
 
 }  // namespace

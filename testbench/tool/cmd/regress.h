@@ -21,6 +21,8 @@ struct RegressArgs {
     std::string injectFault;            // self-test: a golden unit perturbed (a mismatch on purpose)
     std::vector<uint64_t> seeds;        // the runs' seeds (--reseed: random ones, else one)
     std::string waves;                  // folder of the FST windows of failing runs ("" = none)
+    std::string wavesShown;             // that folder as the messages name it (waves: the output
+                                        // transaction's temporary folder until the commit)
     uint64_t wavesBefore = 2000, wavesAfter = 50;   // the window around the first mismatch
 };
 

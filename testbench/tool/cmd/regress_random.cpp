@@ -19,7 +19,7 @@ int runRegressRandom(const RegressArgs& a, const HwArgs& hw, RandomRegressOption
     std::printf("%-14s %10s %9s %9s %10s %10s %12s\n", "profile", "fragments", "textures", "mismatch", "cyc/pixel",
                 "seconds", "fragments/s");
     std::vector<Profile> profiles;
-    for (const std::string& name : hw.profiles) profiles.push_back(profileByName(name, true));
+    for (const std::string& name : hw.profiles) profiles.push_back(profileByName(name, true, false));
     const bool reseeded = a.seeds.size() > 1;
     for (uint64_t seed : a.seeds) {
         o.seed = seed;

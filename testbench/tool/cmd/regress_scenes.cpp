@@ -54,8 +54,8 @@ Waves traceFailure(const RegressArgs& a, const Scene& scene, const Profile& p, c
     w.end = cycle + a.wavesAfter;
     std::string name = stem + "." + p.name;
     if (a.seeds.size() > 1) name += ".seed" + std::to_string(so.seed);
-    w.file = (fs::path(a.waves) / (name + ".fst")).string();
-    so.traceFile = w.file;
+    w.file = (fs::path(a.wavesShown.empty() ? a.waves : a.wavesShown) / (name + ".fst")).string();
+    so.traceFile = (fs::path(a.waves) / (name + ".fst")).string();
     so.traceStart = w.start;
     so.traceEnd = w.end;
     auto rtl = makeRtlModel(p.name, so);
@@ -86,7 +86,7 @@ int runRegressScenes(const RegressArgs& a, const HwArgs& hw) {
     std::vector<Scene> loaded;
     for (const std::string& path : a.scenes) loaded.push_back(loadScene(path, a.size, a.size));
     std::vector<Profile> profiles;
-    for (const std::string& name : hw.profiles) profiles.push_back(profileByName(name, true));
+    for (const std::string& name : hw.profiles) profiles.push_back(profileByName(name, true, false));
     const Unit fault = a.injectFault.empty() ? Unit::Count : unitByName(a.injectFault);
     if (!a.waves.empty()) fs::create_directories(a.waves);
     const bool reseeded = a.seeds.size() > 1;
@@ -106,6 +106,7 @@ int runRegressScenes(const RegressArgs& a, const HwArgs& hw) {
             const std::string stem = fs::path(path).stem().string();
             const std::string caseName = reseeded ? stem + " seed " + std::to_string(seed) : stem;
             for (const Profile& p : profiles) {
+                throwIfInterrupted();   // SIGINT, SIGTERM: between runs (and inside them)
                 // A scene the profile cannot run (a reference-only noise basis) is skipped, visibly,
                 // and kept out of the JSON: it neither passes nor fails.
                 if (std::string why = unsupportedTexture(scene, p); !why.empty()) {

@@ -37,39 +37,52 @@ int runHardwareRender(const RenderArgs& a, const HwArgs& hw) {
         if (std::string why = unsupportedTexture(scene, profiles.back()); !why.empty()) throw InputError(why);
     }
     if (!hw.trace.empty()) checkTracePath(hw.trace);
+    // One output transaction: every profile's folder, the trace and the page, or none of them.
+    Outputs outputs;
+    std::vector<fs::path> dirs, staged;
     for (const Profile& p : profiles) {
-        const fs::path dir = a.outDir.empty() ? fs::path("out") / stem / p.name
-                                              : (hw.profiles.size() > 1 ? fs::path(a.outDir) / p.name : fs::path(a.outDir));
+        dirs.push_back(a.outDir.empty() ? fs::path("out") / stem / p.name
+                                        : (hw.profiles.size() > 1 ? fs::path(a.outDir) / p.name : fs::path(a.outDir)));
+        staged.push_back(outputs.dir("-o", dirs.back().string()));
+    }
+    const std::string trace = outputs.file("--trace", hw.trace);
+    const std::string page = outputs.file("--html", hw.html);
+    for (size_t pi = 0; pi < profiles.size(); ++pi) {
+        const Profile& p = profiles[pi];
+        const fs::path& dir = dirs[pi];
         std::unique_ptr<RtlModel> rtl;
         if (hw.model == "rtl") {
             SimOptions so = hw.sim;
-            if (!hw.trace.empty()) so.traceFile = hw.trace;
+            if (!trace.empty()) so.traceFile = trace;
             rtl = makeRtlModel(p.name, so);
         }
         HwRenderOptions ho;
         ho.progress = progressPrinter(stem + "/" + p.name, a.quiet);
         ho.truthSamples = a.truth;
         HwRenderResult r = renderHardware(scene, p, rtl.get(), ho);
-        OutputFiles out(dir);
-        writeImage(r.hardware, out(hw.model + ".png"));
-        writeImage(r.reference, out("reference.png"));
-        writeImage(r.difference, out("difference.png"));
-        writeTextFile(out("summary.json"),
+        const bool ranRtl = rtl != nullptr;
+        rtl.reset();   // closes the trace
+        const fs::path out = staged[pi];
+        writeImage(r.hardware, (out / (hw.model + ".png")).string());
+        writeImage(r.reference, (out / "reference.png").string());
+        writeImage(r.difference, (out / "difference.png").string());
+        writeTextFile((out / "summary.json").string(),
                       withProvenance(hwJson(a.scene, p, hw.model, r, scene.camera.width, scene.camera.height)).dump(2) +
                           "\n");
-        out.keep();
-        pageArgs.insert(pageArgs.end(), {"--summary", (dir / "summary.json").string()});
+        pageArgs.insert(pageArgs.end(), {"--summary", (out / "summary.json").string()});
         std::cout << stem << " [" << p.name << ", " << hw.model << "]: " << r.fragments << " fragments";
-        if (rtl) std::cout << ", " << r.mismatches << " mismatches, " << r.cyclesPerPixel << " cycles/pixel";
+        if (ranRtl) std::cout << ", " << r.mismatches << " mismatches, " << r.cyclesPerPixel << " cycles/pixel";
         std::cout << ", PSNR vs reference " << r.vsReference.psnr << " dB, " << r.vsReference.within1Lsb
                   << "% within 1 LSB -> " << dir.string() << "\n";
         for (const auto& n : r.notes) std::cout << "  note: " << n << "\n";
-        if (rtl && !r.passed) {
+        if (ranRtl && !r.passed) {
             std::cout << r.scoreboard;
             rc = 1;
         }
     }
-    if (!hw.html.empty()) rc = std::max(rc, writeHtmlPage(hw.html, pageArgs));
+    if (!hw.html.empty()) writeHtmlPage(page, hw.html, pageArgs);
+    outputs.commit();
+    if (!hw.html.empty()) std::cout << "page: " << hw.html << "\n";
     return rc;
 }
 
@@ -87,11 +100,13 @@ int runRender(const RenderArgs& a) {
     opt.progress = progressPrinter(stem, a.quiet);
     opt.variants = parseVariants(a.variants);
     checkVariants(scene, opt.variants);
+    Outputs outputs;   // every file, or none
+    const fs::path staged = outputs.dir("-o", dir.string());
+    auto out = [&staged](const std::string& name) { return (staged / name).string(); };
     const auto t0 = std::chrono::steady_clock::now();
     RenderResult r = render(scene, opt);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 
-    OutputFiles out(dir);
     writeImage(r.filtered, out("filtered.png"));
     writeImage(r.filtered, out("filtered.exr"));
     writeImage(r.unfiltered, out("unfiltered.png"));
@@ -133,7 +148,7 @@ int runRender(const RenderArgs& a) {
         j["variants"][fv.name] = e;
     }
     writeTextFile(out("report.json"), withProvenance(j).dump(2) + "\n");
-    out.keep();
+    outputs.commit();
     std::cout << line.str() << " -> " << dir.string() << "\n";
     return 0;
 }
@@ -185,6 +200,7 @@ Command registerRender(CLI::App& app) {
                 checkNotInput("--trace", hw->trace, {ra->scene});
                 checkNotInput("--html", hw->html, {ra->scene});
                 checkCreatableFileDir("--html", hw->html);
+                checkNotFolder("--html", hw->html);
                 return hw->profiles.empty() ? runRender(*ra) : runHardwareRender(*ra, *hw);
             }};
 }

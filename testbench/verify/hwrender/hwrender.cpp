@@ -8,6 +8,7 @@
 
 #include "driver.h"
 #include "imageio.h"
+#include "interrupt.h"
 #include "scoreboard.h"
 
 namespace pst {
@@ -131,6 +132,7 @@ HwRenderResult renderHardware(const Scene& scene, const Profile& p, RtlModel* rt
                 covered[px.tag] = 1;
             }
             res.fragments += (long long)in.size();
+            throwIfInterrupted();   // SIGINT, SIGTERM: between the objects' batches
             report("layer " + std::to_string(layer), 1.0);
         }
         for (size_t i = 0; i < size_t(W) * H; ++i)

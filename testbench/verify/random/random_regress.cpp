@@ -8,6 +8,7 @@
 
 #include "driver.h"
 #include "fixed.h"
+#include "interrupt.h"
 #include "rtl_model.h"
 #include "scoreboard.h"
 
@@ -340,6 +341,7 @@ RandomRegressResult runRandomRegress(const Profile& p, const std::string& rtlNam
             break;  // the first failing segment is enough; replay it with --from
         }
         if (o.progress) o.progress(idx - res.firstFragment, end - res.firstFragment);
+        throwIfInterrupted();   // SIGINT, SIGTERM: between segments
     }
     res.seconds = std::chrono::duration<double>(Clock::now() - t0).count();
     return res;
