@@ -4,9 +4,17 @@
 // guard removes its temporary folder before the process ends by the signal.
 #pragma once
 
+#include <spawn.h>
+#include <sys/wait.h>
+
 #include <atomic>
+#include <cerrno>
+#include <csignal>
 #include <stdexcept>
 #include <string>
+#include <vector>
+
+extern "C" char** environ;
 
 namespace pst {
 
@@ -22,6 +30,23 @@ inline bool interrupted() { return gInterruptSignal.load(std::memory_order_relax
 
 inline void throwIfInterrupted() {
     if (const int s = gInterruptSignal.load(std::memory_order_relaxed)) throw Interrupted(s);
+}
+
+// Runs ARGS[0] from the PATH with ARGS and waits for it; true on exit status 0. A stop request
+// while it runs (the handlers do not restart waitpid) is passed on to the child, once.
+inline bool spawnAndWait(std::vector<std::string> args) {
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    pid_t pid;
+    if (posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0) return false;
+    int status = 0;
+    bool passedOn = false;
+    while (waitpid(pid, &status, 0) < 0) {
+        if (errno != EINTR) return false;
+        if (const int sig = gInterruptSignal.load(); sig && !passedOn) kill(pid, sig), passedOn = true;
+    }
+    return WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
 }  // namespace pst

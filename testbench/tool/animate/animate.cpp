@@ -13,8 +13,6 @@
 #include <sstream>
 
 #include <nlohmann/json.hpp>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include "driver.h"
@@ -24,29 +22,11 @@
 #include "provenance.h"
 #include "scene.h"
 
-extern "C" char** environ;
 
 namespace fs = std::filesystem;
 
 namespace pst {
 namespace {
-
-// Runs argv[0] from the PATH; true on exit status 0. A stop request (interrupt.h) while it runs
-// is passed on to it (the signal handlers do not restart waitpid).
-bool spawn(std::vector<std::string> args) {
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    pid_t pid;
-    if (posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0) return false;
-    int status = 0;
-    bool passedOn = false;
-    while (waitpid(pid, &status, 0) < 0) {
-        if (errno != EINTR) return false;
-        if (const int sig = gInterruptSignal.load(); sig && !passedOn) kill(pid, sig), passedOn = true;
-    }
-    return WIFEXITED(status) && WEXITSTATUS(status) == 0;
-}
 
 bool onPath(const std::string& exe) {
     const char* p = std::getenv("PATH");
@@ -257,7 +237,7 @@ int runAnimate(const AnimateArgs& a) {
             char rate[32];
             std::snprintf(rate, sizeof rate, "%g", fps);
             // VP9 in WebM with 4:2:0 chroma: what every current browser plays. yuv420p needs even sizes.
-            if (!spawn({"ffmpeg", "-y", "-loglevel", "error", "-framerate", rate, "-i",
+            if (!spawnAndWait({"ffmpeg", "-y", "-loglevel", "error", "-framerate", rate, "-i",
                         (dir / d / "frame_%04d.png").string(), "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2",
                         "-c:v", "libvpx-vp9", "-pix_fmt", "yuv420p", "-b:v", "0", "-crf", "30",
                         "-deadline", "realtime", "-cpu-used", "8", "-row-mt", "1", out})) {

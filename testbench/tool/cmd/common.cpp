@@ -11,14 +11,11 @@
 
 #include <pthread.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include "driver.h"
 #include "source_dir.h"
 
-extern "C" char** environ;
 
 namespace pst::cli {
 
@@ -129,22 +126,6 @@ void EtaProgress::step(const std::string& what) {
 
 void EtaProgress::finish() {
     if (!quiet_ && tty_ && done_) std::fprintf(stderr, "\n");
-}
-
-bool spawnAndWait(std::vector<std::string> args) {
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    pid_t pid;
-    if (posix_spawnp(&pid, argv[0], nullptr, nullptr, argv.data(), environ) != 0) return false;
-    int status = 0;
-    bool passedOn = false;
-    while (waitpid(pid, &status, 0) < 0) {
-        if (errno != EINTR) return false;
-        // A stop request (the handlers do not restart waitpid): the child stops too.
-        if (const int sig = gInterruptSignal.load(); sig && !passedOn) kill(pid, sig), passedOn = true;
-    }
-    return WIFEXITED(status) && WEXITSTATUS(status) == 0;
 }
 
 void writeHtmlPage(const std::string& page, const std::string& shown, std::vector<std::string> args) {

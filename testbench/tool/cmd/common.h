@@ -141,9 +141,8 @@ void installInterruptHandlers();
 // the same signal (exit status 128 + sig in a shell).
 [[noreturn]] void endByInterrupt(int sig);
 
-// Runs args (args[0] from the PATH); true on exit status 0. A stop request while it runs is
-// passed on to it, and the caller's check (throwIfInterrupted) ends the run.
-bool spawnAndWait(std::vector<std::string> args);
+// spawnAndWait (interrupt.h) runs a child (report.py, ffmpeg); the caller's check
+// (throwIfInterrupted) ends the run on a stop request.
 
 // Fails (InputError) unless a trace file can be written: its folder exists.
 void checkTracePath(const std::string& trace);
