@@ -87,6 +87,10 @@ multipass::Image8 singlePassNoise(const multipass::Image8& s, const multipass::I
 // For an atlas of solid-texture coordinates (the `pst atlas` filler): the noise n in [0, 1]
 // (the byte / 255) at each coordinate, quantized by multipass::toFixed, on the GPU. Opens its
 // own EGL context (throws EglUnavailable without one).
+// The machine's 1-minute load average (/proc/loadavg; -1 where unknown), recorded beside every
+// timing: on a shared machine the times measure the load as much as the passes.
+double loadAverage();
+
 std::vector<float> gpuNoise(const std::vector<glm::dvec3>& coords, const multipass::Params& params,
                             BlendArith arith = BlendArith::Shader, Timing* timing = nullptr);
 

@@ -126,3 +126,16 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 
 
 }  // namespace pst::gpu::detail
+
+namespace pst::gpu {
+
+double loadAverage() {
+    double l = -1;
+    if (FILE* f = std::fopen("/proc/loadavg", "r")) {
+        if (std::fscanf(f, "%lf", &l) != 1) l = -1;
+        std::fclose(f);
+    }
+    return l;
+}
+
+}  // namespace pst::gpu

@@ -38,18 +38,10 @@
 #include "source_dir.h"
 
 using namespace pst::multipass;
+using pst::gpu::loadAverage;
 using nlohmann::json;
 
 namespace {
-
-double loadAverage() {
-    double l = -1;
-    if (FILE* f = std::fopen("/proc/loadavg", "r")) {
-        if (std::fscanf(f, "%lf", &l) != 1) l = -1;
-        std::fclose(f);
-    }
-    return l;
-}
 
 json summaryJson(const Summary& s) {
     return {{"mean", s.mean}, {"stddev", s.stddev}, {"excess_kurtosis", s.excessKurtosis},

@@ -21,6 +21,7 @@
 #include "quality.h"
 
 using namespace pst::multipass;
+using pst::gpu::loadAverage;
 using pst::gpu::BlendArith;
 
 namespace {
@@ -32,15 +33,6 @@ struct Moments {
     double mean() const { return sum / n; }
     double stddev() const { return std::sqrt(std::max(0.0, sq / n - mean() * mean())); }
 };
-
-double loadAverage() {
-    double l = -1;
-    if (FILE* f = std::fopen("/proc/loadavg", "r")) {
-        if (std::fscanf(f, "%lf", &l) != 1) l = -1;
-        std::fclose(f);
-    }
-    return l;
-}
 
 }  // namespace
 
