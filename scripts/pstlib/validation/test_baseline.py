@@ -43,7 +43,8 @@ def test_collect_from_synth_and_regress():
     assert "full" not in c
 
 
-def test_check_baseline_cli_fails_on_a_move(tmp_path):
+def _one_profile_run(tmp_path):
+    """An out/ folder of one synthesized profile (reduced) and its regression: (out, synth JSON)."""
     import json
     out = tmp_path / "out"
     (out / "synth").mkdir(parents=True)
@@ -52,6 +53,12 @@ def test_check_baseline_cli_fails_on_a_move(tmp_path):
     (out / "synth" / "reduced.json").write_text(json.dumps(s))
     (out / "regress.json").write_text(json.dumps(
         [{"scene": "scenes/a.toml", "profile": "reduced", "vs_reference": {"psnr": 40.0}}]))
+    return out, s
+
+
+def test_check_baseline_cli_fails_on_a_move(tmp_path):
+    import json
+    out, s = _one_profile_run(tmp_path)
     base = {"tolerance": 0.02, "tools": {"yosys": "y"},
             "profiles": baseline.collect({"reduced": s}, json.loads((out / "regress.json").read_text()))}
     bfile = tmp_path / "baseline.json"
@@ -147,13 +154,7 @@ def test_stage_paths_are_recorded_not_checked():
 
 def test_check_baseline_json_on_every_exit_path(tmp_path):
     """--json FILE: the result (pass, fail with the moved figures, error) as JSON, always."""
-    out = tmp_path / "out"
-    (out / "synth").mkdir(parents=True)
-    s = {"logic_ge": 100, "blocks": {}, "flip_flops": 1, "memory_ge": 2, "total_ge": 102, "rom_bits": 8,
-         "ram_bits": 9, "clocks_per_pixel": 1, "timing": dict(SIGNOFF_MET, fmax_mhz=50.0), "tools": {"yosys": "y"}}
-    (out / "synth" / "reduced.json").write_text(json.dumps(s))
-    (out / "regress.json").write_text(json.dumps(
-        [{"scene": "scenes/a.toml", "profile": "reduced", "vs_reference": {"psnr": 40.0}}]))
+    out, s = _one_profile_run(tmp_path)
     bfile = tmp_path / "baseline.json"
     bfile.write_text(json.dumps({"tolerance": 0.02, "tools": {"yosys": "y"},
                                  "profiles": baseline.collect({"reduced": s}, json.loads((out / "regress.json").read_text()))}))
