@@ -11,16 +11,24 @@
 #                                    full's instrumented model takes > 50 min to compile on 2 cores)
 #   PST_COV_TEST_PROFILES="serial_short reduced_perlin2002"   these test profiles (default:
 #                                    serial_short, the serial datapath; "all": every one)
+#   PST_COV_KINDS="line user"        Verilator's coverage kinds (default "line toggle user");
+#                                    without toggle points full and balanced compile in about
+#                                    20 min each on two cores
+#   PST_COV_OUT=out/coverage_full    the output folder (default out/coverage)
+# The instrumented models' C++ is compiled at -O1 (PST_VERILATED_OPT_FAST): the counts do not
+# depend on it, the compile time does.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh >/dev/null
 B=build-cov
-O=out/coverage
+O=${PST_COV_OUT:-out/coverage}
+KINDS=${PST_COV_KINDS:-line toggle user}
 N=${PST_COV_FRAGMENTS:-100000}
 PROFILES=${PST_COV_PROFILES:-reduced}
 TEST_PROFILES=${PST_COV_TEST_PROFILES:-serial_short}
 cmake -S . -B $B -G Ninja -DCMAKE_BUILD_TYPE=Release -DPST_COVERAGE=ON "-DPST_PROFILES=${PROFILES// /;}" \
-      "-DPST_TEST_PROFILES=${TEST_PROFILES// /;}" >/dev/null
+      "-DPST_TEST_PROFILES=${TEST_PROFILES// /;}" \
+      "-DPST_COVERAGE_KINDS=${KINDS// /;}" -DPST_VERILATED_OPT_FAST=-O1 >/dev/null
 cmake --build $B -j2 --target pst
 rm -rf $O && mkdir -p $O/dat
 export PST_COVERAGE_DIR=$PWD/$O/dat PST_SOURCE_DIR=$PWD

@@ -19,6 +19,9 @@
         folder) or of `pst render --profile` runs (images beside each summary.json): the table
         and the viewers. `pst regress --html` and `pst render --profile P --html` call this.
         --sweep: a precision sweep's points side by side per scene (golden images), its sweep.md.
+        --staged TMP=FINAL (repeatable; pst passes it): the run's files are still in the
+        temporary folder TMP of its output transaction and will be in FINAL; the ground truth
+        beside an image folder is looked up where the folder will be.
 
 Missing or unreadable input: `error: FILE: what is wrong`, exit status 2, no output file.
 """
@@ -87,7 +90,13 @@ def page(args) -> report_data.Report:
             run["profile"] = p.parent.parent.name          # the sweep point
             pairs.append((run, p.parent))
     title = "pst regress" if args.regress else "precision sweep" if args.sweep else "pst render --profile"
-    rep = report_data.collect_runs(pairs, root, title)
+    staged = []
+    for st in args.staged or []:
+        tmp, sep, final = st.partition("=")
+        if not sep or not tmp or not final:
+            raise InputError(f"--staged: '{st}' is not TMP=FINAL")
+        staged.append((pathlib.Path(tmp), pathlib.Path(final)))
+    rep = report_data.collect_runs(pairs, root, title, staged=staged)
     rep.provenance = prov
     rep.subtitle = f"{len(rep.runs)} runs"
     if args.summary:
@@ -109,6 +118,8 @@ def main() -> int:
     ap.add_argument("--regress", help="page of one `pst regress -o JSON` run")
     ap.add_argument("--images", help="with --regress: its --images folder (default: the page's folder)")
     ap.add_argument("--summary", action="append", help="page of `pst render --profile` runs (repeatable)")
+    ap.add_argument("--staged", action="append", metavar="TMP=FINAL",
+                    help="a temporary folder of pst's output transaction and where it will be")
     ap.add_argument("--sweep", help="page of a precision sweep's folder (scripts/sweep.py --out DIR)")
     ap.add_argument("--embed-all", action="store_true", help="also embed the figures' images (one movable file)")
     args = ap.parse_args()
@@ -127,7 +138,7 @@ def main() -> int:
         for sweep_md in sorted((root / "sweep").glob("*/sweep.md")) if args.html else []:
             d = sweep_md.parent
             if any((d / "renders").glob("*/*/summary.json")):
-                sub = argparse.Namespace(html=str(d / "index.html"), regress=None, images=None, summary=None,
+                sub = argparse.Namespace(html=str(d / "index.html"), regress=None, images=None, summary=None, staged=None,
                                          sweep=str(d))
                 write_atomic(d / "index.html", report_html.render(page(sub), embed_all=args.embed_all))
                 pages[f"sweep-{d.name}"] = f"sweep/{d.name}/index.html"

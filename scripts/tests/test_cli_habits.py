@@ -266,3 +266,21 @@ def test_inject_assert_refused_outside_the_run():
                                            r.stderr), r.stderr
     r = pst("regress", "--random", 100, "--profile", asserted[0], "--inject-assert", 50, "-q")
     assert r.returncode == 1 and "RTL assertion" in r.stdout, r.stdout   # inside: it fires
+    # Scene mode: an index past a scene's fragments (zoneplate at 4 x 4 has 16) is refused, with
+    # the scene named, before any run; inside, the assertion fires.
+    r = pst("regress", ZONE, "--size", 4, "--profile", asserted[0], "--inject-assert", 16, "-q")
+    assert r.returncode == 2 and re.search(r"--inject-assert: fragment 16 is past the run of \S+zoneplate\.toml at "
+                                           r"--size 4 \(16 fragments\); the self-test could not fire", r.stderr), r.stderr
+    r = pst("regress", ZONE, "--size", 4, "--profile", asserted[0], "--inject-assert", 3, "-q")
+    assert r.returncode == 1 and "ASSERTION" in r.stdout, r.stdout
+
+
+def test_render_page_finds_the_truth_on_a_rerun(tmp_path):
+    # The truth of `render SCENE --truth N` beside `render SCENE --profile P --html`: the page
+    # shows it as a layer on the first run and on a rerun into the existing folders (whose files
+    # are staged inside the target, not beside it, until the run commits).
+    assert pst("render", ZONE, "--size", 8, "--truth", 2, "-q", cwd=tmp_path).returncode == 0
+    for _ in range(2):
+        r = pst("render", ZONE, "--size", 8, "--profile", "reduced", "--html", "out/page.html", "-q", cwd=tmp_path)
+        assert r.returncode == 0, r.stdout + r.stderr
+        assert '"label": "ground truth", "kind": "truth"' in (tmp_path / "out" / "page.html").read_text()

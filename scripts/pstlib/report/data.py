@@ -362,16 +362,28 @@ def collect(out_dir, argv=None) -> Report:
     return rep
 
 
-def collect_runs(runs_dirs: list, root: pathlib.Path, title: str, argv=None) -> Report:
+def final_place(d: pathlib.Path, staged: list) -> pathlib.Path:
+    """Where folder D will be once pst's output transaction commits: D under a temporary folder
+    TMP of STAGED's (TMP, FINAL) pairs is FINAL/<D relative to TMP>; else D."""
+    d = pathlib.Path(d).resolve()
+    for tmp, final in staged:
+        tmp = pathlib.Path(tmp).resolve()
+        if d == tmp or tmp in d.parents:
+            return pathlib.Path(final).resolve() / d.relative_to(tmp)
+    return d
+
+
+def collect_runs(runs_dirs: list, root: pathlib.Path, title: str, argv=None, staged=()) -> Report:
     """One `pst regress --html` or `pst render --profile ... --html` run: (run, image folder)
     pairs; the ground truth of a scene is <image folder>/../truth.png when present (the
-    layout of `pst render SCENE --truth N` beside `pst render SCENE --profile P`)."""
+    layout of `pst render SCENE --truth N` beside `pst render SCENE --profile P`), the image
+    folder taken where it will be after the run's output transaction (STAGED: (TMP, FINAL))."""
     rep = Report(title, root)
     rep.provenance = provenance.collect(SCHEMA, argv)
     rep.regress_ran = True
     rep.runs = [r for r, _ in runs_dirs]
     # Only a folder named after the scene: <dir>/<scene>/<profile>/ beside <dir>/<scene>/truth.png.
-    dirs = {scene_stem(r): pathlib.Path(d).resolve().parent for r, d in runs_dirs}
+    dirs = {scene_stem(r): final_place(d, staged).parent for r, d in runs_dirs}
     rep.scenes = scene_views(runs_dirs, lambda stem: dirs[stem] if dirs.get(stem) and dirs[stem].name == stem else None)
     rep.notes = sorted({n for r in rep.runs for n in r.get("notes", [])})
     return rep

@@ -233,6 +233,12 @@ fs::path Outputs::staged(const std::string& flag, const std::string& target, boo
     return staged(flag, target, isDir);
 }
 
+std::vector<std::string> Outputs::stagedArgs() const {
+    std::vector<std::string> args;
+    for (const Stage& s : stages_) args.insert(args.end(), {"--staged", s.tmp.string() + "=" + s.root.string()});
+    return args;
+}
+
 std::string Outputs::dir(const std::string& flag, const std::string& target) {
     const fs::path d = staged(flag, target, true);
     fs::create_directories(d);

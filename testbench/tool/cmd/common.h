@@ -122,6 +122,9 @@ public:
     // Moves every file into place (SIGINT and SIGTERM held back meanwhile). A destination that
     // is a folder, or under a file, fails the commit before anything is moved.
     void commit();
+    // `--staged TMP=FINAL` for each temporary folder: what a step that reads the staged files
+    // before the commit (the HTML page) needs to name where they will be.
+    std::vector<std::string> stagedArgs() const;
 
 private:
     struct Stage {

@@ -133,7 +133,12 @@ int run(RegressCli& c) {
     staged.out = outputs.file("-o", withPage.out);
     staged.junit = outputs.file("--junit", withPage.junit);
     const int rc = runRegressScenes(staged, hw);
-    if (!a.html.empty()) writeHtmlPage(page, a.html, {"--regress", staged.out, "--images", staged.images});
+    if (!a.html.empty()) {
+        std::vector<std::string> args = {"--regress", staged.out, "--images", staged.images};
+        const std::vector<std::string> st = outputs.stagedArgs();
+        args.insert(args.end(), st.begin(), st.end());
+        writeHtmlPage(page, a.html, args);
+    }
     outputs.commit();
     if (!a.html.empty()) std::cout << "page: " << a.html << "\n";
     return rc;

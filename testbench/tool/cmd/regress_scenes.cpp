@@ -88,6 +88,17 @@ int runRegressScenes(const RegressArgs& a, const HwArgs& hw) {
     std::vector<Profile> profiles;
     for (const std::string& name : hw.profiles) profiles.push_back(profileByName(name, true, false));
     const Unit fault = a.injectFault.empty() ? Unit::Count : unitByName(a.injectFault);
+    // --inject-assert I fires once fragment I of a run is in: a run of at most I fragments could
+    // not fire it and would pass, so every scene must have more (refused before any run).
+    if (hw.sim.busyWriteAfter)
+        for (size_t si = 0; si < loaded.size(); ++si) {
+            size_t n = 0;
+            for (int layer = 0; layer < loaded[si].layers(); ++layer) n += sceneFragments(loaded[si], layer).size();
+            if (hw.sim.busyWriteAfter > n)
+                throw InputError("--inject-assert: fragment " + std::to_string(hw.sim.busyWriteAfter - 1) +
+                                 " is past the run of " + a.scenes[si] + " at --size " + std::to_string(a.size) +
+                                 " (" + std::to_string(n) + " fragments); the self-test could not fire");
+        }
     if (!a.waves.empty()) fs::create_directories(a.waves);
     const bool reseeded = a.seeds.size() > 1;
     std::printf("%-14s %-8s %9s %10s %8s %9s %10s %12s\n", "scene", "profile", "pixels", "mismatch", "PSNR",

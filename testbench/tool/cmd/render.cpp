@@ -80,7 +80,11 @@ int runHardwareRender(const RenderArgs& a, const HwArgs& hw) {
             rc = 1;
         }
     }
-    if (!hw.html.empty()) writeHtmlPage(page, hw.html, pageArgs);
+    if (!hw.html.empty()) {
+        const std::vector<std::string> st = outputs.stagedArgs();
+        pageArgs.insert(pageArgs.end(), st.begin(), st.end());
+        writeHtmlPage(page, hw.html, pageArgs);
+    }
     outputs.commit();
     if (!hw.html.empty()) std::cout << "page: " << hw.html << "\n";
     return rc;
