@@ -203,3 +203,21 @@ def test_rerun_into_existing_folder_replaces_its_files_keeps_others(tmp_path):
     assert (out / "filtered.png").read_bytes()[:4] == b"\x89PNG"
     assert (out / "mine.txt").read_text() == "kept"
     assert "report.json" in tree(out) and temp_folders(tmp_path) == []
+
+
+def test_a_killed_runs_temporary_folder_is_removed_by_the_next_run(tmp_path):
+    # SIGKILL cannot be caught: the killed run's .pst-tmp-PID stays until the next run writing
+    # into the same folder finds its process gone and removes it. A live process's is kept.
+    p = subprocess.Popen(["true"])
+    p.wait()
+    dead = p.pid                                     # a process id that no longer runs
+    out = tmp_path / "out"
+    out.mkdir()
+    for name in (f".pst-tmp-{dead}", f".marble.pst-tmp-{dead}", f".pst-tmp-{os.getpid()}"):
+        (out / name).mkdir()
+        (out / name / "partial.png").write_bytes(b"x")
+    r = subprocess.run([PST, "render", str(ROOT / "scenes" / "marble.toml"), "--size", "8", "-q", "-o",
+                        str(out / "marble")], capture_output=True, text=True, env=ENV)
+    assert r.returncode == 0, r.stderr
+    assert (out / "marble" / "filtered.png").exists() or any((out / "marble").iterdir())
+    assert temp_folders(out) == [str(out / f".pst-tmp-{os.getpid()}")]

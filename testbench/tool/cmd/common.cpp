@@ -181,6 +181,24 @@ fs::path normalPath(const std::string& p) {
     return a;
 }
 
+// A killed run (SIGKILL, a power cut) cannot remove its temporary folder: the next run writing
+// into the same folder removes every `.pst-tmp-PID` and `.NAME.pst-tmp-PID` there whose process
+// no longer exists (a live process, or one of another user, is left alone).
+void removeDeadStages(const fs::path& dir) {
+    std::error_code ec;
+    for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+        const std::string name = it->path().filename().string();
+        const size_t at = name.rfind(".pst-tmp-");
+        if (name.empty() || name[0] != '.' || at == std::string::npos) continue;
+        const std::string digits = name.substr(at + 9);
+        if (digits.empty() || digits.size() > 9 || digits.find_first_not_of("0123456789") != std::string::npos) continue;
+        const pid_t pid = static_cast<pid_t>(std::stol(digits));
+        if (pid <= 0 || pid == getpid() || kill(pid, 0) == 0 || errno != ESRCH) continue;
+        std::error_code rm;
+        fs::remove_all(it->path(), rm);
+    }
+}
+
 }  // namespace
 
 void installInterruptHandlers() {
@@ -226,6 +244,7 @@ fs::path Outputs::staged(const std::string& flag, const std::string& target, boo
     s.root = s.missing ? missing : existing;
     s.tmp = existing / (s.missing ? "." + missing.filename().string() + ".pst-tmp-" + pid : ".pst-tmp-" + pid);
     fs::remove_all(s.tmp, ec);   // a dead run's of the same process id
+    removeDeadStages(existing);
     if (!fs::create_directory(s.tmp, ec))
         throw InputError(flag + ": '" + target + "' cannot be written: cannot make a folder in '" + existing.string() +
                          "' (" + ec.message() + ")");
