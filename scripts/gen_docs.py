@@ -15,11 +15,13 @@ beside them (pstlib/docs/handfigures.py):
   docs/MULTIPASS.md     multipass-quality, multipass-proposals
                                         the multipass noise's quality and the paper's proposals
                                         measured (pstlib/docs/multipass_doc.py)
+  docs/POWER.md         power-table     power and energy per pixel per profile (pstlib/docs/power_doc.py)
 
 Sources: scripts/synth/baseline.json (scripts/check_baseline.py --update or --add after a
 synthesis), scripts/synth/layout_derate.json (scripts/pnr.py --update-derate),
 scripts/synth/noise_units.json (by hand from scripts/synth.py and scripts/fidelity.py runs),
 docs/data/multipass.json (build/pst_multipass_study --out docs/data/multipass.json),
+docs/data/power.json (scripts/power.py PROFILE --record),
 rtl/**/*.sv{,h}, rtl/contract.toml and rtl/configs/*.toml.
 
     scripts/gen_docs.py --write            # rewrite the stale sections
@@ -36,7 +38,7 @@ import sys
 from pathlib import Path
 
 from pstlib import contract, contractgen
-from pstlib.docs import docgen, handfigures, multipass_doc, noise_units, rtl_modules
+from pstlib.docs import docgen, handfigures, multipass_doc, noise_units, power_doc, rtl_modules
 from pstlib.report import silicon_table
 from pstlib.docs.docgen import Section
 from pstlib.paths import ROOT
@@ -52,7 +54,9 @@ def baseline_profiles(root: Path) -> list:
     except (OSError, ValueError, KeyError) as e:
         raise docgen.DocError(f"{BASELINE}: {e}")
     derate = json.loads((root / DERATE).read_text()) if (root / DERATE).exists() else None
-    return [silicon_table.from_baseline(n, base[n], derate) for n in silicon_table.PROFILES if n in base]
+    power = power_doc.load(root)["profiles"] if (root / power_doc.SOURCE).exists() else {}
+    return [silicon_table.with_power(silicon_table.from_baseline(n, base[n], derate), (power.get(n) or {}).get("summary"))
+            for n in silicon_table.PROFILES if n in base]
 
 
 def synth_profiles(folder: Path) -> list:
@@ -107,6 +111,7 @@ SECTIONS = [
     Section("docs/ARCHITECTURE.md", "rtl-modules", rtl_modules.markdown),
     Section("docs/MULTIPASS.md", "multipass-quality", multipass_doc.quality_markdown),
     Section("docs/MULTIPASS.md", "multipass-proposals", multipass_doc.proposals_markdown),
+    Section("docs/POWER.md", "power-table", power_doc.markdown),
 ]
 
 

@@ -13,8 +13,8 @@ if [ "${1:-}" = "--all" ]; then scripts/build.sh --named; else scripts/build.sh;
 # JUnit XML of every test for CI servers: build/junit.xml
 # The long checks run on their own (docs/TESTING.md): ctest -L formal (the multiplier proof
 # whole; the default suite checks its record), -L long (the RTL unit tests' full random
-# counts), -L slurm (the SLURM cluster test, minutes of synthesis). `scripts/test.sh --all`
-# runs them too.
-EXCLUDE="slurm|formal|long"
+# counts), -L slurm (the SLURM cluster test, minutes of synthesis), -L power (energy per pixel
+# against its record, minutes of synthesis). `scripts/test.sh --all` runs them too but slurm.
+EXCLUDE="slurm|formal|long|power"
 if [ "${1:-}" = "--all" ]; then EXCLUDE="slurm"; fi
 ctest --test-dir build --output-on-failure -j"$(nproc)" --timeout 600 -LE "$EXCLUDE" --output-junit "$PWD/build/junit.xml"

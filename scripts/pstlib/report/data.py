@@ -291,7 +291,9 @@ def profile_figures(g: Included, root: Optional[pathlib.Path], runs: list) -> di
     pnr = json.loads(pnr_file.read_text()) if pnr_file and pnr_file.exists() else None
     psnr = {scene_stem(r): r["vs_reference"]["psnr"] for r in runs
             if r.get("profile") == name and (r.get("vs_reference") or {}).get("psnr") is not None}
-    return silicon_table.from_synth({"profile": name, **g.data}, pnr, psnr or None)
+    power_file = root / "power" / f"{name}.json" if root else None
+    power = json.loads(power_file.read_text()).get("summary") if power_file and power_file.exists() else None
+    return silicon_table.with_power(silicon_table.from_synth({"profile": name, **g.data}, pnr, psnr or None), power)
 
 
 def collect(out_dir, argv=None) -> Report:

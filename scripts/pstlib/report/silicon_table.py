@@ -121,7 +121,20 @@ def rows(profiles: list) -> list:
                                    f"{p['worst_psnr'][0]} {p['worst_psnr'][1]:.1f} dB")],
         ["the paper's gate count", *col(lambda p: num(p["paper_gates"]))],
     ]
+    if any(p.get("power") for p in profiles):
+        # scripts/power.py's summary (docs/POWER.md): pre-layout, RAMs not modelled
+        out += [
+            ["energy per pixel (pre-layout, RAMs not modelled)", *col(lambda p: "-" if not p.get("power") else
+                                                                   f"{p['power']['pj_per_pixel']:,.0f} pJ")],
+            [f"power at {REALTIME_MPIX:.1f} Mpixel/s (copies side by side)", *col(lambda p: "-" if not (p.get("power") or {}).get("mw_at_realtime") else
+                                                 f"{p['power']['mw_at_realtime']:,.0f} mW ({p['power']['realtime_copies']})")],
+        ]
     return out
+
+
+def with_power(p: dict, summary) -> dict:
+    """Profile P with scripts/power.py's SUMMARY (docs/data/power.json's or out/power/P.json's)."""
+    return {**p, "power": summary} if summary else p
 
 
 def markdown(profiles: list) -> str:

@@ -1,0 +1,64 @@
+"""The power table (docs/POWER.md section power-table, docs/HARDWARE.md links to it) from
+docs/data/power.json, which `scripts/power.py PROFILE --record` writes (every number there is
+measured by that flow, none typed)."""
+import json
+from pathlib import Path
+
+SOURCE = Path("docs/data/power.json")
+
+
+def load(root: Path) -> dict:
+    path = root / SOURCE
+    if not path.exists():
+        raise ValueError(f"{SOURCE}: missing (scripts/power.py PROFILE --record)")
+    d = json.loads(path.read_text())
+    if not isinstance(d.get("profiles"), dict):
+        raise ValueError(f"{SOURCE}: profiles: missing")
+    return d
+
+
+def _f(v, d=1) -> str:
+    return "-" if v is None else f"{v:,.{d}f}"
+
+
+def markdown(root: Path) -> str:
+    d = load(root)["profiles"]
+    L = ["Measured by `scripts/power.py PROFILE --record` (pre-layout netlist of scripts/synth.py, OpenSTA "
+         "report_power at the typical corner, activity from the verilated RTL's traces of the paper scenes and "
+         "random validation textures; the method is below). pJ/pixel: mean over the workloads (least - most); "
+         "mW at the profile's pre-layout Fmax and at the real-time rate (copies: profiles side by side to reach "
+         "it). Sequential: flip-flops with their clock pins. ROMs: the area model; RAMs (the colour tables) are "
+         "not modelled.", "",
+         "| profile | workloads | pJ/pixel | least - most | Fmax (MHz) | mW at Fmax | mW at real time (copies) "
+         "| leakage mW | sequential | ROMs | top blocks (mW at the SDC clock) |",
+         "|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---|"]
+    for name, p in d.items():
+        s = p["summary"]
+        blocks = ", ".join(f"{b} {_f(w)}" for b, w in list(s["blocks_mw_at_sdc_clock"].items())[:3])
+        L.append(f"| {name} | {s['workloads']} | {_f(s['pj_per_pixel'], 0)} | {_f(s['pj_per_pixel_min'], 0)} - "
+                 f"{_f(s['pj_per_pixel_max'], 0)} | {_f(s['fmax_mhz'])} | {_f(s['mw_at_fmax'])} | "
+                 f"{_f(s.get('mw_at_realtime'))} ({s.get('realtime_copies', '-')}) | {_f(s['leakage_mw'], 3)} | "
+                 f"{100 * s['sequential_share']:.0f} % | {100 * s['memory_model_share']:.0f} % | {blocks} |")
+    L.append("")
+    L.append("Per workload (pJ/pixel):")
+    L.append("")
+    names = sorted({w for p in d.values() for w in p["workloads"]})
+    L.append("| profile | " + " | ".join(names) + " |")
+    L.append("|---|" + "---:|" * len(names))
+    for name, p in d.items():
+        L.append(f"| {name} | " + " | ".join(_f(p["workloads"].get(w), 0) for w in names) + " |")
+    return "\n".join(L) + "\n"
+
+
+def record(root: Path, doc: dict) -> None:
+    """Merges one profile's scripts/power.py result into SOURCE (summary, per-workload pJ/pixel,
+    the window and the activity source)."""
+    path = root / SOURCE
+    d = json.loads(path.read_text()) if path.exists() else {"profiles": {}}
+    d["profiles"][doc["profile"]] = {
+        "summary": doc["summary"], "window": doc["window"], "activity_source": doc["activity_source"],
+        "basis": doc["basis"], "seconds": doc["seconds"],
+        "workloads": {k: r["pj_per_pixel"] for k, r in doc["workloads"].items()}}
+    d["profiles"] = dict(sorted(d["profiles"].items()))
+    path.parent.mkdir(parents=True, exist_ok=True)
+    path.write_text(json.dumps(d, indent=2) + "\n")
