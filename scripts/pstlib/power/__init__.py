@@ -1,2 +1,2 @@
-"""The power flow: activity of the verilated RTL\x27s traces onto the synthesized netlist, OpenSTA\x27s
+"""The power flow: activity of the verilated RTL's traces onto the synthesized netlist, OpenSTA's
 per-cell power, energy per pixel (scripts/power.py; docs/POWER.md)."""
