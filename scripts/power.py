@@ -28,30 +28,13 @@ import subprocess
 import sys
 import time
 
+from pstlib import kept
 from pstlib.docs import power_doc
 from pstlib.paths import PY, ROOT, profile_path
 from pstlib.power import activity, figures, flow
 from pstlib.synth import flow as synth_flow, liberty
 
 PAPER_SCENES = ("marble", "wood_teapot", "seascape", "zoneplate")
-
-
-def synthesis(profile: str, out: pathlib.Path, work):
-    """(the kept synthesis folder, the synthesis record) of PROFILE."""
-    name = profile_path(profile).stem
-    if work:
-        work = pathlib.Path(work)
-        rec = work.parent / f"{name}.json"
-        if not (work / "netlist_sta.v").exists() or not rec.exists():
-            raise synth_flow.InputError(f"{work}: not a kept synthesis of {name} (netlist_sta.v, ../{name}.json)")
-        return work, json.loads(rec.read_text())
-    sdir = out / "synth"
-    work = sdir / f"{name}.work"
-    rec = sdir / f"{name}.json"
-    if not ((work / "netlist_sta.v").exists() and rec.exists()):
-        opts = synth_flow.Options(out=sdir, keep=True, reuse=True, old_basis=False)
-        synth_flow.synthesize(profile_path(profile), opts)
-    return work, json.loads(rec.read_text())
 
 
 def workloads(a, out: pathlib.Path) -> dict:
@@ -76,6 +59,9 @@ def trace(pst: pathlib.Path, scene: pathlib.Path, profile: str, a, tmp: pathlib.
                         "-o", str(tmp / "img")], capture_output=True, text=True)
     if r.returncode:
         raise RuntimeError(f"pst render {scene.name} --profile {profile}: {r.stderr.strip() or r.stdout.strip()}")
+    if not fst.exists():
+        raise RuntimeError(f"pst render {scene.name} --profile {profile}: the run ended before cycle {a.start} "
+                           f"(nothing traced): a larger --size or a smaller --start")
     with open(vcd, "w") as f:
         r = subprocess.run(["fst2vcd", str(fst)], stdout=f, stderr=subprocess.PIPE, text=True)
     if r.returncode:
@@ -122,7 +108,7 @@ def main(argv=None) -> int:
         if not pathlib.Path(a.pst).exists():
             raise synth_flow.InputError(f"--pst: {a.pst}: no such binary (build first: scripts/build.sh)")
         scenes = workloads(a, out)
-        work, record = synthesis(a.profile, out, a.work)
+        work, record = kept.synthesis(a.profile, out, a.work)
     except synth_flow.InputError as e:
         print(f"error: {e}", file=sys.stderr)
         return 2

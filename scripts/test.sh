@@ -14,7 +14,8 @@ if [ "${1:-}" = "--all" ]; then scripts/build.sh --named; else scripts/build.sh;
 # The long checks run on their own (docs/TESTING.md): ctest -L formal (the multiplier proof
 # whole; the default suite checks its record), -L long (the RTL unit tests' full random
 # counts), -L slurm (the SLURM cluster test, minutes of synthesis), -L power (energy per pixel
-# against its record, minutes of synthesis). `scripts/test.sh --all` runs them too but slurm.
-EXCLUDE="slurm|formal|long|power"
+# against its record) and -L lec (the netlist against the RTL), minutes of synthesis each.
+# `scripts/test.sh --all` runs them too but slurm.
+EXCLUDE="slurm|formal|long|power|lec"
 if [ "${1:-}" = "--all" ]; then EXCLUDE="slurm"; fi
 ctest --test-dir build --output-on-failure -j"$(nproc)" --timeout 600 -LE "$EXCLUDE" --output-junit "$PWD/build/junit.xml"

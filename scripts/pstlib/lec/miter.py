@@ -1,0 +1,120 @@
+"""RTL against the synthesized netlist, module by module: which modules can be compared, and the
+one Yosys script that builds a miter per module and writes it as an AIGER file for ABC.
+
+Gold: the RTL elaborated with the profile's parameters (the same `read_lines` and `hierarchy` as
+scripts/synth.py, so every derived module has the same $paramod name as in the netlist), `proc`,
+asynchronous resets made synchronous as the synthesis does (`async2sync`). Gate: the netlist
+scripts/synth.py times and counts (netlist_sta.v: OSU018 cells, the cross-hierarchy fanout
+buffers), each cell replaced by its liberty function (`read_liberty` without -lib). Both are
+flattened below the module; `miter -equiv` compares every output bit; flip-flops start at zero
+on both sides (`write_aiger -zinit`).
+
+Modules holding a memory (its read stand-ins have no contents in the netlist) and the top are
+left to simulation.
+"""
+import re
+
+SEQ_CELLS = ("DFFPOSX1", "DFFNEGX1", "DFFSR", "LATCH")
+MEM_CELLS = ("PST_MEMRD", "PST_MEMWR")
+
+_MODULE = re.compile(r"^module\s+(\\\S+|[A-Za-z_][\w$]*)\s*\(", re.M)
+_CELL = re.compile(r"^\s+(\\\S+|[A-Za-z_][\w$]*)\s+(\\\S+|[A-Za-z_][\w$]*)\s*\($")
+
+
+def modules(netlist: str) -> dict:
+    """{module: {"cells": n leaf cells, "children": [modules instantiated], "seq": bool,
+    "mem": bool}} of a Yosys structural netlist; seq and mem over the whole sub-tree."""
+    names = {m.lstrip("\\") for m in _MODULE.findall(netlist)}
+    out, cur = {}, None
+    for line in netlist.splitlines():
+        m = _MODULE.match(line)
+        if m:
+            cur = out.setdefault(m.group(1).lstrip("\\"), {"cells": 0, "children": [], "seq": False, "mem": False})
+            continue
+        m = _CELL.match(line)
+        if cur is None or not m or m.group(1) in ("module", "assign", "wire", "input", "output", "reg"):
+            continue
+        t = m.group(1).lstrip("\\")
+        if t in names:
+            cur["children"].append(t)
+        else:
+            cur["cells"] += 1
+            cur["seq"] |= t.startswith(SEQ_CELLS)
+            cur["mem"] |= t.startswith(MEM_CELLS)
+
+    def close(name, seen=()):
+        d = out[name]
+        for c in d["children"]:
+            if c not in seen:
+                close(c, (*seen, name))
+                d["seq"] |= out[c]["seq"]
+                d["mem"] |= out[c]["mem"]
+    for n in out:
+        close(n)
+    return out
+
+
+def comparable(mods: dict, top: str = "pst_top") -> list:
+    """The modules a miter can decide: not the top, no memory below them; largest last."""
+    return sorted((m for m, d in mods.items() if m != top and not d["mem"]),
+                  key=lambda m: (subtree_cells(mods, m), m))
+
+
+def subtree_cells(mods: dict, m: str) -> int:
+    d = mods[m]
+    return d["cells"] + sum(subtree_cells(mods, c) for c in d["children"])
+
+
+def gold_name(module: str) -> str:
+    """How a Yosys command names MODULE in the elaborated RTL: as it is (a derived module's
+    internal $paramod name, a plain module's public one)."""
+    return module
+
+
+def gate_name(module: str) -> str:
+    """How a Yosys command names MODULE read back from the netlist (an escaped identifier)."""
+    return "\\" + module if module.startswith("$") else module
+
+
+def script(gold_read: list, lib: str, standin_lib: str, netlist: str, jobs: list) -> str:
+    """The Yosys script: JOBS is [(module, AIGER path)]; a `log PST_LEC MODULE` line before each."""
+    L = [*gold_read, "hierarchy -check -top pst_top", "proc", "opt_clean", "design -save pst_gold",
+         "design -reset", f"read_liberty {lib}", f"read_liberty -lib {standin_lib}", f"read_verilog {netlist}",
+         "design -save pst_gate"]
+    for module, aig in jobs:
+        L += [f"log PST_LEC {module}",
+              "design -load pst_gold", f"hierarchy -top {gold_name(module)}", "flatten", "async2sync", "opt_clean",
+              f"rename {gold_name(module)} pst_lec_gold", "design -stash pst_g",
+              "design -load pst_gate", f"hierarchy -top {gate_name(module)}", "flatten",
+              f"rename {gate_name(module)} pst_lec_gate", "design -stash pst_t",
+              "design -reset",
+              "design -copy-from pst_g -as pst_lec_gold pst_lec_gold",
+              "design -copy-from pst_t -as pst_lec_gate pst_lec_gate",
+              "miter -equiv -flatten pst_lec_gold pst_lec_gate pst_lec_miter",
+              "hierarchy -top pst_lec_miter", "techmap", "opt -fast", "dffunmap", "aigmap",
+              "setundef -zero -init", f"write_aiger -zinit {aig}"]
+    return "\n".join(L) + "\n"
+
+
+# A two-input cell and its dual: one swapped cell is the netlist mutant the checks must catch.
+DUALS = {"NAND2X1": "NOR2X1", "NOR2X1": "NAND2X1", "AND2X2": "OR2X2", "OR2X2": "AND2X2",
+         "XOR2X1": "XNOR2X1", "XNOR2X1": "XOR2X1", "AND2X1": "OR2X1", "OR2X1": "AND2X1"}
+
+
+def mutate(netlist: str, module: str) -> tuple:
+    """NETLIST with the first two-input cell of MODULE swapped for its dual: (text, "CELL NAME:
+    FROM -> TO"); ValueError when the module has no such cell."""
+    lines = netlist.splitlines(keepends=True)
+    inside = False
+    for i, line in enumerate(lines):
+        m = _MODULE.match(line)
+        if m:
+            inside = m.group(1).lstrip("\\") == module
+            continue
+        if not inside:
+            continue
+        c = _CELL.match(line.rstrip("\n"))
+        if c and c.group(1) in DUALS:
+            lines[i] = line.replace(c.group(1), DUALS[c.group(1)], 1)
+            return "".join(lines), f"{c.group(2)}: {c.group(1)} -> {DUALS[c.group(1)]}"
+    raise ValueError(f"{module}: no two-input cell to swap")
