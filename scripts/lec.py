@@ -2,8 +2,8 @@
 """Logic equivalence of a profile's RTL and its synthesized netlist, module by module (Yosys
 miters, ABC's iprove and dprove).
 
-    scripts/lec.py PROFILE [--work DIR] [--out DIR] [--module NAME ...] [--timeout S]
-                   [--mutate MODULE]
+    scripts/lec.py PROFILE [--work DIR] [--out DIR] [--module NAME ...] [--max-cells N]
+                   [--timeout S] [--mutate MODULE]
 
 Writes DIR/PROFILE.json and DIR/PROFILE.md (default DIR: out/lec): per module, its cells, whether
 it holds flip-flops, the verdict (proven, differs, undecided, timeout) and seconds. The netlist is
@@ -39,11 +39,14 @@ def main(argv=None) -> int:
     ap.add_argument("--out", default=str(ROOT / "out" / "lec"))
     ap.add_argument("--module", nargs="*", default=[], help="only these modules (full or base names)")
     ap.add_argument("--timeout", type=float, default=120.0, help="seconds ABC may take per module (default 120)")
+    ap.add_argument("--max-cells", type=int, default=0, help="only modules of at most this many cells (0: any)")
     ap.add_argument("--mutate", metavar="MODULE", help="swap one cell of MODULE and check only it")
     ap.add_argument("--rom-dir", default=str(ROOT / "build" / "rom"))
     a = ap.parse_args(argv)
     if not 1 <= a.timeout <= 86400:
         ap.error("--timeout: must be in [1, 86400]")
+    if not 0 <= a.max_cells <= 1 << 30:
+        ap.error("--max-cells: must be in [0, 2^30]")
     for tool in ("yosys", prove.ABC):
         if not shutil.which(tool):
             print(f"error: {tool} not found (scripts/setup.sh installs yosys)", file=sys.stderr)
@@ -62,7 +65,8 @@ def main(argv=None) -> int:
     netlist = (work / "netlist_sta.v").read_text()
     mods = miter.modules(netlist)
     wanted = set(a.module) | ({a.mutate} if a.mutate else set())
-    pick = [m for m in miter.comparable(mods) if not wanted or m in wanted or base_name(m) in wanted]
+    pick = [m for m in miter.comparable(mods) if (not wanted or m in wanted or base_name(m) in wanted)
+            and (not a.max_cells or miter.subtree_cells(mods, m) <= a.max_cells)]
     if wanted and not pick:
         print(f"error: no comparable module named {' '.join(sorted(wanted))} in {name}'s netlist", file=sys.stderr)
         return 2
