@@ -29,13 +29,13 @@ def markdown(root: Path) -> str:
          "mW at the profile's pre-layout Fmax and at the real-time rate (copies: profiles side by side to reach "
          "it). Sequential: flip-flops with their clock pins. ROMs: the area model; RAMs (the colour tables) are "
          "not modelled.", "",
-         "| profile | workloads | pJ/pixel | least - most | Fmax (MHz) | mW at Fmax | mW at real time (copies) "
-         "| leakage mW | sequential | ROMs | top blocks (mW at the SDC clock) |",
+         "| profile | workloads (image size) | pJ/pixel | least - most | Fmax (MHz) | mW at Fmax | mW at real time "
+         "(copies) | leakage mW | sequential | ROMs | top blocks (mW at the SDC clock) |",
          "|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---|"]
     for name, p in d.items():
         s = p["summary"]
         blocks = ", ".join(f"{b} {_f(w)}" for b, w in list(s["blocks_mw_at_sdc_clock"].items())[:3])
-        L.append(f"| {name} | {s['workloads']} | {_f(s['pj_per_pixel'], 0)} | {_f(s['pj_per_pixel_min'], 0)} - "
+        L.append(f"| {name} | {s['workloads']} ({p['window'].get('size', '-')}) | {_f(s['pj_per_pixel'], 0)} | {_f(s['pj_per_pixel_min'], 0)} - "
                  f"{_f(s['pj_per_pixel_max'], 0)} | {_f(s['fmax_mhz'])} | {_f(s['mw_at_fmax'])} | "
                  f"{_f(s.get('mw_at_realtime'))} ({s.get('realtime_copies', '-')}) | {_f(s['leakage_mw'], 3)} | "
                  f"{100 * s['sequential_share']:.0f} % | {100 * s['memory_model_share']:.0f} % | {blocks} |")
