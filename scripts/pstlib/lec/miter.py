@@ -5,12 +5,17 @@ Gold: the RTL elaborated with the profile's parameters (the same `read_lines` an
 scripts/synth.py, so every derived module has the same $paramod name as in the netlist), `proc`,
 asynchronous resets made synchronous as the synthesis does (`async2sync`). Gate: the netlist
 scripts/synth.py times and counts (netlist_sta.v: OSU018 cells, the cross-hierarchy fanout
-buffers), each cell replaced by its liberty function (`read_liberty` without -lib). Both are
-flattened below the module; `miter -equiv` compares every output bit; flip-flops start at zero
-on both sides (`write_aiger -zinit`).
+buffers), each cell replaced by its liberty function (`read_liberty` without -lib).
 
-Modules holding a memory (its read stand-ins have no contents in the netlist) and the top are
-left to simulation.
+Hierarchically: in both, the module's sub-module instances are cut out (`expose -evert`: their
+outputs become inputs of the module, shared by gold and gate since the instance names match,
+their inputs outputs that the miter compares), so each check covers the module's own logic and
+each sub-module is checked on its own; a module stands proven when it and every module below it
+are. `miter -equiv` compares every output bit; flip-flops start at zero on both sides
+(`write_aiger -zinit`).
+
+A module whose own cells include a memory's read or write stand-ins (the netlist has no
+contents for them) and the top are left to simulation.
 """
 import re
 
@@ -22,8 +27,8 @@ _CELL = re.compile(r"^\s+(\\\S+|[A-Za-z_][\w$]*)\s+(\\\S+|[A-Za-z_][\w$]*)\s*\($
 
 
 def modules(netlist: str) -> dict:
-    """{module: {"cells": n leaf cells, "children": [modules instantiated], "seq": bool,
-    "mem": bool}} of a Yosys structural netlist; seq and mem over the whole sub-tree."""
+    """{module: {"cells": n own leaf cells, "children": [modules instantiated], "seq": bool,
+    "mem": bool}} of a Yosys structural netlist; seq and mem of the module's own cells."""
     names = {m.lstrip("\\") for m in _MODULE.findall(netlist)}
     out, cur = {}, None
     for line in netlist.splitlines():
@@ -42,22 +47,18 @@ def modules(netlist: str) -> dict:
             cur["seq"] |= t.startswith(SEQ_CELLS)
             cur["mem"] |= t.startswith(MEM_CELLS)
 
-    def close(name, seen=()):
-        d = out[name]
-        for c in d["children"]:
-            if c not in seen:
-                close(c, (*seen, name))
-                d["seq"] |= out[c]["seq"]
-                d["mem"] |= out[c]["mem"]
-    for n in out:
-        close(n)
     return out
 
 
 def comparable(mods: dict, top: str = "pst_top") -> list:
-    """The modules a miter can decide: not the top, no memory below them; largest last."""
-    return sorted((m for m, d in mods.items() if m != top and not d["mem"]),
-                  key=lambda m: (subtree_cells(mods, m), m))
+    """The modules a miter can decide: not the top, no memory stand-in of their own; by their
+    own cells, smallest first."""
+    return sorted((m for m, d in mods.items() if m != top and not d["mem"]), key=lambda m: (mods[m]["cells"], m))
+
+
+def standing(mods: dict, verdicts: dict, m: str) -> bool:
+    """Whether M and every module below it are proven (VERDICTS: module -> result)."""
+    return verdicts.get(m) == "proven" and all(standing(mods, verdicts, c) for c in mods[m]["children"])
 
 
 def subtree_cells(mods: dict, m: str) -> int:
@@ -83,9 +84,11 @@ def script(gold_read: list, lib: str, standin_lib: str, netlist: str, jobs: list
          "design -save pst_gate"]
     for module, aig in jobs:
         L += [f"log PST_LEC {module}",
-              "design -load pst_gold", f"hierarchy -top {gold_name(module)}", "flatten", "async2sync", "opt_clean",
+              "design -load pst_gold", f"hierarchy -top {gold_name(module)}",
+              f"expose -evert {gold_name(module)}/t:*pst_*", "flatten", "async2sync", "opt_clean",
               f"rename {gold_name(module)} pst_lec_gold", "design -stash pst_g",
-              "design -load pst_gate", f"hierarchy -top {gate_name(module)}", "flatten",
+              "design -load pst_gate", f"hierarchy -top {gate_name(module)}",
+              f"expose -evert {gate_name(module)}/t:*pst_*", "flatten",
               f"rename {gate_name(module)} pst_lec_gate", "design -stash pst_t",
               "design -reset",
               "design -copy-from pst_g -as pst_lec_gold pst_lec_gold",

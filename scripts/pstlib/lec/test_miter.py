@@ -62,14 +62,24 @@ endmodule
 """
 
 
-def test_modules_sequential_and_memory_over_the_subtree():
+def test_modules_own_cells_and_the_checks_they_get():
     m = miter.modules(NETLIST)
     assert m["$paramod$aa\\pst_leaf"] == {"cells": 1, "children": [], "seq": False, "mem": False}
-    assert m["pst_mid"]["seq"] and not m["pst_mid"]["mem"]
-    assert m["pst_top"]["seq"] and m["pst_top"]["mem"]
+    assert m["$paramod$bb\\pst_reg"]["seq"]
+    # pst_mid's own logic is wiring: its sub-modules are cut out of its check and checked alone
+    assert not m["pst_mid"]["seq"] and m["pst_mid"]["cells"] == 0
     assert miter.subtree_cells(m, "pst_mid") == 2
-    # the top and a module holding a memory are left to simulation; smallest first
-    assert miter.comparable(m) == ["$paramod$aa\\pst_leaf", "$paramod$bb\\pst_reg", "pst_mid"]
+    assert m["pst_mem"]["mem"] and not m["pst_top"]["mem"]
+    # the top and a module with a memory stand-in of its own are left to simulation; smallest first
+    assert miter.comparable(m) == ["pst_mid", "$paramod$aa\\pst_leaf", "$paramod$bb\\pst_reg"]
+
+
+def test_a_module_stands_when_everything_below_it_is_proven():
+    m = miter.modules(NETLIST)
+    v = {"pst_mid": "proven", "$paramod$aa\\pst_leaf": "proven", "$paramod$bb\\pst_reg": "timeout"}
+    assert not miter.standing(m, v, "pst_mid")
+    v["$paramod$bb\\pst_reg"] = "proven"
+    assert miter.standing(m, v, "pst_mid")
 
 
 def test_names_as_yosys_takes_them():
