@@ -25,7 +25,7 @@ import shutil
 import sys
 import time
 
-from pstlib import contract, kept
+from pstlib import atomic, contract, kept
 from pstlib.lec import miter, prove
 from pstlib.paths import ROOT, profile_path
 from pstlib.synth import liberty
@@ -108,7 +108,7 @@ def main(argv=None) -> int:
         r["standing"] = miter.standing(mods, verdicts, r["module"])
     res["counts"] = counts
     res["standing"] = sum(r["standing"] for r in rows)
-    (out / f"{name}.json").write_text(json.dumps(res, indent=2) + "\n")
+    atomic.write_text(out / f"{name}.json", json.dumps(res, indent=2) + "\n")
     md = [f"# Equivalence of {name}'s RTL and netlist" + (f" (mutant: {mutation})" if mutation else ""), "",
           "| module | own cells | cells below | kind | own logic | with all below | seconds |",
           "|---|---:|---:|---|---|---|---:|"]
@@ -116,7 +116,7 @@ def main(argv=None) -> int:
            f"{r['result']} | {'proven' if r['standing'] else '-'} | {r['seconds']} |" for r in rows]
     md += ["", f"Left to simulation: {len(res['left_to_simulation'])} modules (the top and those holding a memory).",
            "", " ".join(f"{k}: {v}" for k, v in counts.items())]
-    (out / f"{name}.md").write_text("\n".join(md) + "\n")
+    atomic.write_text(out / f"{name}.md", "\n".join(md) + "\n")
     print(f"lec {name}: " + ", ".join(f"{v} {k}" for k, v in counts.items())
           + f"; {res['standing']} of {len(rows)} proven with every module below them"
           + (f"; mutant {mutation}" if mutation else ""))

@@ -28,7 +28,7 @@ import subprocess
 import sys
 import time
 
-from pstlib import kept
+from pstlib import atomic, kept
 from pstlib.docs import power_doc
 from pstlib.paths import PY, ROOT, profile_path
 from pstlib.power import activity, figures, flow
@@ -142,9 +142,9 @@ def main(argv=None) -> int:
            "(port bits per driving cell, instance means elsewhere)", "basis": "pre-layout, typical corner, ideal clock",
            "window": {"start": a.start, "cycles": a.window, "size": a.size, "random_seed": a.seed},
            "summary": summary, "workloads": rows, "seconds": round(time.time() - t0, 1)}
-    (out / f"{name}.json").write_text(json.dumps(doc, indent=2) + "\n")
+    atomic.write_text(out / f"{name}.json", json.dumps(doc, indent=2) + "\n")
     md = figures.markdown(name, summary, rows, flow.__doc__.split("\n", 2)[2])
-    (out / f"{name}.md").write_text(md)
+    atomic.write_text(out / f"{name}.md", md)
     print(md)
     rc = 0
     if a.check:

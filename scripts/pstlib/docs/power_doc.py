@@ -4,6 +4,8 @@ measured by that flow, none typed)."""
 import json
 from pathlib import Path
 
+from .. import atomic
+
 SOURCE = Path("docs/data/power.json")
 
 
@@ -61,4 +63,4 @@ def record(root: Path, doc: dict) -> None:
         "workloads": {k: r["pj_per_pixel"] for k, r in doc["workloads"].items()}}
     d["profiles"] = dict(sorted(d["profiles"].items()))
     path.parent.mkdir(parents=True, exist_ok=True)
-    path.write_text(json.dumps(d, indent=2) + "\n")
+    atomic.write_text(path, json.dumps(d, indent=2) + "\n")
