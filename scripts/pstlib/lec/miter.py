@@ -19,34 +19,25 @@ contents for them) and the top are left to simulation.
 """
 import re
 
+from .. import netlist as netlist_reader
+
+_MODULE = re.compile(r"^module\s+(\\\S+|[A-Za-z_][\w$]*)\s*\(")
+_CELL = re.compile(r"^\s+(\\\S+|[A-Za-z_][\w$]*)\s+(\\\S+|[A-Za-z_][\w$]*)\s*\($")
+
 SEQ_CELLS = ("DFFPOSX1", "DFFNEGX1", "DFFSR", "LATCH")
 MEM_CELLS = ("PST_MEMRD", "PST_MEMWR")
-
-_MODULE = re.compile(r"^module\s+(\\\S+|[A-Za-z_][\w$]*)\s*\(", re.M)
-_CELL = re.compile(r"^\s+(\\\S+|[A-Za-z_][\w$]*)\s+(\\\S+|[A-Za-z_][\w$]*)\s*\($")
 
 
 def modules(netlist: str) -> dict:
     """{module: {"cells": n own leaf cells, "children": [modules instantiated], "seq": bool,
     "mem": bool}} of a Yosys structural netlist; seq and mem of the module's own cells."""
-    names = {m.lstrip("\\") for m in _MODULE.findall(netlist)}
-    out, cur = {}, None
-    for line in netlist.splitlines():
-        m = _MODULE.match(line)
-        if m:
-            cur = out.setdefault(m.group(1).lstrip("\\"), {"cells": 0, "children": [], "seq": False, "mem": False})
-            continue
-        m = _CELL.match(line)
-        if cur is None or not m or m.group(1) in ("module", "assign", "wire", "input", "output", "reg"):
-            continue
-        t = m.group(1).lstrip("\\")
-        if t in names:
-            cur["children"].append(t)
-        else:
-            cur["cells"] += 1
-            cur["seq"] |= t.startswith(SEQ_CELLS)
-            cur["mem"] |= t.startswith(MEM_CELLS)
-
+    mods = netlist_reader.instances(netlist)
+    out = {}
+    for m, insts in mods.items():
+        leaves = [t for t, _, _ in insts if t not in mods]
+        out[m] = {"cells": len(leaves), "children": [t for t, _, _ in insts if t in mods],
+                  "seq": any(t.startswith(SEQ_CELLS) for t in leaves),
+                  "mem": any(t.startswith(MEM_CELLS) for t in leaves)}
     return out
 
 

@@ -11,6 +11,7 @@ compared with the unnamed blocks dropped.
 """
 import re
 
+from .. import netlist as netlist_reader
 from ..synth.sta import netlist_instances
 
 _GENBLK = re.compile(r"^genblk\d+$")
@@ -74,38 +75,13 @@ def net_activities(act, tree: dict, top: str = "pst_top") -> list:
 OUTPUT_PINS = ("Y", "Q", "YC", "YS")       # the OSU018 cells' outputs
 
 
-def _net(text: str) -> str:
-    """A netlist connection as OpenSTA names the net: escapes and the space before a bit dropped."""
-    t = text.strip()
-    if t.startswith("\\"):
-        t = t[1:]
-    return t.replace(" [", "[")
-
-
 def port_drivers(netlist: str) -> dict:
     """{module: {net: leaf cell}} of every net driven by a leaf cell's output (OUTPUT_PINS) in
     a Yosys structural netlist: which cell a port bit's activity belongs to."""
-    mods = {}
-    cur = inst = None
-    leaf = False
-    modules = set(re.findall(r"^module\s+\\?(\S+?)\s*\(", netlist, re.M))
-    for line in netlist.splitlines():
-        m = re.match(r"module\s+\\?(\S+?)\s*\(", line)
-        if m:
-            cur = mods.setdefault(m.group(1), {})
-            continue
-        if cur is None:
-            continue
-        m = re.match(r"\s+(\\\S+|[A-Za-z_][\w$]*)\s+(\\\S+|[A-Za-z_][\w$]*)\s*\($", line)
-        if m and m.group(1) not in ("module", "assign", "wire", "input", "output", "reg"):
-            inst = m.group(2).lstrip("\\")
-            leaf = m.group(1).lstrip("\\") not in modules
-            continue
-        if leaf and inst is not None:
-            m = re.match(r"\s+\.(\w+)\((.+)\)\s*,?\s*$", line)
-            if m and m.group(1) in OUTPUT_PINS:
-                cur[_net(m.group(2))] = inst
-    return mods
+    mods = netlist_reader.instances(netlist)
+    return {m: {net: inst for t, inst, pins in insts if t not in mods
+                for pin, net in pins.items() if pin in OUTPUT_PINS}
+            for m, insts in mods.items()}
 
 
 def _module_of(inst: str, tree: dict, top: str, cache: dict):
