@@ -6,7 +6,8 @@
 Reads OUT/synth/<profile>.json (scripts/synth.py) and OUT/regress.json (`pst regress`) for
 every profile in the baseline and fails (exit 1) when a figure moved by more than 2 %: logic
 GE (total and per block), flip-flops, memory GE, total GE, ROM/RAM bits, clocks per pixel,
-Fmax, PSNR per scene. A change that moves a figure on purpose updates the file in the same
+Fmax, PSNR per scene, energy per pixel (scripts/power.py's mean over its workloads: OUT/power/
+PROFILE.json when this run measured it, else the record docs/data/power.json). A change that moves a figure on purpose updates the file in the same
 commit: `scripts/check_baseline.py --update` after the main job (scripts/run.sh);
 `--add PROFILE` adds (or replaces) one profile's figures from OUT/synth/PROFILE.json (and its
 PSNRs when OUT/regress.json has them), the other profiles' left as they are. Exit 2 when an
@@ -43,6 +44,7 @@ from pstlib.validation import baseline
 from pstlib.report import provenance
 from pstlib.paths import ROOT
 from pstlib.pstjson import regress_runs
+from pstlib.docs import power_doc
 from pstlib.synth import record, report
 
 PROFILES = ("reduced", "full", "full_2clk", "full_1clk")
@@ -128,7 +130,7 @@ def check(args, res: dict) -> int:
     if not reg_path.exists():
         say(res, f"error: {reg_path}: missing (run pst regress)", err=True)
         return 2
-    current = baseline.collect(synth, regress_runs(json.loads(reg_path.read_text())))
+    current = baseline.collect(synth, regress_runs(json.loads(reg_path.read_text())), power_summaries(out, names, res))
     if args.update:
         path.write_text(json.dumps({"tolerance": baseline.TOLERANCE, "tools": tools, "profiles": current,
                                     "inputs": record.inputs(rom_dir)}, indent=2, sort_keys=True) + "\n")
@@ -165,6 +167,27 @@ def check(args, res: dict) -> int:
         change = f"{100 * rel:+.1f} %" if rel is not None else "added/removed/changed"
         say(res, f"  {key}: {old} -> {new} ({change})")
     return 1
+
+
+def power_summaries(out: pathlib.Path, names, res: dict) -> dict:
+    """Energy per pixel of each profile: OUT/power/NAME.json (scripts/power.py, measured in this
+    run) when present, else the record docs/data/power.json (scripts/power.py --record). A
+    profile in neither has no energy figure (compare() then reports it as removed)."""
+    out_power, rec = {}, {}
+    try:
+        rec = power_doc.load(ROOT)["profiles"]
+    except ValueError as e:
+        say(res, f"baseline: no energy record ({e})")
+    for n in names:
+        f = out / "power" / f"{n}.json"
+        if f.exists():
+            s = json.loads(f.read_text()).get("summary")
+            if s:
+                out_power[n] = s
+                continue
+        if n in rec:
+            out_power[n] = rec[n]["summary"]
+    return out_power
 
 
 def check_stale(base: dict, path: pathlib.Path, out: pathlib.Path, rom_dir, restore: bool, res: dict,
@@ -220,9 +243,9 @@ def add_profile(base: dict, path: pathlib.Path, out: pathlib.Path, name: str, ro
         return 1
     reg_path = out / "regress.json"
     regress = regress_runs(json.loads(reg_path.read_text())) if reg_path.exists() else []
-    new = baseline.collect(synth, regress)
+    new = baseline.collect(synth, regress, power_summaries(out, [name], res))
     # The PSNRs come from the regression, not the synthesis: kept when this run has none.
-    for k in ("psnr_db", "regress_size"):
+    for k in ("psnr_db", "regress_size", "energy_pj_per_pixel"):
         if k not in new[name] and k in base["profiles"].get(name, {}):
             new[name][k] = base["profiles"][name][k]
     # The digest stands for every profile of the baseline: a profile is added only while the

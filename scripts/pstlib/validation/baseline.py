@@ -9,9 +9,10 @@ TOLERANCE = 0.02
 UNCHECKED = ("stage_path_ns",)
 
 
-def collect(synth: dict, regress: list) -> dict:
+def collect(synth: dict, regress: list, power: dict = None) -> dict:
     """Figures of the named profiles: synth maps a profile name to scripts/synth.py's JSON,
-    regress is `pst regress` JSON output (a list of runs)."""
+    regress is `pst regress` JSON output (a list of runs), power maps a profile name to
+    scripts/power.py's summary (energy per pixel, mean over its workloads)."""
     out = {}
     for name, s in sorted(synth.items()):
         p = {
@@ -33,6 +34,9 @@ def collect(synth: dict, regress: list) -> dict:
                 p["fmax_setup_uncertainty_ns"] = c["setup_uncertainty_ns"]
             if s.get("critical_path_ns"):
                 p["stage_path_ns"] = dict(s["critical_path_ns"])
+        s_power = (power or {}).get(name)
+        if s_power:
+            p["energy_pj_per_pixel"] = round(s_power["pj_per_pixel"], 1)
         out[name] = p
     for r in regress:
         name = r.get("profile")

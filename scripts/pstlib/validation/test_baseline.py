@@ -11,6 +11,7 @@ SCRIPTS = ROOT / "scripts"
 # The sign-off part of a synthesis record's timing that passes (pstlib.synth.report.timing_result).
 SIGNOFF_MET = {"hold": {"wns_ns": 0.1, "violations": 0, "worst": {}},
                "max_transition": {"violations": 0, "worst": {}}, "max_capacitance": {"violations": 0, "worst": {}}}
+POWER = {"reduced": {"pj_per_pixel": 1000.0}}
 BASE = {"reduced": {"logic_ge": 100000, "fmax_mhz": 40.0, "psnr_db": {"marble": 40.0}, "rom_bits": 70849}}
 
 
@@ -53,6 +54,9 @@ def _one_profile_run(tmp_path):
     (out / "synth" / "reduced.json").write_text(json.dumps(s))
     (out / "regress.json").write_text(json.dumps(
         [{"scene": "scenes/a.toml", "profile": "reduced", "vs_reference": {"psnr": 40.0}}]))
+    # energy per pixel measured in this run (scripts/power.py): read before the record
+    (out / "power").mkdir()
+    (out / "power" / "reduced.json").write_text(json.dumps({"summary": POWER["reduced"]}))
     return out, s
 
 
@@ -60,7 +64,7 @@ def test_check_baseline_cli_fails_on_a_move(tmp_path):
     import json
     out, s = _one_profile_run(tmp_path)
     base = {"tolerance": 0.02, "tools": {"yosys": "y"},
-            "profiles": baseline.collect({"reduced": s}, json.loads((out / "regress.json").read_text()))}
+            "profiles": baseline.collect({"reduced": s}, json.loads((out / "regress.json").read_text()), POWER)}
     bfile = tmp_path / "baseline.json"
     bfile.write_text(json.dumps(base))
     cmd = ["/usr/bin/python3", str(SCRIPTS / "check_baseline.py"), "--out", str(out), "--baseline", str(bfile)]
@@ -74,6 +78,19 @@ def test_check_baseline_cli_fails_on_a_move(tmp_path):
     assert subprocess.run(cmd, capture_output=True, text=True).returncode == 2
 
 
+
+def test_check_baseline_cli_fails_when_energy_moves(tmp_path):
+    out, s = _one_profile_run(tmp_path)
+    base = {"tolerance": 0.02, "tools": {"yosys": "y"},
+            "profiles": baseline.collect({"reduced": s}, json.loads((out / "regress.json").read_text()), POWER)}
+    assert base["profiles"]["reduced"]["energy_pj_per_pixel"] == 1000.0
+    bfile = tmp_path / "baseline.json"
+    bfile.write_text(json.dumps(base))
+    cmd = ["/usr/bin/python3", str(SCRIPTS / "check_baseline.py"), "--out", str(out), "--baseline", str(bfile)]
+    (out / "power" / "reduced.json").write_text(json.dumps({"summary": {"pj_per_pixel": 1030.0}}))
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    assert r.returncode == 1 and "reduced.energy_pj_per_pixel: 1000.0 -> 1030.0 (+3.0 %)" in r.stdout, r.stdout
+
 def test_check_baseline_cli_tools_signoff_and_add(tmp_path):
     import copy
     out = tmp_path / "out"
@@ -83,11 +100,13 @@ def test_check_baseline_cli_tools_signoff_and_add(tmp_path):
          "tools": {"yosys": "y", "opensta": "2.0.17"}}
     (out / "synth" / "reduced.json").write_text(json.dumps(s))
     (out / "regress.json").write_text("[]")
+    (out / "power").mkdir()
+    (out / "power" / "reduced.json").write_text(json.dumps({"summary": POWER["reduced"]}))
     rom, records = tmp_path / "rom", tmp_path / "records"
     rom.mkdir()
     (rom / "t.memh").write_text("00\n")
     bfile = tmp_path / "baseline.json"
-    bfile.write_text(json.dumps({"tolerance": 0.02, "tools": s["tools"], "profiles": baseline.collect({"reduced": s}, []),
+    bfile.write_text(json.dumps({"tolerance": 0.02, "tools": s["tools"], "profiles": baseline.collect({"reduced": s}, [], POWER),
                                  "inputs": record.inputs(rom)}))
     cmd = ["/usr/bin/python3", str(SCRIPTS / "check_baseline.py"), "--out", str(out), "--baseline", str(bfile),
            "--rom-dir", str(rom), "--records", str(records)]
@@ -157,7 +176,7 @@ def test_check_baseline_json_on_every_exit_path(tmp_path):
     out, s = _one_profile_run(tmp_path)
     bfile = tmp_path / "baseline.json"
     bfile.write_text(json.dumps({"tolerance": 0.02, "tools": {"yosys": "y"},
-                                 "profiles": baseline.collect({"reduced": s}, json.loads((out / "regress.json").read_text()))}))
+                                 "profiles": baseline.collect({"reduced": s}, json.loads((out / "regress.json").read_text()), POWER)}))
     res = tmp_path / "check.json"
     cmd = ["/usr/bin/python3", str(SCRIPTS / "check_baseline.py"), "--out", str(out), "--baseline", str(bfile),
            "--json", str(res)]
@@ -172,7 +191,7 @@ def test_check_baseline_json_on_every_exit_path(tmp_path):
         return data
 
     ok = result(0)
-    assert ok["status"] == "pass" and ok["moved"] == [] and ok["figures_checked"] == 10 and ok["tolerance"] == 0.02
+    assert ok["status"] == "pass" and ok["moved"] == [] and ok["figures_checked"] == 11 and ok["tolerance"] == 0.02
     s["logic_ge"] = 103
     (out / "synth" / "reduced.json").write_text(json.dumps(s))
     bad = result(1)
