@@ -193,7 +193,7 @@ def sequence(seed: int, index: int, frames: int = DEFAULT_FRAMES, size: int = DE
     cam, tracks = camera_path(r, path)
     hs = r.uniform(150.0, 300.0)
     k = r.uniform(0.03, 0.2)       # |s| <= 60 (+ 3) at the plane's edge: inside reduced's coord format
-    scale = k if r.random() < 0.5 else [k, 1.0, k / r.uniform(1.5, 4.0)]    # or stretched, as the seascape's
+    scale = k if r.random() < 0.5 else [k, k, k / r.uniform(1.5, 4.0)]    # or stretched, as the seascape's
     obj = {"mesh": "plane", "half_size": hs, "divisions": 8, "tex_scale": scale,
            "tex_offset": [r.uniform(-3, 3), 0.0, r.uniform(-3, 3)]}
     if basis == "subband":        # the unit's plane: rotations about y only
