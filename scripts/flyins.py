@@ -4,7 +4,7 @@ through every filter option the reference and the hardware offer, flicker and RM
 
     scripts/flyins.py [--split both|validation|training] [--count 20] [--train-count 8]
                       [--seed 1000001] [--train-seed 1] [--frames 16] [--size 48] [--truth 8]
-                      [--model golden|rtl] [--jobs 1] [--out out/flyins] [--pst build/pst] [--fresh]
+                      [--model rtl|golden] [--jobs 1] [--out out/flyins] [--pst build/pst] [--fresh]
                       [--check]
     scripts/flyins.py --scenes-only [...]      the sets alone: OUT/SPLIT/scenes/
 
@@ -16,8 +16,8 @@ judge once on the validation set.
 
 Per sequence (scripts/pstlib/validation/flyin_table.py): `pst animate --truth N` once per hardware
 option group (filter mip, mip_linear, sat x the bandlimit the basis's profiles compute), the
-profiles of the basis through the golden model (the RTL bit for bit; --model rtl for the verilated
-RTL), the reference's options as --variants. Writes OUT/flyins.md and OUT/flyins.json (each split
+profiles of the basis through their verilated RTL, scoreboarded against the golden model (--model
+golden: the golden model alone), the reference's options as --variants. Writes OUT/flyins.md and OUT/flyins.json (each split
 apart: per sequence and option RMS, flicker, the ratio against unfiltered and against the
 reference's exact filter, and the flags below4x, over10, worse_rms), OUT/SPLIT/scenes/ and
 OUT/SPLIT/runs/ (a run whose scene and arguments are unchanged is reused unless --fresh).
@@ -48,7 +48,7 @@ def parse_args(argv):
     ap.add_argument("--frames", type=int, default=flyins.DEFAULT_FRAMES)
     ap.add_argument("--size", type=int, default=flyins.DEFAULT_SIZE)
     ap.add_argument("--truth", type=int, default=8, help="N x N ground truth per pixel (default 8)")
-    ap.add_argument("--model", choices=["golden", "rtl"], default="golden")
+    ap.add_argument("--model", choices=["rtl", "golden"], default="rtl")
     ap.add_argument("--jobs", type=int, default=1, help="sequences in parallel (default 1; each pst run -j 2/jobs)")
     ap.add_argument("--out", default=str(ROOT / "out" / "flyins"))
     ap.add_argument("--pst", default=str(ROOT / "build" / "pst"))

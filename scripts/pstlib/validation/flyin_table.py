@@ -4,8 +4,8 @@ per sequence the RMS against the truth and the flicker of each, judged by issue 
 
 Per sequence, one `pst animate` run per hardware option group (colour-table filter KIND in
 HW_FILTERS x the bandlimit a profile of the basis computes), every profile of the basis that
-computes it at once (`--filter KIND --bandlimit B --profile P ... --model golden|rtl`; the golden
-model is the RTL bit for bit, `pst regress` checks that); the run of `sat` without bandlimit also
+computes it at once (`--filter KIND --bandlimit B --profile P ... --model rtl|golden`: the verilated
+RTL scoreboarded against the golden model, or the golden model alone, the RTL bit for bit); the run of `sat` without bandlimit also
 carries the reference's options (`--variants`, REF_VARIANTS). The hardware option of profile P is
 column `P:KIND[+B]`; the reference's exact form of each option is the same run's `filtered` stream
 (reference model, double), column `ref:KIND[+B]`.
@@ -88,7 +88,10 @@ def animate_cmd(pst, scene, out, kind, bl, profs, variants, frames, size, truth,
 
 def _stream_figures(s) -> dict:
     per = s.get("rms_vs_truth") or []
-    return {"rms": sum(per) / len(per) if per else 0.0, "flicker": flicker.sequence_flicker(s["temporal_rms"])}
+    out = {"rms": sum(per) / len(per) if per else 0.0, "flicker": flicker.sequence_flicker(s["temporal_rms"])}
+    if s.get("hardware"):
+        out["mismatches"] = int(s.get("mismatches", 0))
+    return out
 
 
 def collect(docs: dict, basis: str) -> dict:
@@ -125,7 +128,8 @@ def judge(figs: dict, basis: str) -> dict:
     ref_best = min(refs, key=lambda n: refs[n]["flicker"])
     hw = {n: v for n, v in figs.items() if n != UNFILTERED and not n.startswith("ref:")}
     best = min(hw, key=lambda n: hw[n]["flicker"])
-    options = {n: {"rms": v["rms"], "flicker": v["flicker"], "x_unfiltered": ratio(v["flicker"]),
+    options = {n: {"rms": v["rms"], "flicker": v["flicker"], "mismatches": v.get("mismatches", 0),
+                   "x_unfiltered": ratio(v["flicker"]),
                    "vs_ref": v["flicker"] / ref["flicker"] if ref["flicker"] > 0 else math.inf,
                    "rms_over_unfiltered": v["rms"] / unf["rms"] if unf["rms"] > 0 else math.inf} for n, v in hw.items()}
     worse = sorted(n for n, v in hw.items() if v["rms"] > unf["rms"])
@@ -170,7 +174,7 @@ def run_sequence(pst, scene: pathlib.Path, feats: dict, out: pathlib.Path, truth
 
 
 def run_split(pst, split: flyins.Split, seed: int, count: int, frames: int, size: int, truth: int, out: pathlib.Path,
-              model: str = "golden", jobs: int = 1, fresh: bool = False, say=print) -> dict:
+              model: str = "rtl", jobs: int = 1, fresh: bool = False, say=print) -> dict:
     """Writes OUT/scenes/, OUT/runs/NAME/RUN/ and returns the split's document (rows per sequence)."""
     manifest = flyins.write(out / "scenes", seed, count, frames, size, split)
     feats = {f["name"]: f for f in manifest["sequences"]}
@@ -204,6 +208,7 @@ def summary(doc: dict) -> dict:
     out = {"sequences": len(rows)}
     for flag in ("below4x", "over10", "worse_rms"):
         out[flag] = sorted(n for n, r in rows.items() if flag in r["flags"])
+    out["mismatches"] = sum(o["mismatches"] for r in rows.values() for o in r["hardware"].values())
     out["worse_rms_options"] = sorted({o.split(":", 1)[1] + " (" + o.split(":", 1)[0] + ")"
                                        for r in rows.values() for o in r["worse_rms"]})
     return out
@@ -230,7 +235,8 @@ def markdown(doc: dict, command: str = "") -> str:
              f"{len(s['below4x'])} of {s['sequences']} ({', '.join(s['below4x']) or 'none'}); over10 (best hardware "
              f"flicker > {1 + TOLERANCE:.2f} x the reference's exact filter's): {len(s['over10'])} "
              f"({', '.join(s['over10']) or 'none'}); worse_rms (a hardware option's RMS above unfiltered's): "
-             f"{len(s['worse_rms'])} ({', '.join(s['worse_rms']) or 'none'}).\n")
+             f"{len(s['worse_rms'])} ({', '.join(s['worse_rms']) or 'none'}). Hardware mismatches against the golden "
+             f"model: {s['mismatches']}.\n")
     L += ["| sequence | basis | path | map | unfiltered | reference's exact filter | best reference option | "
           "best hardware option | hw / ref flicker | hardware options worse than unfiltered (RMS) | flags |",
           "|---|---|---|---|---|---|---|---|---:|---|---|"]
