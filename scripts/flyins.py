@@ -122,7 +122,7 @@ def main(argv=None) -> int:
     errors = [e for d in docs.values() for e in d["errors"]]
     for n, s in summ.items():
         print(f"{n}: {s['sequences']} sequences; below4x {len(s['below4x'])}, over10 {len(s['over10'])}, "
-              f"worse_rms {len(s['worse_rms'])}")
+              f"worse_rms {len(s['worse_rms'])}; hardware mismatches {s['mismatches']}")
     print(f"wrote {out / 'flyins.md'} and flyins.json")
     if errors:
         print("FAILED: " + errors[0], file=sys.stderr)
