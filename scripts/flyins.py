@@ -5,7 +5,7 @@ through every filter option the reference and the hardware offer, flicker and RM
     scripts/flyins.py [--split both|validation|training] [--count 20] [--train-count 8]
                       [--seed 1000001] [--train-seed 1] [--frames 16] [--size 48] [--truth 8]
                       [--model rtl|golden] [--jobs 1] [--out out/flyins] [--pst build/pst] [--fresh]
-                      [--check]
+                      [--check] [--record]
     scripts/flyins.py --scenes-only [...]      the sets alone: OUT/SPLIT/scenes/
 
 The sets (scripts/pstlib/validation/flyins.py): a camera over a textured ground plane, every noise
@@ -17,10 +17,12 @@ judge once on the validation set.
 Per sequence (scripts/pstlib/validation/flyin_table.py): `pst animate --truth N` once per hardware
 option group (filter mip, mip_linear, sat x the bandlimit the basis's profiles compute), the
 profiles of the basis through their verilated RTL, scoreboarded against the golden model (--model
-golden: the golden model alone), the reference's options as --variants. Writes OUT/flyins.md and OUT/flyins.json (each split
-apart: per sequence and option RMS, flicker, the ratio against unfiltered and against the
-reference's exact filter, and the flags below4x, over10, worse_rms), OUT/SPLIT/scenes/ and
-OUT/SPLIT/runs/ (a run whose scene and arguments are unchanged is reused unless --fresh).
+golden: the golden model alone), the reference's options as --variants. Writes OUT/flyins.md and
+OUT/flyins.json (each split apart: per sequence and option RMS, flicker, the ratio against
+unfiltered and against the reference's exact filter, and the flags below4x, over10, worse_rms),
+OUT/SPLIT/scenes/ and OUT/SPLIT/runs/ (a run whose scene and arguments are unchanged is reused
+unless --fresh); with --record also docs/data/flyins.json, the source of docs/VERIFICATION.md's
+generated fly-in table (scripts/gen_docs.py --write).
 
 Exit status: 0 the table was written (flags are findings); 1 a pst run failed, or with --check a
 flag was raised; 2 bad input (a seed outside its split's range, --count, --frames, --size, --truth
@@ -31,10 +33,12 @@ import json
 import math
 import os
 import pathlib
+import subprocess
 import sys
 
 from pstlib import atomic
 from pstlib.paths import ROOT
+from pstlib.docs import flyins_doc
 from pstlib.validation import flyins, flyin_table
 
 
@@ -54,6 +58,9 @@ def parse_args(argv):
     ap.add_argument("--pst", default=str(ROOT / "build" / "pst"))
     ap.add_argument("--fresh", action="store_true", help="render every run again")
     ap.add_argument("--check", action="store_true", help="exit 1 when a flag is raised")
+    ap.add_argument("--record", action="store_true",
+                    help="also write the main tables' figures to docs/data/flyins.json (docs/VERIFICATION.md's "
+                         "generated table: scripts/gen_docs.py --write)")
     ap.add_argument("--scenes-only", action="store_true", help="write the sets to OUT/SPLIT/scenes and stop")
     a = ap.parse_args(argv)
     a.splits = [(flyins.VALIDATION, a.seed, a.count), (flyins.TRAINING, a.train_seed, a.train_count)]
@@ -85,6 +92,11 @@ def command(a) -> str:
         parts.append(f"--train-count {a.train_count} --train-seed {a.train_seed}")
     parts.append(f"--frames {a.frames} --size {a.size} --truth {a.truth} --model {a.model}")
     return " ".join(parts)
+
+
+def _commit() -> str:
+    r = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--short", "HEAD"], capture_output=True, text=True)
+    return r.stdout.strip() or "?"
 
 
 def _finite(v):
@@ -120,6 +132,10 @@ def main(argv=None) -> int:
     atomic.write_text(out / "flyins.json", json.dumps(_finite({"command": cmd, "summary": summ, "splits": docs}),
                                                       indent=1) + "\n")
     errors = [e for d in docs.values() for e in d["errors"]]
+    if a.record and not errors:
+        rec = {"command": cmd, "commit": _commit(), "splits": {n: flyin_table.compact(d) for n, d in docs.items()}}
+        atomic.write_text(ROOT / flyins_doc.SOURCE, json.dumps(_finite(rec), indent=1) + "\n")
+        print(f"recorded {flyins_doc.SOURCE} (scripts/gen_docs.py --write puts it in docs/VERIFICATION.md)")
     for n, s in summ.items():
         print(f"{n}: {s['sequences']} sequences; below4x {len(s['below4x'])}, over10 {len(s['over10'])}, "
               f"worse_rms {len(s['worse_rms'])}; hardware mismatches {s['mismatches']}")

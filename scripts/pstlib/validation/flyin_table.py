@@ -222,32 +222,57 @@ def _fig(f):
     return f"{f['rms']:.4f} / {f['flicker']:.4f}"
 
 
-def markdown(doc: dict, command: str = "") -> str:
-    rows, feats = doc["rows"], doc["features"]
-    s = summary(doc)
-    L = [f"## Fly-ins, {doc['split']} set: {doc['count']} sequences (seed {doc['seed']}), {doc['frames']} frames at "
-         f"{doc['size']} x {doc['size']}, {doc['truth']} x {doc['truth']} truth\n"]
-    if command:
-        L.append(f"`{command}`; hardware through the {doc['model']} model. Cells: RMS against the truth (mean over "
-                 "frames) / flicker (temporal RMS error against the truth's change), and unfiltered's flicker over "
-                 "the option's. Scenes: scripts/pstlib/validation/flyins.py; rules: flyin_table.py.\n")
-    L.append(f"Flags: below4x (reference's exact filter >= {GOAL_RATIO:g}x, best hardware option below): "
-             f"{len(s['below4x'])} of {s['sequences']} ({', '.join(s['below4x']) or 'none'}); over10 (best hardware "
-             f"flicker > {1 + TOLERANCE:.2f} x the reference's exact filter's): {len(s['over10'])} "
-             f"({', '.join(s['over10']) or 'none'}); worse_rms (a hardware option's RMS above unfiltered's): "
-             f"{len(s['worse_rms'])} ({', '.join(s['worse_rms']) or 'none'}). Hardware mismatches against the golden "
-             f"model: {s['mismatches']}.\n")
-    L += ["| sequence | basis | path | map | unfiltered | reference's exact filter | best reference option | "
-          "best hardware option | hw / ref flicker | hardware options worse than unfiltered (RMS) | flags |",
-          "|---|---|---|---|---|---|---|---|---:|---|---|"]
-    for n, r in rows.items():
-        f = feats[n]
+def compact(doc: dict) -> dict:
+    """The split's document without the per-option detail: what docs/data/flyins.json records and
+    the main table shows (flyins.py --record)."""
+    keep = ("split", "seed", "count", "frames", "size", "truth", "model")
+    rows = {}
+    for n, r in doc["rows"].items():
+        f = doc["features"][n]
+        rows[n] = {"basis": f["basis"], "path": f["path"], "cmap": f["cmap"], "unfiltered": r["unfiltered"],
+                   "ref_exact": r["ref_exact"], "ref_best": r["ref_best"],
+                   "best_hw": {k: r["best_hw"][k] for k in ("name", "rms", "flicker", "x_unfiltered", "vs_ref")},
+                   "worse_rms": r["worse_rms"], "flags": r["flags"]}
+    return dict({k: doc[k] for k in keep}, rows=rows, summary=summary(doc))
+
+
+def main_table(c: dict) -> str:
+    """The flags line and one row per sequence of a compact document (compact())."""
+    s = c["summary"]
+    L = [f"Flags: below4x (reference's exact filter >= {GOAL_RATIO:g}x, best hardware option below): "
+         f"{len(s['below4x'])} of {s['sequences']} ({', '.join(s['below4x']) or 'none'}); over10 (best hardware "
+         f"flicker > {1 + TOLERANCE:.2f} x the reference's exact filter's): {len(s['over10'])} "
+         f"({', '.join(s['over10']) or 'none'}); worse_rms (a hardware option's RMS above unfiltered's): "
+         f"{len(s['worse_rms'])} ({', '.join(s['worse_rms']) or 'none'}). Hardware mismatches against the golden "
+         f"model: {s['mismatches']}.\n",
+         "| sequence | basis | path | map | unfiltered | reference's exact filter | best reference option | "
+         "best hardware option | hw / ref flicker | hardware options worse than unfiltered (RMS) | flags |",
+         "|---|---|---|---|---|---|---|---|---:|---|---|"]
+    for n, r in c["rows"].items():
         re_, rb, bh = r["ref_exact"], r["ref_best"], r["best_hw"]
-        L.append(f"| {n} | {f['basis']} | {f['path']} | {f['cmap']} | {_fig(r['unfiltered'])} | "
+        L.append(f"| {n} | {r['basis']} | {r['path']} | {r['cmap']} | {_fig(r['unfiltered'])} | "
                  f"{re_['name'][4:]} {_fig(re_)} ({_x(re_['x_unfiltered'])}) | {rb['name'][4:]} {_fig(rb)} "
                  f"({_x(rb['x_unfiltered'])}) | {bh['name']} {_fig(bh)} ({_x(bh['x_unfiltered'])}) | "
                  f"{bh['vs_ref']:.2f} | {', '.join(r['worse_rms']) or '-'} | {', '.join(r['flags']) or '-'} |")
-    L.append("")
+    return "\n".join(L) + "\n"
+
+
+def heading(c: dict) -> str:
+    return (f"Fly-ins, {c['split']} set: {c['count']} sequences (seed {c['seed']}), {c['frames']} frames at "
+            f"{c['size']} x {c['size']}, {c['truth']} x {c['truth']} truth, hardware through the {c['model']} model")
+
+
+CELLS = ("Cells: RMS against the truth (mean over frames) / flicker (temporal RMS error against the truth's "
+         "frame-to-frame change), and unfiltered's flicker over the option's; hw / ref flicker: the best hardware "
+         "option's flicker over the reference's exact filter's.")
+
+
+def markdown(doc: dict, command: str = "") -> str:
+    rows, feats = doc["rows"], doc["features"]
+    L = [f"## {heading(doc)}\n"]
+    if command:
+        L.append(f"`{command}`. {CELLS} Scenes: scripts/pstlib/validation/flyins.py; rules: flyin_table.py.\n")
+    L.append(main_table(compact(doc)))
     # Every option per basis: flicker ratio against unfiltered and RMS over unfiltered's.
     for basis in flyins.BASES:
         names = [n for n in rows if feats[n]["basis"] == basis]

@@ -141,3 +141,31 @@ def test_markdown_and_summary():
     assert s["below4x"] == s["over10"] == s["worse_rms"] == ["fval_000"] and s["worse_rms_options"] == ["sat (p)"]
     md = flyin_table.markdown(doc, "scripts/flyins.py")
     assert "| fval_000 | subband | grazing | ramp_clamp |" in md and "below4x, over10, worse_rms" in md
+
+
+def test_command_line_refuses_bad_input_and_writes_nothing(tmp_path):
+    import flyins as cli
+    for argv in (["--seed", "5"], ["--train-seed", str(flyins.SEED_BEGIN)], ["--count", "0"], ["--frames", "1"],
+                 ["--truth", "0"], ["--jobs", "3"], ["--pst", str(tmp_path / "nope")]):
+        with pytest.raises(SystemExit) as e:
+            cli.main([*argv, "--out", str(tmp_path / "o")])
+        assert e.value.code == 2 and not (tmp_path / "o").exists(), argv
+    assert cli.main(["--scenes-only", "--count", "3", "--train-count", "2", "--out", str(tmp_path / "s")]) == 0
+    assert len(list((tmp_path / "s" / "validation" / "scenes").glob("fval_*.toml"))) == 3
+    assert len(list((tmp_path / "s" / "training" / "scenes").glob("ftrn_*.toml"))) == 2
+
+
+def test_the_docs_table_comes_from_the_record(tmp_path):
+    from pstlib.docs import flyins_doc
+    feats = {"fval_000": {"basis": "subband", "path": "zoom", "cmap": "step_mod"}}
+    row = flyin_table.judge(_figs((0.03, 0.05), (0.02, 0.01), {"p:sat": (0.04, 0.015)}), "subband")
+    doc = {"split": "validation", "count": 1, "seed": V.default_seed, "frames": 16, "size": 48, "truth": 8,
+           "model": "rtl", "features": feats, "rows": {"fval_000": row}, "errors": []}
+    (tmp_path / "docs" / "data").mkdir(parents=True)
+    with pytest.raises(ValueError, match="missing"):
+        flyins_doc.load(tmp_path)
+    rec = {"command": "scripts/flyins.py", "commit": "abc", "splits": {"validation": flyin_table.compact(doc)}}
+    (tmp_path / flyins_doc.SOURCE).write_text(json.dumps(rec))
+    md = flyins_doc.markdown(tmp_path)
+    assert "`scripts/flyins.py --record` (commit abc)" in md and "| fval_000 | subband | zoom | step_mod |" in md
+    assert "below4x, over10, worse_rms" in md
