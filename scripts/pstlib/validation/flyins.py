@@ -12,7 +12,8 @@ of camera path:
 - grazing: a low (0.12..0.4) flight at 25..65 degrees to the view direction, looking 0.5..3
   degrees down (the issue's "low, diagonal flight");
 and every kind of colour map: smooth ramps and steps (interp linear | step), each clamped or taken
-mod (ramp_clamp, ramp_mod, step_clamp, step_mod), keys drawn as scenegen draws them.
+mod (ramp_clamp, ramp_mod, step_clamp, step_mod), 4..8 keys spread over the table with colours
+apart (colormap(): no map is nearly constant where f lies).
 
 Sequence i of the validation set has basis BASES[i % 4] and path PATHS[i % 5]: 20 sequences hold
 every (basis, path) pair once; the colour-map kind walks a shuffled list. The training set
@@ -21,7 +22,8 @@ sequences hold every basis twice and every path and map kind at least once; a ta
 weight chosen for the antialiasing is chosen on it and judged once on the validation set.
 
 Every scene is a plane (y = 0; the subband basis on its plane, param "xz") with one texture of 2..4
-octaves (the test profiles hold 4: the hardware drops none), a constant quadric, filter "sat",
+octaves (the test profiles hold 4: the hardware drops none; worley's amplitudes x 3, its F_k
+spreading less), a constant quadric (worley's centring f's mean on 0.5), filter "sat",
 bandlimit off, and the noise keys the basis's hardware unit computes (worley: the octant search, 4
 points, the ROM's cubes; subband: the unit's tile, K = 8, heuristic weights, sigma 1/sqrt(12)), so
 every hardware profile of its basis runs it bit for bit. Values stay inside the input formats
@@ -112,6 +114,31 @@ def _octaves(r, basis: str) -> list:
     return octs
 
 
+# Mean of F1 and F2 of the worley unit's variant (octant search, 4 points, the ROM's cubes:
+# scenes/README.md "Noise bases"), to centre f on the map.
+WORLEY_MEAN_F = (0.368, 0.494)
+MAP_KEYS = (4, 8)
+
+
+def colormap(r, wrap: str, interp: str) -> dict:
+    """4..8 keys spread over the table (key k near k / (keys - 1), jittered by up to a third of the
+    spacing), each colour at least 0.3 (max over RGB) from the key before it, so that no map is
+    nearly constant over the range f takes (a 2-key step map taken mod is one colour)."""
+    keys = r.randint(*MAP_KEYS)
+    step = 1.0 / (keys - 1)
+    pos = [0.0] + [(k + r.uniform(-1 / 3, 1 / 3)) * step for k in range(1, keys - 1)] + [1.0]
+    ramp = []
+    for p in pos:
+        while True:
+            c = [r.random() for _ in range(3)]
+            if not ramp or max(abs(a - b) for a, b in zip(c, ramp[-1][1:])) >= 0.3:
+                break
+        ramp.append([p] + c)
+    if wrap == "mod" and r.random() < 0.5:
+        ramp[-1][1:] = ramp[0][1:]     # seamless, like the paper's mod maps
+    return {"size": 256, "wrap": wrap, "interp": interp, "ramp": ramp}
+
+
 def _heading(r):
     az = r.uniform(0, 2 * math.pi)
     return az, (math.sin(az), math.cos(az))
@@ -169,14 +196,13 @@ def camera_path(r, path: str) -> tuple:
     raise ValueError(f"path: one of {', '.join(PATHS)}, got {path!r}")
 
 
-def _noise_line(r, basis: str):
+def _noise_line(basis: str, coef=None):
     if basis == "rayshade":
         return None
     if basis == "perlin2002":
         return 'noise = { basis = "perlin2002" }'
     if basis == "worley":
-        c = r.choice(WORLEY_COEFS)
-        return (f'noise = {{ basis = "worley", coef = {_vec(c)}, search = "octant", max_points = 4, '
+        return (f'noise = {{ basis = "worley", coef = {_vec(coef)}, search = "octant", max_points = 4, '
                 f'cubes = "rom256" }}')
     return SUBBAND_NOISE
 
@@ -189,7 +215,7 @@ def sequence(seed: int, index: int, frames: int = DEFAULT_FRAMES, size: int = DE
     basis, path, ckind = f["basis"], f["path"], f["cmap"]
     octs = _octaves(r, basis)
     interp, wrap = ("linear" if ckind.startswith("ramp") else "step"), ckind.split("_")[1]
-    cmap = scenegen.colormap(r, wrap, interp)
+    cmap = colormap(r, wrap, interp)
     cam, tracks = camera_path(r, path)
     hs = r.uniform(150.0, 300.0)
     k = r.uniform(0.03, 0.2)       # |s| <= 60 (+ 3) at the plane's edge: inside reduced's coord format
@@ -200,8 +226,19 @@ def sequence(seed: int, index: int, frames: int = DEFAULT_FRAMES, size: int = DE
         obj["tex_rotate"] = [0.0, r.uniform(0, 360), 0.0]
     else:
         obj["tex_rotate"] = [r.uniform(0, 360) for _ in range(3)]
-    quad = {"J": r.uniform(0.2, 0.6) if basis == "worley" else r.uniform(0.35, 0.65)}
-    noise = _noise_line(r, basis)
+    coef = r.choice(WORLEY_COEFS) if basis == "worley" else None
+    if coef:
+        # F_k spread much less than the lattice noises: amplitudes up to x 3 (|a| <= 1.5 and
+        # |a M| <= 40: inside reduced's amplitude and gradient-matrix formats), J centres f's mean on 0.5
+        k = min([3.0, 1.5 / max(abs(o["amplitude"]) for o in octs)] +
+                [40.0 / (abs(o["amplitude"]) * max(abs(v) for row in o["matrix"] for v in row)) for o in octs])
+        for o in octs:
+            o["amplitude"] *= k
+        mean = sum(a * b for a, b in zip(coef, WORLEY_MEAN_F))
+        quad = {"J": 0.5 - mean * sum(o["amplitude"] for o in octs) + r.uniform(-0.1, 0.1)}
+    else:
+        quad = {"J": r.uniform(0.35, 0.65)}
+    noise = _noise_line(basis, coef)
     name = f"{split.prefix}_{index:03d}"
     header = [f"# Fly-in {name} of the {split.name} set (scripts/flyins.py, seed {seed}): basis {basis}, "
               f"path {path}, colour map {ckind},",

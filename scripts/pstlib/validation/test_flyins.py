@@ -61,6 +61,11 @@ def test_scenes_ask_for_what_the_hardware_units_compute():
         k = obj["tex_scale"] if isinstance(obj["tex_scale"], float) else max(obj["tex_scale"])
         assert k * obj["half_size"] + 3 < 64                          # |s| inside reduced's coord format
         assert all(abs(v) < 48 for o in tex["octaves"] for row in o["matrix"] for v in row)
+        assert all(abs(o["amplitude"]) <= 1.5 and abs(o["amplitude"]) * max(abs(v) for row in o["matrix"] for v in row)
+                   <= 48 for o in tex["octaves"])                     # amplitude, a M inside the formats
+        ramp = tex["colormap"]["ramp"]
+        assert 4 <= len(ramp) <= 8 and [k[0] for k in ramp] == sorted(k[0] for k in ramp)
+        assert all(max(abs(a - b) for a, b in zip(x[1:], y[1:])) >= 0.3 for x, y in zip(ramp, ramp[1:-1]))
         tracks = d["animation"]["track"]
         assert tracks and all(tr["field"].startswith("camera.") for tr in tracks)
         if f["path"] == "zoom":
