@@ -2,7 +2,8 @@
 through `pst animate --truth N` with every filter option the reference and the hardware offer, and
 per sequence the RMS against the truth and the flicker of each, judged by issue 44's rules.
 
-Per sequence, one `pst animate` run per hardware option group (colour-table filter KIND in
+Per sequence, one `pst animate` run per hardware option group, and one of the hardware unfiltered
+(`PROFILE:none`, what the profile's precision alone does against the truth: shown, not judged) (colour-table filter KIND in
 HW_FILTERS x the bandlimit a profile of the basis computes), every profile of the basis that
 computes it at once (`--filter KIND --bandlimit B --profile P ... --model rtl|golden`: the verilated
 RTL scoreboarded against the golden model, or the golden model alone, the RTL bit for bit); the run of `sat` without bandlimit also
@@ -37,6 +38,7 @@ from ..figures import flicker
 from . import flyins
 
 HW_FILTERS = ["mip", "mip_linear", "sat"]
+HW_NONE = "none"
 # The hardware profiles of each basis and the bandlimit each computes (sim/test_profiles/; reduced:
 # rtl/configs/). A profile with the fade unit renders bandlimit off as its base profile, bit for bit.
 HW_PROFILES = {
@@ -53,6 +55,9 @@ REF_VARIANTS = {
     "subband": ["mip", "mip_linear", "sat+footprint", "sat+isotropic", "sat+anisotropic"],
 }
 GOAL_RATIO = 4.0
+# Below this unfiltered flicker a sequence has little aliasing to remove (e.g. a grazing flight
+# whose ground is all far off): its ratios are marked "quiet" in the table (not a flag).
+QUIET = 0.01
 TOLERANCE = 0.10
 UNFILTERED = "unfiltered"
 
@@ -66,7 +71,9 @@ def runs_of(basis: str) -> list:
     groups = {}
     for prof, bl in HW_PROFILES[basis]:
         groups.setdefault(bl, []).append(prof)
-    out = []
+    # The hardware's own unfiltered stream (filter none, no bandlimit): what its precision alone does
+    # against the truth; shown, not an option (no best, no flag).
+    out = [(HW_NONE, "none", "off", groups["off"], [])] if "off" in groups else []
     for kind in HW_FILTERS:
         for bl, profs in groups.items():
             var = REF_VARIANTS[basis] if (kind, bl) == ("sat", "off") else []
@@ -126,7 +133,8 @@ def judge(figs: dict, basis: str) -> dict:
     ref = figs[ref_name]
     refs = {n: v for n, v in figs.items() if n.startswith("ref:")}
     ref_best = min(refs, key=lambda n: refs[n]["flicker"])
-    hw = {n: v for n, v in figs.items() if n != UNFILTERED and not n.startswith("ref:")}
+    own = {n: v for n, v in figs.items() if n.endswith(":" + HW_NONE) and not n.startswith("ref:")}
+    hw = {n: v for n, v in figs.items() if n != UNFILTERED and not n.startswith("ref:") and n not in own}
     best = min(hw, key=lambda n: hw[n]["flicker"])
     options = {n: {"rms": v["rms"], "flicker": v["flicker"], "mismatches": v.get("mismatches", 0),
                    "x_unfiltered": ratio(v["flicker"]),
@@ -143,6 +151,8 @@ def judge(figs: dict, basis: str) -> dict:
     return {"unfiltered": unf, "ref_exact": {"name": ref_name, **ref, "x_unfiltered": ratio(ref["flicker"])},
             "ref_best": {"name": ref_best, **refs[ref_best], "x_unfiltered": ratio(refs[ref_best]["flicker"])},
             "best_hw": {"name": best, **options[best]}, "hardware": options, "worse_rms": worse, "flags": flags,
+            "quiet": unf["flicker"] < QUIET,
+            "hardware_unfiltered": {n: dict(v, x_unfiltered=ratio(v["flicker"])) for n, v in own.items()},
             "reference": {n: dict(v, x_unfiltered=ratio(v["flicker"])) for n, v in refs.items()}}
 
 
@@ -232,7 +242,7 @@ def compact(doc: dict) -> dict:
         rows[n] = {"basis": f["basis"], "path": f["path"], "cmap": f["cmap"], "unfiltered": r["unfiltered"],
                    "ref_exact": r["ref_exact"], "ref_best": r["ref_best"],
                    "best_hw": {k: r["best_hw"][k] for k in ("name", "rms", "flicker", "x_unfiltered", "vs_ref")},
-                   "worse_rms": r["worse_rms"], "flags": r["flags"]}
+                   "worse_rms": r["worse_rms"], "flags": r["flags"], "quiet": r.get("quiet", False)}
     return dict({k: doc[k] for k in keep}, rows=rows, summary=summary(doc))
 
 
@@ -244,13 +254,15 @@ def main_table(c: dict) -> str:
          f"flicker > {1 + TOLERANCE:.2f} x the reference's exact filter's): {len(s['over10'])} "
          f"({', '.join(s['over10']) or 'none'}); worse_rms (a hardware option's RMS above unfiltered's): "
          f"{len(s['worse_rms'])} ({', '.join(s['worse_rms']) or 'none'}). Hardware mismatches against the golden "
-         f"model: {s['mismatches']}.\n",
+         f"model: {s['mismatches']}. (quiet: unfiltered flicker below {QUIET:g}, little aliasing to remove; "
+         "its ratios are ill-conditioned.)\n",
          "| sequence | basis | path | map | unfiltered | reference's exact filter | best reference option | "
          "best hardware option | hw / ref flicker | hardware options worse than unfiltered (RMS) | flags |",
          "|---|---|---|---|---|---|---|---|---:|---|---|"]
     for n, r in c["rows"].items():
         re_, rb, bh = r["ref_exact"], r["ref_best"], r["best_hw"]
-        L.append(f"| {n} | {r['basis']} | {r['path']} | {r['cmap']} | {_fig(r['unfiltered'])} | "
+        quiet = " (quiet)" if r.get("quiet") else ""
+        L.append(f"| {n} | {r['basis']} | {r['path']} | {r['cmap']} | {_fig(r['unfiltered'])}{quiet} | "
                  f"{re_['name'][4:]} {_fig(re_)} ({_x(re_['x_unfiltered'])}) | {rb['name'][4:]} {_fig(rb)} "
                  f"({_x(rb['x_unfiltered'])}) | {bh['name']} {_fig(bh)} ({_x(bh['x_unfiltered'])}) | "
                  f"{bh['vs_ref']:.2f} | {', '.join(r['worse_rms']) or '-'} | {', '.join(r['flags']) or '-'} |")
@@ -279,16 +291,20 @@ def markdown(doc: dict, command: str = "") -> str:
         if not names:
             continue
         cols = sorted({c for n in names for c in rows[n]["hardware"]})
+        own = sorted({c for n in names for c in rows[n].get("hardware_unfiltered", {})})
         refc = sorted({c for n in names for c in rows[n]["reference"]})
         L.append(f"{basis}: every option, flicker x against unfiltered (RMS over unfiltered's):\n")
-        L.append("| sequence | " + " | ".join(refc + cols) + " |")
-        L.append("|---|" + "---:|" * (len(refc) + len(cols)))
+        L.append("| sequence | " + " | ".join(refc + own + cols) + " |")
+        L.append("|---|" + "---:|" * (len(refc) + len(own) + len(cols)))
         for n in names:
             r = rows[n]
             unf = r["unfiltered"]["rms"]
             cells = []
             for c in refc:
                 v = r["reference"].get(c)
+                cells.append("-" if v is None else f"{_x(v['x_unfiltered'])} ({v['rms'] / unf:.2f})")
+            for c in own:
+                v = r.get("hardware_unfiltered", {}).get(c)
                 cells.append("-" if v is None else f"{_x(v['x_unfiltered'])} ({v['rms'] / unf:.2f})")
             for c in cols:
                 v = r["hardware"].get(c)

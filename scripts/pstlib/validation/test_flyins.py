@@ -106,6 +106,7 @@ def test_runs_cover_every_hardware_option_once():
         profs = {p for _, _, _, ps, _ in runs for p in ps}
         assert profs == {p for p, _ in flyin_table.HW_PROFILES[basis]}
         assert sum(bool(v) for *_, v in runs) == 1                  # the reference's options ride one run
+        assert runs[0][:3] == ("none", "none", "off")               # the hardware unfiltered, first
         assert flyin_table.REF_EXACT[basis] in flyin_table.REF_VARIANTS[basis] + ["sat"]
     cmd = flyin_table.animate_cmd("pst", "s.toml", "o", "sat", "anisotropic", ["reduced_subband_k8"], [], 16, 48, 8,
                                   "golden", 2)
@@ -124,10 +125,12 @@ def test_judge_flags():
     # the held-out fly-in: reference 3.68x, hardware 3.45x (6 % above), sat 2.5x worse in RMS
     r = flyin_table.judge(_figs((0.0337, 0.0466), (0.03, 0.0466 / 3.68),
                                 {"reduced_subband_k8:sat+anisotropic": (0.031, 0.0466 / 3.45),
+                                 "reduced_subband:none": (0.0337, 0.0466 / 5.0),      # shown, never judged
                                  "reduced_subband:sat": (0.0842, 0.0466 / 1.04)}), "subband")
     assert r["best_hw"]["name"] == "reduced_subband_k8:sat+anisotropic"
     assert r["flags"] == ["worse_rms"] and r["worse_rms"] == ["reduced_subband:sat"]
     assert math.isclose(r["best_hw"]["vs_ref"], 3.68 / 3.45)
+    assert list(r["hardware_unfiltered"]) == ["reduced_subband:none"] and "reduced_subband:none" not in r["hardware"]
     # the reference reaches 4x, the hardware does not, and is > 10 % above
     r = flyin_table.judge(_figs((0.03, 0.05), (0.02, 0.01), {"p:sat": (0.02, 0.015)}), "subband")
     assert r["flags"] == ["below4x", "over10"]
