@@ -109,7 +109,8 @@ def collect(docs: dict, basis: str) -> dict:
         d = docs[run]
         st = d["streams"]
         out.setdefault(UNFILTERED, _stream_figures(st["unfiltered"]))
-        out[f"ref:{run}"] = _stream_figures(st["filtered"])
+        if run != HW_NONE:            # the none run's filtered stream is the reference unfiltered
+            out[f"ref:{run}"] = _stream_figures(st["filtered"])
         for p in profs:
             if p not in st:
                 raise KeyError(f"{run}: streams.{p}: missing (hardware stream of profile {p})")
