@@ -2,13 +2,14 @@
 through `pst animate --truth N` with every filter option the reference and the hardware offer, and
 per sequence the RMS against the truth and the flicker of each, judged by issue 44's rules.
 
-Per sequence, one `pst animate` run per hardware option group, and one of the hardware unfiltered
-(`PROFILE:none`, what the profile's precision alone does against the truth: shown, not judged) (colour-table filter KIND in
+Per sequence, one `pst animate` run per hardware option group (colour-table filter KIND in
 HW_FILTERS x the bandlimit a profile of the basis computes), every profile of the basis that
-computes it at once (`--filter KIND --bandlimit B --profile P ... --model rtl|golden`: the verilated
-RTL scoreboarded against the golden model, or the golden model alone, the RTL bit for bit); the run of `sat` without bandlimit also
-carries the reference's options (`--variants`, REF_VARIANTS). The hardware option of profile P is
-column `P:KIND[+B]`; the reference's exact form of each option is the same run's `filtered` stream
+computes it at once (`--filter KIND --bandlimit B --profile P ... --model rtl|golden`: the
+verilated RTL scoreboarded against the golden model, or the golden model alone, the RTL bit for
+bit), and one run of the hardware unfiltered (`PROFILE:none`: what the profile's precision alone
+does against the truth; shown, not judged). The run of `sat` without bandlimit also carries the
+reference's options (`--variants`, REF_VARIANTS). The hardware option of profile P is column
+`P:KIND[+B]`; the reference's exact form of each option is the same run's `filtered` stream
 (reference model, double), column `ref:KIND[+B]`.
 
 Figures (pstlib.figures.flicker): RMS = mean over frames of the RMS against the truth; flicker = RMS

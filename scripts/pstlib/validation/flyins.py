@@ -27,8 +27,9 @@ spreading less), a constant quadric (worley's centring f's mean on 0.5), filter 
 bandlimit off, and the noise keys the basis's hardware unit computes (worley: the octant search, 4
 points, the ROM's cubes; subband: the unit's tile, K = 8, heuristic weights, sigma 1/sqrt(12)), so
 every hardware profile of its basis runs it bit for bit. Values stay inside the input formats
-(|s| < 64 with the offset, inside reduced's coordinate format; |M| < 48). Deterministic: a sequence is a function of (seed, index,
-frames, size) alone, and sequence k does not change when the set grows.
+(|s| < 64 with the offset, inside reduced's coordinate format; |M| < 48; |a| <= 1.5, |a M| <= 48).
+Deterministic: a sequence is a function of (seed, index, frames, size) alone, and sequence k does
+not change when the set grows.
 
 Seeds as valset.py's: training 0..999,999, validation 1,000,000..1,999,999, on streams of their
 own ("flyin_train", "flyin_holdout")."""
