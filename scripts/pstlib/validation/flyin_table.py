@@ -40,10 +40,13 @@ from . import flyins
 
 HW_FILTERS = ["mip", "mip_linear", "sat"]
 HW_NONE = "none"
-# The hardware profiles of each basis and the bandlimit each computes (sim/test_profiles/; reduced:
-# rtl/configs/). A profile with the fade unit renders bandlimit off as its base profile, bit for bit.
+# The hardware profiles of each basis and the bandlimit each computes (sim/test_profiles/; full,
+# reduced: rtl/configs/, the default build's verilated named profiles; parallel_bandlimit is full's
+# formats with the fade unit). A profile with the fade unit renders bandlimit off as its base
+# profile, bit for bit.
 HW_PROFILES = {
-    "rayshade": [("reduced", "off"), ("reduced_bandlimit", "isotropic")],
+    "rayshade": [("full", "off"), ("reduced", "off"), ("parallel_bandlimit", "isotropic"),
+                 ("reduced_bandlimit", "isotropic")],
     "perlin2002": [("reduced_perlin2002", "off")],
     "worley": [("reduced_worley", "off")],
     "subband": [("reduced_subband", "off"), ("reduced_subband_k8", "anisotropic")],
