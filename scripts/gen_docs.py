@@ -16,12 +16,13 @@ beside them (pstlib/docs/handfigures.py):
                                         the multipass noise's quality and the paper's proposals
                                         measured (pstlib/docs/multipass_doc.py)
   docs/POWER.md         power-table     power and energy per pixel per profile (pstlib/docs/power_doc.py)
+  docs/VERIFICATION.md  flyins-table    antialiasing on the held-out fly-ins (pstlib/docs/flyins_doc.py)
 
 Sources: scripts/synth/baseline.json (scripts/check_baseline.py --update or --add after a
 synthesis), scripts/synth/layout_derate.json (scripts/pnr.py --update-derate),
 scripts/synth/noise_units.json (by hand from scripts/synth.py and scripts/fidelity.py runs),
 docs/data/multipass.json (build/pst_multipass_study --out docs/data/multipass.json),
-docs/data/power.json (scripts/power.py PROFILE --record),
+docs/data/power.json (scripts/power.py PROFILE --record), docs/data/flyins.json (scripts/flyins.py --record),
 rtl/**/*.sv{,h}, rtl/contract.toml and rtl/configs/*.toml.
 
     scripts/gen_docs.py --write            # rewrite the stale sections
@@ -38,7 +39,7 @@ import sys
 from pathlib import Path
 
 from pstlib import contract, contractgen
-from pstlib.docs import docgen, handfigures, multipass_doc, noise_units, power_doc, rtl_modules
+from pstlib.docs import docgen, flyins_doc, handfigures, multipass_doc, noise_units, power_doc, rtl_modules
 from pstlib.report import silicon_table
 from pstlib.docs.docgen import Section
 from pstlib.paths import ROOT
@@ -112,6 +113,7 @@ SECTIONS = [
     Section("docs/MULTIPASS.md", "multipass-quality", multipass_doc.quality_markdown),
     Section("docs/MULTIPASS.md", "multipass-proposals", multipass_doc.proposals_markdown),
     Section("docs/POWER.md", "power-table", power_doc.markdown),
+    Section("docs/VERIFICATION.md", "flyins-table", flyins_doc.markdown),
 ]
 
 

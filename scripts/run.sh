@@ -6,9 +6,10 @@
 #   2b. the seascape fly-in (pst animate, 24 frames at 64x64): webm videos, out/animations/flicker.md
 #       (a report section)
 #   2c. the filter options (the paper's SAT, the exact box, the trapezoid footprint, bandlimited
-#       octaves) against the ground truth: every scene at 64x64 with a 16x16 truth, seven
-#       animated sequences (16 frames at 48x48, 8x8 truth; the subband seascapes also through the
-#       subband units' RTL, the planet through reduced's) -> out/fidelity/fidelity.md (a report section)
+#       octaves) against the ground truth: every scene at 64x64 with a 16x16 truth, ten
+#       animated sequences (16 frames at 48x48, 8x8 truth; every Rayshade one also through the named
+#       profiles' RTL, the subband seascapes through the subband units') -> out/fidelity/fidelity.md
+#       (a report section)
 #   3. silicon figures of the named profiles (OSU018 area, OpenSTA timing, memories): from the
 #      silicon record (scripts/synth/records, pstlib/synth/record.py) while every input of the
 #      synthesis is unchanged since the baseline, else the run fails and says what changed;
@@ -59,14 +60,15 @@ for scene in scenes/*.toml; do
   stills+=("out/fidelity/$name")
 done
 seqs=()
-for name in seascape fire marble planet planet_subband seascape_subband seascape_subband_hw; do
-  # The subband basis: also its anisotropic filter (reference); the subband unit's own images; the
-  # planet fly-in also through reduced's RTL (the paper's filter in hardware).
-  v="$VARIANTS"; hw=()
-  case "$name" in *subband*) v="$VARIANTS,sat+anisotropic" ;; esac
+for name in seascape fire marble planet wood_teapot wood_torus moonrise planet_subband seascape_subband \
+    seascape_subband_hw; do
+  # Every paper scene with a time track through every named profile's RTL (the paper's filter in
+  # hardware); the subband basis: also its anisotropic filter (reference) and the subband units' own
+  # images (the planet's subband texture is on the sphere, param "sphere": no unit computes it).
+  v="$VARIANTS"; hw=(--profile full --profile full_2clk --profile full_1clk --profile reduced)
+  case "$name" in *subband*) v="$VARIANTS,sat+anisotropic"; hw=() ;; esac
   [ "$name" = seascape_subband_hw ] && hw=(--profile reduced_subband)
   [ "$name" = seascape_subband ] && hw=(--profile reduced_subband_k8)
-  [ "$name" = planet ] && hw=(--profile reduced)
   ./build/pst animate "scenes/$name.toml" --frames 16 --size 48 --truth 8 --variants "$v" "${hw[@]}" --no-video \
     -o "out/fidelity/anim/$name" -q -j2 || rc=1
   seqs+=("out/fidelity/anim/$name")

@@ -30,12 +30,17 @@ std::string regressReplay(const std::string& scene, int size, const std::string&
 
 // The scene as profile p runs it: a profile with the fade unit runs every scene with the
 // hardware's bandlimited octaves on (its textures' bandlimit = "isotropic"; the reference
-// renders the same).
+// renders the same). A subband unit with its filter (noise.subband_orientations) has the fade
+// unit's table for its anisotropic weights: its subband textures run with "anisotropic" (it
+// refuses "isotropic", which made a subband scene with bandlimit "off" an error, not a run).
 Scene asRun(const Scene& scene, const Profile& p) {
     Scene s = scene;
+    const bool sbFilter = p.noise.basis == NoiseBasis::Subband && p.noiseSubbandOrientations != 0;
     if (p.bandlimit())
         for (Texture& t : s.textures)
-            if (t.bandlimit == Bandlimit::Off) t.bandlimit = Bandlimit::Isotropic;
+            if (t.bandlimit == Bandlimit::Off)
+                t.bandlimit = sbFilter && t.noise.basis == NoiseBasis::Subband ? Bandlimit::Anisotropic
+                                                                                : Bandlimit::Isotropic;
     return s;
 }
 
