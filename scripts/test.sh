@@ -14,8 +14,9 @@ if [ "${1:-}" = "--all" ]; then scripts/build.sh --named; else scripts/build.sh;
 # The long checks run on their own (docs/TESTING.md): ctest -L formal (the multiplier proof
 # whole; the default suite checks its record), -L long (the RTL unit tests' full random
 # counts), -L slurm (the SLURM cluster test, minutes of synthesis), -L power (energy per pixel
-# against its record) and -L lec (the netlist against the RTL), minutes of synthesis each.
+# against its record), -L lec (the netlist against the RTL) and -L gatelevel (the netlist
+# simulated against the golden model), minutes of synthesis each.
 # `scripts/test.sh --all` runs them too but slurm.
-EXCLUDE="slurm|formal|long|power|lec"
+EXCLUDE="slurm|formal|long|power|lec|gatelevel"
 if [ "${1:-}" = "--all" ]; then EXCLUDE="slurm"; fi
 ctest --test-dir build --output-on-failure -j"$(nproc)" --timeout 600 -LE "$EXCLUDE" --output-junit "$PWD/build/junit.xml"

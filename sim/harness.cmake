@@ -46,6 +46,11 @@ foreach(p ${PST_ALL_PROFILES})
   if(NOT p IN_LIST PST_ASSERT_PROFILES)
     set(flavour NO_ASSERT)
   endif()
+  if(p IN_LIST PST_GATELEVEL_PROFILES)
+    pst_verilate(pst_rtl TOP pst_top PROFILE ${p} PREFIX Vpst_top_${p} SLOTS 8 GATELEVEL NO_ASSERT NO_COVERAGE
+                 SOURCES ${PST_GATELEVEL_DIR}/osu018_cells.v ${PST_GATELEVEL_DIR}/${p}.v)
+    continue()
+  endif()
   pst_verilate(pst_rtl TOP pst_top PROFILE ${p} PREFIX Vpst_top_${p} SLOTS 8 SOURCES ${PST_RTL_SOURCES}
                DEFINES ${defines} ${flavour})
 endforeach()
