@@ -125,8 +125,10 @@ def build(models: pathlib.Path, bdir: pathlib.Path, jobs: int) -> float:
     t0 = time.time()
     env = dict(os.environ, CCACHE_BASEDIR=str(ROOT), CCACHE_NOHASHDIR="true")
     gen = ["-G", "Ninja"] if shutil.which("ninja") else []
+    # -O1 for the models' C++: a flat netlist's verilated code compiles about 4x faster than at
+    # -O2 (minutes instead of a quarter of an hour per model on two cores) and runs about 1.5x slower.
     cfg = ["cmake", "-S", str(ROOT), "-B", str(bdir), *gen, "-DCMAKE_BUILD_TYPE=Release", "-DPST_PROFILES=",
-           "-DPST_TEST_PROFILES=none", f"-DPST_GATELEVEL_DIR={models.resolve()}"]
+           "-DPST_TEST_PROFILES=none", f"-DPST_GATELEVEL_DIR={models.resolve()}", "-DPST_VERILATED_OPT_FAST=-O1"]
     for cmd in (cfg, ["cmake", "--build", str(bdir), f"-j{jobs}", "--target", "pst"]):
         r = subprocess.run(cmd, env=env, capture_output=True, text=True)
         if r.returncode:
@@ -138,10 +140,10 @@ def build(models: pathlib.Path, bdir: pathlib.Path, jobs: int) -> float:
 def regress(pst: pathlib.Path, model: str, out: pathlib.Path, args: list) -> dict:
     """One `pst regress` of MODEL; its JSON summary plus exit status and seconds."""
     t0 = time.time()
-    js = out.with_suffix(".json")
+    js = out.parent / f"{out.name}.json"
     cmd = [str(pst), "regress", "--profile", model, "-q", "-o", str(js), *args]
     r = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
-    out.with_suffix(".log").write_text(" ".join(cmd) + "\n" + r.stdout + r.stderr)
+    (out.parent / f"{out.name}.log").write_text(" ".join(cmd) + "\n" + r.stdout + r.stderr)
     if r.returncode not in (0, 1) or not js.exists():
         raise FlowError(f"{' '.join(cmd)}: exit {r.returncode}\n{r.stderr[-2000:]}")
     doc = json.loads(js.read_text())
