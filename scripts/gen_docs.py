@@ -16,9 +16,12 @@ beside them (pstlib/docs/handfigures.py):
                                         the multipass noise's quality and the paper's proposals
                                         measured (pstlib/docs/multipass_doc.py)
   docs/POWER.md         power-table     power and energy per pixel per profile (pstlib/docs/power_doc.py)
+  docs/data/silicon.json                the silicon summary's clocks per profile, generated whole (read
+                                        by `pst atlas`: pstlib/report/silicon_table.py data_json)
 
 Sources: scripts/synth/baseline.json (scripts/check_baseline.py --update or --add after a
-synthesis), scripts/synth/layout_derate.json (scripts/pnr.py --update-derate),
+synthesis), scripts/synth/records/*.json (the same; their derated Fmax),
+scripts/synth/layout_derate.json (scripts/pnr.py --update-derate),
 scripts/synth/noise_units.json (by hand from scripts/synth.py and scripts/fidelity.py runs),
 docs/data/multipass.json (build/pst_multipass_study --out docs/data/multipass.json),
 docs/data/power.json (scripts/power.py PROFILE --record),
@@ -45,6 +48,7 @@ from pstlib.paths import ROOT
 
 BASELINE = Path("scripts/synth/baseline.json")
 DERATE = Path("scripts/synth/layout_derate.json")
+RECORDS = Path("scripts/synth/records")
 
 
 def baseline_profiles(root: Path) -> list:
@@ -55,8 +59,18 @@ def baseline_profiles(root: Path) -> list:
         raise docgen.DocError(f"{BASELINE}: {e}")
     derate = json.loads((root / DERATE).read_text()) if (root / DERATE).exists() else None
     power = power_doc.load(root)["profiles"] if (root / power_doc.SOURCE).exists() else {}
-    return [silicon_table.with_power(silicon_table.from_baseline(n, base[n], derate), (power.get(n) or {}).get("summary"))
+    return [silicon_table.with_power(silicon_table.from_baseline(n, base[n], derate, _record(root, n)),
+                                     (power.get(n) or {}).get("summary"))
             for n in silicon_table.PROFILES if n in base]
+
+
+def _record(root: Path, name: str):
+    """The profile's synthesis record (scripts/synth/records/NAME.json: its derated Fmax), or None."""
+    p = root / RECORDS / f"{name}.json"
+    try:
+        return json.loads(p.read_text()) if p.exists() else None
+    except ValueError as e:
+        raise docgen.DocError(f"{RECORDS / (name + '.json')}: {e}")
 
 
 def synth_profiles(folder: Path) -> list:
@@ -112,6 +126,7 @@ SECTIONS = [
     Section("docs/MULTIPASS.md", "multipass-quality", multipass_doc.quality_markdown),
     Section("docs/MULTIPASS.md", "multipass-proposals", multipass_doc.proposals_markdown),
     Section("docs/POWER.md", "power-table", power_doc.markdown),
+    docgen.DataFile("docs/data/silicon.json", lambda root: silicon_table.data_json(baseline_profiles(root))),
 ]
 
 
@@ -131,7 +146,7 @@ def main(argv=None) -> int:
             return 0
         if not (a.write or a.check):
             for s in SECTIONS:
-                print(f"## {s.path}: {s.name}\n\n{s.body(a.root)}")
+                print(f"## {s.path}: {getattr(s, 'name', 'whole file')}\n\n{s.body(a.root)}")
             return 0
         if a.check:
             bad = docgen.stale(a.root, SECTIONS)
