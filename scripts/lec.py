@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Logic equivalence of a profile's RTL and its synthesized netlist, module by module (Yosys
+"""Logic equivalence of a profile's RTL and its synthesized netlist, module by module.
 
 The command's code: pstlib/cli/lec.py (`python3 -m pstlib.cli.lec` from scripts/ runs it
 too); `--help` says everything."""

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Power and energy per pixel of one hardware profile from simulated activity (OSU 0.18 um cells,
+"""Power and energy per pixel of one hardware profile from simulated activity.
 
 The command's code: pstlib/cli/power.py (`python3 -m pstlib.cli.power` from scripts/ runs it
 too); `--help` says everything."""
