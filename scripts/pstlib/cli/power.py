@@ -1,0 +1,189 @@
+"""Power and energy per pixel of one hardware profile from simulated activity (OSU 0.18 um cells,
+Debian's OpenSTA report_power).
+
+    scripts/power.py PROFILE [--scenes NAME ...] [--random N] [--seed S] [--size PX]
+                     [--start CYCLE] [--window CYCLES] [--out DIR] [--work DIR] [--pst BIN] [--record]
+
+Writes DIR/PROFILE.json and DIR/PROFILE.md (default DIR: out/power). PROFILE must be verilated
+in this build (the default build has full and reduced; others: cmake -DPST_PROFILES=...).
+
+Workloads: the paper scenes named by --scenes (default: marble wood_teapot seascape zoneplate)
+and N random textures of scripts/gen_scenes.py's validation stream (--random,
+default 2, --seed 11: never the scenes anything was tuned on), each rendered at --size (96) by
+the verilated RTL with an FST trace of --window cycles (4000) from cycle --start (4000: after
+the configuration writes). Energy per pixel = the power over the window times its length,
+divided by the pixels that left the pipeline in it (changes of out_tag_o).
+
+Netlist: the profile's synthesis (scripts/synth.py --keep, the netlist the silicon figures
+count), made in DIR/synth/ unless --work names a kept synthesis folder (NAME.work) whose
+NAME.json sits beside it. Method and limits: docs/POWER.md and scripts/pstlib/power/flow.py.
+Exit 2 on bad input, 1 when a tool fails.
+"""
+import argparse
+import json
+import pathlib
+import shutil
+import subprocess
+import sys
+import time
+
+from .. import atomic, kept
+from ..docs import power_doc
+from ..paths import PY, ROOT, profile_path
+from ..power import activity, figures, flow
+from ..synth import flow as synth_flow, liberty
+
+PAPER_SCENES = ("marble", "wood_teapot", "seascape", "zoneplate")
+
+
+def workloads(a, out: pathlib.Path) -> dict:
+    """name -> scene file."""
+    scenes = {s: ROOT / "scenes" / f"{s}.toml" for s in a.scenes}
+    if a.random:
+        rdir = out / "scenes_random"
+        r = subprocess.run([PY, str(ROOT / "scripts" / "gen_scenes.py"), "--seed", str(a.seed), "--train", "0",
+                            "--valid", str(a.random), "--out", str(rdir)], capture_output=True, text=True)
+        if r.returncode:
+            raise RuntimeError(f"gen_scenes.py failed: {r.stderr.strip()}")
+        for p in sorted((rdir / "valid").glob("valid_*.toml"))[:a.random]:
+            scenes[f"random/{p.stem}"] = p
+    return scenes
+
+
+def trace(pst: pathlib.Path, scene: pathlib.Path, profile: str, a, tmp: pathlib.Path) -> pathlib.Path:
+    """The VCD of the traced window of SCENE rendered by the verilated PROFILE."""
+    fst, vcd = tmp / "t.fst", tmp / "t.vcd"
+    r = subprocess.run([str(pst), "render", str(scene), "--profile", profile, "--size", str(a.size), "-q",
+                        "--trace", str(fst), "--trace-start", str(a.start), "--trace-end", str(a.start + a.window),
+                        "-o", str(tmp / "img")], capture_output=True, text=True)
+    if r.returncode:
+        raise RuntimeError(f"pst render {scene.name} --profile {profile}: {r.stderr.strip() or r.stdout.strip()}")
+    if not fst.exists():
+        raise RuntimeError(f"pst render {scene.name} --profile {profile}: the run ended before cycle {a.start} "
+                           f"(nothing traced): a larger --size or a smaller --start")
+    with open(vcd, "w") as f:
+        r = subprocess.run(["fst2vcd", str(fst)], stdout=f, stderr=subprocess.PIPE, text=True)
+    if r.returncode:
+        raise RuntimeError(f"fst2vcd: {r.stderr.strip()}")
+    fst.unlink()
+    return vcd
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("profile")
+    ap.add_argument("--scenes", nargs="*", default=list(PAPER_SCENES))
+    ap.add_argument("--random", type=int, default=2)
+    ap.add_argument("--seed", type=int, default=11)
+    ap.add_argument("--size", type=int, default=96)
+    ap.add_argument("--start", type=int, default=4000)
+    ap.add_argument("--window", type=int, default=4000)
+    ap.add_argument("--out", default=str(ROOT / "out" / "power"))
+    ap.add_argument("--work", help="a kept synthesis folder (scripts/synth.py --keep: OUT/NAME.work)")
+    ap.add_argument("--pst", default=str(ROOT / "build" / "pst"))
+    ap.add_argument("--check", action="store_true",
+                    help="compare each workload's pJ/pixel with docs/data/power.json's (exit 1 beyond --tolerance)")
+    ap.add_argument("--tolerance", type=float, default=0.01, help="--check's relative tolerance (default 0.01)")
+    ap.add_argument("--record", action="store_true",
+                    help="also merge the result into docs/data/power.json (scripts/gen_docs.py's power table)")
+    a = ap.parse_args(argv)
+    for k, lo, hi in (("random", 0, 64), ("size", 8, 1024), ("start", 0, 1 << 30), ("window", 100, 1 << 22)):
+        if not lo <= getattr(a, k) <= hi:
+            ap.error(f"--{k.replace('_', '-')}: must be in [{lo}, {hi}]")
+    if not shutil.which("fst2vcd") or not shutil.which("sta"):
+        print("error: fst2vcd (gtkwave) and sta (opensta) are needed: run scripts/setup.sh", file=sys.stderr)
+        return 2
+    out = pathlib.Path(a.out)
+    name = profile_path(a.profile).stem
+    t0 = time.time()
+    try:
+        if not profile_path(a.profile).exists():
+            raise synth_flow.InputError(f"{a.profile}: no such profile ({profile_path(a.profile)})")
+        for s in a.scenes:
+            if not (ROOT / "scenes" / f"{s}.toml").exists():
+                raise synth_flow.InputError(f"--scenes: {s}: no such scene (scenes/{s}.toml)")
+        if a.work and not (pathlib.Path(a.work) / "netlist_sta.v").exists():
+            raise synth_flow.InputError(f"--work: {a.work}: not a kept synthesis (no netlist_sta.v)")
+        if not pathlib.Path(a.pst).exists():
+            raise synth_flow.InputError(f"--pst: {a.pst}: no such binary (build first: scripts/build.sh)")
+        scenes = workloads(a, out)
+        work, record = kept.synthesis(a.profile, out, a.work)
+    except synth_flow.InputError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    lib = liberty.osu018_lib()
+    areas = liberty.cell_areas(lib.read_text())
+    rows = {}
+    mems = record.get("memories", [])
+    rom_area = sum(m["area_um2"] for m in mems if m["kind"] == "ROM")
+    rams = ", ".join(f"{m['module']}.{m['memory']} ({m['size']} x {m['width']}, {m['read_ports']} read ports)"
+                     for m in mems if m["kind"] != "ROM")
+    tmp = out / f"{name}.traces"
+    tmp.mkdir(parents=True, exist_ok=True)
+    try:
+        for wname, scene in scenes.items():
+            vcd = trace(pathlib.Path(a.pst), scene, a.profile, a, tmp)
+            act = activity.read_vcd(vcd)
+            vcd.unlink()
+            pixels = act.changes.get("out_tag_o", 0)
+            pw = flow.run(work, act, [str(lib)], areas)
+            rows[wname] = figures.workload_figures(pw, act.cycles, pixels, rom_area)
+            print(f"{wname}: {rows[wname]['pj_per_pixel'] or 0:,.0f} pJ/pixel, "
+                  f"{rows[wname]['dynamic_w'] * 1e3:.1f} mW dynamic at 100 MHz", flush=True)
+        summary = figures.profile_figures(rows, record)
+        summary["rams_not_modelled"] = rams
+    except (RuntimeError, ValueError, activity.VcdError) as e:
+        print(f"error: {name}: {e}", file=sys.stderr)
+        return 1
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    doc = {"profile": name, "activity_source": "verilated RTL, FST trace of each workload's window "
+           "(port bits per driving cell, instance means elsewhere)", "basis": "pre-layout, typical corner, ideal clock",
+           "window": {"start": a.start, "cycles": a.window, "size": a.size, "random_seed": a.seed},
+           "summary": summary, "workloads": rows, "seconds": round(time.time() - t0, 1)}
+    atomic.write_text(out / f"{name}.json", json.dumps(doc, indent=2) + "\n")
+    md = figures.markdown(name, summary, rows, flow.__doc__.split("\n", 2)[2])
+    atomic.write_text(out / f"{name}.md", md)
+    print(md)
+    rc = 0
+    if a.check:
+        rc = check(name, rows, a.tolerance, doc["window"])
+    if a.record:
+        power_doc.record(ROOT, doc)
+        print(f"recorded in {power_doc.SOURCE} (regenerate the docs: scripts/gen_docs.py --write)")
+    return rc
+
+
+def check(name: str, rows: dict, tolerance: float, window: dict) -> int:
+    """Each workload's pJ/pixel against the record's (docs/data/power.json): 0 when every one
+    present in both is within TOLERANCE, 1 otherwise (each printed); 2 without a record."""
+    try:
+        rec = power_doc.load(ROOT)["profiles"].get(name)
+    except ValueError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
+    if not rec:
+        print(f"error: {power_doc.SOURCE}: no record of {name} (scripts/power.py {name} --record)", file=sys.stderr)
+        return 2
+    if rec.get("window") != window:
+        print(f"error: {power_doc.SOURCE}: {name} was recorded with --start/--window/--size {rec.get('window')}, "
+              f"not {window}", file=sys.stderr)
+        return 2
+    both = [w for w in rows if rec["workloads"].get(w)]
+    if not both:
+        print(f"error: {power_doc.SOURCE}: none of these workloads is in {name}'s record", file=sys.stderr)
+        return 2
+    bad = 0
+    for w in both:
+        new, old = rows[w]["pj_per_pixel"], rec["workloads"][w]
+        change = (new - old) / old
+        ok = abs(change) <= tolerance
+        bad += not ok
+        print(f"power check {name} {w}: {new:,.0f} pJ/pixel, record {old:,.0f} ({100 * change:+.2f} %) "
+              f"{'ok' if ok else 'MOVED'}")
+    print(f"power check {name}: {'PASSED' if not bad else f'FAILED ({bad} moved beyond {100 * tolerance:g} %)'}")
+    return 1 if bad else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
