@@ -21,7 +21,9 @@ track as workloads: `pst animate SCENE --frames N` (default: the scene's animati
 k at t = k / (N - 1)), each frame of --at (default: four spread over the track, the first and
 the last among them) traced over the same --start/--window of its own stream. They are reported
 per frame in the JSON's `animation` and the MD beside the still workloads, not in the summary
-(the profile's figures stay those of the still workloads) and never recorded (--record refuses).
+(the profile's figures stay those of the still workloads) and not in --record's record;
+--record-animation merges them (with the still of the same scene when measured) into
+docs/data/power_animation.json (scripts/gen_docs.py's power-flyin section of docs/POWER.md).
 
 Netlist: the profile's synthesis (scripts/synth.py --keep, the netlist the silicon figures
 count), made in DIR/synth/ unless --work names a kept synthesis folder (NAME.work) whose
@@ -140,9 +142,11 @@ def main(argv=None) -> int:
     ap.add_argument("--frames", type=int, help="--animate: the track's frames (default: the scene's animation.frames)")
     ap.add_argument("--at", metavar="K1,K2,...",
                     help="--animate: the frames measured (default: four spread over the track, first and last among them)")
+    ap.add_argument("--record-animation", action="store_true",
+                    help="--animate: merge the frames (and the still of the scene) into docs/data/power_animation.json")
     a = ap.parse_args(argv)
-    if not a.animate and (a.frames is not None or a.at is not None):
-        ap.error("--frames, --at: need --animate SCENE")
+    if not a.animate and (a.frames is not None or a.at is not None or a.record_animation):
+        ap.error("--frames, --at, --record-animation: need --animate SCENE")
     if a.animate and a.record:
         ap.error("--record: not with --animate (the record holds the still workloads; run the fly-in without it)")
     if a.frames is not None and not 1 <= a.frames <= 10000:
@@ -233,6 +237,10 @@ def main(argv=None) -> int:
     if a.record:
         power_doc.record(ROOT, doc)
         print(f"recorded in {power_doc.SOURCE} (regenerate the docs: scripts/gen_docs.py --write)")
+    if a.record_animation:
+        power_doc.record_animation(ROOT, doc, "scripts/power.py " + " ".join(
+            x for x in (argv if argv is not None else sys.argv[1:]) if x != "--record-animation"))
+        print(f"recorded in {power_doc.ANIMATION_SOURCE} (regenerate the docs: scripts/gen_docs.py --write)")
     return rc
 
 

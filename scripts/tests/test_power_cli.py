@@ -26,9 +26,10 @@ def test_refused_before_any_work(tmp_path, args, message):
 
 # --animate: frames of a scene's time track as workloads (refused before any work when wrong).
 @pytest.mark.parametrize("args, message", [
-    (["reduced", "--frames", "4"], "--frames, --at: need --animate SCENE"),
-    (["reduced", "--at", "0,1"], "--frames, --at: need --animate SCENE"),
+    (["reduced", "--frames", "4"], "--frames, --at, --record-animation: need --animate SCENE"),
+    (["reduced", "--at", "0,1"], "--frames, --at, --record-animation: need --animate SCENE"),
     (["reduced", "--animate", "seascape", "--record"], "--record: not with --animate"),
+    (["reduced", "--record-animation"], "--record-animation: need --animate SCENE"),
     (["reduced", "--animate", "seascape", "--frames", "0"], "--frames: must be in"),
     (["reduced", "--animate", "nosuch"], "--animate: nosuch: no such scene"),
     (["reduced", "--animate", "zoneplate"], "--animate: zoneplate: the scene has no [animation] time track"),
@@ -75,3 +76,21 @@ def test_animation_summary_against_the_still():
     md = p.animation_markdown(an)
     assert "| 3 | 1.000 | 4000 | 100 |" in md and "spread 1.500x" in md
     assert p.animation_summary("seascape", 4, fly, None)["still_pj_per_pixel"] is None
+
+
+def test_record_animation_and_its_section(tmp_path):
+    from pstlib.docs import power_doc
+    p = _power_module()
+    row = lambda pj, px: {"pj_per_pixel": pj, "cycles": 4000, "pixels": px, "clocks_per_pixel": 4000 / px,  # noqa: E731
+                          "dynamic_w": 0.01, "leakage_w": 1e-6, "blocks_w": {}}
+    fly = {"frame_0000": dict(row(100.0, 80), frame=0, t=0.0), "frame_0003": dict(row(150.0, 50), frame=3, t=1.0)}
+    doc = {"profile": "reduced", "basis": "b", "window": {"start": 4000, "cycles": 4000, "size": 96, "random_seed": 11},
+           "workloads": {"seascape": row(100.0, 80)}}
+    doc["animation"] = p.animation_summary("seascape", 4, fly, doc["workloads"]["seascape"])
+    power_doc.record_animation(tmp_path, doc, "scripts/power.py reduced --animate seascape")
+    md = power_doc.animation_markdown(tmp_path)
+    assert "reduced, seascape (4 frames, frame k at t = k / 3; size 96, cycles 4000 - 8000)" in md
+    assert "| still | 0.000 | 80 | 50.00 | 100 | 1.000 |" in md
+    assert "| frame 3 | 1.000 | 50 | 80.00 | 150 | 1.500 |" in md
+    rec = power_doc.load_animation(tmp_path)["runs"]["reduced/seascape"]
+    assert "blocks_w" not in rec["frames_measured"]["frame_0003"] and rec["spread"] == 1.5
