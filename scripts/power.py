@@ -238,10 +238,23 @@ def main(argv=None) -> int:
         power_doc.record(ROOT, doc)
         print(f"recorded in {power_doc.SOURCE} (regenerate the docs: scripts/gen_docs.py --write)")
     if a.record_animation:
-        power_doc.record_animation(ROOT, doc, "scripts/power.py " + " ".join(
-            x for x in (argv if argv is not None else sys.argv[1:]) if x != "--record-animation"))
+        power_doc.record_animation(ROOT, doc, recorded_command(argv if argv is not None else sys.argv[1:]))
         print(f"recorded in {power_doc.ANIMATION_SOURCE} (regenerate the docs: scripts/gen_docs.py --write)")
     return rc
+
+
+def recorded_command(argv: list) -> str:
+    """The command line as recorded: without --record-animation and the options naming this
+    machine's files (--work, --out, --pst), which do not change a figure."""
+    out, skip = [], False
+    for x in argv:
+        if skip:
+            skip = False
+        elif x in ("--work", "--out", "--pst"):
+            skip = True
+        elif x != "--record-animation" and not x.startswith(("--work=", "--out=", "--pst=")):
+            out.append(x)
+    return "scripts/power.py " + " ".join(out)
 
 
 def animation_summary(scene: str, frames: int, fly: dict, still) -> dict:

@@ -92,5 +92,12 @@ def test_record_animation_and_its_section(tmp_path):
     assert "reduced, seascape (4 frames, frame k at t = k / 3; size 96, cycles 4000 - 8000)" in md
     assert "| still | 0.000 | 80 | 50.00 | 100 | 1.000 |" in md
     assert "| frame 3 | 1.000 | 50 | 80.00 | 150 | 1.500 |" in md
-    rec = power_doc.load_animation(tmp_path)["runs"]["reduced/seascape"]
+    rec = power_doc.load_animation(tmp_path)["runs"]["reduced/seascape/96:4000+4000"]
     assert "blocks_w" not in rec["frames_measured"]["frame_0003"] and rec["spread"] == 1.5
+
+
+def test_recorded_command_names_no_local_file():
+    p = _power_module()
+    assert p.recorded_command(["reduced", "--work", "/x/reduced.work", "--animate", "seascape", "--out=/tmp/o",
+                               "--record-animation", "--pst", "b/pst", "--at", "0,1"]) == \
+        "scripts/power.py reduced --animate seascape --at 0,1"

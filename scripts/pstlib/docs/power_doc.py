@@ -83,12 +83,13 @@ def load_animation(root: Path) -> dict:
 
 def record_animation(root: Path, doc: dict, command: str) -> None:
     """Merges one scripts/power.py --animate result (its `animation`, the window, the still of the
-    same scene when measured) into ANIMATION_SOURCE under PROFILE/SCENE."""
+    same scene when measured) into ANIMATION_SOURCE under PROFILE/SCENE/SIZE:START+CYCLES."""
     path = root / ANIMATION_SOURCE
     d = json.loads(path.read_text()) if path.exists() else {"runs": {}}
     an = doc["animation"]
     keep = ("frame", "t", "cycles", "pixels", "clocks_per_pixel", "pj_per_pixel", "vs_still")
-    d["runs"][f"{doc['profile']}/{an['scene']}"] = {
+    w = doc["window"]
+    d["runs"][f"{doc['profile']}/{an['scene']}/{w['size']}:{w['start']}+{w['cycles']}"] = {
         "profile": doc["profile"], "scene": an["scene"], "frames": an["frames"], "window": doc["window"],
         "command": command, "basis": doc["basis"],
         "still": {k: v for k, v in (doc["workloads"].get(an["scene"]) or {}).items() if k in keep} or None,
