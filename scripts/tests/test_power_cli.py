@@ -89,9 +89,9 @@ def test_record_animation_and_its_section(tmp_path):
     doc["animation"] = p.animation_summary("seascape", 4, fly, doc["workloads"]["seascape"])
     power_doc.record_animation(tmp_path, doc, "scripts/power.py reduced --animate seascape")
     md = power_doc.animation_markdown(tmp_path)
-    assert "reduced, seascape (4 frames, frame k at t = k / 3; size 96, cycles 4000 - 8000)" in md
-    assert "| still | 0.000 | 80 | 50.00 | 100 | 1.000 |" in md
-    assert "| frame 3 | 1.000 | 50 | 80.00 | 150 | 1.500 |" in md
+    assert "reduced, seascape (4 frames, frame k at t = k / 3; size 96, window cycles 4000 - 8000)" in md
+    assert "| still | 0.000 | 4000 | 80 | 50.00 | 100 | 1.000 |" in md
+    assert "| frame 3 | 1.000 | 4000 | 50 | 80.00 | 150 | 1.500 |" in md
     rec = power_doc.load_animation(tmp_path)["runs"]["reduced/seascape/96:4000+4000"]
     assert "blocks_w" not in rec["frames_measured"]["frame_0003"] and rec["spread"] == 1.5
 

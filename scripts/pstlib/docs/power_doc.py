@@ -96,7 +96,9 @@ def record_animation(root: Path, doc: dict, command: str) -> None:
         "frames_measured": {n: {k: v for k, v in r.items() if k in keep} for n, r in an["workloads"].items()},
         "pj_per_pixel_min": an["pj_per_pixel_min"], "pj_per_pixel_max": an["pj_per_pixel_max"],
         "pj_per_pixel_mean": an["pj_per_pixel_mean"], "spread": an["spread"]}
-    d["runs"] = dict(sorted(d["runs"].items()))
+    # by profile and scene, the larger image (the stills' window) first
+    d["runs"] = dict(sorted(d["runs"].items(), key=lambda kv: (kv[1]["profile"], kv[1]["scene"], -kv[1]["window"]["size"],
+                                                              kv[0])))
     path.parent.mkdir(parents=True, exist_ok=True)
     atomic.write_text(path, json.dumps(d, indent=2) + "\n")
 
@@ -105,18 +107,18 @@ def animation_markdown(root: Path) -> str:
     runs = load_animation(root)["runs"]
     L = ["Measured by `scripts/power.py PROFILE --animate SCENE --record-animation` (the flow of the table "
          "above; each frame of the scene's time track rendered by `pst animate` and its own stream traced over "
-         "the stills' window). Pixels: those that left the pipeline in the window; vs still: the frame's "
-         "pJ/pixel over the still scene's.", ""]
+         "the stills' window). Cycles: those traced (the window, or up to the stream's end); pixels: those that "
+         "left the pipeline in them; vs still: the frame's pJ/pixel over the still scene's.", ""]
     for r in runs.values():
         w = r["window"]
         L += [f"{r['profile']}, {r['scene']} ({r['frames']} frames, frame k at t = k / {max(r['frames'] - 1, 1)}; "
-              f"size {w['size']}, cycles {w['start']} - {w['start'] + w['cycles']}):", "",
-              "| workload | t | pixels in the window | clocks/pixel | pJ/pixel | vs still |",
-              "|---|---:|---:|---:|---:|---:|"]
+              f"size {w['size']}, window cycles {w['start']} - {w['start'] + w['cycles']}):", "",
+              "| workload | t | cycles | pixels | clocks/pixel | pJ/pixel | vs still |",
+              "|---|---:|---:|---:|---:|---:|---:|"]
         rows = ([("still", r["still"])] if r.get("still") else []) + \
             [(f"frame {x['frame']}", x) for x in r["frames_measured"].values()]
         for name, x in rows:
-            L.append(f"| {name} | {x['t'] if 't' in x else 0:.3f} | {x['pixels']} | {_f(x.get('clocks_per_pixel'), 2)} | "
+            L.append(f"| {name} | {x['t'] if 't' in x else 0:.3f} | {x['cycles']} | {x['pixels']} | {_f(x.get('clocks_per_pixel'), 2)} | "
                      f"{_f(x.get('pj_per_pixel'), 0)} | {_f(x.get('vs_still', 1.0 if name == 'still' else None), 3)} |")
         L += ["", f"Frames: {_f(r['pj_per_pixel_min'], 0)} - {_f(r['pj_per_pixel_max'], 0)} pJ/pixel, mean "
               f"{_f(r['pj_per_pixel_mean'], 0)}, most / least {_f(r['spread'], 3)}.", ""]
