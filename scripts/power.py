@@ -149,6 +149,8 @@ def main(argv=None) -> int:
         ap.error("--frames, --at, --record-animation: need --animate SCENE")
     if a.animate and a.record:
         ap.error("--record: not with --animate (the record holds the still workloads; run the fly-in without it)")
+    if a.animate and not a.scenes and not a.random:
+        ap.error("--animate: needs a still workload beside the frames (--scenes or --random: the summary's)")
     if a.frames is not None and not 1 <= a.frames <= 10000:
         ap.error("--frames: must be in [1, 10000]")
     for k, lo, hi in (("random", 0, 64), ("size", 8, 1024), ("start", 0, 1 << 30), ("window", 100, 1 << 22)):

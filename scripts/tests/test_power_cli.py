@@ -30,6 +30,7 @@ def test_refused_before_any_work(tmp_path, args, message):
     (["reduced", "--at", "0,1"], "--frames, --at, --record-animation: need --animate SCENE"),
     (["reduced", "--animate", "seascape", "--record"], "--record: not with --animate"),
     (["reduced", "--record-animation"], "--record-animation: need --animate SCENE"),
+    (["reduced", "--animate", "seascape", "--scenes", "--random", "0"], "--animate: needs a still workload"),
     (["reduced", "--animate", "seascape", "--frames", "0"], "--frames: must be in"),
     (["reduced", "--animate", "nosuch"], "--animate: nosuch: no such scene"),
     (["reduced", "--animate", "zoneplate"], "--animate: zoneplate: the scene has no [animation] time track"),
