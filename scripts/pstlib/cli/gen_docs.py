@@ -15,6 +15,7 @@ beside them (pstlib/docs/handfigures.py):
                                         the multipass noise's quality and the paper's proposals
                                         measured (pstlib/docs/multipass_doc.py)
   docs/POWER.md         power-table     power and energy per pixel per profile (pstlib/docs/power_doc.py)
+                        power-flyin     energy per pixel of a fly-in's frames against the still
   docs/VERIFICATION.md  flyins-table    antialiasing on the held-out fly-ins (pstlib/docs/flyins_doc.py)
   docs/data/silicon.json                the silicon summary's clocks per profile, generated whole (read
                                         by `pst atlas`: pstlib/report/silicon_table.py data_json)
@@ -24,7 +25,8 @@ synthesis), scripts/synth/records/*.json (the same; their derated Fmax),
 scripts/synth/layout_derate.json (scripts/pnr.py --update-derate),
 scripts/synth/noise_units.json (by hand from scripts/synth.py and scripts/fidelity.py runs),
 docs/data/multipass.json (build/pst_multipass_study --out docs/data/multipass.json),
-docs/data/power.json (scripts/power.py PROFILE --record), docs/data/flyins.json (scripts/flyins.py --record),
+docs/data/power.json (scripts/power.py PROFILE --record), docs/data/power_animation.json
+(scripts/power.py PROFILE --animate SCENE --record-animation), docs/data/flyins.json (scripts/flyins.py --record),
 rtl/**/*.sv{,h}, rtl/contract.toml and rtl/configs/*.toml.
 
     scripts/gen_docs.py --write            # rewrite the stale sections
@@ -113,6 +115,7 @@ def _contract(root: Path):
     return contract.load(root / "rtl" / "contract.toml")
 
 
+    Section("docs/POWER.md", "power-flyin", power_doc.animation_markdown),
     Section("docs/VERIFICATION.md", "flyins-table", flyins_doc.markdown),
 SECTIONS = [
     Section("docs/HARDWARE.md", "silicon-table", lambda root: silicon_table.markdown(baseline_profiles(root))),
