@@ -1,20 +1,13 @@
 // The project's source tree, for the tests and the CLI that read scenes, profiles, test data
-// and scripts from it: $PST_SOURCE_DIR when set (ctest sets it), else the path CMake compiled
-// in as PST_SOURCE_DIR_DEFAULT, else the working directory.
+// and scripts from it: $PST_SOURCE_DIR when set (ctest sets it), else the tree the running
+// executable's build belongs to (source_dir.cpp: no path is compiled in), else the working
+// directory.
 #pragma once
 
-#include <cstdlib>
 #include <string>
 
 namespace pst {
 
-inline std::string sourceDir() {
-    if (const char* env = std::getenv("PST_SOURCE_DIR")) return env;
-#ifdef PST_SOURCE_DIR_DEFAULT
-    return PST_SOURCE_DIR_DEFAULT;
-#else
-    return ".";
-#endif
-}
+std::string sourceDir();
 
 }  // namespace pst

@@ -78,7 +78,12 @@ std::vector<std::string> rtlProfiles();
 // Those verilated with every assertion (the checked flavour: the test profiles always, the named
 // ones with -DPST_SIM_ASSERT=ON); the others fail only on a mismatch with the golden model.
 std::vector<std::string> rtlAssertedProfiles();
-// The profile file a verilated profile was built from ("" if `name` is not one of them).
+// The profile file a verilated profile was built from ("" if `name` is not one of them): the
+// registry's path relative to the source tree, resolved against sourceDir() at run time.
 std::string rtlProfilePath(const std::string& name);
+// That profile, parsed once per process (the registry's cache; every model of it shares it).
+// Throws std::invalid_argument if `name` is not verilated in this build, InputError if the file
+// does not parse.
+const Profile& rtlProfile(const std::string& name);
 
 }  // namespace pst

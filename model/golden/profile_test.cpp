@@ -18,11 +18,8 @@
 namespace pst {
 namespace {
 
-// rtl/configs/reduced.toml (PST_SOURCE_DIR: set by ctest; the build's source dir otherwise).
-std::string reducedPath() {
-    const char* env = std::getenv("PST_SOURCE_DIR");
-    return profilePath("reduced", env ? env : PST_SOURCE_DIR_DEFAULT);
-}
+// rtl/configs/reduced.toml (PST_SOURCE_DIR: set by ctest; the build's source tree otherwise).
+std::string reducedPath() { return profilePath("reduced", sourceDir()); }
 
 std::string readFile(const std::string& path) {
     std::ifstream in(path);

@@ -172,6 +172,34 @@ def test_7_trace_options(tmp_path, args, pattern):
     refused(["render", scene(tmp_path), *args, "--size", 4, "-o", out, "-q"], pattern, [out, tmp_path / "t.fst"])
 
 
+# 7b. pst animate --trace: render's trace options, of one frame's stream (--trace-frame).
+FIRE = ROOT / "scenes" / "fire.toml"
+
+
+@pytest.mark.parametrize("args,pattern", [
+    (["--profile", "reduced", "--trace", "{tmp}/missing/t.fst", "--trace-frame", "0"],
+     r"--trace: folder '.*missing' does not exist"),
+    (["--profile", "reduced", "--trace", "{tmp}/t.fst", "--trace-frame", "0", "--trace-start", "50",
+      "--trace-end", "10"], r"--trace-start: 50 is after --trace-end 10"),
+    (["--trace", "{tmp}/t.fst", "--trace-frame", "0"], r"--trace: needs --profile"),
+    (["--profile", "reduced", "--model", "golden", "--trace", "{tmp}/t.fst", "--trace-frame", "0"],
+     r"--trace: needs --model rtl"),
+    (["--profile", "reduced", "--trace", "{tmp}/t.fst"], r"--trace: needs --trace-frame K"),
+    (["--profile", "reduced", "--trace-frame", "1"], r"--trace-frame, --trace-start, --trace-end: need --trace FILE"),
+    (["--profile", "reduced", "--trace-start", "5"], r"--trace-frame, --trace-start, --trace-end: need --trace FILE"),
+    (["--profile", "reduced", "--trace", "{tmp}/t.fst", "--trace-frame", "2"],
+     r"--trace-frame: 2 is not a frame of this run \(0\.\.1\)"),
+    (["--profile", "reduced", "--profile", "full", "--trace", "{tmp}/t.fst", "--trace-frame", "0"],
+     r"--trace: one --profile only"),
+    (["--profile", "reduced", "--trace", str(FIRE), "--trace-frame", "0"], r"--trace: .*is the input"),
+])
+def test_7_animate_trace_options(tmp_path, args, pattern):
+    out = tmp_path / "out"
+    args = [a.replace("{tmp}", str(tmp_path)) for a in args]
+    refused(["animate", FIRE, "--frames", 2, *args, "--size", 4, "--no-video", "-o", out, "-q"], pattern,
+            [out, tmp_path / "t.fst"])
+
+
 # 8. What a flag or a file may ask for is bounded (memory).
 def test_8_huge_image_flag(tmp_path):
     out = tmp_path / "out"

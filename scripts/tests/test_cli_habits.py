@@ -1,7 +1,7 @@
 """The command-line habits of pst's users (issue 40 part 3, 41 parts 1 and 4): --version, a typo'd
 subcommand, defaults and verilated profiles in help, compare gating, provenance in every JSON
-and JUnit output, --reseed, progress and -q, regress --waves on an injected mismatch (the FST
-checked by its header), outputs that would overwrite an input or cannot be made, and self-tests
+and JUnit output, --reseed, progress and -q, regress --waves on an injected mismatch and animate
+--trace of one frame (each FST checked by its header), outputs that would overwrite an input or cannot be made, and self-tests
 that cannot fire. Run by ctest (cli_habits) with PST_BIN set to the built tool."""
 import json
 import os
@@ -189,6 +189,26 @@ def fst_header(path):
     scopes, nvars, _maxh, sections = struct.unpack(">QQQQ", b[41:73])
     assert seclen == 329 and abs(e - 2.718281828459045) < 1e-12
     return {"start": start, "end": end, "scopes": scopes, "vars": nvars, "sections": sections}
+
+
+def test_animate_trace_of_one_frame(tmp_path):
+    """pst animate --trace FILE --trace-frame K: the FST of frame K's RTL stream, its cycles counted
+    from that stream's start (as pst render's); a window after the stream's end writes no file."""
+    fst, out = tmp_path / "f.fst", tmp_path / "o"
+    r = pst("animate", FIRE, "--frames", 3, "--size", 8, "--profile", "reduced", "--no-video", "-q", "-o", out,
+            "--trace", fst, "--trace-frame", 2, "--trace-start", 100, "--trace-end", 300)
+    assert r.returncode == 0, r.stdout + r.stderr
+    h = fst_header(fst)
+    assert h["vars"] > 10 and h["scopes"] > 0 and h["sections"] >= 1, h
+    # Two dumps per cycle: the window of the traced frame's stream, not of the run's cycles.
+    assert h["start"] == 200 and h["end"] == 601, h
+    assert (out / "reduced" / "frame_0002.png").exists()
+    # A window after the frame's stream has ended: nothing traced, no file (as pst render).
+    late = tmp_path / "late.fst"
+    r = pst("animate", FIRE, "--frames", 2, "--size", 8, "--profile", "reduced", "--no-video", "-q", "-o",
+            tmp_path / "o2", "--trace", late, "--trace-frame", 1, "--trace-start", 10 ** 9)
+    assert r.returncode == 0, r.stdout + r.stderr
+    assert not late.exists()
 
 
 def test_regress_waves_on_an_injected_mismatch(tmp_path):

@@ -36,6 +36,7 @@ def tree(tmp_path):
                 "scripts/synth/layout_derate.json", "scripts/synth/noise_units.json"):
         (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
         shutil.copy(ROOT / rel, tmp_path / rel)
+    shutil.copytree(ROOT / "scripts" / "synth" / "records", tmp_path / "scripts" / "synth" / "records")
     shutil.copytree(ROOT / "docs", tmp_path / "docs")
     shutil.copytree(ROOT / "rtl", tmp_path / "rtl")
     return tmp_path

@@ -60,7 +60,7 @@ foreach(v ${PST_NOISE_VARIANTS})
   add_executable(${target} ${PROJECT_SOURCE_DIR}/sim/unit/noise_unit_test.cpp)
   target_link_libraries(${target} PRIVATE pst_golden GTest::gtest_main)
   target_include_directories(${target} PRIVATE ${PROJECT_SOURCE_DIR}/sim)
-  target_compile_definitions(${target} PRIVATE PST_PROFILE_PATH="${cfg}" PST_NOISE_OVERRIDES="${voverrides}")
+  target_compile_definitions(${target} PRIVATE PST_PROFILE_PATH="rtl/configs/${vprofile}.toml" PST_NOISE_OVERRIDES="${voverrides}")
   pst_verilate(${target} TOP pst_noise_unit_top GPARAMS ${gparams} NO_TRACE NO_COVERAGE
                DIRECTORY ${CMAKE_CURRENT_BINARY_DIR}/${target}_pst_noise_unit_top SOURCES ${PST_NOISE_UNIT_SOURCES})
   gtest_discover_tests(${target} TEST_PREFIX "${vname}." DISCOVERY_TIMEOUT 60)

@@ -1,7 +1,7 @@
 // Unit test of units 1 and 2 (rtl/octave/pst_octave_transform.sv, rtl/noise/pst_noise.sv) against the
 // golden model (model/golden/noise_fx.cpp): every output bit, special values first, then
 // random vectors from a printed seed (PST_SEED=<n> replays). One executable per profile
-// (PST_PROFILE_PATH), optionally with noise parameters overridden (PST_NOISE_OVERRIDES, the
+// (PST_PROFILE_PATH, relative to the source tree), optionally with noise parameters overridden (PST_NOISE_OVERRIDES, the
 // same -G overrides the verilated top was built with; see sim/unit/noise.cmake).
 #include <algorithm>
 #include <cstdint>
@@ -23,6 +23,7 @@
 #include "verilated_port.h"
 #include "noise_fx.h"
 #include "profile.h"
+#include "source_dir.h"
 #include "verilated.h"
 
 namespace pst {
@@ -39,7 +40,7 @@ uint64_t getField(const T& port, int lsb, int width) { return port::get(port, ls
 
 // ---- profile (with the variant's overrides) -----------------------------------------------
 Profile testProfile() {
-    Profile p = loadProfile(PST_PROFILE_PATH);
+    Profile p = loadProfile(sourceDir() + "/" PST_PROFILE_PATH);
 #ifdef PST_NOISE_OVERRIDES
     std::stringstream ss(PST_NOISE_OVERRIDES);
     std::string item;

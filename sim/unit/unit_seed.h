@@ -1,5 +1,5 @@
 // The unit tests' profile, seed and random count: the profile the executable was built for
-// (PST_PROFILE_PATH), one seed per run, printed so that PST_SEED=<n> replays it, and how many
+// (PST_PROFILE_PATH, relative to the source tree: sourceDir()), one seed per run, printed so that PST_SEED=<n> replays it, and how many
 // random vectors a test draws (a tenth of its long count by default, the whole of it with
 // PST_UNIT_LONG=1: ctest -L long).
 #pragma once
@@ -11,11 +11,12 @@
 #include <string>
 
 #include "profile.h"
+#include "source_dir.h"
 
 namespace pst::unit {
 
 inline const Profile& prof() {
-    static const Profile p = pst::loadProfile(PST_PROFILE_PATH);
+    static const Profile p = pst::loadProfile(pst::sourceDir() + "/" PST_PROFILE_PATH);
     return p;
 }
 

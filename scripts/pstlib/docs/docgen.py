@@ -4,7 +4,8 @@ generator, and nothing else (scripts/gen_docs.py --write rewrites it, --check fa
 differs: ctest docs_stale).
 
 A Section names its file (relative to the repository root), its marker NAME and a function of
-the root that returns the body. scripts/gen_docs.py lists every section of every file.
+the root that returns the body; a DataFile is a file generated whole (docs/data/silicon.json,
+which the C++ tool reads). scripts/gen_docs.py lists every section of every file.
 """
 from __future__ import annotations
 
@@ -35,6 +36,12 @@ class Section:
         return f"<!-- {self.name} end -->"
 
 
+@dataclass(frozen=True)
+class DataFile:
+    path: str                          # file, relative to the root, generated whole
+    body: Callable[[Path], str]        # root -> the file's text
+
+
 def replace(text: str, section: Section, body: str) -> str:
     """TEXT with SECTION's markers enclosing BODY; DocError when the markers are missing."""
     m = re.search(re.escape(section.begin) + r"\n(.*?)" + re.escape(section.end), text, re.S)
@@ -49,6 +56,10 @@ def render(root: Path, sections: list) -> dict:
     out = {}
     for rel in paths:
         p = root / rel
+        whole = [s for s in sections if s.path == rel and isinstance(s, DataFile)]
+        if whole:
+            out[rel] = (p.read_text() if p.exists() else "", whole[0].body(root))
+            continue
         if not p.exists():
             raise DocError(f"{rel}: missing")
         cur = p.read_text()
@@ -70,6 +81,7 @@ def write(root: Path, sections: list) -> list:
     out = []
     for rel, (cur, new) in render(root, sections).items():
         if cur != new:
+            (root / rel).parent.mkdir(parents=True, exist_ok=True)
             (root / rel).write_text(new)
             out.append(rel)
     return out

@@ -64,3 +64,62 @@ def record(root: Path, doc: dict) -> None:
     d["profiles"] = dict(sorted(d["profiles"].items()))
     path.parent.mkdir(parents=True, exist_ok=True)
     atomic.write_text(path, json.dumps(d, indent=2) + "\n")
+
+
+# The fly-in against the still (docs/POWER.md section power-flyin): scripts/power.py PROFILE
+# --animate SCENE --record-animation merges its frames into ANIMATION_SOURCE.
+ANIMATION_SOURCE = Path("docs/data/power_animation.json")
+
+
+def load_animation(root: Path) -> dict:
+    path = root / ANIMATION_SOURCE
+    if not path.exists():
+        raise ValueError(f"{ANIMATION_SOURCE}: missing (scripts/power.py PROFILE --animate SCENE --record-animation)")
+    d = json.loads(path.read_text())
+    if not isinstance(d.get("runs"), dict):
+        raise ValueError(f"{ANIMATION_SOURCE}: runs: missing")
+    return d
+
+
+def record_animation(root: Path, doc: dict, command: str) -> None:
+    """Merges one scripts/power.py --animate result (its `animation`, the window, the still of the
+    same scene when measured) into ANIMATION_SOURCE under PROFILE/SCENE/SIZE:START+CYCLES."""
+    path = root / ANIMATION_SOURCE
+    d = json.loads(path.read_text()) if path.exists() else {"runs": {}}
+    an = doc["animation"]
+    keep = ("frame", "t", "cycles", "pixels", "clocks_per_pixel", "pj_per_pixel", "vs_still")
+    w = doc["window"]
+    d["runs"][f"{doc['profile']}/{an['scene']}/{w['size']}:{w['start']}+{w['cycles']}"] = {
+        "profile": doc["profile"], "scene": an["scene"], "frames": an["frames"], "window": doc["window"],
+        "command": command, "basis": doc["basis"],
+        "still": {k: v for k, v in (doc["workloads"].get(an["scene"]) or {}).items() if k in keep} or None,
+        "frames_measured": {n: {k: v for k, v in r.items() if k in keep} for n, r in an["workloads"].items()},
+        "pj_per_pixel_min": an["pj_per_pixel_min"], "pj_per_pixel_max": an["pj_per_pixel_max"],
+        "pj_per_pixel_mean": an["pj_per_pixel_mean"], "spread": an["spread"]}
+    # by profile and scene, the larger image (the stills' window) first
+    d["runs"] = dict(sorted(d["runs"].items(), key=lambda kv: (kv[1]["profile"], kv[1]["scene"], -kv[1]["window"]["size"],
+                                                              kv[0])))
+    path.parent.mkdir(parents=True, exist_ok=True)
+    atomic.write_text(path, json.dumps(d, indent=2) + "\n")
+
+
+def animation_markdown(root: Path) -> str:
+    runs = load_animation(root)["runs"]
+    L = ["Measured by `scripts/power.py PROFILE --animate SCENE --record-animation` (the flow of the table "
+         "above; each frame of the scene's time track rendered by `pst animate` and its own stream traced over "
+         "the stills' window). Cycles: those traced (the window, or up to the stream's end); pixels: those that "
+         "left the pipeline in them; vs still: the frame's pJ/pixel over the still scene's.", ""]
+    for r in runs.values():
+        w = r["window"]
+        L += [f"{r['profile']}, {r['scene']} ({r['frames']} frames, frame k at t = k / {max(r['frames'] - 1, 1)}; "
+              f"size {w['size']}, window cycles {w['start']} - {w['start'] + w['cycles']}):", "",
+              "| workload | t | cycles | pixels | clocks/pixel | pJ/pixel | vs still |",
+              "|---|---:|---:|---:|---:|---:|---:|"]
+        rows = ([("still", r["still"])] if r.get("still") else []) + \
+            [(f"frame {x['frame']}", x) for x in r["frames_measured"].values()]
+        for name, x in rows:
+            L.append(f"| {name} | {x['t'] if 't' in x else 0:.3f} | {x['cycles']} | {x['pixels']} | {_f(x.get('clocks_per_pixel'), 2)} | "
+                     f"{_f(x.get('pj_per_pixel'), 0)} | {_f(x.get('vs_still', 1.0 if name == 'still' else None), 3)} |")
+        L += ["", f"Frames: {_f(r['pj_per_pixel_min'], 0)} - {_f(r['pj_per_pixel_max'], 0)} pJ/pixel, mean "
+              f"{_f(r['pj_per_pixel_mean'], 0)}, most / least {_f(r['spread'], 3)}.", ""]
+    return "\n".join(L)

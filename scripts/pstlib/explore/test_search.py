@@ -214,7 +214,7 @@ def test_stored_results_are_reused_only_when_complete(tmp_path):
 
 
 def test_per_class_arguments(tmp_path):
-    import search as cli     # scripts/search.py
+    from pstlib.cli import search as cli     # scripts/search.py
     assert search_run.per_class("40", [1, 22], float, "--psnr") == {1: 40.0, 22: 40.0}
     assert search_run.per_class("1=50,22=30", [1, 22], float, "--psnr") == {1: 50.0, 22: 30.0}
     with pytest.raises(ValueError):

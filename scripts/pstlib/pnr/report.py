@@ -13,8 +13,10 @@ TARGET_MHZ = 100.0
 def assemble(name: str, synth: dict, blocks: list, synth_seconds: float, seconds: float) -> dict:
     """Per block and for the whole profile: area is the blocks' dies plus the memories (their
     model in the synthesis record); post-route Fmax is the slowest block's; the derate is the
-    worst block's post-route / pre-layout ratio, applied to the whole design's pre-layout Fmax
-    (the flat netlist with memories, where paths cross blocks)."""
+    worst block's post-route / pre-layout ratio, which --update-derate writes for every synthesis
+    to apply to its pre-layout Fmax (pstlib/synth/report.py, the one place that applies it; the
+    whole design's pre-layout Fmax, the flat netlist with memories where paths cross blocks, is
+    recorded here beside it)."""
     post = min(blocks, key=lambda b: b["sta"]["post_route"]["fmax_mhz"])
     derate = min(b["fmax_ratio"] for b in blocks)
     die = sum(b["die_mm2"] for b in blocks)
@@ -43,7 +45,6 @@ def assemble(name: str, synth: dict, blocks: list, synth_seconds: float, seconds
         "max_capacitance_violations": sum(b["sta"]["post_route"]["max_capacitance_violations"] for b in blocks),
         "fmax_ratio_post_over_pre": derate,
         "whole_design_pre_layout_fmax_mhz": whole_pre,
-        "whole_design_derated_fmax_mhz": round(whole_pre * derate, 1) if whole_pre else None,
         "meets_target": post["sta"]["post_route"]["fmax_mhz"] >= TARGET_MHZ,
         "target_mhz": TARGET_MHZ,
         "synthesis": {k: synth.get(k) for k in ("logic_ge", "memory_ge", "total_ge", "total_area_mm2",
@@ -112,8 +113,8 @@ def markdown(r: dict) -> str:
           f"{r['max_transition_violations']} / {r['max_capacitance_violations']} |",
           *_assembled_rows(r.get("assembled")),
           f"| post-route / pre-layout Fmax (worst block) | {r['fmax_ratio_post_over_pre']:.3f} |",
-          f"| whole design: pre-layout, derated | {r['whole_design_pre_layout_fmax_mhz']} MHz, "
-          f"{r['whole_design_derated_fmax_mhz']} MHz |",
+          f"| whole design: pre-layout (derated in every synthesis record after --update-derate) | "
+          f"{r['whole_design_pre_layout_fmax_mhz']} MHz |",
           *([f"| fanout step: synthesis' hand buffers vs blifFanout, whole design pre-layout | "
               f"{r['buffering']['fmax_mhz_hand_fanout']} vs {r['buffering']['fmax_mhz_blif_fanout']} MHz "
               f"({r['buffering']['blif_fanout_buffers']:,} buffers; "

@@ -326,9 +326,9 @@ def collect(out_dir, argv=None) -> Report:
             rep.scenes.append(SceneView(stem, layers, []))
     rep.notes = sorted({n for r in rep.runs for n in r.get("notes", [])})
     synth = root / "synth"
-    # The two profiles and any other profile the regression ran (out/synth also holds the
-    # sweep's points, <base>_<knob>_<value>.json: those belong to the sweep's section).
-    names = ["full", "full_2clk", "full_1clk", "reduced", "balanced"]
+    # The named profiles (the silicon table's) and any other profile the regression ran (out/synth
+    # also holds the sweep's points, <base>_<knob>_<value>.json: those belong to the sweep's section).
+    names = list(silicon_table.PROFILES)
     names += sorted({r["profile"] for r in rep.runs} - set(names))
     for name in names:
         g = read_included(f"Gates and timing: {name}", f"gates-{name}", synth / f"{name}.md", root,

@@ -6,7 +6,15 @@ block (`blocks_markdown`) and the critical path per stage (`stages_markdown`).
 
 Each profile is normalized to one dict (`from_baseline`, `from_synth`) and `rows` turns the
 dicts into the table; the raw JSON stays one link away.
+
+The clock a profile is quoted at after layout (`layout_clock`: post-route for the routed
+profile, else the pre-layout Fmax derated, else pre-layout) is chosen here and nowhere else; the
+derated Fmax itself is the synthesis record's `fmax_derated_mhz` (pstlib/synth/report.py, the one
+place that applies scripts/synth/layout_derate.json's ratio), read, never recomputed. `data_json`
+writes the choice for the C++ tool (docs/data/silicon.json, which `pst atlas` reads).
 """
+import json
+
 from ..synth.report import PAPER_GATES, REALTIME_MPIX
 
 PROFILES = ("full", "full_2clk", "full_1clk", "reduced", "balanced")
@@ -28,8 +36,9 @@ def _worst_stage(paths: dict):
     return f"{stage}, {paths[stage]:.2f} ns"
 
 
-def from_baseline(name: str, b: dict, derate) -> dict:
-    """A profile of scripts/synth/baseline.json (DERATE: layout_derate.json or None)."""
+def from_baseline(name: str, b: dict, derate, record=None) -> dict:
+    """A profile of scripts/synth/baseline.json (DERATE: layout_derate.json or None; RECORD: the
+    profile's synthesis record, scripts/synth/records/NAME.json, for its derated Fmax, or None)."""
     return {"profile": name, "logic_ge": b["logic_ge"], "memory_ge": b["memory_ge"], "total_ge": b["total_ge"],
             "flip_flops": b["flip_flops"], "fmax_mhz": b.get("fmax_mhz"),
             "signoff_sdc": b.get("fmax_setup_uncertainty_ns") is not None,
@@ -37,7 +46,7 @@ def from_baseline(name: str, b: dict, derate) -> dict:
                                if derate and derate["profile"] == name else None),
             "post_route_assembled": bool(derate and derate["profile"] == name and derate.get("assembled_fmax_mhz")),
             "post_route_partial": bool(derate and derate["profile"] == name and derate.get("not_routed")),
-            "derate": derate["ratio"] if derate else None,
+            "derate": derate["ratio"] if derate else None, "fmax_derated_mhz": (record or {}).get("fmax_derated_mhz"),
             "clocks_per_pixel": b["clocks_per_pixel"], "worst_psnr": _worst_psnr(b.get("psnr_db")),
             "worst_path": _worst_stage(b.get("stage_path_ns")), "paper_gates": PAPER_GATES.get(name),
             "block_ge": b.get("block_ge") or {}, "stage_path_ns": b.get("stage_path_ns") or {}}
@@ -55,7 +64,8 @@ def from_synth(s: dict, pnr=None, psnr=None) -> dict:
             "post_route_mhz": ((pnr.get("assembled") or {}).get("fmax_mhz") or pnr["post_route_fmax_mhz"]) if pnr else None,
             "post_route_assembled": bool(pnr and (pnr.get("assembled") or {}).get("fmax_mhz")),
             "post_route_partial": bool(pnr and (pnr.get("failed_blocks") or pnr.get("skipped_blocks"))),
-            "derate": d["ratio"] if d else None, "clocks_per_pixel": s.get("clocks_per_pixel"),
+            "derate": d["ratio"] if d else None, "fmax_derated_mhz": s.get("fmax_derated_mhz"),
+            "clocks_per_pixel": s.get("clocks_per_pixel"),
             "worst_psnr": _worst_psnr(psnr), "paper_gates": s.get("paper_gates"),
             "worst_path": (f"{worst['stage']}, {s['worst_path_ns']:.2f} ns" if worst.get("stage") and s.get("worst_path_ns")
                            else None),
@@ -63,26 +73,41 @@ def from_synth(s: dict, pnr=None, psnr=None) -> dict:
             "stage_path_ns": s.get("critical_path_ns") or {}}
 
 
-def _clock(p: dict):
+def layout_clock(p: dict):
     """(MHz, label) the throughput is quoted at: post-route (the chip assembled from its routed
-    blocks where the place and route timed it, else its slowest block), else pre-layout
-    derated, else pre-layout."""
+    blocks where the place and route timed it, else its slowest block), else the synthesis
+    record's derated Fmax, else pre-layout."""
     if p["post_route_mhz"]:
         if p.get("post_route_assembled"):
             # The chip timed from its routed blocks; a block without a layout is in it before layout.
             return p["post_route_mhz"], "post-route, blocks assembled" + (
                 "; some without layout" if p.get("post_route_partial") else "")
         return p["post_route_mhz"], "post-route" + (", timed blocks only" if p.get("post_route_partial") else "")
-    if p["fmax_mhz"] and p["derate"]:
-        return round(p["fmax_mhz"] * p["derate"], 1), "derated"
+    if p.get("fmax_derated_mhz"):
+        return p["fmax_derated_mhz"], "derated"
     return p["fmax_mhz"], "pre-layout"
+
+
+
+def data_json(profiles: list) -> str:
+    """docs/data/silicon.json: per profile its pre-layout Fmax, the clock after layout the summary
+    quotes (layout_clock; null when it has only the pre-layout one) with its basis, and clocks per
+    pixel, for the C++ tool, which reads these figures instead of working them out."""
+    out = {}
+    for p in profiles:
+        mhz, basis = layout_clock(p)
+        out[p["profile"]] = {"fmax_mhz": p["fmax_mhz"], "fmax_layout_mhz": mhz if basis != "pre-layout" else None,
+                             "fmax_layout_basis": basis if basis != "pre-layout" else None,
+                             "clocks_per_pixel": p["clocks_per_pixel"]}
+    return json.dumps({"generated_by": "scripts/gen_docs.py --write (pstlib/report/silicon_table.py)",
+                       "profiles": out}, indent=2) + "\n"
 
 
 def throughput(p: dict):
     """The one throughput of profile P, the table's "Mpixel/s at that clock": (Mpixel/s, MHz,
     basis), basis "post-route[...]", "derated (post-route ratio x R)" or "pre-layout"; None
     without a clock or clocks per pixel."""
-    mhz, basis = _clock(p)
+    mhz, basis = layout_clock(p)
     if not (mhz and p["clocks_per_pixel"]):
         return None
     if basis == "derated":
@@ -106,14 +131,14 @@ def rows(profiles: list) -> list:
         ["flip-flops", *col(lambda p: num(p["flip_flops"]))],
         ["Fmax pre-layout (typical, no wire)", *col(lambda p: "-" if not p["fmax_mhz"] else
                                                     f"{p['fmax_mhz']:.1f} MHz" + ("" if p["signoff_sdc"] else " (ideal clock)"))],
-        ["Fmax post-route, or pre-layout x derate", *col(lambda p: "-" if not _clock(p)[0] else
-                                                         f"{_clock(p)[0]:.1f} MHz ({_clock(p)[1]}"
-                                                         + (f" x {p['derate']:.3f})" if _clock(p)[1] == "derated" else ")"))],
+        ["Fmax post-route, or pre-layout x derate", *col(lambda p: "-" if not layout_clock(p)[0] else
+                                                         f"{layout_clock(p)[0]:.1f} MHz ({layout_clock(p)[1]}"
+                                                         + (f" x {p['derate']:.3f})" if layout_clock(p)[1] == "derated" else ")"))],
         ["clocks per pixel", *col(lambda p: num(p["clocks_per_pixel"]))],
-        ["Mpixel/s at that clock", *col(lambda p: "-" if not (_clock(p)[0] and p["clocks_per_pixel"]) else
-                                        f"{_clock(p)[0] / p['clocks_per_pixel']:.2f}")],
-        [f"meets {REALTIME_MPIX:.1f} Mpixel/s", *col(lambda p: "-" if not (_clock(p)[0] and p["clocks_per_pixel"]) else
-                                                     ("yes" if _clock(p)[0] / p["clocks_per_pixel"] >= REALTIME_MPIX else "no"))],
+        ["Mpixel/s at that clock", *col(lambda p: "-" if not (layout_clock(p)[0] and p["clocks_per_pixel"]) else
+                                        f"{layout_clock(p)[0] / p['clocks_per_pixel']:.2f}")],
+        [f"meets {REALTIME_MPIX:.1f} Mpixel/s", *col(lambda p: "-" if not (layout_clock(p)[0] and p["clocks_per_pixel"]) else
+                                                     ("yes" if layout_clock(p)[0] / p["clocks_per_pixel"] >= REALTIME_MPIX else "no"))],
         ["logic GE x clocks per pixel", *col(lambda p: "-" if not (p["logic_ge"] and p["clocks_per_pixel"]) else
                                              f"{p['logic_ge'] * p['clocks_per_pixel']:,}")],
         ["worst path", *col(lambda p: p["worst_path"] or "-")],

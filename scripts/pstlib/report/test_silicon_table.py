@@ -13,13 +13,37 @@ def profile(**kw):
 
 
 def test_clock_is_post_route_else_derated_else_pre_layout():
-    rows = {r[0]: r[1:] for r in silicon_table.rows([profile(), profile(derate=0.9), profile(post_route_mhz=80.0, derate=0.9)])}
+    rows = {r[0]: r[1:] for r in silicon_table.rows([profile(), profile(derate=0.9, fmax_derated_mhz=90.0),
+                                                     profile(post_route_mhz=80.0, derate=0.9, fmax_derated_mhz=90.0)])}
     assert rows["Fmax post-route, or pre-layout x derate"] == ["100.0 MHz (pre-layout)", "90.0 MHz (derated x 0.900)",
                                                               "80.0 MHz (post-route)"]
     assert rows["Mpixel/s at that clock"] == ["50.00", "45.00", "40.00"]
     assert rows["meets 36.9 Mpixel/s"] == ["yes", "yes", "yes"]
     assert rows["logic GE x clocks per pixel"] == ["2,000"] * 3
     assert rows["worst paper scene"] == ["planet 41.0 dB"] * 3
+
+
+def test_the_derated_clock_is_the_synthesis_records_never_recomputed():
+    # pstlib/synth/report.py derates (fmax_derated_mhz); the table quotes that figure as it is.
+    rec = {"fmax_derated_mhz": 91.0}
+    base = {"logic_ge": 1000, "memory_ge": 500, "total_ge": 1500, "flip_flops": 10, "fmax_mhz": 100.0,
+            "clocks_per_pixel": 2}
+    p = silicon_table.from_baseline("full", base, {"profile": "reduced", "ratio": 0.9, "post_route_fmax_mhz": 80.0},
+                                    rec)
+    assert silicon_table.layout_clock(p) == (91.0, "derated")
+    assert silicon_table.layout_clock(silicon_table.from_baseline("full", base, None)) == (100.0, "pre-layout")
+    s = silicon_table.from_synth({"profile": "full", "fmax_mhz": 100.0, "fmax_derated_mhz": 91.0,
+                                  "fmax_derate": {"ratio": 0.9}, "clocks_per_pixel": 2})
+    assert silicon_table.layout_clock(s) == (91.0, "derated")
+
+
+def test_data_json_states_the_clocks_the_cpp_tool_reads():
+    import json
+    d = json.loads(silicon_table.data_json([profile(profile="a"), profile(profile="b", derate=0.9, fmax_derated_mhz=90.0),
+                                             profile(profile="c", post_route_mhz=80.0)]))["profiles"]
+    assert d["a"] == {"fmax_mhz": 100.0, "fmax_layout_mhz": None, "fmax_layout_basis": None, "clocks_per_pixel": 2}
+    assert (d["b"]["fmax_layout_mhz"], d["b"]["fmax_layout_basis"]) == (90.0, "derated")
+    assert (d["c"]["fmax_layout_mhz"], d["c"]["fmax_layout_basis"]) == (80.0, "post-route")
 
 
 def test_post_route_from_the_assembled_chip_when_the_place_and_route_timed_it():

@@ -53,8 +53,7 @@ def test_seeds_are_apart_from_training():
 
 
 def test_the_search_and_gen_scenes_refuse_a_validation_seed_for_training(tmp_path):
-    import gen_scenes
-    import search as cli
+    from pstlib.cli import gen_scenes, search as cli     # scripts/gen_scenes.py, scripts/search.py
     with pytest.raises(SystemExit) as e:
         gen_scenes.main(["--seed", str(valset.DEFAULT_SEED), "--out", str(tmp_path / "g")])
     assert e.value.code == 2 and not (tmp_path / "g").exists()

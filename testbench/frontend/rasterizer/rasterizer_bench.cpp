@@ -8,6 +8,7 @@
 #include "rasterizer.h"
 #include "render.h"
 #include "scene.h"
+#include "source_dir.h"
 
 namespace pst {
 namespace {
@@ -43,8 +44,7 @@ BENCHMARK(BM_RasterHorizonPlane512)->Unit(benchmark::kMillisecond);
 
 // Reference-model rendering of a paper scene at 256x256 (pixels per second reported).
 void BM_RenderScene256(benchmark::State& st, const char* name) {
-    const char* dir = std::getenv("PST_SOURCE_DIR");
-    const Scene scene = loadScene(std::string(dir ? dir : PST_SOURCE_DIR_DEFAULT) + "/scenes/" + name + ".toml", 256, 256);
+    const Scene scene = loadScene(sourceDir() + "/scenes/" + name + ".toml", 256, 256);
     RenderOptions opt;
     opt.threads = 1;
     long long frags = 0;

@@ -12,15 +12,13 @@
 #include <gtest/gtest.h>
 
 #include "imageio.h"
+#include "source_dir.h"
 
 namespace pst {
 namespace {
 namespace fs = std::filesystem;
 
-std::string scenePath(const char* name) {
-    const char* d = std::getenv("PST_SOURCE_DIR");
-    return std::string(d ? d : PST_SOURCE_DIR_DEFAULT) + "/scenes/" + name + ".toml";
-}
+std::string scenePath(const char* name) { return sourceDir() + "/scenes/" + name + ".toml"; }
 
 std::string slurp(const fs::path& p) {
     std::ifstream in(p, std::ios::binary);

@@ -116,6 +116,13 @@ int runAnimate(const AnimateArgs& a) {
             if (std::string why = hardwareUnsupported(profiles.back(), still.textures[o.texture]); !why.empty())
                 throw InputError(why);
     }
+    if (!a.traceFile.empty()) {
+        if (profiles.size() != 1 || a.model != "rtl")
+            throw InputError("--trace: needs one --profile and --model rtl (one waveform of one RTL stream)");
+        if (a.traceFrame < 0 || a.traceFrame >= frames)
+            throw InputError("--trace-frame: " + std::to_string(a.traceFrame) + " is not a frame of this run (0.." +
+                             std::to_string(frames - 1) + ")");
+    }
     const fs::path shown = animateOutDir(a), dir = a.writeDir.empty() ? shown : fs::path(a.writeDir);
 
     std::vector<Stream> streams{{"filtered"}, {"unfiltered"}};
@@ -155,7 +162,11 @@ int runAnimate(const AnimateArgs& a) {
         for (size_t pi = 0; pi < profiles.size(); ++pi) {
             const Profile& p = profiles[pi];
             std::unique_ptr<RtlModel> rtl;
-            if (a.model == "rtl") rtl = makeRtlModel(p.name, a.sim);
+            if (a.model == "rtl") {
+                SimOptions so = a.sim;
+                so.traceFile = (pi == 0 && k == a.traceFrame) ? a.traceFile : std::string();
+                rtl = makeRtlModel(p.name, so);
+            }
             HwRenderResult h = renderHardware(scene, p, rtl.get());
             Stream& st = streams[2 + pi];
             st.mismatches += h.mismatches;

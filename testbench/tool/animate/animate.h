@@ -28,7 +28,11 @@ struct AnimateArgs {
     std::vector<FilterVariant> variants;  // extra reference streams (named by the variant)
     std::vector<std::string> profiles;
     std::string model = "rtl";   // rtl | golden
-    SimOptions sim;
+    SimOptions sim;              // sim.traceStart/traceEnd: the window of traceFile (cycles of the frame's stream)
+    // FST waveform of the RTL stream of frame traceFrame (the first profile's; "": none). Cycles
+    // count from that frame's stream start (each frame runs a fresh RTL model), as in pst render.
+    std::string traceFile;
+    int traceFrame = 0;
     std::function<Profile(const std::string&)> loadProfile;
     std::function<void(const std::string&, double)> progress;   // (phase, fraction of the whole run)
 };

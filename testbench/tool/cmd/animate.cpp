@@ -36,8 +36,29 @@ Command registerAnimate(CLI::App& app) {
                         "and bandlimit replaced), with its flicker")
         ->delimiter(',');
     animate->add_flag("-q,--quiet", flags->second, "No progress on stderr");
-    return {animate, [an, variants, flags, animate]() {
+    auto trace = std::make_shared<std::string>();
+    animate->add_option("--trace", *trace, "FST waveform of the RTL stream of frame --trace-frame (off unless given)");
+    animate->add_option("--trace-frame", an->traceFrame, "The traced frame (0: the first; needed with --trace)")
+        ->check(CLI::Range(0, 9999));
+    animate->add_option("--trace-start", an->sim.traceStart, "First traced cycle (of the frame's stream)");
+    animate->add_option("--trace-end", an->sim.traceEnd, "Last traced cycle (of the frame's stream)");
+    return {animate, [an, variants, flags, animate, trace]() {
                 if (an->profiles.empty()) refuseGiven(animate, {"--model"}, "needs --profile (without it no hardware model runs)");
+                // --trace as pst render's, of one frame's stream.
+                const bool traceOpts = !trace->empty() || animate->count("--trace-frame") ||
+                                       animate->count("--trace-start") || animate->count("--trace-end");
+                if (traceOpts && an->profiles.empty()) throw InputError("--trace: needs --profile (the waves are the RTL's)");
+                if (traceOpts && an->model != "rtl") throw InputError("--trace: needs --model rtl (the golden model has no waves)");
+                if (traceOpts && trace->empty()) throw InputError("--trace-frame, --trace-start, --trace-end: need --trace FILE");
+                if (!trace->empty() && an->profiles.size() > 1)
+                    throw InputError("--trace: one --profile only (one waveform of one RTL stream)");
+                if (!trace->empty() && !animate->count("--trace-frame"))
+                    throw InputError("--trace: needs --trace-frame K (the frame whose RTL stream is traced)");
+                if (an->sim.traceStart > an->sim.traceEnd)
+                    throw InputError("--trace-start: " + std::to_string(an->sim.traceStart) + " is after --trace-end " +
+                                     std::to_string(an->sim.traceEnd));
+                if (!trace->empty()) checkTracePath(*trace);
+                checkNotInput("--trace", *trace, {an->scene});
                 checkOutDir("-o", an->outDir);
                 checkCreatableDir("-o", an->outDir.empty() ? "out" : an->outDir);
                 an->video = !flags->first;
@@ -55,6 +76,7 @@ Command registerAnimate(CLI::App& app) {
                 // One output transaction: every frame, video and flicker.json, or none of them.
                 Outputs outputs;
                 an->writeDir = outputs.dir("-o", animateOutDir(*an));
+                an->traceFile = outputs.file("--trace", *trace);
                 const int rc = runAnimate(*an);
                 outputs.commit();
                 return rc;

@@ -12,30 +12,26 @@
 namespace pst::cli {
 namespace {
 
-// The profile's Fmax (MHz) from scripts/synth/baseline.json, 0 if it has none.
-double baselineFmax(const std::string& profile) {
-    std::ifstream in(sourceDir() + "/scripts/synth/baseline.json");
-    if (!in) return 0;
-    const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-    if (j.is_discarded() || !j.contains("profiles") || !j["profiles"].contains(profile)) return 0;
-    const auto& p = j["profiles"][profile];
-    return p.contains("fmax_mhz") && p["fmax_mhz"].is_number() ? p["fmax_mhz"].get<double>() : 0;
-}
+// The profile's silicon clocks (MHz) as docs/data/silicon.json states them (scripts/gen_docs.py
+// writes it from the silicon record, pstlib/report/silicon_table.py: the one place that picks
+// the clock after layout): pre-layout, and after layout (the routed profile's post-route Fmax,
+// any other's pre-layout Fmax derated by the synthesis); 0 where it has none.
+struct SiliconClocks {
+    double preLayout = 0;
+    double afterLayout = 0;
+};
 
-// The profile's Fmax after layout (MHz): the routed profile's post-route figure (the chip timed
-// from its routed blocks, assembled_fmax_mhz, as the silicon table gives it; else the slowest
-// block's), any other profile's pre-layout Fmax times the routed blocks' worst ratio
-// (scripts/synth/layout_derate.json, as docs/HARDWARE.md's silicon table); 0 without it.
-double layoutFmax(const std::string& profile, double preLayout) {
-    std::ifstream in(sourceDir() + "/scripts/synth/layout_derate.json");
-    if (!in) return 0;
+SiliconClocks siliconClocks(const std::string& profile) {
+    SiliconClocks c;
+    std::ifstream in(sourceDir() + "/docs/data/silicon.json");
+    if (!in) return c;
     const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-    if (j.is_discarded()) return 0;
-    if (j.value("profile", "") == profile) {
-        for (const char* key : {"assembled_fmax_mhz", "post_route_fmax_mhz"})
-            if (j.contains(key) && j[key].is_number()) return j[key].get<double>();
-    }
-    return j.contains("ratio") && j["ratio"].is_number() ? preLayout * j["ratio"].get<double>() : 0;
+    if (j.is_discarded() || !j.contains("profiles") || !j["profiles"].contains(profile)) return c;
+    const auto& p = j["profiles"][profile];
+    auto mhz = [&](const char* key) { return p.contains(key) && p[key].is_number() ? p[key].get<double>() : 0.0; };
+    c.preLayout = mhz("fmax_mhz");
+    c.afterLayout = mhz("fmax_layout_mhz");
+    return c;
 }
 
 }  // namespace
@@ -86,7 +82,8 @@ nlohmann::json atlasJson(const AtlasArgs& a, const AtlasLayout& L, const AtlasVi
 int hardwareJson(const HwArgs& hw, const Profile& prof, const AtlasLayout& L, const AtlasViews& v,
                  const AtlasFill& fill, nlohmann::json& j, std::ostringstream& line) {
     int rc = 0;
-    const double fmax = baselineFmax(prof.name);
+    const SiliconClocks clocks = siliconClocks(prof.name);
+    const double fmax = clocks.preLayout;
     nlohmann::json f = {{"profile", prof.name}, {"model", hw.model}, {"texels", fill.texels},
                         {"golden_seconds", fill.goldenSeconds}, {"notes", fill.notes},
                         {"vs_reference", {{"rms", compareRgb(fill.hardware, fill.reference).rmsError}}},
@@ -101,7 +98,7 @@ int hardwareJson(const HwArgs& hw, const Profile& prof, const AtlasLayout& L, co
         f["stall_rate"] = hw.sim.outputStallRate;
         f["fmax_mhz"] = fmax > 0 ? nlohmann::json(fmax) : nlohmann::json(nullptr);
         f["fill_ms_at_fmax"] = fmax > 0 ? nlohmann::json(double(fill.cycles) / (fmax * 1e3)) : nlohmann::json(nullptr);
-        const double fmaxLayout = fmax > 0 ? layoutFmax(prof.name, fmax) : 0;
+        const double fmaxLayout = fmax > 0 ? clocks.afterLayout : 0;
         if (fmaxLayout > 0) {
             f["fmax_layout_mhz"] = fmaxLayout;
             f["fill_ms_at_layout_fmax"] = double(fill.cycles) / (fmaxLayout * 1e3);

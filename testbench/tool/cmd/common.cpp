@@ -138,8 +138,9 @@ void writeHtmlPage(const std::string& page, const std::string& shown, std::vecto
 }
 
 Profile profileByName(const std::string& name, bool rtl, bool hasModelOption) {
-    const std::string built = isProfileFile(name) ? "" : rtlProfilePath(name);
-    Profile p = built.empty() ? loadNamedProfile(name, sourceDir()) : loadProfile(built);
+    // A verilated profile's name: the registry's profile (parsed once, sim/rtl_registry.cpp.in).
+    const bool registered = !isProfileFile(name) && !rtlProfilePath(name).empty();
+    Profile p = registered ? rtlProfile(name) : loadNamedProfile(name, sourceDir());
     if (!rtl) return p;
     const std::string verilated = rtlProfilePath(p.name);
     if (verilated.empty()) {
@@ -149,7 +150,7 @@ Profile profileByName(const std::string& name, bool rtl, bool hasModelOption) {
                          "; add it with -DPST_PROFILES or -DPST_EXTRA_PROFILE_DIR" +
                          (hasModelOption ? ", or use --model golden)" : ")"));
     }
-    const Profile v = loadProfile(verilated);
+    const Profile& v = rtlProfile(p.name);
     if (std::string key = profileDifference(p, v); !key.empty())
         throw InputError(p.path + ": " + key + ": differs from the profile the '" + p.name + "' RTL was verilated from (" +
                          verilated + "); rename the profile or verilate it (-DPST_EXTRA_PROFILE_DIR)");
