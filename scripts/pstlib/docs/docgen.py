@@ -90,3 +90,16 @@ def write(root: Path, sections: list) -> list:
 def cell(text: str) -> str:
     """TEXT as one Markdown table cell (pipes escaped, one line)."""
     return " ".join(text.split()).replace("|", "\\|")
+
+
+def load_record(root: Path, source: Path, key: str, how: str) -> dict:
+    """A measured record under docs/data/ (ROOT/SOURCE): its JSON, which must hold a non-empty
+    object KEY; ValueError naming the file and HOW it is written when it is missing or malformed."""
+    import json
+    path = root / source
+    if not path.exists():
+        raise ValueError(f"{source}: missing ({how})")
+    d = json.loads(path.read_text())
+    if not isinstance(d.get(key), dict) or not d[key]:
+        raise ValueError(f"{source}: {key}: missing")
+    return d

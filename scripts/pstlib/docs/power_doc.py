@@ -5,18 +5,13 @@ import json
 from pathlib import Path
 
 from .. import atomic
+from . import docgen
 
 SOURCE = Path("docs/data/power.json")
 
 
 def load(root: Path) -> dict:
-    path = root / SOURCE
-    if not path.exists():
-        raise ValueError(f"{SOURCE}: missing (scripts/power.py PROFILE --record)")
-    d = json.loads(path.read_text())
-    if not isinstance(d.get("profiles"), dict):
-        raise ValueError(f"{SOURCE}: profiles: missing")
-    return d
+    return docgen.load_record(root, SOURCE, "profiles", "scripts/power.py PROFILE --record")
 
 
 def _f(v, d=1) -> str:
@@ -72,13 +67,8 @@ ANIMATION_SOURCE = Path("docs/data/power_animation.json")
 
 
 def load_animation(root: Path) -> dict:
-    path = root / ANIMATION_SOURCE
-    if not path.exists():
-        raise ValueError(f"{ANIMATION_SOURCE}: missing (scripts/power.py PROFILE --animate SCENE --record-animation)")
-    d = json.loads(path.read_text())
-    if not isinstance(d.get("runs"), dict):
-        raise ValueError(f"{ANIMATION_SOURCE}: runs: missing")
-    return d
+    return docgen.load_record(root, ANIMATION_SOURCE, "runs",
+                              "scripts/power.py PROFILE --animate SCENE --record-animation")
 
 
 def record_animation(root: Path, doc: dict, command: str) -> None:

@@ -33,13 +33,10 @@ not change when the set grows.
 
 Seeds as valset.py's: training 0..999,999, validation 1,000,000..1,999,999, on streams of their
 own ("flyin_train", "flyin_holdout")."""
-import json
 import math
-import pathlib
 from typing import NamedTuple
 
-from .. import atomic
-from . import scenegen
+from . import scenegen, valset
 from .scenegen import _vec
 
 BASES = ["rayshade", "perlin2002", "worley", "subband"]
@@ -275,15 +272,7 @@ def write(out, seed: int, count: int, frames: int = DEFAULT_FRAMES, size: int = 
           split: Split = VALIDATION) -> dict:
     """OUT/PREFIX_NNN.toml (other sequences of either split removed) and OUT/manifest.json."""
     seqs = generate(seed, count, frames, size, split)
-    out = pathlib.Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    names = {f for f, _, _ in seqs}
-    for old in [*out.glob(f"{VALIDATION.prefix}_*.toml"), *out.glob(f"{TRAINING.prefix}_*.toml")]:
-        if old.name not in names:
-            old.unlink()
-    for fname, text, _ in seqs:
-        atomic.write_if_changed(out / fname, text)
     manifest = {"seed": seed, "count": count, "frames": frames, "size": size, "split": split.name,
                 "generator": "scripts/pstlib/validation/flyins.py", "sequences": [f for _, _, f in seqs]}
-    atomic.write_text(out / "manifest.json", json.dumps(manifest, indent=1) + "\n")
+    valset.write_set(out, seqs, (VALIDATION.prefix, TRAINING.prefix), manifest)
     return manifest

@@ -192,15 +192,21 @@ def write(out: pathlib.Path, seed: int = DEFAULT_SEED, count: int = DEFAULT_COUN
     """OUT/PREFIX_NNN.toml (files of other counts or the other split removed) and OUT/manifest.json;
     the manifest."""
     scenes = generate(seed, count, size, split)
-    out = pathlib.Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    names = {f for f, _, _ in scenes}
-    for old in [*out.glob(f"{HOLDOUT.prefix}_*.toml"), *out.glob(f"{TRAINING.prefix}_*.toml")]:
-        if old.name not in names:
-            old.unlink()
-    for fname, text, _ in scenes:
-        atomic.write_if_changed(out / fname, text)
     manifest = {"seed": seed, "count": count, "size": size, "split": split.name, "generator": "scripts/pstlib/validation/valset.py",
                 "scenes": [f for _, _, f in scenes]}
-    atomic.write_text(out / "manifest.json", json.dumps(manifest, indent=1) + "\n")
+    write_set(out, scenes, (HOLDOUT.prefix, TRAINING.prefix), manifest)
     return manifest
+
+
+def write_set(out, files, prefixes, manifest: dict) -> None:
+    """A generated scene set in OUT: FILES [(file name, text, features)] written where changed, the
+    other PREFIX_*.toml files of either split removed, OUT/manifest.json."""
+    out = pathlib.Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    names = {f for f, _, _ in files}
+    for old in [p for prefix in prefixes for p in out.glob(f"{prefix}_*.toml")]:
+        if old.name not in names:
+            old.unlink()
+    for fname, text, _ in files:
+        atomic.write_if_changed(out / fname, text)
+    atomic.write_text(out / "manifest.json", json.dumps(manifest, indent=1) + "\n")
