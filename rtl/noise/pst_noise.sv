@@ -294,12 +294,16 @@ module pst_noise #(
   // ---- 6. outputs -------------------------------------------------------------------------
   // floor to OF (drop GuardBits), sign-extend by one bit (the contract's saturation: the
   // ranges above never reach it).
-  assign valid_o = tk_out[3];
-  assign last_o  = tk_out[3] && (32'(tk_out[2:0]) == NoiseSteps - 1);
-  assign n_o = {root[VW-1], root[GuardBits +: VW-GuardBits]};
+  logic signed [NW-1:0] n_r;
+  logic [3*NGW-1:0]     g_r;
+  assign n_r = {root[VW-1], root[GuardBits +: VW-GuardBits]};
   for (genvar k = 0; k < 3; k++) begin : g_grad_out
-    assign grad_o[k*NGW +: NGW] = {root[VW+(k+1)*GW-1], root[VW+k*GW+GuardBits +: GW-GuardBits]};
+    assign g_r[k*NGW +: NGW] = {root[VW+(k+1)*GW-1], root[VW+k*GW+GuardBits +: GW-GuardBits]};
   end
+  // The token decoded at the output (b5, the tree's last level, is the unit's last register).
+  pst_noise_out #(.Width(NW + 3*NGW), .Regs(0), .NoiseSteps(NoiseSteps)) u_out (
+    .clk_i, .rst_ni, .en_i, .tok_i (tk_out), .data_i ({g_r, n_r}),
+    .valid_o, .last_o, .data_o ({grad_o, n_o}));
   logic unused_guard;
   assign unused_guard = ^{root[0 +: GuardBits], root[VW +: GuardBits], root[VW+GW +: GuardBits],
                           root[VW+2*GW +: GuardBits]};

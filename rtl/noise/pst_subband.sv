@@ -192,14 +192,10 @@ module pst_subband #(
     g_b[A2*NGW +: NGW] = '0;
   end
 
-  // The remaining pipeline registers at the output.
-  logic [3:0] tok_o;
-  pst_delay #(.Width(NW + 3*NGW), .Depth(RO)) u_out (
-    .clk_i, .rst_ni, .en_i, .d_i ({g_b, n_b}), .q_o ({grad_o, n_o}));
-  pst_delay #(.Width(4), .Depth(RO), .Reset(1'b1)) u_out_tok (
-    .clk_i, .rst_ni, .en_i, .d_i (tok_b), .q_o (tok_o));
-  assign valid_o = tok_o[3];
-  assign last_o  = tok_o[3] && (32'(tok_o[2:0]) == NoiseSteps - 1);
+  // The remaining pipeline registers at the output, and the token decoded there.
+  pst_noise_out #(.Width(NW + 3*NGW), .Regs(RO), .NoiseSteps(NoiseSteps)) u_out (
+    .clk_i, .rst_ni, .en_i, .tok_i (tok_b), .data_i ({g_b, n_b}),
+    .valid_o, .last_o, .data_o ({grad_o, n_o}));
 
   logic unused_in;   // lattice bits above the period, the third axis, the token's step
   assign unused_in = ^{sum_in, lat_i[A0*LB + PL +: LB - PL], lat_i[A1*LB + PL +: LB - PL],

@@ -308,14 +308,10 @@ module pst_worley #(
       .x_i (gacc[a*AccW +: AccW]), .y_o (g_b[a*NGW +: NGW]));
   end
 
-  // The remaining pipeline registers at the output.
-  logic [3:0] tok_o;
-  pst_delay #(.Width(NW + 3*NGW), .Depth(RO)) u_out (
-    .clk_i, .rst_ni, .en_i, .d_i ({g_b, n_b}), .q_o ({grad_o, n_o}));
-  pst_delay #(.Width(4), .Depth(RO), .Reset(1'b1)) u_out_tok (
-    .clk_i, .rst_ni, .en_i, .d_i (tok_e), .q_o (tok_o));
-  assign valid_o = tok_o[3];
-  assign last_o  = tok_o[3] && (32'(tok_o[2:0]) == NoiseSteps - 1);
+  // The remaining pipeline registers at the output, and the token decoded there.
+  pst_noise_out #(.Width(NW + 3*NGW), .Regs(RO), .NoiseSteps(NoiseSteps)) u_out (
+    .clk_i, .rst_ni, .en_i, .tok_i (tok_e), .data_i ({g_b, n_b}),
+    .valid_o, .last_o, .data_o ({grad_o, n_o}));
 
   logic unused_in;   // lattice bits above the 8-bit cube hash, coefficients above K
   if (K < 4) begin : g_unused_coef

@@ -1,10 +1,9 @@
-// pst_subband_sva: checker of pst_subband (the subband unit): steps in range and in order (0, 1,
-// .. NoiseSteps - 1 on consecutive valid advances, as pst_noise), a last token only with a valid
-// one, the in-plane tile pixel inside the tile, and the value sum V inside the bilinear bound:
+// pst_subband_sva: checker of pst_subband (the subband unit): steps in range and in order
+// (pst_noise_steps_sva, as pst_noise), and the value sum V inside the bilinear bound:
 // |V| <= 2^VBE (a convex combination of the corners' values, each at most K 2^(VB-1) with
-// weights of at most 1.0; pst_subband's VBE). Cover
-// points: each step entering; a held token; the tile's wrap-around (a corner at the tile's
-// last pixel in both axes, so that its neighbours are at pixel 0).
+// weights of at most 1.0; pst_subband's VBE). Cover points: each step entering; the tile's
+// wrap-around (a corner at the tile's last pixel in both axes, so that its neighbours are at
+// pixel 0). The token at the output: pst_noise_out_sva.
 `include "sva/pst_assert.svh"
 `default_nettype none
 
@@ -20,19 +19,13 @@ module pst_subband_sva #(
   input logic            en_i,
   input logic            valid_i,
   input logic [2:0]      step_i,
-  input logic            valid_o,
-  input logic            last_o,
   input logic [TL-1:0]   x0,
   input logic [TL-1:0]   x1,
   input logic [SUMW-1:0] sum_out,
   input logic [3:0]      tok_b
 );
-  // The step the next valid advance must carry.
-  logic [2:0] next_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) next_q <= '0;
-    else if (en_i && valid_i) next_q <= (32'(step_i) == NoiseSteps - 1) ? 3'd0 : step_i + 3'd1;
-  end
+  // Steps in range and in order, a cover point per step.
+  pst_noise_steps_sva #(.NoiseSteps(NoiseSteps)) u_steps (.*);
 
   // |V| of the sums so far: a partial convex combination, so at most the largest corner value
   // times the weights' total 2^(2 WF).
@@ -44,15 +37,7 @@ module pst_subband_sva #(
   logic unused_bits;
   assign unused_bits = ^{sum_out[SUMW-1:VW], tok_b[2:0]};
 
-  `PST_ASSERT(StepInRange, valid_i |-> (32'(step_i) < NoiseSteps))
-  `PST_ASSERT(StepsInOrder, (en_i && valid_i) |-> (step_i == next_q))
-  `PST_ASSERT(LastIsValid, last_o |-> valid_o)
   `PST_ASSERT(ValueBounded, tok_b[3] |-> v_bounded)
-  `PST_ASSERT_KNOWN(ValidKnown, {valid_o, last_o})
-  for (genvar j = 0; j < NoiseSteps; j++) begin : g_step
-    `PST_COVER(Step, en_i && valid_i && 32'(step_i) == j)
-  end
-  `PST_COVER(HeldToken, !en_i && valid_o)
   `PST_COVER(TileWrap, en_i && valid_i && x0 == '1 && x1 == '1)
 endmodule
 

@@ -1,10 +1,10 @@
-// pst_worley_sva: checker of pst_worley (the worley unit): steps in range and in order (0, 1,
-// .. NoiseSteps - 1 on consecutive valid advances, as pst_noise), a last token only with a
-// valid one; the list of the K nearest candidates is sorted by S after every step; after the
-// square roots the distances F_k of a valid token are non-decreasing in k and every gradient
-// component g_k,a has |g| <= 1 (2^NF). Cover points: each step entering; a later step putting
-// a new nearest point in front (the cube search matters); a cube with all M points; the last
-// step's empty slots (NoiseSteps not dividing the cube count); a held token.
+// pst_worley_sva: checker of pst_worley (the worley unit): steps in range and in order
+// (pst_noise_steps_sva, as pst_noise); the list of the K nearest candidates is sorted by S
+// after every step; after the square roots the distances F_k of a valid token are
+// non-decreasing in k and every gradient component g_k,a has |g| <= 1 (2^NF). Cover points:
+// each step entering; a later step putting a new nearest point in front (the cube search
+// matters); a cube with all M points; the last step's empty slots (NoiseSteps not dividing the
+// cube count). The token at the output: pst_noise_out_sva.
 `include "sva/pst_assert.svh"
 `default_nettype none
 
@@ -24,8 +24,6 @@ module pst_worley_sva #(
   input logic               en_i,
   input logic               valid_i,
   input logic [2:0]         step_i,
-  input logic               valid_o,
-  input logic               last_o,
   input logic [K*EW-1:0]    list_in,
   input logic [K*EW-1:0]    list_out,
   input logic [CPS-1:0]     cube_on,
@@ -34,12 +32,8 @@ module pst_worley_sva #(
   input logic [K*FW-1:0]    f_c,
   input logic [K*3*GKW-1:0] g_c
 );
-  // The step the next valid advance must carry.
-  logic [2:0] next_q;
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) next_q <= '0;
-    else if (en_i && valid_i) next_q <= (32'(step_i) == NoiseSteps - 1) ? 3'd0 : step_i + 3'd1;
-  end
+  // Steps in range and in order, a cover point per step.
+  pst_noise_steps_sva #(.NoiseSteps(NoiseSteps)) u_steps (.*);
 
   logic sorted, f_sorted, g_bounded, cube_full;
   always_comb begin
@@ -62,21 +56,13 @@ module pst_worley_sva #(
   logic unused_bits;
   assign unused_bits = ^{list_in[K*EW-1:SW], tok_c[2:0]};
 
-  `PST_ASSERT(StepInRange, valid_i |-> (32'(step_i) < NoiseSteps))
-  `PST_ASSERT(StepsInOrder, (en_i && valid_i) |-> (step_i == next_q))
-  `PST_ASSERT(LastIsValid, last_o |-> valid_o)
   `PST_ASSERT(ListSorted, valid_i |-> sorted)
   `PST_ASSERT(DistancesSorted, tok_c[3] |-> f_sorted)
   `PST_ASSERT(GradientBounded, tok_c[3] |-> g_bounded)
-  `PST_ASSERT_KNOWN(ValidKnown, {valid_o, last_o})
-  for (genvar j = 0; j < NoiseSteps; j++) begin : g_step
-    `PST_COVER(Step, en_i && valid_i && 32'(step_i) == j)
-  end
   `PST_COVER(NewNearestLater, en_i && valid_i && step_i != 3'd0 &&
                               list_out[0 +: SW] < list_in[0 +: SW])
   `PST_COVER(CubeFull, en_i && valid_i && cube_full)
   `PST_COVER(EmptySlots, en_i && valid_i && !cube_on[CPS-1])
-  `PST_COVER(HeldToken, !en_i && valid_o)
 endmodule
 
 bind pst_worley pst_worley_sva #(.NoiseSteps(NoiseSteps), .K(K), .M(M), .CPS(CPS), .SW(SW), .EW(EW),
