@@ -89,14 +89,8 @@ module pst_pipe_reg #(
     assign data_o  = b_full_q ? b_data_q : a_data_q;
   end
 
-  // Assertions
-`ifndef SYNTHESIS
-  // A payload offered downstream stays put until it is taken.
-  property p_stable_until_taken;
-    @(posedge clk_i) disable iff (!rst_ni) (valid_o && !ready_i) |=> (valid_o && $stable(data_o));
-  endproperty
-  assert property (p_stable_until_taken);
-`endif
+  // Assertions: the handshake on both sides is checked by pst_pipe_reg_sva (rtl/sva/, bound to
+  // every instance).
 
 endmodule
 

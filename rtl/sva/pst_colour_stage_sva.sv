@@ -1,5 +1,5 @@
-// pst_colour_stage_sva: checker of pst_colour_stage. Assertions: RGBA and the side payload
-// held while refused; the control register (kind, wrap) steady while a fragment is in the
+// pst_colour_stage_sva: checker of pst_colour_stage. Assertions: the handshake at the output
+// (pst_handshake_sva: RGBA and the side payload held while refused); the control register (kind, wrap) steady while a fragment is in the
 // stage. Cover points, per fragment entering the colour-table filter: every filter kind x
 // wrap x W case (W < 1, 1 <= W < N, W >= N: 24 points), the summed-area table's cases of
 // pst_clut_filter's header (mod: mean, entry, inside, wrap, the whole table; clamp: entry with
@@ -54,12 +54,11 @@ module pst_colour_stage_sva #(
   assign w_lt_1 = 32'(w_i) < (1 << WidthFrac);
   assign w_mid  = !w_lt_1 && !w_ge_n;
 
-  `PST_ASSERT(RgbaHeldWhileRefused, (valid_o && !ready_i) |=> (valid_o && $stable({rgba_o, side_o})))
+  pst_handshake_sva #(.Width(CB4 + SideW)) u_out (
+    .clk_i, .rst_ni, .valid_i (valid_o), .ready_i, .data_i ({rgba_o, side_o}));
   `PST_ASSERT(ControlSteadyInFlight, (valid_i || busy_o) |=> ($stable(kind_i) && $stable(clamp_i)))
   `PST_ASSERT(WGeNMatchesW, w_ge_n == (32'(w_i) >= (N << WidthFrac)))
-  `PST_ASSERT_KNOWN(HandshakeKnown, {valid_o, ready_o})
-  `PST_ASSERT(RgbaKnown, valid_o |-> !$isunknown(rgba_o))
-  `PST_COVER(Stalled, valid_o && !ready_i)
+  `PST_ASSERT_KNOWN(ReadyKnown, ready_o)
 
   // Filter kind x wrap x W.
   for (genvar k = 0; k < 4; k++) begin : g_kind

@@ -1,7 +1,8 @@
 // pst_octave_datapath_sva: checker of the octave datapaths' schedules (pst_octave_parallel,
-// pst_octave_serial). Assertions: the cycle counter stays in range, is zero without a fragment
-// and holds while the result is refused; [A] is released only at the last cycle; the noise
-// step and pass in range; the serial rows in range. Cover points: each pass's last noise step
+// pst_octave_serial). Assertions: the handshake at the output (pst_handshake_sva, bound below:
+// the side payload held while [B] refuses it); the cycle counter stays in range, is zero
+// without a fragment and holds while the result is refused; [A] is released only at the last
+// cycle; the noise step and pass in range; the serial rows in range. Cover points: each pass's last noise step
 // and (serial) every transform and term row and a fragment waiting for the quadric.
 `include "sva/pst_assert.svh"
 `default_nettype none
@@ -73,5 +74,11 @@ bind pst_octave_serial pst_octave_datapath_sva #(
   .npass (sch.npass), .nstep (sch.nstep), .last_cycle, .quad_done, .xf_on (sch.xf_on),
   .xrow (sch.xrow), .tm_on (sch.tm_on), .trow (sch.trow)
 );
+
+// The hand-over to [B]: the handshake checker on each datapath's output.
+bind pst_octave_parallel pst_handshake_sva #(.Width(SideW)) u_sva_out (
+  .clk_i, .rst_ni, .valid_i (valid_o), .ready_i, .data_i (side_o));
+bind pst_octave_serial pst_handshake_sva #(.Width(SideW)) u_sva_out (
+  .clk_i, .rst_ni, .valid_i (valid_o), .ready_i, .data_i (side_o));
 
 `default_nettype wire

@@ -1,8 +1,7 @@
-// pst_octave_stage_sva: checker of pst_octave_stage's hand-over to [B]. Assertions: the result
-// is held while refused (f, grad f and the side payload with it), the handshake and a result
-// are never unknown. Cover points: f and each grad f component at the top and bottom of their
-// formats, the quadric at its format's extremes, the result stalled, 0 / some / all octaves
-// active. The datapaths' schedules are checked by pst_octave_datapath_sva, the saturation of
+// pst_octave_stage_sva: checker of pst_octave_stage's hand-over to [B]. Assertions: the
+// handshake (pst_handshake_sva: the result held while refused, f, grad f and the side payload
+// with it, never unknown). Cover points: f and each grad f component at the top and bottom of
+// their formats, the quadric at its format's extremes, 0 / some / all octaves active. The datapaths' schedules are checked by pst_octave_datapath_sva, the saturation of
 // the sums by pst_octave_accum_sva.
 `include "sva/pst_assert.svh"
 `default_nettype none
@@ -33,9 +32,9 @@ module pst_octave_stage_sva #(
   logic taken;
   assign taken = valid_o && ready_i;
 
-  `PST_ASSERT(ResultHeldWhileRefused, (valid_o && !ready_i) |=> (valid_o && $stable({f_o, grad_o, side_o})))
-  `PST_ASSERT_KNOWN(HandshakeKnown, {valid_o, ready_o})
-  `PST_ASSERT(ResultKnown, valid_o |-> !$isunknown({f_o, grad_o}))
+  pst_handshake_sva #(.Width(FW + 3*GW + SideW)) u_out (
+    .clk_i, .rst_ni, .valid_i (valid_o), .ready_i, .data_i ({f_o, grad_o, side_o}));
+  `PST_ASSERT_KNOWN(ReadyKnown, ready_o)
 
   `PST_COVER(FAtMax, taken && f_o == FMax)
   `PST_COVER(FAtMin, taken && f_o == FMin)
@@ -47,7 +46,6 @@ module pst_octave_stage_sva #(
   `PST_COVER(QuadricSatHigh, taken && q_e == FMax)
   `PST_COVER(QuadricSatLow, taken && q_e == FMin)
 
-  `PST_COVER(ResultStalled, valid_o && !ready_i)
   `PST_COVER(NoActiveOctaves, taken && active_i == '0)
   `PST_COVER(SomeActiveOctaves, taken && active_i != '0 && 32'(active_i) < Octaves)
   `PST_COVER(AllActiveOctaves, taken && 32'(active_i) == Octaves)

@@ -1,5 +1,5 @@
 // pst_pipe_reg_sva: checker of pst_pipe_reg (bound to every instance): the valid/ready
-// handshake on both sides, and cover points for back-pressure while full, full throughput and
+// handshake on both sides (pst_handshake_sva), and cover points for back-pressure while full, full throughput and
 // a bubble. Ports only (the register's own rule, ready_o = ready_i | ~valid_q, may change).
 `include "sva/pst_assert.svh"
 `default_nettype none
@@ -17,11 +17,11 @@ module pst_pipe_reg_sva #(
   input logic [Width-1:0] data_o
 );
   // Downstream: an offered payload stays put until it is taken.
-  `PST_ASSERT(DataStableUntilTaken, (valid_o && !ready_i) |=> (valid_o && $stable(data_o)))
+  pst_handshake_sva #(.Width(Width)) u_out (
+    .clk_i, .rst_ni, .valid_i (valid_o), .ready_i, .data_i (data_o));
   // Upstream (the source's side of the protocol): an offer is kept until it is taken.
-  `PST_ASSERT(UpstreamHoldsOffer, (valid_i && !ready_o) |=> (valid_i && $stable(data_i)))
-  `PST_ASSERT_KNOWN(HandshakeKnown, {valid_o, ready_o})
-  `PST_ASSERT(DataKnown, valid_o |-> !$isunknown(data_o))
+  pst_handshake_sva #(.Width(Width)) u_in (
+    .clk_i, .rst_ni, .valid_i, .ready_i (ready_o), .data_i);
   // Back-pressure while full: a payload waits and the source offers the next one.
   `PST_COVER(BackPressureFull, valid_o && !ready_i && valid_i)
   // Full throughput: one payload in and one out in the same cycle.

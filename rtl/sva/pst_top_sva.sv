@@ -1,7 +1,8 @@
 // pst_top_sva: checker of pst_top's interface: register writes only while idle (the driver's
-// rule: registers change between objects, with the pipeline drained), both stream handshakes,
-// idle means empty; cover points for back-pressure from the output to the input (the whole
-// pipeline full), a refused fragment and a register write right after traffic.
+// rule: registers change between objects, with the pipeline drained), both stream handshakes
+// (pst_handshake_sva, with cover points for a refused fragment and a stalled output), idle
+// means empty; cover points for back-pressure from the output to the input (the whole
+// pipeline full) and a register write right after traffic.
 `include "sva/pst_assert.svh"
 `default_nettype none
 
@@ -26,19 +27,18 @@ module pst_top_sva #(
 );
   `PST_ASSERT(RegWriteOnlyWhenIdle, reg_we_i |-> idle_o)
   // The driver keeps an offered fragment until it is taken (an assumption on the source).
-  `PST_ASSERT(FragHeldUntilTaken, (frag_valid_i && !frag_ready_o) |=>
-                                  (frag_valid_i && $stable({frag_tag_i, frag_s_i, frag_j_i})))
+  pst_handshake_sva #(.Width(TB + 3*CW + 6*JW)) u_frag (
+    .clk_i, .rst_ni, .valid_i (frag_valid_i), .ready_i (frag_ready_o),
+    .data_i ({frag_tag_i, frag_s_i, frag_j_i}));
   // A colour offered at the output stays until it is taken.
-  `PST_ASSERT(OutHeldUntilTaken, (out_valid_o && !out_ready_i) |=> (out_valid_o && $stable(out_all)))
+  pst_handshake_sva #(.Width(OutW)) u_out (
+    .clk_i, .rst_ni, .valid_i (out_valid_o), .ready_i (out_ready_i), .data_i (out_all));
   // Idle means empty: with no fragment coming in, nothing comes out next cycle.
   `PST_ASSERT(IdleNothingOut, (idle_o && !frag_valid_i) |=> !out_valid_o)
   `PST_ASSERT(OutNotIdle, out_valid_o |-> !idle_o)
-  `PST_ASSERT_KNOWN(HandshakeKnown, {frag_ready_o, out_valid_o, idle_o})
-  `PST_ASSERT(OutKnown, out_valid_o |-> !$isunknown(out_all))
+  `PST_ASSERT_KNOWN(IdleKnown, idle_o)
 
   `PST_COVER(BackPressureFull, out_valid_o && !out_ready_i && frag_valid_i && !frag_ready_o)
-  `PST_COVER(InputRefused, frag_valid_i && !frag_ready_o)
-  `PST_COVER(OutputStalled, out_valid_o && !out_ready_i)
   `PST_COVER(InAndOut, frag_valid_i && frag_ready_o && out_valid_o && out_ready_i)
   `PST_COVER(RegWriteAfterTraffic, reg_we_i && $past(!idle_o))
 endmodule

@@ -1,6 +1,7 @@
-// pst_width_stage_sva: checker of pst_width_stage. Assertions: W and the side payload held
-// while refused. Cover points: W saturated at the format's maximum (the norm's overflow, and W
-// at WMax), W = 0, a stall; serial: the first and the last step of a fragment.
+// pst_width_stage_sva: checker of pst_width_stage. Assertions: the handshake at the output
+// (pst_handshake_sva: W and the side payload held while refused), W at the maximum when the
+// norm overflows. Cover points: W saturated at the format's maximum (the norm's overflow, and W
+// at WMax), W = 0; serial: the first and the last step of a fragment.
 `include "sva/pst_assert.svh"
 `default_nettype none
 
@@ -26,14 +27,13 @@ module pst_width_stage_sva #(
   logic taken;
   assign taken = valid_o && ready_i;
 
-  `PST_ASSERT(WHeldWhileRefused, (valid_o && !ready_i) |=> (valid_o && $stable({w_o, side_o})))
+  pst_handshake_sva #(.Width(WW + SideW)) u_out (
+    .clk_i, .rst_ni, .valid_i (valid_o), .ready_i, .data_i ({w_o, side_o}));
   `PST_ASSERT(NormSatGivesMax, (valid_o && norm_sat) |-> (w_o == WMax))
-  `PST_ASSERT_KNOWN(HandshakeKnown, {valid_o, ready_o})
-  `PST_ASSERT(WKnown, valid_o |-> !$isunknown(w_o))
+  `PST_ASSERT_KNOWN(ReadyKnown, ready_o)
   `PST_COVER(NormSat, taken && norm_sat)
   `PST_COVER(WMaxOut, taken && w_o == WMax)
   `PST_COVER(WZero, taken && w_o == '0)
-  `PST_COVER(Stalled, valid_o && !ready_i)
   if (Serial) begin : g_serial
     `PST_COVER(FirstStep, valid_i && !done && step_q == '0)
     `PST_COVER(LastStep, valid_i && done && step_q != '0)

@@ -179,13 +179,8 @@ module pst_top #(
 
   assign idle_o = ~(a_valid | octave_busy | b_valid | width_busy | c_valid | colour_busy | out_valid_o);
 
-  // Assertions
+  // Assertions (the register-write rule and both stream handshakes: pst_top_sva, rtl/sva/)
 `ifndef SYNTHESIS
-  // Registers change only between objects, with the pipeline drained.
-  assert property (@(posedge clk_i) disable iff (!rst_ni) reg_we_i |-> idle_o);
-  // The driver keeps an offered fragment until it is taken (an assumption on the source).
-  assert property (@(posedge clk_i) disable iff (!rst_ni)
-                   (frag_valid_i && !frag_ready_o) |=> (frag_valid_i && $stable(frag_tag_i)));
   // The profile's ranges and cross-constraints (generated from rtl/contract.toml).
 `include "pst_profile_checks.svh"
 `endif
