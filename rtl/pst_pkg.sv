@@ -229,6 +229,12 @@ package pst_pkg;
   function automatic int max_int(input int a, input int b);
     max_int = (a > b) ? a : b;
   endfunction
+  // octave_count_bits: bits of the active-octave count 0..Octaves (the register active and the
+  // datapaths' count; the golden model keeps as many bits of a write)
+  //   = clog2(Octaves + 1)
+  function automatic int octave_count_bits(input int Octaves);
+    octave_count_bits = $clog2((Octaves + 1));
+  endfunction
   // w_int_bits: integer bits of W = w N in colour-table entries (unsigned, W < 4 N)
   //   = Log2Clut + WidthExtraIntBits
   function automatic int w_int_bits(input int Log2Clut);

@@ -643,7 +643,14 @@ constexpr void setParam(ProfileParams& p, Param k, int v) {
 
 // Derived widths and cycle counts (rtl/contract.toml [formula]; the same functions are in pst_pkg
 // and scripts/pstlib/formulas.py).
+constexpr int clog2_int(int a) { int b = 0; while ((1 << b) < a) ++b; return b; }
 constexpr int max_int(int a, int b) { return a > b ? a : b; }
+// octave_count_bits: bits of the active-octave count 0..Octaves (the register active and the
+// datapaths' count; the golden model keeps as many bits of a write)
+//   = clog2(Octaves + 1)
+constexpr int octave_count_bits(int octaves) {
+    return clog2_int((octaves + 1));
+}
 // w_int_bits: integer bits of W = w N in colour-table entries (unsigned, W < 4 N)
 //   = Log2Clut + WidthExtraIntBits
 constexpr int w_int_bits(int log2Clut) {

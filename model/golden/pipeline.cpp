@@ -48,8 +48,7 @@ void GoldenPipeline::write(uint16_t addr, uint32_t data) {
         ctrl_ = data & ((1u << c::kRegControlBits) - 1);  // [0] clamp, [2:1] filter kind, [3] bandlimit
         if (!p.bandlimit()) ctrl_ &= ~(1u << c::kRegControlBandlimitLsb);  // no fade unit: the bit is not kept
     } else if (addr == c::kRegActive) {
-        const int bits = [&] { int b = 0; while ((1 << b) < p.octaves + 1) ++b; return b; }();
-        active_ = int(fx::wrapUnsigned(data, bits));  // the RTL keeps $clog2(Octaves + 1) bits
+        active_ = int(fx::wrapUnsigned(data, c::octave_count_bits(p.octaves)));  // as many bits as the RTL
     } else if (addr >= c::kRegQuadric && addr < c::kRegQuadric + c::kRegQuadricCount) {
         quad_[addr - c::kRegQuadric] = fx::wrapSigned(data, p.quadric.width());
     } else if (addr >= c::kRegWorley && addr < c::kRegWorley + c::kRegWorleyCount) {

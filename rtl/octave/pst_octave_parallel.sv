@@ -47,7 +47,7 @@ module pst_octave_parallel #(
   localparam int PPB = pst_pkg::ProbePassBits,
   localparam int FB  = pst_pkg::FadeBits,
   localparam int LMW = pst_pkg::FadeLgBits,
-  localparam int OctBits = $clog2(Octaves + 1)
+  localparam int OctBits = pst_pkg::octave_count_bits(Octaves)
 ) (
   input  logic                      clk_i,
   input  logic                      rst_ni,

@@ -41,7 +41,7 @@ module pst_octave_serial #(
   localparam int PPB = pst_pkg::ProbePassBits,
   localparam int FB  = pst_pkg::FadeBits,
   localparam int LMW = pst_pkg::FadeLgBits,
-  localparam int OctBits = $clog2(Octaves + 1),
+  localparam int OctBits = pst_pkg::octave_count_bits(Octaves),
   localparam int SLW = ((NoiseSubbandOrientations == 0) ? 1 : NoiseSubbandOrientations) * FB
 ) (
   input  logic                      clk_i,

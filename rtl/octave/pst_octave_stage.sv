@@ -38,7 +38,7 @@ module pst_octave_stage #(
   localparam int NGW = pst_pkg::NoiseGradIntBits + NoiseOutFrac,  // one noise gradient component
   localparam int LTW = pst_pkg::LatticeWidth,                     // one lane's lattice index
   localparam int PPB = pst_pkg::ProbePassBits,
-  localparam int OctBits = $clog2(Octaves + 1),                   // active octave count
+  localparam int OctBits = pst_pkg::octave_count_bits(Octaves),   // active octave count
   localparam int FB  = pst_pkg::FadeBits,                         // a fade table entry, alpha
   localparam int LMW = pst_pkg::FadeLgBits,                       // lg ||M||
   localparam int WCW = pst_pkg::RegWorleyCount * (pst_pkg::WorleyCoefInt + pst_pkg::WorleyCoefFrac)

@@ -46,7 +46,7 @@ module pst_regs #(
   localparam int OW  = OffsetInt + OffsetFrac,
   localparam int AW  = AmplitudeInt + AmplitudeFrac,
   localparam int GMW = GradMatrixInt + GradMatrixFrac,
-  localparam int OctBits = $clog2(Octaves + 1),        // active octave count 0..Octaves
+  localparam int OctBits = pst_pkg::octave_count_bits(Octaves),  // active octave count 0..Octaves
   localparam int AB  = pst_pkg::RegAddrBits,
   localparam int DB  = pst_pkg::RegDataBits,
   localparam int KB  = pst_pkg::RegControlKindWidth,

@@ -107,7 +107,7 @@ module pst_top #(
   localparam bit Skid = (Datapath == pst_pkg::DatapathParallel);
 
   // Registers: control, quadric, octaves.
-  localparam int RegOctW = $clog2(Octaves + 1);
+  localparam int RegOctW = pst_pkg::octave_count_bits(Octaves);
   logic                          clamp;
   logic [pst_pkg::RegControlKindWidth-1:0] kind;
   logic [RegOctW-1:0]            active;

@@ -176,7 +176,9 @@ def load(path: str | Path | None = None) -> Contract:
 # ---------------------------------------------------------------------------------------------
 _FTOKEN = re.compile(r"\s*(?:(\d+)|([A-Za-z_][A-Za-z0-9_]*)|(&&|\|\||==|!=|<=|>=|<<|>>|[-+*/%<>()!?:,.]))")
 _BINARY = [["||"], ["&&"], ["==", "!="], ["<", "<=", ">", ">="], ["<<", ">>"], ["+", "-"], ["*", "/", "%"]]
-BUILTINS = {"max": 2, "min": 2}
+# Built-in functions and their argument counts: max(a, b), min(a, b), and clog2(a) = the least b
+# with 2^b >= a (SystemVerilog's $clog2; clog2(Octaves + 1): the bits of a count 0..Octaves).
+BUILTINS = {"max": 2, "min": 2, "clog2": 1}
 
 
 def parse_formula(expr: str, args: list[str], c: Contract) -> tuple:

@@ -11,6 +11,17 @@ WidthProducts = 6
 WidthEuclidSquares = 2
 
 
+def clog2_int(a) -> int:
+    """The least b with 2^b >= a (SystemVerilog's $clog2)."""
+    return max(a - 1, 0).bit_length()
+
+
+def octave_count_bits(Octaves) -> int:
+    """Bits of the active-octave count 0..Octaves (the register active and the datapaths' count;
+    the golden model keeps as many bits of a write)."""
+    return int(clog2_int((Octaves + 1)))
+
+
 def w_int_bits(Log2Clut) -> int:
     """Integer bits of W = w N in colour-table entries (unsigned, W < 4 N)."""
     return int(Log2Clut + WidthExtraIntBits)

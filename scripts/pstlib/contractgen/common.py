@@ -28,7 +28,9 @@ def emit_formula(t: tuple, lang: str, c: Contract) -> str:
         idx = c.enum_of_param()[t[1]].enum.index(t[2])
         return f"{t[1]}{camel(t[2])}" if lang == "sv" else str(idx)
     if kind == "call":
-        name = {"sv": {"max": "max_int", "min": "min_int"}, "cpp": {"max": "max_int", "min": "min_int"}}.get(lang, {}).get(t[1], t[1])
+        name = {"sv": {"max": "max_int", "min": "min_int", "clog2": "$clog2"},
+                "cpp": {"max": "max_int", "min": "min_int", "clog2": "clog2_int"},
+                "py": {"clog2": "clog2_int"}}[lang].get(t[1], t[1])
         return f"{name}({', '.join(emit_formula(a, lang, c) for a in t[2])})"
     if kind == "un":
         op = "not " if lang == "py" and t[1] == "!" else t[1]

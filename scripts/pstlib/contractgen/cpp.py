@@ -180,7 +180,10 @@ def _cpp_formulas(c: Contract) -> list[str]:
                  "pst_pkg and scripts/pstlib/formulas.py).")
     calls = set().union(*(_names(f.tree, "call") for f in c.formulas)) if c.formulas else set()
     for b in sorted(calls & set(BUILTINS)):
-        L.append(f"constexpr int {b}_int(int a, int b) {{ return a {'>' if b == 'max' else '<'} b ? a : b; }}")
+        if b == "clog2":
+            L.append("constexpr int clog2_int(int a) { int b = 0; while ((1 << b) < a) ++b; return b; }")
+        else:
+            L.append(f"constexpr int {b}_int(int a, int b) {{ return a {'>' if b == 'max' else '<'} b ? a : b; }}")
     for f in c.formulas:
         L += _comment("// ", f"{f.name}: {f.doc}") + _comment("//   = ", f.expr, then="//     ")
         args = ", ".join(f"int {cpp_arg(a)}" for a in f.args)

@@ -12,6 +12,9 @@ def python_formulas(c: Contract) -> str:
     L = [f'"""{HEADER}', "", "The [formula] functions of rtl/contract.toml (pstlib.contract.formulas).", '"""', ""]
     used = [n for n in c.constants if any(n in _names(f.tree, "const") for f in c.formulas)]
     L += [f"{n} = {c.constants[n][0]}" for n in used]
+    if any("clog2" in _names(f.tree, "call") for f in c.formulas):
+        L += ["", "", "def clog2_int(a) -> int:", '    """The least b with 2^b >= a (SystemVerilog\'s $clog2)."""',
+              "    return max(a - 1, 0).bit_length()"]
     for f in c.formulas:
         L += ["", "", f"def {f.name}({', '.join(f.args)}) -> int:"]
         if f.doc:

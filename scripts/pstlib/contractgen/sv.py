@@ -67,7 +67,7 @@ def sv_functions(c: Contract) -> list[str]:
                  "constexpr in model/golden/contract.h and Python in scripts/pstlib/formulas.py). Call them as "
                  "pst_pkg::w_width(Log2Clut, WidthFrac).")
     calls = set().union(*(_names(f.tree, "call") for f in c.formulas)) if c.formulas else set()
-    for b in sorted(calls & set(BUILTINS)):
+    for b in sorted(calls & set(BUILTINS) - {"clog2"}):   # clog2: SystemVerilog's own $clog2
         op = ">" if b == "max" else "<"
         L += [f"  function automatic int {b}_int(input int a, input int b);",
               f"    {b}_int = (a {op} b) ? a : b;", "  endfunction"]
