@@ -24,12 +24,14 @@
 // the pr_* outputs to zero.
 `include "pst_pkg.sv"
 `include "pst_params.svh"
+`include "octave/pst_octave_datapath_ports.svh"
 `default_nettype none
 
 module pst_octave_parallel #(
   `PST_OCTAVE_PARAMS,
   `PST_LANE_PARAMS,
   parameter int SideW = pst_pkg::TagBits, parameter bit DebugProbes = 1'b1,
+  parameter int NoiseSubbandOrientations = 0,   // the width of nz_lam_o (the weights: all 1.0 here)
   localparam int CW  = CoordInt + CoordFrac,
   localparam int MW  = MatrixInt + MatrixFrac,
   localparam int OW  = OffsetInt + OffsetFrac,
@@ -47,49 +49,10 @@ module pst_octave_parallel #(
   localparam int PPB = pst_pkg::ProbePassBits,
   localparam int FB  = pst_pkg::FadeBits,
   localparam int LMW = pst_pkg::FadeLgBits,
-  localparam int OctBits = pst_pkg::octave_count_bits(Octaves)
+  localparam int OctBits = pst_pkg::octave_count_bits(Octaves),
+  localparam int SLW = ((NoiseSubbandOrientations == 0) ? 1 : NoiseSubbandOrientations) * FB
 ) (
-  input  logic                      clk_i,
-  input  logic                      rst_ni,
-  input  logic                      valid_i,
-  output logic                      ready_o,
-  input  logic [3*CW-1:0]           s_i,
-  input  logic [SideW-1:0]          side_i,
-  output logic                      valid_o,
-  input  logic                      ready_i,
-  output logic [SideW-1:0]          side_o,
-  output logic                      busy_o,
-  // Registers (pst_octave_stage's)
-  input  logic [OctBits-1:0]        active_i,
-  input  logic [10*QW-1:0]          quad_i,
-  input  logic [Octaves*9*MW-1:0]   oct_m_i,
-  input  logic [Octaves*3*OW-1:0]   oct_o_i,
-  input  logic [Octaves*AW-1:0]     oct_a_i,
-  input  logic [Octaves*9*GMW-1:0]  oct_gm_i,
-  input  logic [Octaves*LMW-1:0]    oct_lgm_i,
-  input  logic [Octaves*FW-1:0]     oct_fm_i,
-  input  logic                      bl_i,
-  input  logic [pst_pkg::FadeEntries*FB-1:0] fade_i,
-  // The noise units (lane u at [u*W +: W])
-  output logic                      nz_en_o,
-  output logic                      nz_valid_o,
-  output logic [2:0]                nz_step_o,
-  output logic [NoiseUnits*LTW-1:0] nz_lat_o,
-  output logic [NoiseUnits*3*LF-1:0] nz_frac_o,
-  input  logic [NoiseUnits*NW-1:0]  nz_n_i,
-  input  logic [NoiseUnits*3*NGW-1:0] nz_g_i,
-  // The accumulators: this beat's terms, added (first: from zero); the quadric with the last
-  output logic [NoiseUnits*FW-1:0]  fterm_o,
-  output logic [NoiseUnits*3*GW-1:0] gterm_o,
-  output logic                      acc_en_o,
-  output logic                      acc_first_o,
-  output logic [FW-1:0]             q_o,
-  output logic [3*GW-1:0]           gradq_o,
-  // Probes: the pass whose noise results are at the noise units' outputs
-  output logic                      pr_valid_o,
-  output logic [PPB-1:0]            pr_pass_o,
-  output logic [TB-1:0]             pr_tag_o,
-  output logic [TB-1:0]             pr_q_tag_o
+  `PST_OCTAVE_DATAPATH_PORTS
 );
 
   localparam int Passes   = pst_pkg::octave_passes(Octaves, NoiseUnits);
@@ -295,6 +258,11 @@ module pst_octave_parallel #(
       .q_o ({gterm_o[u*3*GW +: 3*GW], fterm_o[u*FW +: FW]}));
   end
 
+  // No subband filter on the parallel datapath (rtl/contract.toml): the weights are 1.0.
+  for (genvar k = 0; k < NoiseUnits * SLW / FB; k++) begin : g_lam
+    assign nz_lam_o[k*FB +: FB] = FB'(1 << pst_pkg::FadeFrac);
+  end
+
   assign acc_en_o    = en & beat_e.valid;
   assign acc_first_o = beat_e.first;
   assign valid_o     = beat_e.valid & beat_e.last;
@@ -304,8 +272,8 @@ module pst_octave_parallel #(
   assign pr_pass_o   = DebugProbes ? PPB'(beat_n.pass) : '0;
   assign pr_tag_o    = DebugProbes ? side_n[TB-1:0] : '0;
   assign pr_q_tag_o  = DebugProbes ? side_e[TB-1:0] : '0;
-  logic unused;
-  assign unused = ^{beat_x.pass, beat_x.pass_oh, beat_x.on, beat_x.first, beat_x.last, beat_n.first,
+  logic unused;   // nz_last_i: the beats carry their own step
+  assign unused = ^{nz_last_i, beat_x.pass, beat_x.pass_oh, beat_x.on, beat_x.first, beat_x.last, beat_n.first,
                     beat_n.last, beat_e.pass, beat_e.pass_oh, beat_e.on, beat_e.step, side_n[SideW-1:TB]};
 
   // Assertions

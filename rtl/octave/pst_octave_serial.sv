@@ -15,6 +15,7 @@
 // the pr_* outputs to zero.
 `include "pst_pkg.sv"
 `include "pst_params.svh"
+`include "octave/pst_octave_datapath_ports.svh"
 `default_nettype none
 
 module pst_octave_serial #(
@@ -44,49 +45,7 @@ module pst_octave_serial #(
   localparam int OctBits = pst_pkg::octave_count_bits(Octaves),
   localparam int SLW = ((NoiseSubbandOrientations == 0) ? 1 : NoiseSubbandOrientations) * FB
 ) (
-  input  logic                      clk_i,
-  input  logic                      rst_ni,
-  input  logic                      valid_i,
-  output logic                      ready_o,
-  input  logic [3*CW-1:0]           s_i,
-  input  logic [SideW-1:0]          side_i,
-  output logic                      valid_o,
-  input  logic                      ready_i,
-  output logic [SideW-1:0]          side_o,
-  output logic                      busy_o,
-  // Registers (pst_octave_stage's; they do not change while a fragment is in flight)
-  input  logic [OctBits-1:0]        active_i,
-  input  logic [10*QW-1:0]          quad_i,
-  input  logic [Octaves*9*MW-1:0]   oct_m_i,
-  input  logic [Octaves*3*OW-1:0]   oct_o_i,
-  input  logic [Octaves*AW-1:0]     oct_a_i,
-  input  logic [Octaves*9*GMW-1:0]  oct_gm_i,
-  input  logic [Octaves*LMW-1:0]    oct_lgm_i,
-  input  logic [Octaves*FW-1:0]     oct_fm_i,
-  input  logic                      bl_i,
-  input  logic [pst_pkg::FadeEntries*FB-1:0] fade_i,
-  // The noise units (lane u at [u*W +: W])
-  output logic                      nz_en_o,
-  output logic                      nz_valid_o,
-  output logic [2:0]                nz_step_o,
-  output logic [NoiseUnits*LTW-1:0] nz_lat_o,
-  output logic [NoiseUnits*3*LF-1:0] nz_frac_o,
-  output logic [NoiseUnits*SLW-1:0] nz_lam_o,    // the subband unit's weights (lane u at [u*SLW +: SLW])
-  input  logic [NoiseUnits*NW-1:0]  nz_n_i,
-  input  logic [NoiseUnits*3*NGW-1:0] nz_g_i,
-  input  logic [NoiseUnits-1:0]     nz_last_i,   // the output is an evaluation's last step
-  // The accumulators: this cycle's terms, added (first: from zero); the quadric with the last
-  output logic [NoiseUnits*FW-1:0]  fterm_o,
-  output logic [NoiseUnits*3*GW-1:0] gterm_o,
-  output logic                      acc_en_o,
-  output logic                      acc_first_o,
-  output logic [FW-1:0]             q_o,
-  output logic [3*GW-1:0]           gradq_o,
-  // Probes: the pass whose noise results are at the noise units' outputs
-  output logic                      pr_valid_o,
-  output logic [PPB-1:0]            pr_pass_o,
-  output logic [TB-1:0]             pr_tag_o,
-  output logic [TB-1:0]             pr_q_tag_o
+  `PST_OCTAVE_DATAPATH_PORTS
 );
 
   localparam int SR       = pst_pkg::SerialRows;

@@ -16,6 +16,7 @@
 // target).
 `include "pst_pkg.sv"
 `include "pst_params.svh"
+`include "octave/pst_octave_datapath_ports.svh"
 `default_nettype none
 
 module pst_octave_stage #(
@@ -107,32 +108,11 @@ module pst_octave_stage #(
   if (Serial) begin : g_serial
     pst_octave_serial #(`PST_OCTAVE_PASS, `PST_LANE_PASS, .SideW(SideW), .DebugProbes(DebugProbes),
       .NoiseSubband(NoiseSubband), .NoiseSubbandOrientations(NoiseSubbandOrientations)
-    ) u_datapath (
-      .clk_i, .rst_ni, .valid_i, .ready_o, .s_i, .side_i, .valid_o, .ready_i, .side_o, .busy_o,
-      .active_i, .quad_i, .oct_m_i, .oct_o_i, .oct_a_i, .oct_gm_i, .oct_lgm_i, .oct_fm_i, .bl_i, .fade_i,
-      .nz_en_o (nz_en), .nz_valid_o (nz_valid), .nz_step_o (nz_step), .nz_lat_o (nz_lat),
-      .nz_frac_o (nz_frac), .nz_lam_o (nz_lam), .nz_n_i (nz_n), .nz_g_i (nz_g), .nz_last_i (nz_last),
-      .fterm_o (fterm), .gterm_o (gterm), .acc_en_o (acc_en), .acc_first_o (acc_first), .q_o (q_e),
-      .gradq_o (gradq_e), .pr_valid_o (pr_valid), .pr_pass_o (pr_pass), .pr_tag_o (pr_tag),
-      .pr_q_tag_o (pr_q_tag)
-    );
+    ) u_datapath (`PST_OCTAVE_DATAPATH_CONNECT);
   end else begin : g_parallel
-    pst_octave_parallel #(`PST_OCTAVE_PASS, `PST_LANE_PASS, .SideW(SideW), .DebugProbes(DebugProbes)
-    ) u_datapath (
-      .clk_i, .rst_ni, .valid_i, .ready_o, .s_i, .side_i, .valid_o, .ready_i, .side_o, .busy_o,
-      .active_i, .quad_i, .oct_m_i, .oct_o_i, .oct_a_i, .oct_gm_i, .oct_lgm_i, .oct_fm_i, .bl_i, .fade_i,
-      .nz_en_o (nz_en), .nz_valid_o (nz_valid), .nz_step_o (nz_step), .nz_lat_o (nz_lat),
-      .nz_frac_o (nz_frac), .nz_n_i (nz_n), .nz_g_i (nz_g),
-      .fterm_o (fterm), .gterm_o (gterm), .acc_en_o (acc_en), .acc_first_o (acc_first), .q_o (q_e),
-      .gradq_o (gradq_e), .pr_valid_o (pr_valid), .pr_pass_o (pr_pass), .pr_tag_o (pr_tag),
-      .pr_q_tag_o (pr_q_tag)
-    );
-    logic unused_last;   // the beats carry their own step
-    assign unused_last = ^nz_last;
-    // No subband filter on the parallel datapath (rtl/contract.toml): weights 1.0.
-    for (genvar k = 0; k < NoiseUnits * SLW / FB; k++) begin : g_lam
-      assign nz_lam[k*FB +: FB] = FB'(1 << pst_pkg::FadeFrac);
-    end
+    pst_octave_parallel #(`PST_OCTAVE_PASS, `PST_LANE_PASS, .SideW(SideW), .DebugProbes(DebugProbes),
+      .NoiseSubbandOrientations(NoiseSubbandOrientations)
+    ) u_datapath (`PST_OCTAVE_DATAPATH_CONNECT);
   end
 
   logic [NoiseUnits*LTW-1:0]  pr_lat;
