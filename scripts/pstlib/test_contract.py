@@ -197,10 +197,24 @@ def test_formulas_in_three_languages():
     assert contract.formulas.width_serial_steps(0, 8, 4) == 16 and contract.formulas.width_serial_steps(2, 8, 4) == 6
 
 
+def test_clog2_builtin_and_the_octave_count_width():
+    c = contract.load()
+    t = contract.parse_formula("clog2(Octaves + 1)", ["Octaves"], c)
+    assert emit_formula(t, "sv", c) == "$clog2((Octaves + 1))"
+    assert emit_formula(t, "cpp", c) == "clog2_int((octaves + 1))"
+    assert emit_formula(t, "py", c) == "clog2_int((Octaves + 1))"
+    assert "constexpr int clog2_int(int a)" in (ROOT / "model" / "golden" / "contract.h").read_text()
+    # SystemVerilog's $clog2: the least b with 2^b >= a.
+    assert [contract.formulas.clog2_int(a) for a in range(10)] == [0, 0, 1, 2, 2, 3, 3, 3, 3, 4]
+    # The active count 0..Octaves: as many bits as Octaves has.
+    assert [contract.formulas.octave_count_bits(k) for k in range(1, 17)] == [k.bit_length() for k in range(1, 17)]
+
+
 @pytest.mark.parametrize("expr, error", [("Octaves + Nope", "unknown name Nope"),
                                          ("Datapath == Datapath.fast", "unknown enum value"),
                                          ("later(Octaves)", "unknown function later"),
                                          ("max(Octaves)", "max takes 2 arguments"),
+                                         ("clog2(Octaves, 2)", "clog2 takes 1 arguments"),
                                          ("(Octaves", "expected ')'")])
 def test_formula_errors(expr, error):
     with pytest.raises(ValueError, match=re.escape(error)):
