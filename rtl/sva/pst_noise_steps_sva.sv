@@ -1,8 +1,9 @@
-// pst_noise_steps_sva: the step protocol at a noise unit's input, shared by the checkers of
-// pst_noise, pst_subband and pst_worley (each instantiates it on its valid_i, step_i): every
-// step in range, and the steps of an evaluation in order (0, 1, .. NoiseSteps - 1 on
-// consecutive valid advances: the held nodes, sums and lists of the serial units rely on it).
-// A cover point per step entering (every serial step of the schedule).
+// pst_noise_steps_sva: the step protocol at a noise unit's input, shared by the three units:
+// pst_noise's checker (bound below; the token at its output: pst_noise_out_sva) and part of
+// pst_subband_sva and pst_worley_sva: every step in range, and the steps of an evaluation in
+// order (0, 1, .. NoiseSteps - 1 on consecutive valid advances: the held nodes, sums and lists
+// of the serial units rely on it). A cover point per step entering (every serial step of the
+// schedule).
 `include "sva/pst_assert.svh"
 `default_nettype none
 
@@ -28,5 +29,7 @@ module pst_noise_steps_sva #(
     `PST_COVER(Step, en_i && valid_i && 32'(step_i) == j)
   end
 endmodule
+
+bind pst_noise pst_noise_steps_sva #(.NoiseSteps(NoiseSteps)) u_sva (.*);
 
 `default_nettype wire
