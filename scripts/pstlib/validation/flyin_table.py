@@ -70,7 +70,7 @@ UNFILTERED = "unfiltered"
 # rule; docs/HARDWARE.md unit 6 "Refused combinations"; chosen on the training set): the MIP map
 # (nearest or blended) on a ramp colour map (interp linear) on these bases, except a subband unit
 # with its anisotropic filter on. A run the rule and the tool disagree on fails (pst exits 2).
-REFUSED_MIP_ON_RAMP = ("perlin2002", "worley", "subband")
+REFUSED_MIP_ON_RAMP = ("worley", "subband")
 
 
 def refused(basis: str, kind: str, bandlimit: str, interp: str) -> bool:

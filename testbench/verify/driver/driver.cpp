@@ -73,13 +73,13 @@ std::string refusedFilter(const Profile& p, const Texture& tex) {
     // Issue 44 part 2, chosen on the fly-ins' training set (scripts/flyins.py --split training;
     // docs/HARDWARE.md unit 6 "Refused combinations"): the colour-table MIP map (nearest or
     // blended) on a ramp colour map, on the bases whose gradient overstates f's spread in a pixel
-    // (perlin2002, worley, and subband without its anisotropic filter). The MIP box is aligned to its
+    // (worley, and subband without its anisotropic filter). The MIP box is aligned to its
     // level's blocks, not centred on f; on a ramp the point sample is already the box average where
     // f is linear in the pixel, so the misplaced box only adds error.
     if (tex.filter != FilterKind::MipNearest && tex.filter != FilterKind::MipLinear) return "";
     if (!tex.clutRamp) return "";
     const NoiseBasis b = p.noise.basis;
-    if (b != NoiseBasis::Perlin2002 && b != NoiseBasis::Worley && b != NoiseBasis::Subband) return "";
+    if (b != NoiseBasis::Worley && b != NoiseBasis::Subband) return "";
     if (b == NoiseBasis::Subband && p.noiseSubbandOrientations != 0 && tex.bandlimit == Bandlimit::Anisotropic)
         return "";
     const std::string where =
