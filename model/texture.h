@@ -83,6 +83,12 @@ struct Texture {
     std::string basisSource;
     // "FILE:LINE: FIELD" of the colour map's size (set by the scene parser), for the same reason.
     std::string clutSource;
+    // The colour map is a ramp (colormap.interp = "linear", the scene parser's default: linear
+    // between its keys) rather than steps; false for a table given any other way. The hardware
+    // refuses the colour-table MIP map on a ramp for some bases (hardwareUnsupported,
+    // docs/HARDWARE.md unit 6 "Refused combinations"). clutInterpSource: "FILE:LINE: FIELD" of it.
+    bool clutRamp = false;
+    std::string clutInterpSource;
     // "FILE:LINE: FIELD" of bandlimit when the scene gives it (set by the scene parser), the same.
     std::string bandlimitSource;
 };

@@ -445,6 +445,57 @@ def test_12_bandlimit_the_profile_cannot_do_names_the_line(tmp_path, bandlimit, 
             re.escape(str(s)) + r":\d+: " + pattern, [out])
 
 
+# 44. Filter options the hardware refuses because they measured worse than unfiltered (issue 44
+# part 2; docs/HARDWARE.md unit 6, refused combinations; testbench/verify/driver refusedFilter): the
+# colour-table MIP map on a ramp colour map on bases worley and subband without its anisotropic
+# filter. Named by the scene's colormap line, exit 2, nothing written; the same scene
+# with a step map, with sat, or on a basis the rule does not cover renders.
+WORLEY = '{ basis = "worley", coef = [1.0, 0.0], search = "octant", max_points = 4, cubes = "rom256" }'
+SUBBAND = '{ basis = "subband", param = "xz", orientations = 8 }'
+
+
+def filter_scene(tmp, noise, filt, interp=None, bandlimit=None):
+    s = subband_scene(tmp, noise, bandlimit)
+    text = s.read_text().replace('filter = "sat"', f'filter = "{filt}"')
+    if interp:
+        text = text.replace('wrap = "mod",', f'wrap = "mod", interp = "{interp}",')
+    s.write_text(text)
+    return s
+
+
+@pytest.mark.parametrize("noise,prof,filt,bandlimit", [
+    (WORLEY, "reduced_worley", "mip", None),
+    (WORLEY, "reduced_worley", "mip_linear", None),
+    (SUBBAND, "reduced_subband", "mip_linear", None),
+    (SUBBAND, "reduced_subband_k8", "mip", None),            # the unit's filter off: the isotropic sum
+])
+def test_44_mip_on_a_ramp_refused(tmp_path, noise, prof, filt, bandlimit):
+    s = filter_scene(tmp_path, noise, filt, bandlimit=bandlimit)
+    out = tmp_path / "out"
+    refused(["render", s, "--profile", ROOT / "sim" / "test_profiles" / f"{prof}.toml", "--model", "golden",
+             "--size", 8, "-o", out, "-q"],
+            re.escape(str(s)) + r":\d+: textures\.t\.colormap\.interp: 'linear' \(a ramp\) with filter '" + filt +
+            r"' is refused on profile '" + prof + r"' \(basis \w+.*\): the colour-table MIP map's box .* measured worse "
+            r"than unfiltered .*docs/HARDWARE\.md unit 6", [out])
+
+
+@pytest.mark.parametrize("noise,prof,filt,interp,bandlimit", [
+    (WORLEY, "reduced_worley", "mip", "step", None),             # a step map
+    (WORLEY, "reduced_worley", "sat", None, None),               # the SAT
+    (SUBBAND, "reduced_subband_k8", "mip", None, "anisotropic"),  # the subband unit's filter on
+    ('{ basis = "rayshade" }', "reduced", "mip", None, None),    # bases the rule does not cover
+    ('{ basis = "perlin2002" }', "reduced_perlin2002", "mip_linear", None, None),
+])
+def test_44_what_the_rule_does_not_cover_renders(tmp_path, noise, prof, filt, interp, bandlimit):
+    s = filter_scene(tmp_path, noise, filt, interp, bandlimit)
+    path = ROOT / "sim" / "test_profiles" / f"{prof}.toml"
+    out = tmp_path / "out"
+    rc, err = pst("render", s, "--profile", path if path.exists() else prof, "--model", "golden", "--size", 8,
+                  "-o", out, "-q")
+    assert rc == 0, err
+    assert out.is_dir() and any(out.iterdir())
+
+
 # 13. OBJ meshes read strictly (issue 41): every malformed coordinate or index, a short face, a
 # file that is not a regular file refused with the OBJ's own line (`error: SCENE:LINE:
 # objects[0].file: PATH:LINE: KEYWORD: what`), exit 2, nothing written; a byte-order mark and

@@ -115,8 +115,6 @@ def _contract(root: Path):
     return contract.load(root / "rtl" / "contract.toml")
 
 
-    Section("docs/POWER.md", "power-flyin", power_doc.animation_markdown),
-    Section("docs/VERIFICATION.md", "flyins-table", flyins_doc.markdown),
 SECTIONS = [
     Section("docs/HARDWARE.md", "silicon-table", lambda root: silicon_table.markdown(baseline_profiles(root))),
     Section("docs/HARDWARE.md", "block-gates", lambda root: silicon_table.blocks_markdown(baseline_profiles(root))),
@@ -130,6 +128,8 @@ SECTIONS = [
     Section("docs/MULTIPASS.md", "multipass-quality", multipass_doc.quality_markdown),
     Section("docs/MULTIPASS.md", "multipass-proposals", multipass_doc.proposals_markdown),
     Section("docs/POWER.md", "power-table", power_doc.markdown),
+    Section("docs/POWER.md", "power-flyin", power_doc.animation_markdown),
+    Section("docs/VERIFICATION.md", "flyins-table", flyins_doc.markdown),
     docgen.DataFile("docs/data/silicon.json", lambda root: silicon_table.data_json(baseline_profiles(root))),
 ]
 

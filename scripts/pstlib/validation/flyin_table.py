@@ -66,12 +66,27 @@ TOLERANCE = 0.10
 UNFILTERED = "unfiltered"
 
 
+# Filter options the hardware refuses (testbench/verify/driver/driver.cpp refusedFilter, the same
+# rule; docs/HARDWARE.md unit 6 "Refused combinations"; chosen on the training set): the MIP map
+# (nearest or blended) on a ramp colour map (interp linear) on these bases, except a subband unit
+# with its anisotropic filter on. A run the rule and the tool disagree on fails (pst exits 2).
+REFUSED_MIP_ON_RAMP = ("worley", "subband")
+
+
+def refused(basis: str, kind: str, bandlimit: str, interp: str) -> bool:
+    """Whether the hardware refuses filter KIND (+BANDLIMIT) on a colour map of INTERP for BASIS."""
+    return (kind in ("mip", "mip_linear") and interp == "linear" and basis in REFUSED_MIP_ON_RAMP
+            and not (basis == "subband" and bandlimit == "anisotropic"))
+
+
 def option_name(kind: str, bandlimit: str) -> str:
     return kind if bandlimit == "off" else f"{kind}+{bandlimit}"
 
 
-def runs_of(basis: str) -> list:
-    """[(run name, filter kind, bandlimit, [profiles], [reference variants])] of a sequence."""
+def runs_of(basis: str, interp: str = "step") -> list:
+    """[(run name, filter kind, bandlimit, [profiles], [reference variants])] of a sequence (colour
+    map INTERP): a profile whose option is refused (refused()) is left out; a run left without a
+    profile or a reference variant is not run."""
     groups = {}
     for prof, bl in HW_PROFILES[basis]:
         groups.setdefault(bl, []).append(prof)
@@ -81,8 +96,19 @@ def runs_of(basis: str) -> list:
     for kind in HW_FILTERS:
         for bl, profs in groups.items():
             var = REF_VARIANTS[basis] if (kind, bl) == ("sat", "off") else []
-            out.append((option_name(kind, bl), kind, bl, profs, var))
+            kept = [] if refused(basis, kind, bl, interp) else profs
+            if kept or var:
+                out.append((option_name(kind, bl), kind, bl, kept, var))
     return out
+
+
+def refused_options(basis: str, interp: str) -> list:
+    """["PROFILE:OPTION"] the hardware refuses on a sequence of BASIS with a colour map of INTERP."""
+    groups = {}
+    for prof, bl in HW_PROFILES[basis]:
+        groups.setdefault(bl, []).append(prof)
+    return [f"{p}:{option_name(kind, bl)}" for kind in HW_FILTERS for bl, profs in groups.items() for p in profs
+            if refused(basis, kind, bl, interp)]
 
 
 def animate_cmd(pst, scene, out, kind, bl, profs, variants, frames, size, truth, model, threads):
@@ -105,11 +131,11 @@ def _stream_figures(s) -> dict:
     return out
 
 
-def collect(docs: dict, basis: str) -> dict:
+def collect(docs: dict, basis: str, interp: str = "step") -> dict:
     """{option column: {rms, flicker}} of one sequence from its runs' flicker.json documents
     (run name -> document)."""
     out = {}
-    for run, _kind, _bl, profs, variants in runs_of(basis):
+    for run, _kind, _bl, profs, variants in runs_of(basis, interp):
         d = docs[run]
         st = d["streams"]
         out.setdefault(UNFILTERED, _stream_figures(st["unfiltered"]))
@@ -126,9 +152,10 @@ def collect(docs: dict, basis: str) -> dict:
     return out
 
 
-def judge(figs: dict, basis: str) -> dict:
+def judge(figs: dict, basis: str, refused_opts=()) -> dict:
     """The row of one sequence: unfiltered, the reference's exact filter and best option, the best
-    hardware option, every hardware option's ratios, and the flags."""
+    hardware option, every hardware option's ratios, and the flags. refused_opts: the hardware
+    options refused on it (refused_options(); listed, not judged)."""
     unf = figs[UNFILTERED]
 
     def ratio(f):
@@ -156,6 +183,7 @@ def judge(figs: dict, basis: str) -> dict:
     return {"unfiltered": unf, "ref_exact": {"name": ref_name, **ref, "x_unfiltered": ratio(ref["flicker"])},
             "ref_best": {"name": ref_best, **refs[ref_best], "x_unfiltered": ratio(refs[ref_best]["flicker"])},
             "best_hw": {"name": best, **options[best]}, "hardware": options, "worse_rms": worse, "flags": flags,
+            "refused": sorted(refused_opts),
             "quiet": unf["flicker"] < QUIET,
             "hardware_unfiltered": {n: dict(v, x_unfiltered=ratio(v["flicker"])) for n, v in own.items()},
             "reference": {n: dict(v, x_unfiltered=ratio(v["flicker"])) for n, v in refs.items()}}
@@ -171,7 +199,7 @@ def run_sequence(pst, scene: pathlib.Path, feats: dict, out: pathlib.Path, truth
     RuntimeError naming the command on a failed run."""
     docs = {}
     text = scene.read_text()
-    for run, kind, bl, profs, variants in runs_of(feats["basis"]):
+    for run, kind, bl, profs, variants in runs_of(feats["basis"], feats.get("interp", "step")):
         rdir = out / run
         cmd = animate_cmd(pst, scene, rdir, kind, bl, profs, variants, feats["frames"], feats["size"], truth, model,
                           threads)
@@ -200,7 +228,8 @@ def run_split(pst, split: flyins.Split, seed: int, count: int, frames: int, size
     def one(name):
         f = feats[name]
         docs = run_sequence(pst, out / "scenes" / f"{name}.toml", f, out / "runs" / name, truth, model, threads, fresh)
-        return name, judge(collect(docs, f["basis"]), f["basis"])
+        interp = f.get("interp", "step")
+        return name, judge(collect(docs, f["basis"], interp), f["basis"], refused_options(f["basis"], interp))
 
     with concurrent.futures.ThreadPoolExecutor(max_workers=jobs) as ex:
         for fut in concurrent.futures.as_completed([ex.submit(one, n) for n in feats]):
@@ -226,6 +255,7 @@ def summary(doc: dict) -> dict:
     out["mismatches"] = sum(o["mismatches"] for r in rows.values() for o in r["hardware"].values())
     out["worse_rms_options"] = sorted({o.split(":", 1)[1] + " (" + o.split(":", 1)[0] + ")"
                                        for r in rows.values() for o in r["worse_rms"]})
+    out["refused"] = sum(len(r.get("refused", [])) for r in rows.values())
     return out
 
 
@@ -247,7 +277,8 @@ def compact(doc: dict) -> dict:
         rows[n] = {"basis": f["basis"], "path": f["path"], "cmap": f["cmap"], "unfiltered": r["unfiltered"],
                    "ref_exact": r["ref_exact"], "ref_best": r["ref_best"],
                    "best_hw": {k: r["best_hw"][k] for k in ("name", "rms", "flicker", "x_unfiltered", "vs_ref")},
-                   "worse_rms": r["worse_rms"], "flags": r["flags"], "quiet": r.get("quiet", False)}
+                   "worse_rms": r["worse_rms"], "flags": r["flags"], "quiet": r.get("quiet", False),
+                   "refused": r.get("refused", [])}
     return dict({k: doc[k] for k in keep}, rows=rows, summary=summary(doc))
 
 
@@ -258,19 +289,21 @@ def main_table(c: dict) -> str:
          f"{len(s['below4x'])} of {s['sequences']} ({', '.join(s['below4x']) or 'none'}); over10 (best hardware "
          f"flicker > {1 + TOLERANCE:.2f} x the reference's exact filter's): {len(s['over10'])} "
          f"({', '.join(s['over10']) or 'none'}); worse_rms (a hardware option's RMS above unfiltered's): "
-         f"{len(s['worse_rms'])} ({', '.join(s['worse_rms']) or 'none'}). Hardware mismatches against the golden "
+         f"{len(s['worse_rms'])} ({', '.join(s['worse_rms']) or 'none'}). Refused options (the hardware refuses "
+         f"them, docs/HARDWARE.md unit 6; not judged): {s.get('refused', 0)}. Hardware mismatches against the golden "
          f"model: {s['mismatches']}. (quiet: unfiltered flicker below {QUIET:g}, little aliasing to remove; "
          "its ratios are ill-conditioned.)\n",
          "| sequence | basis | path | map | unfiltered | reference's exact filter | best reference option | "
-         "best hardware option | hw / ref flicker | hardware options worse than unfiltered (RMS) | flags |",
-         "|---|---|---|---|---|---|---|---|---:|---|---|"]
+         "best hardware option | hw / ref flicker | hardware options worse than unfiltered (RMS) | refused | flags |",
+         "|---|---|---|---|---|---|---|---|---:|---|---|---|"]
     for n, r in c["rows"].items():
         re_, rb, bh = r["ref_exact"], r["ref_best"], r["best_hw"]
         quiet = " (quiet)" if r.get("quiet") else ""
         L.append(f"| {n} | {r['basis']} | {r['path']} | {r['cmap']} | {_fig(r['unfiltered'])}{quiet} | "
                  f"{re_['name'][4:]} {_fig(re_)} ({_x(re_['x_unfiltered'])}) | {rb['name'][4:]} {_fig(rb)} "
                  f"({_x(rb['x_unfiltered'])}) | {bh['name']} {_fig(bh)} ({_x(bh['x_unfiltered'])}) | "
-                 f"{bh['vs_ref']:.2f} | {', '.join(r['worse_rms']) or '-'} | {', '.join(r['flags']) or '-'} |")
+                 f"{bh['vs_ref']:.2f} | {', '.join(r['worse_rms']) or '-'} | {', '.join(r.get('refused', [])) or '-'} | "
+                 f"{', '.join(r['flags']) or '-'} |")
     return "\n".join(L) + "\n"
 
 

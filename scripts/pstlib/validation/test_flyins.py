@@ -113,6 +113,31 @@ def test_runs_cover_every_hardware_option_once():
     assert cmd[:3] == ["pst", "animate", "s.toml"] and "--profile" in cmd and cmd[cmd.index("--model") + 1] == "golden"
 
 
+def test_refused_options_left_out_of_the_runs_and_listed():
+    # the MIP map on a ramp: refused on worley, subband without its filter; not on rayshade, perlin2002,
+    # a step map, or the subband unit's anisotropic filter
+    assert flyin_table.refused("worley", "mip", "off", "linear")
+    assert not flyin_table.refused("perlin2002", "mip_linear", "off", "linear")
+    assert flyin_table.refused("subband", "mip", "off", "linear")
+    assert not flyin_table.refused("subband", "mip", "anisotropic", "linear")
+    assert not flyin_table.refused("worley", "mip", "off", "step")
+    assert not flyin_table.refused("worley", "sat", "off", "linear")
+    assert not flyin_table.refused("rayshade", "mip", "off", "linear")
+    for basis in flyins.BASES:
+        assert flyin_table.runs_of(basis) == flyin_table.runs_of(basis, "step")
+        ramp = flyin_table.runs_of(basis, "linear")
+        shown = {f"{p}:{run}" for run, _, _, ps, _ in ramp if run != "none" for p in ps}
+        every = {f"{p}:{run}" for run, _, _, ps, _ in flyin_table.runs_of(basis) if run != "none" for p in ps}
+        assert shown | set(flyin_table.refused_options(basis, "linear")) == every
+        assert not shown & set(flyin_table.refused_options(basis, "linear"))
+        assert any(v for *_, v in ramp)                             # the reference's options still run
+    assert flyin_table.refused_options("worley", "linear") == ["reduced_worley:mip", "reduced_worley:mip_linear"]
+    assert flyin_table.refused_options("subband", "linear") == ["reduced_subband:mip", "reduced_subband:mip_linear"]
+    assert flyin_table.refused_options("rayshade", "linear") == [] == flyin_table.refused_options("worley", "step")
+    r = flyin_table.judge(_figs((0.03, 0.05), (0.02, 0.012), {"p:sat": (0.02, 0.0125)}), "subband", ["p:mip"])
+    assert r["refused"] == ["p:mip"] and "p:mip" not in r["hardware"]
+
+
 def _figs(unf, ref, hw):
     """unfiltered (rms, flicker), reference's exact (sat+anisotropic), hardware options {name: (rms, flicker)}."""
     out = {"unfiltered": {"rms": unf[0], "flicker": unf[1]}, "ref:sat+anisotropic": {"rms": ref[0], "flicker": ref[1]},

@@ -169,6 +169,9 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
         const toml::table& ct = requireTable(c, t, path, "colormap");
         const toml::node* sn = find(ct, "size") ? find(ct, "size") : find(t, "colormap");
         tex.clutSource = c.at(sn, join(join(path, "colormap"), "size"));
+        tex.clutRamp = getString(c, ct, join(path, "colormap"), "interp", "linear") == "linear";
+        const toml::node* in = find(ct, "interp") ? find(ct, "interp") : find(t, "colormap");
+        tex.clutInterpSource = c.at(in, join(join(path, "colormap"), "interp"));
     }
     return tex;
 }

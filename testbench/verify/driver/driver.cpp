@@ -69,6 +69,29 @@ std::pair<uint16_t, uint32_t> controlWrite(const Texture& tex, int filterKind) {
                                        (fade << contract::kRegControlBandlimitLsb)};
 }
 
+std::string refusedFilter(const Profile& p, const Texture& tex) {
+    // Issue 44 part 2, chosen on the fly-ins' training set (scripts/flyins.py --split training;
+    // docs/HARDWARE.md unit 6 "Refused combinations"): the colour-table MIP map (nearest or
+    // blended) on a ramp colour map, on the bases whose gradient overstates f's spread in a pixel
+    // (worley, and subband without its anisotropic filter). The MIP box is aligned to its
+    // level's blocks, not centred on f; on a ramp the point sample is already the box average where
+    // f is linear in the pixel, so the misplaced box only adds error.
+    if (tex.filter != FilterKind::MipNearest && tex.filter != FilterKind::MipLinear) return "";
+    if (!tex.clutRamp) return "";
+    const NoiseBasis b = p.noise.basis;
+    if (b != NoiseBasis::Worley && b != NoiseBasis::Subband) return "";
+    if (b == NoiseBasis::Subband && p.noiseSubbandOrientations != 0 && tex.bandlimit == Bandlimit::Anisotropic)
+        return "";
+    const std::string where =
+        tex.clutInterpSource.empty() ? "texture '" + tex.name + "': colormap.interp" : tex.clutInterpSource;
+    return where + ": 'linear' (a ramp) with filter '" + toString(tex.filter) + "' is refused on profile '" + p.name +
+           "' (basis " + toString(b) +
+           (b == NoiseBasis::Subband ? ", its anisotropic filter off" : "") +
+           "): the colour-table MIP map's box sits on its level's blocks, not centred on f, and on a ramp it "
+           "measured worse than unfiltered (RMS against the truth; docs/HARDWARE.md unit 6, refused combinations); "
+           "use filter sat or none, or a step colour map (interp = \"step\")";
+}
+
 std::string hardwareUnsupported(const Profile& p, const Texture& tex) {
     // A subband unit with its anisotropic filter (noise.subband_orientations): the table is the
     // filter's weights, so bandlimit is anisotropic or off.
@@ -140,6 +163,7 @@ std::string hardwareUnsupported(const Profile& p, const Texture& tex) {
         if (p.noiseSubbandOrientations != 0 && n.weights != SubbandWeights::Heuristic)
             return where + "weights: the subband unit of " + prof + " computes the heuristic weights";
     }
+    if (std::string why = refusedFilter(p, tex); !why.empty()) return why;
     if (tex.clut.size() != p.clutSize())
         return (tex.clutSource.empty() ? "texture '" + tex.name + "': colormap.size" : tex.clutSource) + ": " +
                std::to_string(tex.clut.size()) + " entries; profile '" + p.name + "' has a " +

@@ -33,6 +33,10 @@ int hardwareFilterKind(FilterKind k);
 // Empty if profile p can run texture tex, else why not, as "FILE:LINE: FIELD: what" when the
 // scene file named the field: a profile's noise unit computes one basis (Profile::noise.basis:
 // rayshade, or perlin2002 for the quintic / grad12 / perlin256 unit); worley is reference-only.
+// The filter option profile p refuses on texture tex because it measured worse than unfiltered
+// ("" if none): the colour-table MIP map on a ramp colour map on bases worley and subband
+// without its anisotropic filter (docs/HARDWARE.md unit 6, refused combinations).
+std::string refusedFilter(const Profile& p, const Texture& tex);
 std::string hardwareUnsupported(const Profile& p, const Texture& tex);
 
 // Throws InputError (hardwareUnsupported's message) for a texture the profile cannot run,
