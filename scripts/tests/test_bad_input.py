@@ -10,7 +10,7 @@ import subprocess
 import pytest
 
 from pstlib.paths import ROOT
-from refusals import PLANE, PST, needs_pst, profile_copy, pst, refused, scene
+from pst_cli import PLANE, PST, needs_pst, profile_copy, pst, refused, scene
 
 pytestmark = needs_pst
 

@@ -8,7 +8,7 @@ import re
 import pytest
 
 from pstlib.paths import ROOT
-from refusals import needs_pst, profile_copy, pst, refused, scene
+from pst_cli import needs_pst, profile_copy, pst, refused, scene
 
 pytestmark = needs_pst
 

@@ -1,6 +1,6 @@
-"""What the bad-input tests of the `pst` tool share (test_bad_input.py, test_bad_input_noise.py):
-the tool run, the check of a refusal (`error: ...`, exit 2, nothing left behind), a tiny scene
-and a copy of a profile."""
+"""What the tests of the built `pst` tool share (ctest sets PST_BIN; without it they are skipped):
+the tool run and the check of a refusal (`error: ...`, exit 2, nothing left behind); for the
+bad-input tests (test_bad_input.py, test_bad_input_noise.py) a tiny scene and a copy of a profile."""
 import os
 import pathlib
 import re
@@ -48,9 +48,14 @@ def scene(tmp, name="s.toml", **kw):
     return p
 
 
+def run(*args, cwd=None, env=None, timeout=300) -> subprocess.CompletedProcess:
+    """The tool with ARGS (str() each) on this checkout's sources (PST_SOURCE_DIR), ENV added."""
+    return subprocess.run([PST, *map(str, args)], capture_output=True, text=True, cwd=cwd, timeout=timeout,
+                          env=dict(os.environ, PST_SOURCE_DIR=str(ROOT), **(env or {})))
+
+
 def pst(*args, cwd=None):
-    r = subprocess.run([PST, *map(str, args)], capture_output=True, text=True, cwd=cwd, timeout=300,
-                       env=dict(os.environ, PST_SOURCE_DIR=str(ROOT)))
+    r = run(*args, cwd=cwd)
     return r.returncode, r.stderr
 
 
