@@ -4,7 +4,8 @@ silicon baseline digests them as they are (pstlib/synth/inputs.py, record.py).""
 import os
 
 
-def check_pst(pst) -> None:
-    """--pst, the built tool a command runs: ValueError (for argparse's error) unless executable."""
-    if not os.access(pst, os.X_OK):
-        raise ValueError(f"--pst: {pst}: not an executable (cmake --build build --target pst)")
+def check_pst(a) -> None:
+    """--pst (a.pst), the built tool a command runs unless it only writes its scenes (a.scenes_only):
+    ValueError (for argparse's error) when it is not an executable."""
+    if not a.scenes_only and not os.access(a.pst, os.X_OK):
+        raise ValueError(f"--pst: {a.pst}: not an executable (cmake --build build --target pst)")

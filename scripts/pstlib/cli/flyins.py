@@ -76,8 +76,7 @@ def parse_args(argv):
             raise ValueError(f"--truth: 1..64 samples per pixel edge, got {a.truth}")
         if not 1 <= a.jobs <= 2:
             raise ValueError(f"--jobs: 1 or 2, got {a.jobs}")
-        if not a.scenes_only:
-            check_pst(a.pst)
+        check_pst(a)
     except ValueError as e:
         ap.error(str(e))
     return a

@@ -61,8 +61,7 @@ def parse_args(argv):
         valset.check(a.seed, a.count, a.size, a.split)
         if a.jobs < 1:
             raise ValueError(f"--jobs: at least 1, got {a.jobs}")
-        if not a.scenes_only:
-            check_pst(a.pst)
+        check_pst(a)
     except ValueError as e:
         ap.error(str(e))
     return a
