@@ -46,8 +46,7 @@ Command registerAnimate(CLI::App& app) {
                 checkTraceWindow(an->sim);
                 if (!trace->empty()) checkTracePath(*trace);
                 checkNotInput("--trace", *trace, {an->scene});
-                checkOutDir("-o", an->outDir);
-                checkCreatableDir("-o", an->outDir.empty() ? "out" : an->outDir);
+                checkOutFolder(an->outDir);
                 an->video = !flags->first;
                 an->variants = parseVariants(*variants);
                 AnimateArgs* a = an.get();

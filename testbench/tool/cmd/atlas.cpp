@@ -224,8 +224,7 @@ Command registerAtlas(CLI::App& app) {
     return {atlasCmd, [at, hw, atlasCmd]() {
                 refuseHardwareOptionsWithoutModel(atlasCmd, *hw);
                 if (at->filler != "gpu") refuseGiven(atlasCmd, {"--variant", "--bf"}, "needs --filler gpu (the multipass GPU filler's option)");
-                checkOutDir("-o", at->outDir);
-                checkCreatableDir("-o", at->outDir.empty() ? "out" : at->outDir);
+                checkOutFolder(at->outDir);
                 return runAtlas(*at, *hw);
             }};
 }

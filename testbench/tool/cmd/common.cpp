@@ -380,6 +380,11 @@ void checkOutDir(const std::string& flag, const std::string& path) {
         throw InputError(flag + ": '" + path + "' is a file; give a folder");
 }
 
+void checkOutFolder(const std::string& outDir) {
+    checkOutDir("-o", outDir);
+    checkCreatableDir("-o", outDir.empty() ? "out" : outDir);
+}
+
 void checkNotInput(const std::string& flag, const std::string& out, const std::vector<std::string>& inputs) {
     if (out.empty() || out == "-") return;
     std::error_code ec;

@@ -174,6 +174,9 @@ void checkOutFile(const std::string& flag, const std::string& path);
 void checkNotFolder(const std::string& flag, const std::string& path);
 // An output folder given with -o must not be a file.
 void checkOutDir(const std::string& flag, const std::string& path);
+// The output folder of -o (default: under out/) as render, animate and atlas take it: not a file,
+// and creatable.
+void checkOutFolder(const std::string& outDir);
 
 // An output that is one of the run's inputs (the same file, std::filesystem::equivalent) is
 // refused before any work: it would overwrite the input.

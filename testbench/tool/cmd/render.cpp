@@ -181,8 +181,7 @@ Command registerRender(CLI::App& app) {
                 checkTraceOptions(render, hw->trace, hw->profiles, hw->model, {"--trace-start", "--trace-end"});
                 checkTraceWindow(hw->sim);
                 refuseHardwareOptionsWithoutModel(render, *hw);
-                checkOutDir("-o", ra->outDir);
-                checkCreatableDir("-o", ra->outDir.empty() ? "out" : ra->outDir);
+                checkOutFolder(ra->outDir);
                 checkNotInput("--trace", hw->trace, {ra->scene});
                 checkNotInput("--html", hw->html, {ra->scene});
                 checkCreatableFileDir("--html", hw->html);
