@@ -81,17 +81,25 @@ const char* toString(Bandlimit v) {
     return "?";
 }
 
-NoiseMoments noiseMoments(const NoiseOptions& opt) {
-    static std::mutex mu;
-    static std::map<std::string, NoiseMoments> cache;
+namespace {
+// The key of a basis's caches: every noise option its values depend on.
+std::string basisKey(const NoiseOptions& opt) {
     std::ostringstream key;
     key << toString(opt.basis) << ' ' << toString(opt.interp) << ' ' << toString(opt.corner) << ' '
         << toString(opt.hash) << ' ' << toString(opt.metric) << ' ' << opt.coef[0] << ' ' << opt.coef[1] << ' '
         << opt.coef[2] << ' ' << opt.coef[3] << ' ' << opt.cell;
     if (opt.basis == NoiseBasis::Subband)
         key << ' ' << opt.orientations << ' ' << opt.tileSize << ' ' << opt.seed << ' ' << toString(opt.param);
+    return key.str();
+}
+}  // namespace
+
+NoiseMoments noiseMoments(const NoiseOptions& opt) {
+    static std::mutex mu;
+    static std::map<std::string, NoiseMoments> cache;
+    const std::string key = basisKey(opt);
     std::lock_guard<std::mutex> lock(mu);
-    auto it = cache.find(key.str());
+    auto it = cache.find(key);
     if (it != cache.end()) return it->second;
     // 65536 points of the R3 low-discrepancy sequence over a 64-cell cube.
     const double g = 1.2207440846057596, a1 = 1 / g, a2 = 1 / (g * g), a3 = 1 / (g * g * g);
@@ -106,20 +114,11 @@ NoiseMoments noiseMoments(const NoiseOptions& opt) {
     NoiseMoments m;
     m.mean = sum / n;
     m.sd = std::sqrt(std::max(0.0, sum2 / n - m.mean * m.mean));
-    cache[key.str()] = m;
+    cache[key] = m;
     return m;
 }
 
 namespace {
-std::string basisKey(const NoiseOptions& opt) {
-    std::ostringstream key;
-    key << toString(opt.basis) << ' ' << toString(opt.interp) << ' ' << toString(opt.corner) << ' '
-        << toString(opt.hash) << ' ' << toString(opt.metric) << ' ' << opt.coef[0] << ' ' << opt.coef[1] << ' '
-        << opt.coef[2] << ' ' << opt.coef[3] << ' ' << opt.cell;
-    if (opt.basis == NoiseBasis::Subband)
-        key << ' ' << opt.orientations << ' ' << opt.tileSize << ' ' << opt.seed << ' ' << toString(opt.param);
-    return key.str();
-}
 constexpr int kGainSteps = 4;                     // per octave of nu
 // nu = 2^(k / 4), 1/16 .. 16 cells; beyond, c / nu (g(nu) nu is within 12 % of constant from 16 to
 // 256 cells, measured with the table run to 256, which cost 5x the time).

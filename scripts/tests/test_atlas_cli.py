@@ -6,14 +6,14 @@ import json
 import os
 import pathlib
 import re
-import subprocess
 
 import pytest
 
-ROOT = pathlib.Path(__file__).resolve().parents[2]
-PST = os.environ.get("PST_BIN", "")
+from pst_cli import ROOT, needs_pst, run
+from pst_cli import refused as refused_all
+
 RTL = os.environ.get("PST_ATLAS_RTL", "")  # a verilated profile of the build, "" = skip the RTL run
-pytestmark = pytest.mark.skipif(not PST or not os.path.exists(PST), reason="PST_BIN not set")
+pytestmark = needs_pst
 
 SCENE = """title = "atlas"
 [image]
@@ -45,16 +45,12 @@ def scene(tmp, scale="[1.0, 1.0, 1.0]"):
 
 
 def pst(*args):
-    r = subprocess.run([PST, *map(str, args)], capture_output=True, text=True, timeout=300,
-                       env=dict(os.environ, PST_SOURCE_DIR=str(ROOT)))
+    r = run(*args)
     return r.returncode, r.stdout, r.stderr
 
 
 def refused(args, pattern, out):
-    rc, _, err = pst(*args)
-    assert rc == 2, f"exit {rc}, stderr:\n{err}"
-    assert re.search(r"^error: " + pattern, err, re.M), f"stderr does not match {pattern!r}:\n{err}"
-    assert not pathlib.Path(out).exists(), f"{out} was left behind"
+    refused_all(args, pattern, [out])
 
 
 def test_unknown_atlas_kind(tmp_path):

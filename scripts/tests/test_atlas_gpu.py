@@ -8,24 +8,21 @@ Run by ctest: multipass_atlas_gpu (-k "not refus"; exit 77, ctest SKIP, only whe
 can be opened or the build has no EGL) and multipass_atlas_refusals (-k refus), PST_BIN set."""
 import json
 import math
-import os
 import pathlib
 import re
-import subprocess
 
 import pytest
 
-ROOT = pathlib.Path(__file__).resolve().parents[2]
-PST = os.environ.get("PST_BIN", "")
-pytestmark = pytest.mark.skipif(not PST or not os.path.exists(PST), reason="PST_BIN not set")
+from pst_cli import ROOT, needs_pst, run
+
+pytestmark = needs_pst
 SPHERE = ROOT / "scenes" / "atlas" / "fig13_sphere.toml"
 TEAPOT = ROOT / "scenes" / "wood_teapot.toml"
 NO_EGL = re.compile(r"^error: EGL: (no EGL device could be opened|this pst was built without EGL)", re.M)
 
 
 def pst(*args, env=None):
-    r = subprocess.run([PST, *map(str, args)], capture_output=True, text=True, timeout=600,
-                       env=dict(os.environ, PST_SOURCE_DIR=str(ROOT), **(env or {})))
+    r = run(*args, env=env, timeout=600)
     return r.returncode, r.stdout, r.stderr
 
 

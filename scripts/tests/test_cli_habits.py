@@ -4,7 +4,6 @@ and JUnit output, --reseed, progress and -q, regress --waves on an injected mism
 --trace of one frame (each FST checked by its header), outputs that would overwrite an input or cannot be made, and self-tests
 that cannot fire. Run by ctest (cli_habits) with PST_BIN set to the built tool."""
 import json
-import os
 import re
 import struct
 import subprocess
@@ -13,16 +12,15 @@ import xml.etree.ElementTree as ET
 import pytest
 
 from pstlib.paths import ROOT
+from pst_cli import needs_pst, run
 
-PST = os.environ.get("PST_BIN", "")
-pytestmark = pytest.mark.skipif(not PST or not os.path.exists(PST), reason="PST_BIN not set")
+pytestmark = needs_pst
 ZONE = str(ROOT / "scenes" / "zoneplate.toml")
 FIRE = str(ROOT / "scenes" / "fire.toml")
 
 
 def pst(*args, cwd=None):
-    return subprocess.run([PST, *map(str, args)], capture_output=True, text=True, cwd=cwd, timeout=600,
-                          env=dict(os.environ, PST_SOURCE_DIR=str(ROOT)))
+    return run(*args, cwd=cwd, timeout=600)
 
 
 def version():

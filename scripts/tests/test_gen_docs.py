@@ -1,7 +1,6 @@
 """The docs' generated sections (scripts/gen_docs.py, pstlib/docs/docgen.py, pstlib/docs/rtl_modules.py):
 the committed docs are the generated ones, every RTL file appears in the module table, and a
 file without a header comment is an error naming it."""
-import shutil
 import subprocess
 
 import pytest
@@ -32,14 +31,7 @@ def test_every_rtl_file_is_in_the_table():
 @pytest.fixture
 def tree(tmp_path):
     """A copy of what the generator reads: the docs, the baseline, derate and noise units, rtl/."""
-    for rel in ("README.md", "scenes/README.md", "scripts/synth/baseline.json",
-                "scripts/synth/layout_derate.json", "scripts/synth/noise_units.json"):
-        (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
-        shutil.copy(ROOT / rel, tmp_path / rel)
-    shutil.copytree(ROOT / "scripts" / "synth" / "records", tmp_path / "scripts" / "synth" / "records")
-    shutil.copytree(ROOT / "docs", tmp_path / "docs")
-    shutil.copytree(ROOT / "rtl", tmp_path / "rtl")
-    return tmp_path
+    return docgen.copy_inputs(ROOT, tmp_path)
 
 
 def test_a_new_module_appears_when_regenerated(tree):

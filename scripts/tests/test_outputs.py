@@ -13,8 +13,9 @@ import time
 import pytest
 
 from pstlib.paths import ROOT
-PST = os.environ.get("PST_BIN", "")
-pytestmark = pytest.mark.skipif(not PST or not os.path.exists(PST), reason="PST_BIN not set")
+from pst_cli import PST, needs_pst
+
+pytestmark = needs_pst
 ENV = dict(os.environ, PST_SOURCE_DIR=str(ROOT))
 SIGNALS = [signal.SIGTERM, signal.SIGINT]
 

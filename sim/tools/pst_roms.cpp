@@ -66,6 +66,19 @@ bool writeMemh(const std::string& dir, const std::string& name, int count, int d
     return true;
 }
 
+// The last step of a file written line by line to PATH.tmp: flushed, closed and renamed to PATH
+// (renamed even after an earlier failure). Returns ok and whether this file was written whole;
+// says so on stderr when not.
+bool closeAndRename(std::ofstream& out, const std::string& path, bool ok) {
+    ok = bool(out.flush()) && ok;
+    out.close();
+    std::error_code ec;
+    std::filesystem::rename(path + ".tmp", path, ec);
+    ok = ok && !ec;
+    if (!ok) std::fprintf(stderr, "pst_roms: cannot write %s\n", path.c_str());
+    return ok;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -133,12 +146,7 @@ int main(int argc, char** argv) {
             std::snprintf(hex, sizeof hex, "%x", unsigned(c.count));
             out << line << hex << "\n";
         }
-        ok = ok && bool(out.flush());
-        out.close();
-        std::error_code rec;
-        std::filesystem::rename(path + ".tmp", path, rec);
-        ok = ok && !rec;
-        if (!ok) std::fprintf(stderr, "pst_roms: cannot write %s\n", path.c_str());
+        ok = closeAndRename(out, path, ok);
     }
     // The subband unit's tile (rtl/noise/pst_subband.sv): SubbandValueBits-bit two's complement
     // words, y 2^SubbandTileLog2 + x (model/golden/subband_fx.h subbandRomWord).
@@ -162,12 +170,7 @@ int main(int argc, char** argv) {
                 }
                 out << line << "\n";
             }
-            ok = ok && bool(out.flush());
-            out.close();
-            std::error_code rec;
-            std::filesystem::rename(path + ".tmp", path, rec);
-            ok = ok && !rec;
-            if (!ok) std::fprintf(stderr, "pst_roms: cannot write %s\n", path.c_str());
+            ok = closeAndRename(out, path, ok);
         }
     }
     return ok ? 0 : 1;

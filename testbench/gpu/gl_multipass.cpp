@@ -374,11 +374,7 @@ Image8 GlMultipass::run(const Program& prog, const Tables& tables, const Image8&
     tm.msUpload = msSince(t0);
     check("upload");
     tm.draws = prog.draws();
-    tm.frames = std::max(1, frames);
-    double total = 0;
-    tm.msPerFrameMin = 1e300;
-    for (int f = 0; f < tm.frames; ++f) {
-        t0 = std::chrono::steady_clock::now();
+    timeFrames(tm, frames, [&] {
         for (const Pass& p : prog.passes) {
             switch (p.op) {
                 case Op::Transfer: m.runTransfer(p); break;
@@ -394,12 +390,7 @@ Image8 GlMultipass::run(const Program& prog, const Tables& tables, const Image8&
                 default: m.runBlend(p, arith); break;
             }
         }
-        glFinish();
-        const double ms = msSince(t0);
-        total += ms;
-        tm.msPerFrameMin = std::min(tm.msPerFrameMin, ms);
-    }
-    tm.msPerFrame = total / tm.frames;
+    });
     check("passes");
     t0 = std::chrono::steady_clock::now();
     m.target(m.img[TexNoise]);

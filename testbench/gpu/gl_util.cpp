@@ -1,6 +1,7 @@
 // GL helpers of the multipass runner and the single-pass shader; see gl_util.h.
 #include "gl_util.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -122,6 +123,21 @@ std::vector<uint32_t> readback(int w, int h, TargetFormat f) {
 
 double msSince(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+void timeFrames(Timing& tm, int frames, const std::function<void()>& drawFrame) {
+    tm.frames = std::max(1, frames);
+    double total = 0;
+    tm.msPerFrameMin = 1e300;
+    for (int f = 0; f < tm.frames; ++f) {
+        const auto t0 = std::chrono::steady_clock::now();
+        drawFrame();
+        glFinish();
+        const double ms = msSince(t0);
+        total += ms;
+        tm.msPerFrameMin = std::min(tm.msPerFrameMin, ms);
+    }
+    tm.msPerFrame = total / tm.frames;
 }
 
 

@@ -7,6 +7,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "gl_multipass.h"
@@ -21,5 +22,8 @@ GLuint makeTexture(int w, int h, TargetFormat f = TargetFormat::RGBA8);
 void upload(GLuint tex, int w, int h, const uint32_t* lum, TargetFormat f = TargetFormat::RGBA8);
 std::vector<uint32_t> readback(int w, int h, TargetFormat f);
 double msSince(std::chrono::steady_clock::time_point t0);
+// The timed frames: `frames` (at least 1) runs of drawFrame, each ended by glFinish, into tm
+// (frames, the mean msPerFrame and the fastest msPerFrameMin).
+void timeFrames(Timing& tm, int frames, const std::function<void()>& drawFrame);
 
 }  // namespace pst::gpu::detail

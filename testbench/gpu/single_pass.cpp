@@ -93,18 +93,7 @@ Image8 singlePassNoise(const Image8& s, const Image8& t, const Image8& r, const 
     glUniform1i(glGetUniformLocation(prog, "bf"), params.format.bf);
     glUniform1i(glGetUniformLocation(prog, "scurve"), params.interp == Interp::Scurve);
     tm.draws = 1;
-    tm.frames = std::max(1, frames);
-    double total = 0;
-    tm.msPerFrameMin = 1e300;
-    for (int f = 0; f < tm.frames; ++f) {
-        t0 = std::chrono::steady_clock::now();
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        glFinish();
-        const double ms = msSince(t0);
-        total += ms;
-        tm.msPerFrameMin = std::min(tm.msPerFrameMin, ms);
-    }
-    tm.msPerFrame = total / tm.frames;
+    timeFrames(tm, frames, [] { glDrawArrays(GL_TRIANGLES, 0, 3); });
     check("single pass");
     Image8 out{w, h, readback(w, h, TargetFormat::RGBA8)};
     glDeleteTextures(5, tex);

@@ -30,11 +30,11 @@ out of range, no pst), nothing written.
 import argparse
 import json
 import math
-import os
 import pathlib
 import subprocess
 import sys
 
+from . import check_pst
 from .. import atomic
 from ..paths import ROOT
 from ..docs import flyins_doc
@@ -76,8 +76,7 @@ def parse_args(argv):
             raise ValueError(f"--truth: 1..64 samples per pixel edge, got {a.truth}")
         if not 1 <= a.jobs <= 2:
             raise ValueError(f"--jobs: 1 or 2, got {a.jobs}")
-        if not a.scenes_only and not os.access(a.pst, os.X_OK):
-            raise ValueError(f"--pst: {a.pst}: not an executable (cmake --build build --target pst)")
+        check_pst(a)
     except ValueError as e:
         ap.error(str(e))
     return a

@@ -28,10 +28,10 @@ Exit status: 0 every profile passes; 1 one fails the rule (or a render failed); 
 pst), nothing written.
 """
 import argparse
-import os
 import pathlib
 import sys
 
+from . import check_pst
 from ..validation import valset, validate as validation
 from ..paths import ROOT
 
@@ -61,8 +61,7 @@ def parse_args(argv):
         valset.check(a.seed, a.count, a.size, a.split)
         if a.jobs < 1:
             raise ValueError(f"--jobs: at least 1, got {a.jobs}")
-        if not a.scenes_only and not os.access(a.pst, os.X_OK):
-            raise ValueError(f"--pst: {a.pst}: not an executable (cmake --build build --target pst)")
+        check_pst(a)
     except ValueError as e:
         ap.error(str(e))
     return a

@@ -103,3 +103,17 @@ def load_record(root: Path, source: Path, key: str, how: str) -> dict:
     if not isinstance(d.get(key), dict) or not d[key]:
         raise ValueError(f"{source}: {key}: missing")
     return d
+
+
+def copy_inputs(root: Path, dest: Path) -> Path:
+    """A copy in DEST of what scripts/gen_docs.py reads under ROOT and the hand-figure check scans
+    (the tests' tree): the READMEs, the silicon baseline, derate, noise units and records, docs/
+    and rtl/. Returns DEST."""
+    import shutil
+    for rel in ("README.md", "scenes/README.md", "scripts/synth/baseline.json",
+                "scripts/synth/layout_derate.json", "scripts/synth/noise_units.json"):
+        (dest / rel).parent.mkdir(parents=True, exist_ok=True)
+        shutil.copy(root / rel, dest / rel)
+    for rel in ("scripts/synth/records", "docs", "rtl"):
+        shutil.copytree(root / rel, dest / rel)
+    return dest

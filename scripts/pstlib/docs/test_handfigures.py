@@ -1,9 +1,8 @@
 """Tests of pstlib.docs.handfigures and the check of scripts/gen_docs.py --check (ctest docs_stale):
 a figure typed by hand beside the generated sections fails, naming FILE:LINE."""
-import shutil
 import subprocess
 
-from pstlib.docs import handfigures
+from pstlib.docs import docgen, handfigures
 from pstlib.paths import PY, ROOT
 
 GEN = ROOT / "scripts" / "gen_docs.py"
@@ -42,14 +41,7 @@ def test_toml_comments_only():
 
 def _tree(tmp_path):
     """A copy of what scripts/gen_docs.py reads and the check scans."""
-    for rel in ("README.md", "scenes/README.md", "scripts/synth/baseline.json", "scripts/synth/layout_derate.json",
-                "scripts/synth/noise_units.json"):
-        (tmp_path / rel).parent.mkdir(parents=True, exist_ok=True)
-        shutil.copy(ROOT / rel, tmp_path / rel)
-    shutil.copytree(ROOT / "scripts" / "synth" / "records", tmp_path / "scripts" / "synth" / "records")
-    shutil.copytree(ROOT / "docs", tmp_path / "docs")
-    shutil.copytree(ROOT / "rtl", tmp_path / "rtl")
-    return tmp_path
+    return docgen.copy_inputs(ROOT, tmp_path)
 
 
 def test_check_fails_on_a_planted_figure(tmp_path):

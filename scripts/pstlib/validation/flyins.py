@@ -43,8 +43,7 @@ BASES = ["rayshade", "perlin2002", "worley", "subband"]
 PATHS = ["forward", "sideways", "orbit", "zoom", "grazing"]
 CMAPS = ["ramp_clamp", "ramp_mod", "step_clamp", "step_mod"]
 
-SEED_BEGIN = scenegen.TRAIN_SEED_END
-SEED_END = 2 * scenegen.TRAIN_SEED_END
+SEED_BEGIN, SEED_END = valset.SEED_BEGIN, valset.SEED_END   # the strata sets' validation seeds
 DEFAULT_FRAMES = 16
 DEFAULT_SIZE = 48
 FRAMES_RANGE = (3, 256)
@@ -52,14 +51,8 @@ SIZE_RANGE = (8, 512)
 MAX_COUNT = 1024
 
 
-class Split(NamedTuple):
-    name: str
-    seed_begin: int
-    seed_end: int
-    stream: str
-    prefix: str
-    default_seed: int
-    default_count: int
+# A split of the fly-ins: valset.Split's fields, then the defaults of its --seed and --count.
+Split = NamedTuple("Split", [*valset.Split.__annotations__.items(), ("default_seed", int), ("default_count", int)])
 
 
 VALIDATION = Split("validation", SEED_BEGIN, SEED_END, "flyin_holdout", "fval", SEED_BEGIN + 1, 20)

@@ -124,30 +124,21 @@ TEST(Scene, NoSceneHasZeroAreaTriangles) {
     EXPECT_GT(triangles, 10000u);
 }
 
+// `text` with its first `from` replaced by `to`.
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+    return text.replace(text.find(from), from.size(), to);
+}
+
 TEST(Scene, ErrorsNameFileLineAndField) {
     std::string t = kMinimal;
     // Bad value: line of the offending key.
-    std::string bad = t;
-    bad.replace(bad.find("size = 4"), 8, "size = 6");
-    expectError(bad, {"bad.toml:9:", "textures.t.colormap.size", "power of two"});
-    bad = t;
-    bad.replace(bad.find("amplitude = 0.5"), 15, "amplitude = nan");
-    expectError(bad, {"bad.toml:11:", "textures.t.octaves[0].amplitude", "NaN"});
-    bad = t;
-    bad.replace(bad.find("amplitude = 0.5"), 15, "amplitude = inf");
-    expectError(bad, {"bad.toml:11:", "amplitude", "infinite"});
-    bad = t;
-    bad.replace(bad.find("mesh = \"cube\""), 13, "mesh = \"dodecahedron\"");
-    expectError(bad, {"bad.toml:15:", "objects[0].mesh", "unknown mesh"});
-    bad = t;
-    bad.replace(bad.find("texture = \"t\""), 13, "texture = \"u\"");
-    expectError(bad, {"bad.toml:16:", "objects[0].texture", "no texture named 'u'"});
-    bad = t;
-    bad.replace(bad.find("amplitude = 0.5"), 15, "amplitud = 0.5");
-    expectError(bad, {"bad.toml:11:", "amplitud", "unknown key"});
-    bad = t;
-    bad.replace(bad.find("eye = [0.0, 0.0, 5.0]"), 21, "eye = [0.0, 5.0]");
-    expectError(bad, {"bad.toml:6:", "camera.eye", "expected 3 numbers"});
+    expectError(replaced(t, "size = 4", "size = 6"), {"bad.toml:9:", "textures.t.colormap.size", "power of two"});
+    expectError(replaced(t, "amplitude = 0.5", "amplitude = nan"), {"bad.toml:11:", "textures.t.octaves[0].amplitude", "NaN"});
+    expectError(replaced(t, "amplitude = 0.5", "amplitude = inf"), {"bad.toml:11:", "amplitude", "infinite"});
+    expectError(replaced(t, "mesh = \"cube\"", "mesh = \"dodecahedron\""), {"bad.toml:15:", "objects[0].mesh", "unknown mesh"});
+    expectError(replaced(t, "texture = \"t\"", "texture = \"u\""), {"bad.toml:16:", "objects[0].texture", "no texture named 'u'"});
+    expectError(replaced(t, "amplitude = 0.5", "amplitud = 0.5"), {"bad.toml:11:", "amplitud", "unknown key"});
+    expectError(replaced(t, "eye = [0.0, 0.0, 5.0]", "eye = [0.0, 5.0]"), {"bad.toml:6:", "camera.eye", "expected 3 numbers"});
     // Syntax error from toml++, with the line.
     expectError("[image]\nwidth = = 3\n", {"bad.toml:2:"});
     expectError(std::string(kMinimal) + "\n[[objects]]\nmesh = \"cube\"\ntexture = \"t\"\nfilter = 3\n",

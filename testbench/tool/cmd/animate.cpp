@@ -20,18 +20,11 @@ Command registerAnimate(CLI::App& app) {
     animate->add_option("--size", an->size, "Square image size, overrides the scene's (0: the scene's)")->check(CLI::Range(1, 4096));
     animate->add_option("--truth", an->truth, "N x N ground truth per frame (the flicker metric needs it; 0: none)")->check(CLI::Range(1, 64));
     animate->add_option("--fps", an->fps, "Video frame rate (0: the scene's animation.fps)")->check(kFinite & CLI::Range(0.1, 240.0));
-    animate->add_option("--profile", an->profiles, profileHelp("Also through the hardware model(s) of these profiles, scoreboarded"))
-        ->allow_extra_args(false);
-    animate->add_option("--model", an->model, "Hardware model for --profile: rtl or golden")->check(CLI::IsMember({"rtl", "golden"}));
+    addProfileOptions(animate, an->profiles, an->model, "Also through the hardware model(s) of these profiles, scoreboarded");
     animate->add_option("-o,--out", an->outDir, "Output folder (default out/anim/<scene name>)");
     animate->add_option("-j,--threads", an->threads, "Threads (0: all cores)")->check(CLI::Range(0, 256));
     animate->add_flag("--no-video", flags->first, "PNG frames and flicker.json only");
-    animate->add_option("--bandlimit", an->bandlimit, "Every texture's bandlimited octaves: off, footprint, isotropic or "
-                        "anisotropic (scenes/README.md; default: as the scene says)")
-        ->check(CLI::IsMember(kBandlimitNames));
-    animate->add_option("--filter", an->filter, "Every texture's filter kind: none, mip, mip_linear, sat, box or trapezoid "
-                        "(default: as the scene says)")
-        ->check(CLI::IsMember(kFilterNames));
+    addTextureOverrideOptions(animate, an->bandlimit, an->filter);
     animate->add_option("--variants", *variants, "Also a reference stream per KIND[+BANDLIMIT] (every texture's filter "
                         "and bandlimit replaced), with its flicker")
         ->delimiter(',');
@@ -45,22 +38,15 @@ Command registerAnimate(CLI::App& app) {
     return {animate, [an, variants, flags, animate, trace]() {
                 if (an->profiles.empty()) refuseGiven(animate, {"--model"}, "needs --profile (without it no hardware model runs)");
                 // --trace as pst render's, of one frame's stream.
-                const bool traceOpts = !trace->empty() || animate->count("--trace-frame") ||
-                                       animate->count("--trace-start") || animate->count("--trace-end");
-                if (traceOpts && an->profiles.empty()) throw InputError("--trace: needs --profile (the waves are the RTL's)");
-                if (traceOpts && an->model != "rtl") throw InputError("--trace: needs --model rtl (the golden model has no waves)");
-                if (traceOpts && trace->empty()) throw InputError("--trace-frame, --trace-start, --trace-end: need --trace FILE");
+                checkTraceOptions(animate, *trace, an->profiles, an->model, {"--trace-frame", "--trace-start", "--trace-end"});
                 if (!trace->empty() && an->profiles.size() > 1)
                     throw InputError("--trace: one --profile only (one waveform of one RTL stream)");
                 if (!trace->empty() && !animate->count("--trace-frame"))
                     throw InputError("--trace: needs --trace-frame K (the frame whose RTL stream is traced)");
-                if (an->sim.traceStart > an->sim.traceEnd)
-                    throw InputError("--trace-start: " + std::to_string(an->sim.traceStart) + " is after --trace-end " +
-                                     std::to_string(an->sim.traceEnd));
+                checkTraceWindow(an->sim);
                 if (!trace->empty()) checkTracePath(*trace);
                 checkNotInput("--trace", *trace, {an->scene});
-                checkOutDir("-o", an->outDir);
-                checkCreatableDir("-o", an->outDir.empty() ? "out" : an->outDir);
+                checkOutFolder(an->outDir);
                 an->video = !flags->first;
                 an->variants = parseVariants(*variants);
                 AnimateArgs* a = an.get();

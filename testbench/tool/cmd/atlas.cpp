@@ -209,9 +209,7 @@ Command registerAtlas(CLI::App& app) {
     atlasCmd->add_option("--magnification", at->magnification, "Seam-free for: nearest or bilinear");
     atlasCmd->add_option("--image", at->image, "Square view size, overrides the scene's (0: the scene's)")->check(CLI::Range(1, 4096));
     atlasCmd->add_option("--truth", at->truth, "N x N jittered samples per pixel of the ground truth")->check(CLI::Range(1, 64));
-    atlasCmd->add_option("--profile", hw->profiles, profileHelp("Also fill through this profile's golden model and RTL (scoreboarded)"))
-        ->allow_extra_args(false);
-    atlasCmd->add_option("--model", hw->model, "Hardware model for --profile: rtl or golden")->check(CLI::IsMember({"rtl", "golden"}));
+    addProfileOptions(atlasCmd, hw->profiles, hw->model, "Also fill through this profile's golden model and RTL (scoreboarded)");
     atlasCmd->add_option("-o,--out", at->outDir, "Output folder (default out/atlas/<scene name>)");
     atlasCmd->add_option("-j,--threads", at->threads, "Threads (0: all cores)")->check(CLI::Range(0, 256));
     atlasCmd->add_flag("-q,--quiet", at->quiet, "No progress on stderr");
@@ -226,8 +224,7 @@ Command registerAtlas(CLI::App& app) {
     return {atlasCmd, [at, hw, atlasCmd]() {
                 refuseHardwareOptionsWithoutModel(atlasCmd, *hw);
                 if (at->filler != "gpu") refuseGiven(atlasCmd, {"--variant", "--bf"}, "needs --filler gpu (the multipass GPU filler's option)");
-                checkOutDir("-o", at->outDir);
-                checkCreatableDir("-o", at->outDir.empty() ? "out" : at->outDir);
+                checkOutFolder(at->outDir);
                 return runAtlas(*at, *hw);
             }};
 }

@@ -39,6 +39,40 @@ void addSimOptions(CLI::App* sc, HwArgs& hw) {
 
 const std::vector<std::string> kSimOptions{"--sim-seed", "--gap-rate", "--stall-rate", "--timeout"};
 
+void addProfileOptions(CLI::App* sc, std::vector<std::string>& profiles, std::string& model, const std::string& what) {
+    sc->add_option("--profile", profiles, profileHelp(what))->allow_extra_args(false);
+    sc->add_option("--model", model, "Hardware model for --profile: rtl or golden")->check(CLI::IsMember({"rtl", "golden"}));
+}
+
+void addTextureOverrideOptions(CLI::App* sc, std::string& bandlimit, std::string& filter) {
+    sc->add_option("--bandlimit", bandlimit, "Every texture's bandlimited octaves: off, footprint, isotropic or "
+                   "anisotropic (scenes/README.md; default: as the scene says)")
+        ->check(CLI::IsMember(kBandlimitNames));
+    sc->add_option("--filter", filter, "Every texture's filter kind: none, mip, mip_linear, sat, box or trapezoid "
+                   "(default: as the scene says)")
+        ->check(CLI::IsMember(kFilterNames));
+}
+
+bool checkTraceOptions(const CLI::App* sc, const std::string& trace, const std::vector<std::string>& profiles,
+                       const std::string& model, const std::vector<std::string>& window) {
+    bool given = !trace.empty();
+    std::string names;
+    for (const auto& n : window) {
+        given = given || sc->count(n) > 0;
+        names += (names.empty() ? "" : ", ") + n;
+    }
+    if (given && profiles.empty()) throw InputError("--trace: needs --profile (the waves are the RTL's)");
+    if (given && model != "rtl") throw InputError("--trace: needs --model rtl (the golden model has no waves)");
+    if (given && trace.empty()) throw InputError(names + ": need --trace FILE");
+    return given;
+}
+
+void checkTraceWindow(const SimOptions& sim) {
+    if (sim.traceStart > sim.traceEnd)
+        throw InputError("--trace-start: " + std::to_string(sim.traceStart) + " is after --trace-end " +
+                         std::to_string(sim.traceEnd));
+}
+
 void refuseGiven(const CLI::App* app, const std::vector<std::string>& names, const std::string& why) {
     for (const auto& n : names)
         if (app->count(n) > 0) throw InputError(n + ": " + why);
@@ -135,6 +169,16 @@ void writeHtmlPage(const std::string& page, const std::string& shown, std::vecto
     const bool ok = spawnAndWait(args);
     throwIfInterrupted();
     if (!ok) throw std::runtime_error("--html: " + script + " did not write '" + shown + "' (nothing of this run is written)");
+}
+
+void commitWithPage(Outputs& outputs, const std::string& page, const std::string& shown, std::vector<std::string> args) {
+    if (!shown.empty()) {
+        const std::vector<std::string> st = outputs.stagedArgs();
+        args.insert(args.end(), st.begin(), st.end());
+        writeHtmlPage(page, shown, args);
+    }
+    outputs.commit();
+    if (!shown.empty()) std::cout << "page: " << shown << "\n";
 }
 
 Profile profileByName(const std::string& name, bool rtl, bool hasModelOption) {
@@ -334,6 +378,11 @@ void checkOutFile(const std::string& flag, const std::string& path) {
 void checkOutDir(const std::string& flag, const std::string& path) {
     if (!path.empty() && fs::exists(path) && !fs::is_directory(path))
         throw InputError(flag + ": '" + path + "' is a file; give a folder");
+}
+
+void checkOutFolder(const std::string& outDir) {
+    checkOutDir("-o", outDir);
+    checkCreatableDir("-o", outDir.empty() ? "out" : outDir);
 }
 
 void checkNotInput(const std::string& flag, const std::string& out, const std::vector<std::string>& inputs) {

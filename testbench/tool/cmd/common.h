@@ -62,6 +62,19 @@ extern const std::vector<std::string> kBandlimitNames, kFilterNames;
 // CLI11's Range lets NaN through (every comparison with NaN is false).
 extern const CLI::Validator kFinite;
 
+// --profile and --model (rtl or golden): the hardware model(s) a command also runs; `what` begins
+// --profile's help.
+void addProfileOptions(CLI::App* sc, std::vector<std::string>& profiles, std::string& model, const std::string& what);
+// --bandlimit and --filter: every texture's, overriding the scene's (overrideTextures).
+void addTextureOverrideOptions(CLI::App* sc, std::string& bandlimit, std::string& filter);
+// --trace and the options of its window (`window`: --trace-start, --trace-end, ...): the waves are
+// the RTL's, so they need --profile and --model rtl, and the window needs --trace FILE. Returns
+// whether any of them was given.
+bool checkTraceOptions(const CLI::App* sc, const std::string& trace, const std::vector<std::string>& profiles,
+                       const std::string& model, const std::vector<std::string>& window);
+// The traced window: --trace-start not after --trace-end.
+void checkTraceWindow(const SimOptions& sim);
+
 std::vector<FilterVariant> parseVariants(const std::vector<std::string>& specs);
 // --bandlimit and --filter: every texture of the scene gets them (a bandlimit a texture cannot
 // take is refused).
@@ -137,6 +150,11 @@ private:
     bool committed_ = false;
 };
 
+// The last step of a run with an optional HTML page (`shown`, the path the user gave; none when
+// empty): the page (writeHtmlPage, from `args` and the staged outputs), the commit, then where
+// the page is on stdout.
+void commitWithPage(Outputs& outputs, const std::string& page, const std::string& shown, std::vector<std::string> args);
+
 // SIGINT, SIGTERM and SIGHUP record the signal (interrupt.h) for the run to unwind; a second one ends the
 // process at once.
 void installInterruptHandlers();
@@ -156,6 +174,9 @@ void checkOutFile(const std::string& flag, const std::string& path);
 void checkNotFolder(const std::string& flag, const std::string& path);
 // An output folder given with -o must not be a file.
 void checkOutDir(const std::string& flag, const std::string& path);
+// The output folder of -o (default: under out/) as render, animate and atlas take it: not a file,
+// and creatable.
+void checkOutFolder(const std::string& outDir);
 
 // An output that is one of the run's inputs (the same file, std::filesystem::equivalent) is
 // refused before any work: it would overwrite the input.

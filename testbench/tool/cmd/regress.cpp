@@ -133,14 +133,7 @@ int run(RegressCli& c) {
     staged.out = outputs.file("-o", withPage.out);
     staged.junit = outputs.file("--junit", withPage.junit);
     const int rc = runRegressScenes(staged, hw);
-    if (!a.html.empty()) {
-        std::vector<std::string> args = {"--regress", staged.out, "--images", staged.images};
-        const std::vector<std::string> st = outputs.stagedArgs();
-        args.insert(args.end(), st.begin(), st.end());
-        writeHtmlPage(page, a.html, args);
-    }
-    outputs.commit();
-    if (!a.html.empty()) std::cout << "page: " << a.html << "\n";
+    commitWithPage(outputs, page, a.html, {"--regress", staged.out, "--images", staged.images});
     return rc;
 }
 

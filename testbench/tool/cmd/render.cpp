@@ -80,13 +80,7 @@ int runHardwareRender(const RenderArgs& a, const HwArgs& hw) {
             rc = 1;
         }
     }
-    if (!hw.html.empty()) {
-        const std::vector<std::string> st = outputs.stagedArgs();
-        pageArgs.insert(pageArgs.end(), st.begin(), st.end());
-        writeHtmlPage(page, hw.html, pageArgs);
-    }
-    outputs.commit();
-    if (!hw.html.empty()) std::cout << "page: " << hw.html << "\n";
+    commitWithPage(outputs, page, hw.html, pageArgs);
     return rc;
 }
 
@@ -172,18 +166,11 @@ Command registerRender(CLI::App& app) {
     render->add_option("--seed", ra->seed, "Jitter seed of the ground truth");
     render->add_option("-j,--threads", ra->threads, "Threads (0: all cores)")->check(CLI::Range(0, 256));
     render->add_flag("-q,--quiet", ra->quiet, "No progress on stderr");
-    render->add_option("--bandlimit", ra->bandlimit, "Every texture's bandlimited octaves: off, footprint, isotropic or "
-                       "anisotropic (scenes/README.md; default: as the scene says)")
-        ->check(CLI::IsMember(kBandlimitNames));
-    render->add_option("--filter", ra->filter, "Every texture's filter kind: none, mip, mip_linear, sat, box or trapezoid "
-                       "(default: as the scene says)")
-        ->check(CLI::IsMember(kFilterNames));
+    addTextureOverrideOptions(render, ra->bandlimit, ra->filter);
     render->add_option("--variants", ra->variants, "Also the filtered image with every texture's filter (and bandlimit) "
                        "replaced, per KIND[+BANDLIMIT] (e.g. trapezoid sat+footprint), compared with the truth (reference only)")
         ->delimiter(',');
-    render->add_option("--profile", hw->profiles, profileHelp("Hardware profile(s): renders through the RTL"))
-        ->allow_extra_args(false);
-    render->add_option("--model", hw->model, "Hardware model for --profile: rtl or golden")->check(CLI::IsMember({"rtl", "golden"}));
+    addProfileOptions(render, hw->profiles, hw->model, "Hardware profile(s): renders through the RTL");
     render->add_option("--trace", hw->trace, "FST waveform of the RTL run (off unless given)");
     render->add_option("--trace-start", hw->sim.traceStart, "First traced cycle");
     render->add_option("--trace-end", hw->sim.traceEnd, "Last traced cycle");
@@ -191,16 +178,10 @@ Command registerRender(CLI::App& app) {
     addSimOptions(render, *hw);
     return {render, [ra, hw, render]() {
                 if (!hw->html.empty() && hw->profiles.empty()) throw InputError("--html: needs --profile");
-                const bool traceOpts = !hw->trace.empty() || render->count("--trace-start") || render->count("--trace-end");
-                if (traceOpts && hw->profiles.empty()) throw InputError("--trace: needs --profile (the waves are the RTL's)");
-                if (traceOpts && hw->model != "rtl") throw InputError("--trace: needs --model rtl (the golden model has no waves)");
-                if (traceOpts && hw->trace.empty()) throw InputError("--trace-start, --trace-end: need --trace FILE");
-                if (hw->sim.traceStart > hw->sim.traceEnd)
-                    throw InputError("--trace-start: " + std::to_string(hw->sim.traceStart) + " is after --trace-end " +
-                                     std::to_string(hw->sim.traceEnd));
+                checkTraceOptions(render, hw->trace, hw->profiles, hw->model, {"--trace-start", "--trace-end"});
+                checkTraceWindow(hw->sim);
                 refuseHardwareOptionsWithoutModel(render, *hw);
-                checkOutDir("-o", ra->outDir);
-                checkCreatableDir("-o", ra->outDir.empty() ? "out" : ra->outDir);
+                checkOutFolder(ra->outDir);
                 checkNotInput("--trace", hw->trace, {ra->scene});
                 checkNotInput("--html", hw->html, {ra->scene});
                 checkCreatableFileDir("--html", hw->html);

@@ -21,6 +21,21 @@ OIIO::ImageBuf toBuf(const Image& img) {
     return buf;
 }
 
+// Two images compared channel by channel must be of one size, with at least 3 channels (`what`
+// names the caller in the refusal).
+void checkRgbPair(const Image& a, const Image& b, const char* what) {
+    if (a.width != b.width || a.height != b.height || a.channels < 3 || b.channels < 3)
+        throw std::runtime_error(std::string(what) + ": images differ in size or have fewer than 3 channels");
+}
+
+// The RGB channels of the whole of buffer A.
+OIIO::ROI rgbRoi(const OIIO::ImageBuf& A) {
+    OIIO::ROI roi = A.roi();
+    roi.chbegin = 0;
+    roi.chend = 3;
+    return roi;
+}
+
 // A temporary name in the same folder that keeps the extension (OIIO picks the format by it).
 std::string tempName(const std::string& path) {
     fs::path p(path);
@@ -68,12 +83,9 @@ Image readImage(const std::string& path) {
 }
 
 ImageDiff compareRgb(const Image& a, const Image& b) {
-    if (a.width != b.width || a.height != b.height || a.channels < 3 || b.channels < 3)
-        throw std::runtime_error("compareRgb: images differ in size or have fewer than 3 channels");
+    checkRgbPair(a, b, "compareRgb");
     OIIO::ImageBuf A = toBuf(a), B = toBuf(b);
-    OIIO::ROI roi = A.roi();
-    roi.chbegin = 0;
-    roi.chend = 3;
+    const OIIO::ROI roi = rgbRoi(A);
     auto r = OIIO::ImageBufAlgo::compare(A, B, 1e30f, 1e30f, roi);
     ImageDiff d;
     d.meanError = r.meanerror;
@@ -86,12 +98,9 @@ ImageDiff compareRgb(const Image& a, const Image& b) {
 }
 
 Image absDiffRgb(const Image& a, const Image& b, double scale) {
-    if (a.width != b.width || a.height != b.height || a.channels < 3 || b.channels < 3)
-        throw std::runtime_error("absDiffRgb: images differ in size or have fewer than 3 channels");
+    checkRgbPair(a, b, "absDiffRgb");
     OIIO::ImageBuf A = toBuf(a), B = toBuf(b);
-    OIIO::ROI roi = A.roi();
-    roi.chbegin = 0;
-    roi.chend = 3;
+    const OIIO::ROI roi = rgbRoi(A);
     OIIO::ImageBuf d = OIIO::ImageBufAlgo::absdiff(A, B, roi);
     if (scale != 1.0) d = OIIO::ImageBufAlgo::mul(d, float(scale));
     Image out(a.width, a.height, 4);
