@@ -16,6 +16,7 @@ PACKAGES=(
   slurm-wlm slurm-client munge      # scripts/search.py --backend slurm; ctest -L slurm (scripts/slurm_local.sh)
   lcov                            # scripts/coverage.sh: genhtml
   gtkwave                         # FST waves (pst render --trace, regress --waves): the viewer, fst2vcd in the tests
+  iverilog                        # gate-level simulation of the netlists (scripts/gatelevel.py --simulator iverilog)
   libmetis-dev                     # pst atlas: the multiresolution atlas's partition
   libfftw3-dev libeigen3-dev       # model/subband: spectral noise tiles (FFT), least-squares weights
   z3 python3-z3                    # scripts/mul_proof.py: the multiplier forms' proof (with Yosys's ABC)

@@ -168,3 +168,44 @@ def test_memories_refuse_a_standin_without_memory_and_a_memory_without_standin()
 def test_memories_refuse_falling_edge_writes():
     with pytest.raises(memories.NetlistError, match="rising-edge"):
         memories.replace_standins(NETLIST, DUMP.replace("WR_CLK_POLARITY 1'1", "WR_CLK_POLARITY 1'0"))
+
+
+# --simulator iverilog (replay.py): the comparison of the netlist's outputs with the RTL's trace.
+def _rows(valid, f):
+    return [{"clk_i": k % 2, "rst_ni": 1 if k > 1 else 0, "out_ready_i": 1, "out_valid_o": v, "frag_ready_o": 1,
+             "idle_o": 0, "out_f_o": x} for k, (v, x) in enumerate(zip(valid, f))]
+
+
+def test_replay_compare_equal_and_payload_only_when_valid():
+    from . import replay
+    rows = _rows([0, 0, 0, 1, 1, 0], [0, 0, 5, 7, 7, 9])
+    # the payload of a cycle without out_valid_o is not compared (9 vs 3), nor anything in reset
+    got = [[f"{r['frag_ready_o']:x}", f"{r['idle_o']:x}", f"{r['out_f_o']:x}", f"{r['out_valid_o']:x}"] for r in rows]
+    got[5][2] = "3"
+    got[0][0] = "x"
+    res = replay.compare(rows, got, ["frag_ready_o", "idle_o", "out_f_o", "out_valid_o"])
+    assert res["passed"] and res["mismatches"] == 0 and res["outputs_taken"] == 1
+
+
+def test_replay_compare_finds_a_payload_and_an_unknown():
+    from . import replay
+    rows = _rows([0, 0, 1, 1], [0, 0, 7, 7])
+    outs = ["frag_ready_o", "idle_o", "out_f_o", "out_valid_o"]
+    got = [[f"{r['frag_ready_o']:x}", f"{r['idle_o']:x}", f"{r['out_f_o']:x}", f"{r['out_valid_o']:x}"] for r in rows]
+    got[2][2] = "6"
+    got[3][2] = "x"
+    res = replay.compare(rows, got, outs)
+    assert not res["passed"] and res["mismatches"] == 2
+    assert res["first"] == {"half_clock": 2, "output": "out_f_o", "rtl": 7, "netlist": "6"}
+
+
+def test_replay_zero_init_needs_the_udp_modules():
+    from . import replay
+    text = replay.zero_init_cells("module udp_dff (output reg out, input in, input clk);\nendmodule\n")
+    assert "initial out = 1'b0;" in text
+    try:
+        replay.zero_init_cells("module DFF (Q);\nendmodule\n")
+    except replay.ReplayError:
+        pass
+    else:
+        raise AssertionError("no flip-flop model accepted")
