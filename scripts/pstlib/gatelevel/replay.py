@@ -120,6 +120,7 @@ def run(pst: pathlib.Path, profile: str, models: pathlib.Path, model: str, scene
     for tool in ("iverilog", "vvp", "fst2vcd"):
         if not shutil.which(tool):
             raise ReplayError(f"{tool}: not found (scripts/setup.sh installs iverilog and gtkwave)")
+    models, work, scene, pst = models.resolve(), work.resolve(), scene.resolve(), pst.resolve()
     netlist = models / f"{model}.v"
     if not netlist.exists():
         raise ReplayError(f"{netlist}: no such netlist (scripts/gatelevel.py writes it)")
