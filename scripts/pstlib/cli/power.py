@@ -111,10 +111,7 @@ def trace(pst: pathlib.Path, scene: pathlib.Path, profile: str, a, tmp: pathlib.
     if not fst.exists():
         raise RuntimeError(f"{what}: the run ended before cycle {a.start} "
                            f"(nothing traced): a larger --size or a smaller --start")
-    with open(vcd, "w") as f:
-        r = subprocess.run(["fst2vcd", str(fst)], stdout=f, stderr=subprocess.PIPE, text=True)
-    if r.returncode:
-        raise RuntimeError(f"fst2vcd: {r.stderr.strip()}")
+    activity.fst_to_vcd(fst, vcd)
     fst.unlink()
     return vcd
 

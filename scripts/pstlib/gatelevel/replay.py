@@ -23,7 +23,9 @@ import shutil
 import subprocess
 import time
 
+from .. import atomic
 from ..paths import ROOT
+from ..power import activity
 
 HANDSHAKE = ("out_valid_o", "frag_ready_o", "idle_o")
 PAYLOAD = ("out_tag_o", "out_rgba_o", "out_f_o", "out_grad_o", "out_w_o")
@@ -132,9 +134,10 @@ def run(pst: pathlib.Path, profile: str, models: pathlib.Path, model: str, scene
     if r.returncode or not fst.exists():
         raise ReplayError(f"pst render --trace: exit {r.returncode}\n{r.stderr[-1500:]}")
     vcd = work / "rtl.vcd"
-    with open(vcd, "w") as f:
-        if subprocess.run(["fst2vcd", str(fst)], stdout=f, stderr=subprocess.DEVNULL).returncode:
-            raise ReplayError("fst2vcd failed")
+    try:
+        activity.fst_to_vcd(fst, vcd)
+    except RuntimeError as e:
+        raise ReplayError(str(e)) from None
     pins = ports(netlist)
     inputs = ["clk_i"] + sorted(n for n, (d, _) in pins.items() if d == "input" and n != "clk_i")
     outputs = sorted(n for n, (d, _) in pins.items() if d == "output" and not n.startswith("probe_"))
@@ -162,7 +165,7 @@ def run(pst: pathlib.Path, profile: str, models: pathlib.Path, model: str, scene
     res.update({"profile": profile, "model": model, "scene": str(scene), "size": size, "half_clocks": len(rows),
                 "seconds": {"trace": round(t1 - t0, 1), "compile": round(t2 - t1, 1), "simulate": round(t3 - t2, 1)},
                 "simulator": subprocess.run(["iverilog", "-V"], capture_output=True, text=True).stdout.splitlines()[0]})
-    (work / "replay.json").write_text(json.dumps(res, indent=1) + "\n")
+    atomic.write_text(work / "replay.json", json.dumps(res, indent=1) + "\n")
     return res
 
 

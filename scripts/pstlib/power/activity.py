@@ -11,7 +11,9 @@ Every signal is keyed by its hierarchical path below the design's top, scopes jo
 pair per bit, bit index as the signal's declared range numbers it.
 """
 import dataclasses
+import pathlib
 import re
+import subprocess
 
 
 class VcdError(ValueError):
@@ -66,6 +68,17 @@ def _parse_range(tokens: list) -> tuple:
     a = int(m.group(1))
     b = int(m.group(2)) if m.group(2) is not None else a
     return name, min(a, b), a >= b
+
+
+def fst_to_vcd(fst, vcd) -> None:
+    """FST (the harness's trace, `pst render --trace`) to VCD with gtkwave's fst2vcd; RuntimeError
+    naming fst2vcd's complaint when it fails (the VCD then absent)."""
+    vcd = pathlib.Path(vcd)
+    with open(vcd, "w") as f:
+        r = subprocess.run(["fst2vcd", str(fst)], stdout=f, stderr=subprocess.PIPE, text=True)
+    if r.returncode:
+        vcd.unlink(missing_ok=True)
+        raise RuntimeError(f"fst2vcd: {r.stderr.strip()}")
 
 
 def read_vcd(path, clock: str = "clk_i", top_scopes: int = 2) -> Activity:
