@@ -4,6 +4,10 @@
                          [--gap-rate R] [--stall-rate R] [--mutate MODULE] [--jobs N]
                          [--simulator verilator|iverilog] [--scene FILE|all ...]
 
+Two simulators, both run by ctest (label gatelevel): --simulator verilator (compiled, fast enough
+for every scene and 10^5 random fragments) and --simulator iverilog (event-driven, the default
+here: a second opinion on the RTL's own port trace, about 80 times slower).
+
 The netlist is the profile's synthesis (scripts/synth.py --keep, the one the silicon figures
 count), made in OUT/synth/ unless --work names a kept synthesis folder. It is verilated with
 qflow-tech-osu018's cell models (UDPs as modules) and behavioural memories in place of the
@@ -19,8 +23,8 @@ on the RTL's own port trace of each --scene (default scenes/marble.toml; `--scen
 scene of scenes/, those the profile refuses listed as refused) at --size (default 16 here), the
 RTL run with --gap-rate input gaps and --stall-rate output stalls (default 0 here), and compares
 every output with the RTL's, half clock by half clock; --jobs replays at a time; the mutant runs
-on the first scene the profile renders. The RTL model is the main build's (build/pst). --simulator verilator: the verilated netlist through `pst regress` as above;
-Verilator 5.006 mis-evaluates these netlists (docs/VERIFICATION.md), so it fails today.
+on the first scene the profile renders. The RTL model is the main build's (build/pst). --simulator verilator: the verilated netlist through `pst regress` as above
+(its -fno-const-bit-op-tree must follow -O3: rtl/CMakeLists.txt, docs/VERIFICATION.md).
 
 Exit 0 when the netlist matches the golden model bit for bit on every run (and the mutant, if
 any, does not), 1 otherwise, 2 on bad input.

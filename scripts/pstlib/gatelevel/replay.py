@@ -1,10 +1,10 @@
 """Gate-level simulation with Icarus Verilog: the netlist replays the RTL's own port trace.
 
-Why a second simulator: Verilator 5.006 (Debian 12's) mis-evaluates the synthesized netlists
-(docs/VERIFICATION.md "The netlist against the RTL"): reduced's netlist verilated mismatches every
-pixel, even the generic-gate netlist before technology mapping, where Icarus Verilog, an
-event-driven simulator, computes the RTL's outputs. Icarus is far slower (minutes for a 16 x 16
-scene), so this check runs a small scene, not the harness's regressions.
+Why a second simulator: Verilator compiles the netlist into a model whose optimizations decide
+what it computes (Verilator 5.006's bit-op-tree folding mis-evaluates OSU018 XOR trees unless it
+is turned off: docs/VERIFICATION.md "The netlist against the RTL"); Icarus Verilog, an
+event-driven simulator, evaluates the cells one by one. It is far slower (minutes for a 16 x 16
+scene), so this check replays small scenes, not the harness's random regressions.
 
 Steps: the RTL model of PROFILE (the `pst` tool of the main build) renders SCENE with a port
 trace (`pst render --trace`); every input of pst_top at every half clock is written to a stimulus
