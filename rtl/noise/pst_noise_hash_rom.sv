@@ -11,6 +11,7 @@
 //   Pairs      pair read ports (0: none).
 //   Singles    single read ports (0: none).
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 `ifndef PST_ROM_DIR
@@ -18,7 +19,7 @@
 `endif
 
 module pst_noise_hash_rom #(
-  parameter int NoiseHash = pst_pkg::NoiseHashDefault,
+  `PST_HASH_ROM_PARAMS,
   parameter int Pairs     = 1,
   parameter int Singles   = 0,
   localparam int HW = (NoiseHash == pst_pkg::NoiseHashRayshade) ? pst_pkg::LatticeBits : 8,

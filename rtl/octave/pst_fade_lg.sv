@@ -9,11 +9,11 @@
 // Parameters:
 //   JacobianInt, JacobianFrac   the Jacobian entry format (L has JacobianFrac fraction bits).
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_fade_lg #(
-  parameter int JacobianInt  = pst_pkg::JacobianIntDefault,
-  parameter int JacobianFrac = pst_pkg::JacobianFracDefault,
+  `PST_JACOBIAN_PARAMS,
   localparam int JW  = JacobianInt + JacobianFrac,
   localparam int LF  = pst_pkg::FadeLgFrac,
   // lg_o in [-2^LF JacobianFrac, 2^LF (JW - JacobianFrac)): signed LgW bits.

@@ -81,7 +81,7 @@ module pst_octave_serial #(
   logic               advance;     // the fragment moves to its next cycle at this edge
   logic               en;          // advance, or the fragment leaves
   sched_t             sch, sch_next;
-  pst_octave_sched #(.Passes(Passes), .NoiseSteps(NoiseSteps), .NoiseRegs(NoiseRegs), .CycBits(CycBits)) u_sched (
+  pst_octave_sched #(.Passes(Passes), `PST_NOISE_SCHED_PASS, .CycBits(CycBits)) u_sched (
     .clk_i, .rst_ni, .cyc_next_i (cyc_d), .sch_o (sch), .next_o (sch_next));
 
   assign last_cycle = (32'(cyc_q) + 1 >= Cycles) && quad_done;
@@ -100,11 +100,7 @@ module pst_octave_serial #(
   logic [3*GW-1:0] gradq_s;
   assign qstep   = (32'(cyc_q) < pst_pkg::StepMax) ? SB'(cyc_q) : SB'(pst_pkg::StepMax);
   assign qstep_d = (32'(cyc_d) < pst_pkg::StepMax) ? SB'(cyc_d) : SB'(pst_pkg::StepMax);
-  pst_quadric_serial #(
-    .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
-    .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac),
-    .Regs(MR)
-  ) u_quadric (
+  pst_quadric_serial #(`PST_QUADRIC_PASS, .Regs(MR)) u_quadric (
     .clk_i, .rst_ni, .step_i (qstep), .step_next_i (qstep_d), .adv_i (advance), .done_o (qdone),
     .s_i (s_i), .coef_i (quad_i), .q_o (q_s), .gradq_o (gradq_s)
   );
@@ -118,7 +114,7 @@ module pst_octave_serial #(
   // The pixel's lg edge lengths for the fades (registered, free-running).
   logic [LgW-1:0] lgx, lgy;
   if (Bl) begin : g_fade_px
-    pst_fade_pixel #(.JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac), .LenRegs(1), .LgRegs(1)) u_px (
+    pst_fade_pixel #(`PST_JACOBIAN_PASS, .LenRegs(1), .LgRegs(1)) u_px (
       .clk_i, .rst_ni, .en_i (1'b1), .j_i (side_i[TB +: 6*JW]), .lgx_o (lgx), .lgy_o (lgy));
   end else begin : g_no_fade
     assign lgx = '0;
@@ -135,8 +131,8 @@ module pst_octave_serial #(
   localparam bit Aniso = (NoiseSubband != pst_pkg::NoiseSubbandNone) && (SK != 0);
   logic [2*(Aniso ? SK : 1)*LgW-1:0] sb_lg;
   if (Aniso) begin : g_sb_px
-    pst_subband_pixel #(.JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac), .NoiseSubband(NoiseSubband),
-      .K(SK), .LenRegs(1), .LgRegs(1)) u_sb_px (
+    pst_subband_pixel #(`PST_JACOBIAN_PASS, .NoiseSubband(NoiseSubband), .K(SK), .LenRegs(1), .LgRegs(1)
+    ) u_sb_px (
       .clk_i, .rst_ni, .en_i (1'b1), .j_i (side_i[TB +: 6*JW]), .lg_o (sb_lg));
   end else begin : g_no_sb_px
     assign sb_lg = '0;

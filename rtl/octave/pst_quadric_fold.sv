@@ -25,17 +25,11 @@
 // three or more beats: the first of them is never used, so the register is always loaded
 // from the coefficients that the used beats see).
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_quadric_fold #(
-  parameter int CoordInt    = pst_pkg::CoordIntDefault,
-  parameter int CoordFrac   = pst_pkg::CoordFracDefault,
-  parameter int QuadricInt  = pst_pkg::QuadricIntDefault,
-  parameter int QuadricFrac = pst_pkg::QuadricFracDefault,
-  parameter int FInt        = pst_pkg::FIntDefault,
-  parameter int FFrac       = pst_pkg::FFracDefault,
-  parameter int GradInt     = pst_pkg::GradIntDefault,
-  parameter int GradFrac    = pst_pkg::GradFracDefault,
+  `PST_QUADRIC_PARAMS,
   parameter int Regs        = 0,
   parameter bit SelReg      = 1'b0,
   // Derived widths (not profile keys).

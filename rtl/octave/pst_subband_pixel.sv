@@ -15,11 +15,11 @@
 //   K                           orientations, 4 or 8.
 //   LenRegs, LgRegs             0 or 1 registers after the lengths and after the lg.
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_subband_pixel #(
-  parameter int JacobianInt  = pst_pkg::JacobianIntDefault,
-  parameter int JacobianFrac = pst_pkg::JacobianFracDefault,
+  `PST_JACOBIAN_PARAMS,
   parameter int NoiseSubband = pst_pkg::NoiseSubbandXz,
   parameter int K            = 4,
   parameter int LenRegs      = 0,
