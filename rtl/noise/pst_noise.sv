@@ -93,10 +93,6 @@
 `include "pst_params.svh"
 `default_nettype none
 
-`ifndef PST_ROM_DIR
-`define PST_ROM_DIR "rom"
-`endif
-
 module pst_noise #(
   `PST_LATTICE_PARAMS,
   localparam int LF = NoiseLatticeFrac,  // fraction bits of u

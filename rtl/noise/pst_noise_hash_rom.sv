@@ -12,11 +12,8 @@
 //   Singles    single read ports (0: none).
 `include "pst_pkg.sv"
 `include "pst_params.svh"
+`include "noise/pst_rom_dir.svh"
 `default_nettype none
-
-`ifndef PST_ROM_DIR
-`define PST_ROM_DIR "rom"
-`endif
 
 module pst_noise_hash_rom #(
   `PST_HASH_ROM_PARAMS,

@@ -36,11 +36,8 @@
 // FadeBits], unsigned, 1.0 = 2^FadeFrac; unused for K = 0), steady over an evaluation's steps.
 `include "pst_pkg.sv"
 `include "pst_params.svh"
+`include "noise/pst_rom_dir.svh"
 `default_nettype none
-
-`ifndef PST_ROM_DIR
-`define PST_ROM_DIR "rom"
-`endif
 
 module pst_subband #(
   `PST_SUBBAND_PARAMS,

@@ -37,11 +37,8 @@
 // Q(WorleyCoefInt).CF).
 `include "pst_pkg.sv"
 `include "pst_params.svh"
+`include "noise/pst_rom_dir.svh"
 `default_nettype none
-
-`ifndef PST_ROM_DIR
-`define PST_ROM_DIR "rom"
-`endif
 
 module pst_worley #(
   `PST_WORLEY_PARAMS,

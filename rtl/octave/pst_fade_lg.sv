@@ -17,7 +17,7 @@ module pst_fade_lg #(
   localparam int JW  = JacobianInt + JacobianFrac,
   localparam int LF  = pst_pkg::FadeLgFrac,
   // lg_o in [-2^LF JacobianFrac, 2^LF (JW - JacobianFrac)): signed LgW bits.
-  localparam int LgW = $clog2((JW + 1) << LF) + 1
+  localparam int LgW = pst_pkg::fade_lg_width(JW)
 ) (
   input  logic [JW-1:0]  len_i,   // L >= 1
   output logic [LgW-1:0] lg_o

@@ -61,7 +61,7 @@ module pst_octave_serial #(
   localparam int CycMax   = (Cycles < pst_pkg::StepMax + 1) ? pst_pkg::StepMax + 1 : Cycles;
   localparam int CycBits  = (CycMax > 1) ? $clog2(CycMax) : 1;
   localparam bit Bl       = (FilterBandlimit == pst_pkg::FilterBandlimitIsotropic);
-  localparam int LgW      = $clog2((JW + 1) << pst_pkg::FadeLgFrac) + 1;
+  localparam int LgW      = pst_pkg::fade_lg_width(JW);
 
   typedef struct packed {
     logic                noise_on;   // a noise evaluation runs a step

@@ -25,7 +25,7 @@ module pst_subband_pixel #(
   parameter int LenRegs      = 0,
   parameter int LgRegs       = 0,
   localparam int JW  = JacobianInt + JacobianFrac,
-  localparam int LgW = $clog2((JW + 1) << pst_pkg::FadeLgFrac) + 1   // pst_fade_lg's lg_o
+  localparam int LgW = pst_pkg::fade_lg_width(JW)   // pst_fade_lg's lg_o
 ) (
   input  logic              clk_i,
   input  logic              rst_ni,
