@@ -5,6 +5,12 @@
 // gradq_e, pr_* as below). The including module declares the localparams the widths use: CW,
 // MW, OW, AW, GMW, QW, FW, GW, LF, NW, NGW, LTW, TB, PPB, FB, LMW, OctBits, SLW (the subband
 // unit's weights of a lane: max(1, NoiseSubbandOrientations) * FadeBits).
+// A macro, not packed structs: the port widths follow the profile's parameters (a module's,
+// set per profile by -G or chparam), and a struct port type whose field widths follow module
+// parameters needs `parameter type` (Yosys 0.23: syntax error) or an interface (Yosys 0.23
+// reads `b.f` as an implicitly declared wire and drops the logic); a pst_pkg typedef has one
+// width for every profile (checked 2026-12-07: a pst_pkg struct with localparam widths as a
+// port type is read by Yosys 0.23 and Verilator 5.006 alike).
 //
 // Ports:
 //   valid_i, ready_o, s_i, side_i    [A]: the fragment's texture coordinates and side payload
