@@ -4,7 +4,7 @@
 // lookups on two lattice axes, one corner per noise step; the isotropic sum (K = 0, eq. 7 with
 // every lambda_ij = 1) or K = 4, 8 oriented tiles weighted by the pixel's lambda_i (eq. 7 with
 // the anisotropic filter's weights, pst_subband_pixel and pst_octave_fade in
-// pst_octave_serial). Same ports and token timing as pst_noise, plus lam_i. Golden:
+// pst_octave_serial or pst_octave_parallel). Same ports and token timing as pst_noise, plus lam_i. Golden:
 // pst::subbandFx (model/golden/subband_fx.cpp, same steps and floors); its double reference is
 // pst::subbandRomReference (the bilinear lookup of the unrounded tiles).
 //
