@@ -27,7 +27,11 @@
 // Pipeline (NoiseRegs): a register at b0 between the step's corner values (the ROM read and the
 // weighted sums) and the bilinear sums (the first), the others at the output; the result of the
 // last step comes NoiseRegs advances (en_i) after its input, as pst_noise's. The held sums store
-// at every valid advance of b0's token (steps come on consecutive advances).
+// at every valid advance of b0's token (steps come on consecutive advances). With the four
+// corners in one step (NoiseSteps = 1) and NoiseRegs >= 2 the sums are formed in two halves with
+// the second register between them (b1; the same integers, regrouped): the rows' lerps r_cy =
+// sum_cx v_c u_cx and differences d_cy = v_(1,cy) - v_(0,cy) before it, V = sum_cy r_cy u_cy,
+// Gx = sum_cy d_cy u_cy, Gy = r_1 - r_0 after it.
 //
 // Parameters: NoiseLatticeFrac, NoiseOutFrac, NoiseSteps, NoiseRegs (the profile's noise keys),
 // NoiseSubband (the plane: pst_pkg::NoiseSubbandXy, Xz or Yz), NoiseSubbandOrientations (K: 0,
@@ -134,7 +138,6 @@ module pst_subband #(
   // Boundary b0 (the first pipeline register): the step's corner values, the bilinear weights'
   // fractions and the token; the sums are formed after it.
   localparam int R0 = (NoiseRegs >= 1) ? 1 : 0;
-  localparam int RO = NoiseRegs - R0;
   logic [CPS*CVW-1:0] cv_b;
   logic [WF-1:0]      w0_b, w1_b;
   logic [3:0]         tok_b;
@@ -143,34 +146,77 @@ module pst_subband #(
   pst_delay #(.Width(4), .Depth(R0), .Reset(1'b1)) u_b0_tok (
     .clk_i, .rst_ni, .en_i, .d_i ({valid_i, step_i}), .q_o (tok_b));
 
-  // ---- 3. the sums, held across the steps ----------------------------------------------------
-  logic [SUMW-1:0] held_q, sum_in, sum_out;
-  always_comb begin
-    logic signed [VW-1:0]  v_acc;
-    logic signed [GW-1:0]  gx_acc, gy_acc;
-    logic signed [CVW-1:0] v;
-    logic [UW-1:0]         ux, uy;
-    int                    c;
-    sum_in = (tok_b[2:0] == 3'd0) ? '0 : held_q;
-    {gy_acc, gx_acc, v_acc} = sum_in;
-    for (int i = 0; i < CPS; i++) begin
-      c = 32'(tok_b[2:0]) * CPS + i;
-      v  = cv_b[i*CVW +: CVW];
-      ux = ((c & 1) != 0) ? UW'(w0_b) : UW'(1 << WF) - UW'(w0_b);
-      uy = ((c & 2) != 0) ? UW'(w1_b) : UW'(1 << WF) - UW'(w1_b);
-      if (c < 4) begin
-        v_acc = v_acc + VW'(v) * VW'($signed({1'b0, ux})) * VW'($signed({1'b0, uy}));
-        if ((c & 1) != 0) gx_acc = gx_acc + GW'(v) * GW'($signed({1'b0, uy}));
-        else              gx_acc = gx_acc - GW'(v) * GW'($signed({1'b0, uy}));
-        if ((c & 2) != 0) gy_acc = gy_acc + GW'(v) * GW'($signed({1'b0, ux}));
-        else              gy_acc = gy_acc - GW'(v) * GW'($signed({1'b0, ux}));
+  // ---- 3. the sums {Gy, Gx, V} and the token beside them (tok_s) ---------------------------------
+  localparam bit Split = (CPS == 4) && (NoiseRegs >= 2);   // b1 between the rows and the columns
+  localparam int RO    = NoiseRegs - R0 - (Split ? 1 : 0);
+  logic [SUMW-1:0] sum_out;
+  logic [3:0]      tok_s;
+  if (!Split) begin : g_held
+    // Held across the steps (step 0 starts from 0).
+    logic [SUMW-1:0] held_q, sum_in;
+    always_comb begin
+      logic signed [VW-1:0]  v_acc;
+      logic signed [GW-1:0]  gx_acc, gy_acc;
+      logic signed [CVW-1:0] v;
+      logic [UW-1:0]         ux, uy;
+      int                    c;
+      sum_in = (tok_b[2:0] == 3'd0) ? '0 : held_q;
+      {gy_acc, gx_acc, v_acc} = sum_in;
+      for (int i = 0; i < CPS; i++) begin
+        c = 32'(tok_b[2:0]) * CPS + i;
+        v  = cv_b[i*CVW +: CVW];
+        ux = ((c & 1) != 0) ? UW'(w0_b) : UW'(1 << WF) - UW'(w0_b);
+        uy = ((c & 2) != 0) ? UW'(w1_b) : UW'(1 << WF) - UW'(w1_b);
+        if (c < 4) begin
+          v_acc = v_acc + VW'(v) * VW'($signed({1'b0, ux})) * VW'($signed({1'b0, uy}));
+          if ((c & 1) != 0) gx_acc = gx_acc + GW'(v) * GW'($signed({1'b0, uy}));
+          else              gx_acc = gx_acc - GW'(v) * GW'($signed({1'b0, uy}));
+          if ((c & 2) != 0) gy_acc = gy_acc + GW'(v) * GW'($signed({1'b0, ux}));
+          else              gy_acc = gy_acc - GW'(v) * GW'($signed({1'b0, ux}));
+        end
       end
+      sum_out = {gy_acc, gx_acc, v_acc};
     end
-    sum_out = {gy_acc, gx_acc, v_acc};
-  end
-  always_ff @(posedge clk_i or negedge rst_ni) begin
-    if (!rst_ni) held_q <= '0;
-    else if (en_i && tok_b[3]) held_q <= sum_out;
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) held_q <= '0;
+      else if (en_i && tok_b[3]) held_q <= sum_out;
+    end
+    assign tok_s = tok_b;
+  end else begin : g_split
+    // The rows' lerps along A0 and their differences, register b1, the lerp along A1.
+    localparam int RW = CVW + UW + 1;   // r_cy (signed)
+    localparam int DW = CVW + 1;        // d_cy (signed)
+    logic [2*RW+2*DW+WF-1:0] rows_a, rows_b;
+    always_comb begin
+      logic signed [CVW-1:0] v00, v10, v01, v11;   // v_(cx,cy)
+      logic [UW-1:0]         ux0, ux1;
+      logic signed [RW-1:0]  r0, r1;
+      logic signed [DW-1:0]  d0, d1;
+      {v11, v01, v10, v00} = cv_b;
+      ux0 = UW'(1 << WF) - UW'(w0_b);
+      ux1 = UW'(w0_b);
+      r0 = RW'(v00) * RW'($signed({1'b0, ux0})) + RW'(v10) * RW'($signed({1'b0, ux1}));
+      r1 = RW'(v01) * RW'($signed({1'b0, ux0})) + RW'(v11) * RW'($signed({1'b0, ux1}));
+      d0 = DW'(v10) - DW'(v00);
+      d1 = DW'(v11) - DW'(v01);
+      rows_a = {w1_b, d1, d0, r1, r0};
+    end
+    pst_delay #(.Width(2*RW + 2*DW + WF), .Depth(1)) u_b1 (
+      .clk_i, .rst_ni, .en_i, .d_i (rows_a), .q_o (rows_b));
+    pst_delay #(.Width(4), .Depth(1), .Reset(1'b1)) u_b1_tok (
+      .clk_i, .rst_ni, .en_i, .d_i (tok_b), .q_o (tok_s));
+    always_comb begin
+      logic signed [RW-1:0] r0, r1;
+      logic signed [DW-1:0] d0, d1;
+      logic [WF-1:0]        w1_c;
+      logic [UW-1:0]        uy0, uy1;
+      {w1_c, d1, d0, r1, r0} = rows_b;
+      uy0 = UW'(1 << WF) - UW'(w1_c);
+      uy1 = UW'(w1_c);
+      sum_out = {GW'(r1) - GW'(r0),
+                 GW'(d0) * GW'($signed({1'b0, uy0})) + GW'(d1) * GW'($signed({1'b0, uy1})),
+                 VW'(r0) * VW'($signed({1'b0, uy0})) + VW'(r1) * VW'($signed({1'b0, uy1}))};
+    end
   end
   logic [SUMW-1:0] sum_b;
   assign sum_b = sum_out;
@@ -194,11 +240,11 @@ module pst_subband #(
 
   // The remaining pipeline registers at the output, and the token decoded there.
   pst_noise_out #(.Width(NW + 3*NGW), .Regs(RO), .NoiseSteps(NoiseSteps)) u_out (
-    .clk_i, .rst_ni, .en_i, .tok_i (tok_b), .data_i ({g_b, n_b}),
+    .clk_i, .rst_ni, .en_i, .tok_i (tok_s), .data_i ({g_b, n_b}),
     .valid_o, .last_o, .data_o ({grad_o, n_o}));
 
   logic unused_in;   // lattice bits above the period, the third axis, the token's step
-  assign unused_in = ^{sum_in, lat_i[A0*LB + PL +: LB - PL], lat_i[A1*LB + PL +: LB - PL],
+  assign unused_in = ^{lat_i[A0*LB + PL +: LB - PL], lat_i[A1*LB + PL +: LB - PL],
                        lat_i[A2*LB +: LB], frac_i[A2*LF +: LF], (K == 0) ? lam_i : '0};
 
   // Assertions

@@ -261,11 +261,11 @@ module pst_octave_parallel #(
     logic [FB-1:0]   alpha_2, alpha_n;
     logic [FW-1:0]   fterm;
     logic [3*GW-1:0] gterm;
-    pst_octave_lane #(.Rows(3), .TransformRegs(TR), .LgW(LgW), `PST_LANE_PASS
+    pst_octave_lane #(.Rows(3), .TransformRegs(TR), .LgW(LgW), .TermFade(BlTerm), `PST_LANE_PASS
     ) u_lane (
       .clk_i, .rst_ni, .en_i (en),
       .s_i (s_i), .m_i (m_sel), .o_i (o_sel), .lat_o (lat_f), .frac_o (frac_f),
-      .bl_i (bl_i & BlTerm), .lgx_i (lgx), .lgy_i (lgy), .lgm_i (lgm_2), .fade_i (fade_i), .alpha_o (alpha_2),
+      .bl_i (bl_i), .lgx_i (lgx), .lgy_i (lgy), .lgm_i (lgm_2), .fade_i (fade_i), .alpha_o (alpha_2),
       .n_i (nz_n_i[u*NW +: NW]), .g_i (nz_g_i[u*3*NGW +: 3*NGW]), .a_i (a_sel), .gm_i (gm_sel),
       .alpha_i (alpha_n), .fm_i (fm_sel), .fterm_o (fterm), .gterm_o (gterm)
     );
