@@ -31,7 +31,9 @@
 // corners in one step (NoiseSteps = 1) and NoiseRegs >= 2 the sums are formed in two halves with
 // the second register between them (b1; the same integers, regrouped): the rows' lerps r_cy =
 // sum_cx v_c u_cx and differences d_cy = v_(1,cy) - v_(0,cy) before it, V = sum_cy r_cy u_cy,
-// Gx = sum_cy d_cy u_cy, Gy = r_1 - r_0 after it.
+// Gx = sum_cy d_cy u_cy, Gy = r_1 - r_0 after it; with the filter (K = 4, 8) and NoiseRegs >= 3
+// the first register holds the ROM words and the weights instead and the second (bw) the corner
+// values, b1 then being the third.
 //
 // Parameters: NoiseLatticeFrac, NoiseOutFrac, NoiseSteps, NoiseRegs (the profile's noise keys),
 // NoiseSubband (the plane: pst_pkg::NoiseSubbandXy, Xz or Yz), NoiseSubbandOrientations (K: 0,
@@ -112,43 +114,65 @@ module pst_subband #(
   assign w1 = frac_i[A1*LF +: WF];
 
   // ---- 2. this step's corners: the ROM words and (K = 4, 8) their weighted sums --------------
-  logic [CPS*CVW-1:0] cv_a;   // slot i: corner step_i CPS + i (a slot past corner 3 is off in step 3)
+  localparam bit Split = (CPS == 4) && (NoiseRegs >= 2);            // b1 between the rows and the columns
+  localparam bit Deep  = Split && (K != 0) && (NoiseRegs >= 3);     // b0 after the ROM read, bw after the sums
+  localparam int R0    = (NoiseRegs >= 1) ? 1 : 0;
+  logic [CPS*KT*VB-1:0] word_a, word_s;   // slot i: corner step_i CPS + i (a slot past corner 3 is off in step 3)
+  logic [KT*FB-1:0]     lam_s;
+  logic [CPS*CVW-1:0]   cv_s;
   always_comb begin
-    logic signed [CVW-1:0] v;
-    logic [KT*VB-1:0]      word;
-    logic [TL-1:0]         cx_addr, cy_addr;
-    int                    c;
+    logic [TL-1:0] cx_addr, cy_addr;
+    int            c;
     for (int i = 0; i < CPS; i++) begin
       c = 32'(step_i) * CPS + i;
       cx_addr = x0 + TL'(c & 1);
       cy_addr = x1 + TL'((c >> 1) & 1);
-      word = tile[{cy_addr, cx_addr}];
+      word_a[i*KT*VB +: KT*VB] = tile[{cy_addr, cx_addr}];
+    end
+  end
+  always_comb begin
+    logic signed [CVW-1:0] v;
+    for (int i = 0; i < CPS; i++) begin
       if (K == 0) begin
-        v = CVW'($signed(word[VB-1:0]));
+        v = CVW'($signed(word_s[i*KT*VB +: VB]));
       end else begin
         // The corner's weighted sum of its K words (eq. 7), exact.
         v = '0;
         for (int t = 0; t < KT; t++)
-          v = v + CVW'($signed(word[t*VB +: VB])) * CVW'($signed({1'b0, lam_i[t*FB +: FB]}));
+          v = v + CVW'($signed(word_s[i*KT*VB + t*VB +: VB])) * CVW'($signed({1'b0, lam_s[t*FB +: FB]}));
       end
-      cv_a[i*CVW +: CVW] = v;
+      cv_s[i*CVW +: CVW] = v;
     end
   end
 
   // Boundary b0 (the first pipeline register): the step's corner values, the bilinear weights'
-  // fractions and the token; the sums are formed after it.
-  localparam int R0 = (NoiseRegs >= 1) ? 1 : 0;
+  // fractions and the token; the sums are formed after it. Deep: b0 holds the ROM words and the
+  // weights, bw (the second register) the corner values.
   logic [CPS*CVW-1:0] cv_b;
   logic [WF-1:0]      w0_b, w1_b;
   logic [3:0]         tok_b;
-  pst_delay #(.Width(CPS*CVW + 2*WF), .Depth(R0)) u_b0 (
-    .clk_i, .rst_ni, .en_i, .d_i ({cv_a, w1, w0}), .q_o ({cv_b, w1_b, w0_b}));
-  pst_delay #(.Width(4), .Depth(R0), .Reset(1'b1)) u_b0_tok (
-    .clk_i, .rst_ni, .en_i, .d_i ({valid_i, step_i}), .q_o (tok_b));
+  if (Deep) begin : g_deep
+    logic [WF-1:0] w0_0, w1_0;
+    logic [3:0]    tok_0;
+    pst_delay #(.Width(CPS*KT*VB + KT*FB + 2*WF), .Depth(1)) u_b0 (
+      .clk_i, .rst_ni, .en_i, .d_i ({word_a, lam_i, w1, w0}), .q_o ({word_s, lam_s, w1_0, w0_0}));
+    pst_delay #(.Width(4), .Depth(1), .Reset(1'b1)) u_b0_tok (
+      .clk_i, .rst_ni, .en_i, .d_i ({valid_i, step_i}), .q_o (tok_0));
+    pst_delay #(.Width(CPS*CVW + 2*WF), .Depth(1)) u_bw (
+      .clk_i, .rst_ni, .en_i, .d_i ({cv_s, w1_0, w0_0}), .q_o ({cv_b, w1_b, w0_b}));
+    pst_delay #(.Width(4), .Depth(1), .Reset(1'b1)) u_bw_tok (
+      .clk_i, .rst_ni, .en_i, .d_i (tok_0), .q_o (tok_b));
+  end else begin : g_flat
+    assign word_s = word_a;
+    assign lam_s  = lam_i;
+    pst_delay #(.Width(CPS*CVW + 2*WF), .Depth(R0)) u_b0 (
+      .clk_i, .rst_ni, .en_i, .d_i ({cv_s, w1, w0}), .q_o ({cv_b, w1_b, w0_b}));
+    pst_delay #(.Width(4), .Depth(R0), .Reset(1'b1)) u_b0_tok (
+      .clk_i, .rst_ni, .en_i, .d_i ({valid_i, step_i}), .q_o (tok_b));
+  end
 
   // ---- 3. the sums {Gy, Gx, V} and the token beside them (tok_s) ---------------------------------
-  localparam bit Split = (CPS == 4) && (NoiseRegs >= 2);   // b1 between the rows and the columns
-  localparam int RO    = NoiseRegs - R0 - (Split ? 1 : 0);
+  localparam int RO    = NoiseRegs - R0 - (Split ? 1 : 0) - (Deep ? 1 : 0);
   logic [SUMW-1:0] sum_out;
   logic [3:0]      tok_s;
   if (!Split) begin : g_held
@@ -245,7 +269,7 @@ module pst_subband #(
 
   logic unused_in;   // lattice bits above the period, the third axis, the token's step
   assign unused_in = ^{lat_i[A0*LB + PL +: LB - PL], lat_i[A1*LB + PL +: LB - PL],
-                       lat_i[A2*LB +: LB], frac_i[A2*LF +: LF], (K == 0) ? lam_i : '0};
+                       lat_i[A2*LB +: LB], frac_i[A2*LF +: LF], (K == 0) ? ^{lam_i, lam_s} : 1'b0};
 
   // Assertions
 `ifndef SYNTHESIS

@@ -6,7 +6,8 @@
 // Lat = TR + XR + NoiseRegs + MR registers, which carries side_i (the tag and
 // Jacobian) beside it; [A] is released at the last beat's issue. Per lane (pst_octave_lane):
 //   issue     octave transform of the beat's pass            -> TR + XR registers (OctaveRegs 3: TR
-//             between its products and their sum; >= 2: XR after it)
+//             between its products and their sum; >= 2: XR after it, two with the subband filter
+//             and OctaveRegs 3)
 //   noise     the noise units (outside, pst_octave_noise)     -> NoiseRegs registers
 //   term      octave term, zero unless the lane's octave is active -> MR registers (OctaveRegs >= 1)
 // The quadric (pst_quadric, folded over the last two beats when a fragment has two or more:
@@ -22,10 +23,12 @@
 //
 // The subband unit's anisotropic filter (noise.subband_orientations K = 4, 8): the weights
 // lambda_i of a beat reach the noise units with its lattice point, so their chain is spread
-// over the TR + XR registers between the issue and the noise units: the pixel's lg edges along
-// the K orientations (pst_subband_pixel, shared by the lanes; registered when TR + XR = 2, SL1),
-// then per lane the K weights from its octave's lg ||M|| and the fade table (pst_octave_fade per
-// orientation), registered (SL2 = 1 when TR + XR >= 1). The term is then not faded.
+// over the TR + XR registers between the issue and the noise units (OctaveRegs 3 puts a second
+// register after the transform, XR = 2, for it): the pixel's lengths along the K orientations
+// and their lg (pst_subband_pixel, shared by the lanes; a register after the lengths when TR + XR
+// = 3, SL0, one after the lg when >= 2, SL1), then per lane the K weights from its octave's
+// lg ||M|| and the fade table (pst_octave_fade per orientation), registered (SL2 = 1 when TR + XR
+// >= 1). The term is then not faded (the lanes' TermFade = 0).
 //
 // Parameters: pst_octave_stage's (the profile's formats and registers); DebugProbes = 0 ties
 // the pr_* outputs to zero.
@@ -65,8 +68,11 @@ module pst_octave_parallel #(
 
   localparam int Passes   = pst_pkg::octave_passes(Octaves, NoiseUnits);
   localparam int PassBits = (Passes > 1) ? $clog2(Passes) : 1;
+  localparam int SK       = NoiseSubbandOrientations;
+  localparam bit Aniso    = (NoiseSubband != pst_pkg::NoiseSubbandNone) && (SK != 0);
   localparam int TR       = (OctaveRegs >= 3) ? 1 : 0;   // inside the transform (products | sum)
-  localparam int XR       = (OctaveRegs >= 2) ? 1 : 0;   // after the transform
+  // after the transform; with the subband filter and OctaveRegs 3 two (the weights' chain: three)
+  localparam int XR       = ((OctaveRegs >= 2) ? 1 : 0) + ((Aniso && OctaveRegs >= 3) ? 1 : 0);
   localparam int NR       = NoiseRegs;                    // inside the noise units
   localparam int MR       = pst_pkg::term_regs(OctaveRegs);   // after the term
   localparam int Lat      = TR + XR + NR + MR;
@@ -79,11 +85,10 @@ module pst_octave_parallel #(
   localparam int F1       = (FL >= 3) ? 1 : 0;
   localparam int F2       = (FL >= 2) ? 1 : 0;
   localparam int F3       = FL - F1 - F2;
-  localparam int SK       = NoiseSubbandOrientations;
-  localparam bit Aniso    = (NoiseSubband != pst_pkg::NoiseSubbandNone) && (SK != 0);
   localparam bit BlTerm   = Bl && !Aniso;                // the term's fade
-  localparam int SL1      = (TR + XR >= 2) ? 1 : 0;      // the weights' chain: after the lg
-  localparam int SL2      = TR + XR - SL1;               // after the lanes' weights
+  localparam int SL0      = (TR + XR >= 3) ? 1 : 0;      // the weights' chain: after the lengths
+  localparam int SL1      = (TR + XR >= 2) ? 1 : 0;      // after the lg
+  localparam int SL2      = TR + XR - SL0 - SL1;         // after the lanes' weights
 
   typedef struct packed {
     logic                valid;
@@ -210,7 +215,7 @@ module pst_octave_parallel #(
   logic [2*(Aniso ? SK : 1)*LgW-1:0] sb_lg;
   if (Aniso) begin : g_sb_px
     pst_subband_pixel #(.JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac), .NoiseSubband(NoiseSubband),
-      .K(SK), .LenRegs(0), .LgRegs(SL1)) u_sb_px (
+      .K(SK), .LenRegs(SL0), .LgRegs(SL1)) u_sb_px (
       .clk_i, .rst_ni, .en_i (en), .j_i (side_i[TB +: 6*JW]), .lg_o (sb_lg));
   end else begin : g_no_sb_px
     assign sb_lg = '0;
@@ -280,11 +285,11 @@ module pst_octave_parallel #(
       .clk_i, .rst_ni, .en_i (en), .d_i (alpha_2), .q_o (alpha_n));
 
     // The subband unit's weights of the beat's octave: its lg ||M|| carried with the pixel's lg
-    // (SL1), the K weights registered (SL2), so that they meet the beat at the noise unit.
+    // (SL0 + SL1), the K weights registered (SL2), so that they meet the beat at the noise unit.
     if (Aniso) begin : g_sb_lam
       logic [LMW-1:0] lgm_s;
       logic [SLW-1:0] lam_d;
-      pst_delay #(.Width(LMW), .Depth(SL1)) u_sb_lgm (
+      pst_delay #(.Width(LMW), .Depth(SL0 + SL1)) u_sb_lgm (
         .clk_i, .rst_ni, .en_i (en), .d_i (lgm_sel), .q_o (lgm_s));
       for (genvar i = 0; i < SK; i++) begin : g_dir
         pst_octave_fade #(.LgW(LgW)) u_lam (
