@@ -18,7 +18,9 @@
 // 2. Corners c = cx + 2 cy: step j reads corners j CPS .. j CPS + CPS - 1, CPS = ceil(4 /
 //    NoiseSteps) (one per step on the reduced schedule; the later steps' slots are off): ROM
 //    word at {(x_A1 + cy) mod 2^TL, (x_A0 + cx) mod 2^TL}: K = 0 its value v_c; K = 4, 8 its K
-//    values v_c,i, v_c = sum_i lambda_i v_c,i (exact); weights u_0 = 2^WF - w, u_1 = w.
+//    values v_c,i, v_c = sum_i lambda_i v_c,i (exact); weights u_0 = 2^WF - w, u_1 = w. With the
+//    four corners in one step (CPS = 4) and K = 4, 8 the tiles sit in four banks by the pixel's row
+//    and column parity (one read a bank: the four corners fall in four banks).
 // 3. Exact sums, held across the steps (step 0 starts from 0):
 //    V += v_c u_cx(w_A0) u_cy(w_A1), Gx += +-v_c u_cy(w_A1) (+ for cx = 1), Gy += +-v_c u_cx(w_A0).
 // 4. n = sat(floor(V / 2^(VF' + 2 WF - OF)), Q4.OF); grad_A0 = sat(floor(Gx / 2^(VF' + WF - UB -
@@ -95,16 +97,6 @@ module pst_subband #(
   // |V| <= 2^VBE: a convex combination of corners of |v| <= KT 2^(VB-1) (2^FadeFrac) (pst_subband_sva).
   localparam int VBE = VB - 1 + 2 * WF + ((K == 0) ? 0 : pst_pkg::FadeFrac + $clog2(KT));
 
-  // ---- ROM -------------------------------------------------------------------------------
-  logic [KT*VB-1:0] tile [1 << (2*TL)];
-  if (K == 0) begin : g_rom_iso
-    initial $readmemh({`PST_ROM_DIR, "/subband.memh"}, tile);
-  end else if (K == 4) begin : g_rom_k4
-    initial $readmemh({`PST_ROM_DIR, "/subband_k4.memh"}, tile);
-  end else begin : g_rom_k8
-    initial $readmemh({`PST_ROM_DIR, "/subband_k8.memh"}, tile);
-  end
-
   // ---- 1. tile pixel and weights -------------------------------------------------------------
   logic [TL-1:0] x0, x1;
   logic [WF-1:0] w0, w1;
@@ -120,14 +112,69 @@ module pst_subband #(
   logic [CPS*KT*VB-1:0] word_a, word_s;   // slot i: corner step_i CPS + i (a slot past corner 3 is off in step 3)
   logic [KT*FB-1:0]     lam_s;
   logic [CPS*CVW-1:0]   cv_s;
-  always_comb begin
-    logic [TL-1:0] cx_addr, cy_addr;
-    int            c;
-    for (int i = 0; i < CPS; i++) begin
-      c = 32'(step_i) * CPS + i;
-      cx_addr = x0 + TL'(c & 1);
-      cy_addr = x1 + TL'((c >> 1) & 1);
-      word_a[i*KT*VB +: KT*VB] = tile[{cy_addr, cx_addr}];
+  // The ROM: one tile array (word {row, column}), one read per corner of the step; with the four
+  // corners in one step and the filter, four banks by the pixel's row and column parity (bank
+  // 2 (row mod 2) + (column mod 2), word {row / 2, column / 2}: subband_k<K>_b<B>.memh), one read
+  // a bank, the corners taken from the banks by the parities of x0, x1.
+  localparam bit Banked = (CPS == 4) && (K != 0);
+  if (!Banked) begin : g_rom
+    logic [KT*VB-1:0] tile [1 << (2*TL)];
+    if (K == 0) begin : g_iso
+      initial $readmemh({`PST_ROM_DIR, "/subband.memh"}, tile);
+    end else if (K == 4) begin : g_k4
+      initial $readmemh({`PST_ROM_DIR, "/subband_k4.memh"}, tile);
+    end else begin : g_k8
+      initial $readmemh({`PST_ROM_DIR, "/subband_k8.memh"}, tile);
+    end
+    always_comb begin
+      logic [TL-1:0] cx_addr, cy_addr;
+      int            c;
+      for (int i = 0; i < CPS; i++) begin
+        c = 32'(step_i) * CPS + i;
+        cx_addr = x0 + TL'(c & 1);
+        cy_addr = x1 + TL'((c >> 1) & 1);
+        word_a[i*KT*VB +: KT*VB] = tile[{cy_addr, cx_addr}];
+      end
+    end
+  end else begin : g_banks
+    localparam int BA = 2*TL - 2;   // a bank's address
+    logic [KT*VB-1:0] rom_b0 [1 << BA];
+    logic [KT*VB-1:0] rom_b1 [1 << BA];
+    logic [KT*VB-1:0] rom_b2 [1 << BA];
+    logic [KT*VB-1:0] rom_b3 [1 << BA];
+    if (K == 4) begin : g_k4
+      initial $readmemh({`PST_ROM_DIR, "/subband_k4_b0.memh"}, rom_b0);
+      initial $readmemh({`PST_ROM_DIR, "/subband_k4_b1.memh"}, rom_b1);
+      initial $readmemh({`PST_ROM_DIR, "/subband_k4_b2.memh"}, rom_b2);
+      initial $readmemh({`PST_ROM_DIR, "/subband_k4_b3.memh"}, rom_b3);
+    end else begin : g_k8
+      initial $readmemh({`PST_ROM_DIR, "/subband_k8_b0.memh"}, rom_b0);
+      initial $readmemh({`PST_ROM_DIR, "/subband_k8_b1.memh"}, rom_b1);
+      initial $readmemh({`PST_ROM_DIR, "/subband_k8_b2.memh"}, rom_b2);
+      initial $readmemh({`PST_ROM_DIR, "/subband_k8_b3.memh"}, rom_b3);
+    end
+    // Bank b holds the corner cx = b[0] ^ x0[0], cy = b[1] ^ x1[0] of this step.
+    logic [TL-1:0]      col0, col1, row0, row1;   // the columns of parity 0, 1; the rows
+    logic [4*KT*VB-1:0] bword;
+    logic x0_even, x1_even;
+    assign x0_even = ~x0[0];
+    assign x1_even = ~x1[0];
+    assign col0 = x0 + TL'(x0[0]);                // x0 or x0 + 1, whichever is even
+    assign col1 = x0 + TL'(x0_even);              // the odd one
+    assign row0 = x1 + TL'(x1[0]);
+    assign row1 = x1 + TL'(x1_even);
+    assign bword[0*KT*VB +: KT*VB] = rom_b0[{row0[TL-1:1], col0[TL-1:1]}];
+    assign bword[1*KT*VB +: KT*VB] = rom_b1[{row0[TL-1:1], col1[TL-1:1]}];
+    assign bword[2*KT*VB +: KT*VB] = rom_b2[{row1[TL-1:1], col0[TL-1:1]}];
+    assign bword[3*KT*VB +: KT*VB] = rom_b3[{row1[TL-1:1], col1[TL-1:1]}];
+    logic unused_lsb;   // the banks' parities (bit 0 of the rows and columns)
+    assign unused_lsb = ^{col0[0], col1[0], row0[0], row1[0]};
+    always_comb begin
+      logic [1:0] b;
+      for (int c = 0; c < 4; c++) begin
+        b = {1'((c >> 1) & 1) ^ x1[0], 1'(c & 1) ^ x0[0]};
+        word_a[c*KT*VB +: KT*VB] = bword[32'(b)*KT*VB +: KT*VB];
+      end
     end
   end
   always_comb begin
