@@ -283,6 +283,13 @@ package pst_pkg;
   function automatic int quadric_cycles(input int Datapath, input int QW, input int CW, input int OctaveRegs);
     quadric_cycles = (Datapath == DatapathSerial) ? (quadric_serial_steps(QW, CW, term_regs(OctaveRegs)) + term_regs(OctaveRegs)) : 1;
   endfunction
+  // fade_lg_width: bits of pst_fade_lg's lg_o (signed) for JW-bit Jacobian components: lg of a
+  // length below 2^(JW+1) with FadeLgFrac fraction bits (LgW of the fade and subband pixel units
+  // and the datapaths)
+  //   = clog2((JW + 1) << FadeLgFrac) + 1
+  function automatic int fade_lg_width(input int JW);
+    fade_lg_width = $clog2(((JW + 1) << FadeLgFrac)) + 1;
+  endfunction
   // width_root_steps: serial euclidean norm: ceil((WW + 1) / 2) root cycles, two digits each
   // (pst_filter_width NSq)
   //   = (WW + 2) / 2

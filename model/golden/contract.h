@@ -699,6 +699,13 @@ constexpr int quadric_serial_steps(int qw, int cw, int regs) {
 constexpr int quadric_cycles(int datapath, int qw, int cw, int octaveRegs) {
     return (datapath == 1) ? (quadric_serial_steps(qw, cw, term_regs(octaveRegs)) + term_regs(octaveRegs)) : 1;
 }
+// fade_lg_width: bits of pst_fade_lg's lg_o (signed) for JW-bit Jacobian components: lg of a length
+// below 2^(JW+1) with FadeLgFrac fraction bits (LgW of the fade and subband pixel units and the
+// datapaths)
+//   = clog2((JW + 1) << FadeLgFrac) + 1
+constexpr int fade_lg_width(int jw) {
+    return clog2_int(((jw + 1) << kFadeLgFrac)) + 1;
+}
 // width_root_steps: serial euclidean norm: ceil((WW + 1) / 2) root cycles, two digits each
 // (pst_filter_width NSq)
 //   = (WW + 2) / 2

@@ -31,13 +31,11 @@
 //                                        after the second register
 //   ch_o                                 the filtered channel
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_clut_channel #(
-  parameter int Log2Clut        = pst_pkg::Log2ClutDefault,
-  parameter int ColourBits      = pst_pkg::ColourBitsDefault,
-  parameter int WidthFrac       = pst_pkg::WidthFracDefault,
-  parameter int FilterRecipFrac = pst_pkg::FilterRecipFracDefault,
+  `PST_CLUT_CHANNEL_PARAMS,
   parameter int Regs            = 0,
   localparam int CB        = ColourBits,
   localparam int KB        = pst_pkg::RegControlKindWidth,  // filter kind

@@ -75,16 +75,11 @@
 //     recip[c] = round(2^RF / c) (ROM, c = 1..4N). Error against the exact sum / count:
 //     <= 1/2 + (sum / count) |c recip[c] - 2^RF| / 2^RF (final rounding + reciprocal).
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_clut_filter #(
-  parameter int FInt            = pst_pkg::FIntDefault,
-  parameter int FFrac           = pst_pkg::FFracDefault,
-  parameter int Log2Clut        = pst_pkg::Log2ClutDefault,
-  parameter int ColourBits      = pst_pkg::ColourBitsDefault,
-  parameter int WidthFrac       = pst_pkg::WidthFracDefault,
-  parameter int FilterRecipFrac = pst_pkg::FilterRecipFracDefault,
-  parameter int Datapath        = pst_pkg::DatapathDefault,
+  `PST_CLUT_FILTER_PARAMS,
   parameter int Regs            = 0,
   localparam int FW  = FInt + FFrac,              // f
   localparam int WW  = pst_pkg::w_width(Log2Clut, WidthFrac),  // W = w N in entries, < 4N
@@ -322,13 +317,7 @@ module pst_clut_filter #(
     assign ch = (Datapath == pst_pkg::DatapathParallel) ? 2'(l) : 2'(step_i);
     // The reads of this channel (before the first register); SAT: csat at the high end
     // (hidx), the low end (lo mod N) and N-1.
-    pst_clut_channel #(
-      .Log2Clut        (Log2Clut),
-      .ColourBits      (ColourBits),
-      .WidthFrac       (WidthFrac),
-      .FilterRecipFrac (FilterRecipFrac),
-      .Regs            (Regs)
-    ) u_channel (
+    pst_clut_channel #(`PST_CLUT_CHANNEL_PASS, .Regs(Regs)) u_channel (
       .clk_i, .rst_ni, .en_i,
       .a_i           (CB'(lev_a >> (ch * CB))),
       .b_i           (CB'(lev_b >> (ch * CB))),

@@ -10,17 +10,11 @@
 //
 // Parameters: the profile's formats and choices (pst_top's header).
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_colour_stage #(
-  parameter int Datapath        = pst_pkg::DatapathDefault,
-  parameter int FInt            = pst_pkg::FIntDefault,
-  parameter int FFrac           = pst_pkg::FFracDefault,
-  parameter int Log2Clut        = pst_pkg::Log2ClutDefault,
-  parameter int ColourBits      = pst_pkg::ColourBitsDefault,
-  parameter int WidthFrac       = pst_pkg::WidthFracDefault,
-  parameter int FilterRecipFrac = pst_pkg::FilterRecipFracDefault,
-  parameter int ColourRegs      = pst_pkg::ColourRegsDefault,
+  `PST_COLOUR_STAGE_PARAMS,
   parameter int SideW           = 1,
   localparam int FW  = FInt + FFrac,
   localparam int WW  = pst_pkg::w_width(Log2Clut, WidthFrac),
@@ -57,11 +51,7 @@ module pst_colour_stage #(
     .clk_i, .rst_ni, .valid_i, .done_i (done), .ready_i, .step_o (step_q), .step_next_o (unused_step_next)
   );
 
-  pst_clut_filter #(
-    .FInt(FInt), .FFrac(FFrac), .Log2Clut(Log2Clut), .ColourBits(ColourBits),
-    .WidthFrac(WidthFrac), .FilterRecipFrac(FilterRecipFrac), .Datapath(Datapath),
-    .Regs(ColourRegs)
-  ) u_clut (
+  pst_clut_filter #(`PST_CLUT_FILTER_PASS, .Regs(ColourRegs)) u_clut (
     .clk_i, .we_i, .addr_i, .wdata_i, .f_i, .w_i, .clamp_i, .kind_i, .rst_ni,
     .step_i (step_q), .adv_i (valid_i & ~done), .en_i (en), .rgba_o
   );

@@ -90,23 +90,11 @@
 //   n_o    [NW-1:0]            noise value, signed Q4.OF (pst_pkg::NoiseIntBits)
 //   grad_o [3*NGW-1:0]         dn/dx, dn/dy, dn/dz wrt the lattice coordinates, signed Q6.OF each
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
-`ifndef PST_ROM_DIR
-`define PST_ROM_DIR "rom"
-`endif
-
 module pst_noise #(
-  parameter int NoiseInterp = pst_pkg::NoiseInterpDefault,
-  parameter int NoiseCorner = pst_pkg::NoiseCornerDefault,
-  parameter int NoiseHash = pst_pkg::NoiseHashDefault,
-  parameter int NoiseValueFrac = pst_pkg::NoiseValueFracDefault,
-  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault,
-  parameter int NoiseOutFrac = pst_pkg::NoiseOutFracDefault,
-  parameter int NoiseSteps = pst_pkg::NoiseStepsDefault,
-  parameter int NoiseGuardBits = pst_pkg::NoiseGuardBitsDefault,
-  parameter int NoiseGradFrac = pst_pkg::NoiseGradFracDefault,
-  parameter int NoiseRegs = pst_pkg::NoiseRegsDefault,
+  `PST_LATTICE_PARAMS,
   localparam int LF = NoiseLatticeFrac,  // fraction bits of u
   localparam int OF = NoiseOutFrac,      // fraction bits of the outputs
   localparam int NW = pst_pkg::NoiseIntBits + NoiseOutFrac,      // n_o
@@ -164,11 +152,7 @@ module pst_noise #(
   logic [3*(LF+2)-1:0] ds_w1;
   logic [WTW-1:0]      w2;     // {ds, s} after b1
   for (genvar k = 0; k < 3; k++) begin : g_weight
-    pst_noise_weight #(
-      .NoiseInterp      (NoiseInterp),
-      .NoiseLatticeFrac (NoiseLatticeFrac),
-      .Reg              (NoiseRegs > 0)
-    ) u_weight (
+    pst_noise_weight #(`PST_WEIGHT_PASS, .Reg(NoiseRegs > 0)) u_weight (
       .clk_i, .rst_ni, .en_i,
       .u_i  (frac_i[k*LF +: LF]),
       .s_o  (s_w1[k*LF +: LF]),
@@ -188,7 +172,7 @@ module pst_noise #(
 
   // ---- 2. hash (before b0 and b1) ---------------------------------------------------------
   logic [CPS*HW-1:0] h3;   // corner i of the step after b0 at [i*HW +: HW]
-  pst_noise_hash #(.NoiseHash(NoiseHash), .NoiseSteps(NoiseSteps), .Reg(NoiseRegs > 0)) u_hash (
+  pst_noise_hash #(`PST_HASH_PASS, .Reg(NoiseRegs > 0)) u_hash (
     .clk_i, .rst_ni, .en_i, .step_i (tok[0 +: 3]), .lat_i, .h3_o (h3)
   );
 
@@ -244,12 +228,7 @@ module pst_noise #(
   logic [CPS*NodeW-1:0] corners;   // corner i at [i*NodeW +: NodeW]
   for (genvar i = 0; i < CPS; i++) begin : g_corner
     logic [NodeW-1:0] node;
-    pst_noise_corner #(
-      .NoiseCorner      (NoiseCorner),
-      .NoiseValueFrac   (NoiseValueFrac),
-      .NoiseLatticeFrac (NoiseLatticeFrac),
-      .NodeFrac         (NodeFrac)
-    ) u_corner (
+    pst_noise_corner #(`PST_CORNER_PASS, .NodeFrac(NodeFrac)) u_corner (
       .corner_i (tok[2*TW +: 3] * 3'(CPS) + 3'(i)),
       .r_i      (r_q[4*i*RW +: 4*RW]),
       .hash_i   (hb_q[4*i +: 4]),
@@ -273,16 +252,7 @@ module pst_noise #(
   // ---- 5. lerp tree (b2 onwards) -----------------------------------------------------------
   logic [NodeW-1:0] root;
   logic [TW-1:0]    tk_out;
-  pst_noise_tree #(
-    .NoiseInterp      (NoiseInterp),
-    .NoiseCorner      (NoiseCorner),
-    .NoiseValueFrac   (NoiseValueFrac),
-    .NoiseLatticeFrac (NoiseLatticeFrac),
-    .NoiseSteps       (NoiseSteps),
-    .NoiseRegs        (NoiseRegs),
-    .NodeFrac         (NodeFrac),
-    .GradFloor        (GradFloor)
-  ) u_tree (
+  pst_noise_tree #(`PST_TREE_PASS, .NodeFrac(NodeFrac), .GradFloor(GradFloor)) u_tree (
     .clk_i, .rst_ni, .en_i,
     .tok_i    (tok[2*TW +: TW]),
     .wts_i    (w2),
@@ -301,7 +271,7 @@ module pst_noise #(
     assign g_r[k*NGW +: NGW] = {root[VW+(k+1)*GW-1], root[VW+k*GW+GuardBits +: GW-GuardBits]};
   end
   // The token decoded at the output (b5, the tree's last level, is the unit's last register).
-  pst_noise_out #(.Width(NW + 3*NGW), .Regs(0), .NoiseSteps(NoiseSteps)) u_out (
+  pst_noise_out #(.Width(NW + 3*NGW), .Regs(0), `PST_NOISE_STEPS_PASS) u_out (
     .clk_i, .rst_ni, .en_i, .tok_i (tk_out), .data_i ({g_r, n_r}),
     .valid_o, .last_o, .data_o ({grad_o, n_o}));
   logic unused_guard;

@@ -28,12 +28,11 @@
 //   node_o [NodeW-1:0] v at [0 +: VW], d/dp_k at [VW + k*GW +: GW] (VW = 3 + NodeFrac,
 //                      GW = 5 + NodeFrac, NodeW = VW + 3 GW), signed
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_noise_corner #(
-  parameter int NoiseCorner = pst_pkg::NoiseCornerDefault,
-  parameter int NoiseValueFrac = pst_pkg::NoiseValueFracDefault,
-  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault,
+  `PST_CORNER_PARAMS,
   parameter int NodeFrac = 20,
   localparam int RW = NoiseValueFrac + 1,   // Q1.VF value-table entry
   localparam int LF = NoiseLatticeFrac,     // fraction bits of u

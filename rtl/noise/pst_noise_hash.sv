@@ -35,11 +35,11 @@
 //   h3_o    the hash of the step's corner i at [i*HW +: HW] (HW = 12 rayshade, else 8), after
 //           boundary b0 (of the step that entered Reg advances earlier)
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_noise_hash #(
-  parameter int NoiseHash = pst_pkg::NoiseHashDefault,
-  parameter int NoiseSteps = pst_pkg::NoiseStepsDefault,
+  `PST_HASH_PARAMS,
   parameter bit Reg = 1'b0,
   localparam int LB = pst_pkg::LatticeBits,                      // one lattice index
   localparam int HW = (NoiseHash == pst_pkg::NoiseHashRayshade) ? LB : 8,
@@ -79,7 +79,7 @@ module pst_noise_hash #(
   logic [PW*HW-1:0] pa0 /*verilator split_var*/, pa1 /*verilator split_var*/;
   logic [PW*HW-1:0] ph0 /*verilator split_var*/, ph1 /*verilator split_var*/;
   logic [SW*HW-1:0] sa /*verilator split_var*/, sh /*verilator split_var*/;
-  pst_noise_hash_rom #(.NoiseHash(NoiseHash), .Pairs(Pairs), .Singles(Singles)) u_hash (
+  pst_noise_hash_rom #(`PST_HASH_ROM_PASS, .Pairs(Pairs), .Singles(Singles)) u_hash (
     .pair_a0_i (pa0), .pair_a1_i (pa1), .pair_h0_o (ph0), .pair_h1_o (ph1),
     .single_a_i (sa), .single_h_o (sh)
   );

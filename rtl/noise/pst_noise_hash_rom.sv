@@ -11,14 +11,12 @@
 //   Pairs      pair read ports (0: none).
 //   Singles    single read ports (0: none).
 `include "pst_pkg.sv"
+`include "pst_params.svh"
+`include "noise/pst_rom_dir.svh"
 `default_nettype none
 
-`ifndef PST_ROM_DIR
-`define PST_ROM_DIR "rom"
-`endif
-
 module pst_noise_hash_rom #(
-  parameter int NoiseHash = pst_pkg::NoiseHashDefault,
+  `PST_HASH_ROM_PARAMS,
   parameter int Pairs     = 1,
   parameter int Singles   = 0,
   localparam int HW = (NoiseHash == pst_pkg::NoiseHashRayshade) ? pst_pkg::LatticeBits : 8,

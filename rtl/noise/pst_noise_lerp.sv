@@ -45,11 +45,11 @@
 //   s_i  [LF-1:0]   unsigned weight of b_i
 //   ds_i [LF+1:0]   unsigned ds/du (unused for linear)
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_noise_lerp #(
-  parameter int NoiseInterp = pst_pkg::NoiseInterpDefault,
-  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault,
+  `PST_WEIGHT_PARAMS,
   parameter int NodeFrac = 20,
   parameter int Axis = 0,
   parameter int GradHi0 = 5 + NodeFrac,

@@ -17,12 +17,13 @@
 //   valid_o, last_o the token at the output: valid, and its step is NoiseSteps - 1
 //   data_o          the result at the output (read when last_o)
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_noise_out #(
   parameter int Width      = 1,
   parameter int Regs       = 0,
-  parameter int NoiseSteps = pst_pkg::NoiseStepsDefault
+  `PST_NOISE_STEPS_PARAMS
 ) (
   input  logic             clk_i,
   input  logic             rst_ni,

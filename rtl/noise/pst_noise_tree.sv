@@ -38,15 +38,11 @@
 //             [VW + k*GW +: GW])
 //   root_o  the root node (valid with tok_o when its step is the last)
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_noise_tree #(
-  parameter int NoiseInterp = pst_pkg::NoiseInterpDefault,
-  parameter int NoiseCorner = pst_pkg::NoiseCornerDefault,
-  parameter int NoiseValueFrac = pst_pkg::NoiseValueFracDefault,
-  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault,
-  parameter int NoiseSteps = pst_pkg::NoiseStepsDefault,
-  parameter int NoiseRegs = pst_pkg::NoiseRegsDefault,
+  `PST_TREE_PARAMS,
   parameter int NodeFrac = 20,
   parameter int GradFloor = 0,
   localparam int LF = NoiseLatticeFrac,
@@ -170,8 +166,7 @@ module pst_noise_tree #(
       // Level t (axis t-1) lerps nodes 2k, 2k+1 of level t-1, with the weights after b(1+t).
       for (genvar k = 0; k < (CPS >> t); k++) begin : g_lerp
         pst_noise_lerp #(
-          .NoiseInterp      (NoiseInterp),
-          .NoiseLatticeFrac (NoiseLatticeFrac),
+          `PST_WEIGHT_PASS,
           .NodeFrac         (NodeFrac),
           .Axis             (t - 1),
           .GradHi0          (lane_hi(0, t - 1)),
@@ -220,8 +215,7 @@ module pst_noise_tree #(
     end
     assign hold = unpack_node(hold_q);
     pst_noise_lerp #(
-      .NoiseInterp      (NoiseInterp),
-      .NoiseLatticeFrac (NoiseLatticeFrac),
+      `PST_WEIGHT_PASS,
       .NodeFrac         (NodeFrac),
       .Axis             (KC + l),
       .GradHi0          (lane_hi(0, KC + l)),

@@ -9,11 +9,8 @@
 //            corners: one bank read).
 //   Bits     the top Bits bits of each 16-bit entry are read (Q1.VF: Bits = VF + 1).
 `include "pst_pkg.sv"
+`include "noise/pst_rom_dir.svh"
 `default_nettype none
-
-`ifndef PST_ROM_DIR
-`define PST_ROM_DIR "rom"
-`endif
 
 module pst_noise_value_rom #(
   parameter int Corners = 8,

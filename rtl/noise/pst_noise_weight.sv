@@ -33,11 +33,11 @@
 //                   LF >= 2, 3 at LF = 1, and 1 (= 2^LF) for linear; quintic <= 1.875
 //                   (the contract requires LF >= 2 for it)
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_noise_weight #(
-  parameter int NoiseInterp = pst_pkg::NoiseInterpDefault,
-  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault,
+  `PST_WEIGHT_PARAMS,
   parameter bit Reg = 1'b0,
   localparam int LF = NoiseLatticeFrac  // fraction bits of u, s, ds
 ) (

@@ -43,17 +43,12 @@
 // Ports: pst_noise's; lam_i [max(1, K)*FadeBits-1:0] the weights lambda_i (i at [i*FadeBits +:
 // FadeBits], unsigned, 1.0 = 2^FadeFrac; unused for K = 0), steady over an evaluation's steps.
 `include "pst_pkg.sv"
+`include "pst_params.svh"
+`include "noise/pst_rom_dir.svh"
 `default_nettype none
 
-`ifndef PST_ROM_DIR
-`define PST_ROM_DIR "rom"
-`endif
-
 module pst_subband #(
-  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault,
-  parameter int NoiseOutFrac     = pst_pkg::NoiseOutFracDefault,
-  parameter int NoiseSteps       = pst_pkg::NoiseStepsDefault,
-  parameter int NoiseRegs        = pst_pkg::NoiseRegsDefault,
+  `PST_SUBBAND_PARAMS,
   parameter int NoiseSubband     = pst_pkg::NoiseSubbandXz,
   parameter int NoiseSubbandOrientations = 0,
   localparam int LF  = NoiseLatticeFrac,
@@ -310,7 +305,7 @@ module pst_subband #(
   end
 
   // The remaining pipeline registers at the output, and the token decoded there.
-  pst_noise_out #(.Width(NW + 3*NGW), .Regs(RO), .NoiseSteps(NoiseSteps)) u_out (
+  pst_noise_out #(.Width(NW + 3*NGW), .Regs(RO), `PST_NOISE_STEPS_PASS) u_out (
     .clk_i, .rst_ni, .en_i, .tok_i (tok_s), .data_i ({g_b, n_b}),
     .valid_o, .last_o, .data_o ({grad_o, n_o}));
 

@@ -36,21 +36,13 @@
 // Ports: pst_noise's; coef_i [4*CW-1:0] the coefficients C_k (k at [k*CW +: CW], signed
 // Q(WorleyCoefInt).CF).
 `include "pst_pkg.sv"
+`include "pst_params.svh"
+`include "noise/pst_rom_dir.svh"
 `default_nettype none
 
-`ifndef PST_ROM_DIR
-`define PST_ROM_DIR "rom"
-`endif
-
 module pst_worley #(
-  parameter int NoiseLatticeFrac  = pst_pkg::NoiseLatticeFracDefault,
-  parameter int NoiseOutFrac      = pst_pkg::NoiseOutFracDefault,
-  parameter int NoiseSteps        = pst_pkg::NoiseStepsDefault,
-  parameter int NoiseGuardBits    = pst_pkg::NoiseGuardBitsDefault,
-  parameter int NoiseRegs         = pst_pkg::NoiseRegsDefault,
+  `PST_WORLEY_PARAMS,
   parameter int NoiseWorleySearch = pst_pkg::NoiseWorleySearchOctant,
-  parameter int NoiseWorleyPoints = pst_pkg::NoiseWorleyPointsDefault,
-  parameter int NoiseWorleyOrder  = pst_pkg::NoiseWorleyOrderDefault,
   localparam int LF  = NoiseLatticeFrac,
   localparam int OF  = NoiseOutFrac,
   localparam int NW  = pst_pkg::NoiseIntBits + NoiseOutFrac,
@@ -309,7 +301,7 @@ module pst_worley #(
   end
 
   // The remaining pipeline registers at the output, and the token decoded there.
-  pst_noise_out #(.Width(NW + 3*NGW), .Regs(RO), .NoiseSteps(NoiseSteps)) u_out (
+  pst_noise_out #(.Width(NW + 3*NGW), .Regs(RO), `PST_NOISE_STEPS_PASS) u_out (
     .clk_i, .rst_ni, .en_i, .tok_i (tok_e), .data_i ({g_b, n_b}),
     .valid_o, .last_o, .data_o ({grad_o, n_o}));
 

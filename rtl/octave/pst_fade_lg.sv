@@ -9,15 +9,15 @@
 // Parameters:
 //   JacobianInt, JacobianFrac   the Jacobian entry format (L has JacobianFrac fraction bits).
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_fade_lg #(
-  parameter int JacobianInt  = pst_pkg::JacobianIntDefault,
-  parameter int JacobianFrac = pst_pkg::JacobianFracDefault,
+  `PST_JACOBIAN_PARAMS,
   localparam int JW  = JacobianInt + JacobianFrac,
   localparam int LF  = pst_pkg::FadeLgFrac,
   // lg_o in [-2^LF JacobianFrac, 2^LF (JW - JacobianFrac)): signed LgW bits.
-  localparam int LgW = $clog2((JW + 1) << LF) + 1
+  localparam int LgW = pst_pkg::fade_lg_width(JW)
 ) (
   input  logic [JW-1:0]  len_i,   // L >= 1
   output logic [LgW-1:0] lg_o

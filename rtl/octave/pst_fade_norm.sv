@@ -9,11 +9,11 @@
 // Parameters:
 //   JacobianInt, JacobianFrac   the Jacobian entry format.
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_fade_norm #(
-  parameter int JacobianInt  = pst_pkg::JacobianIntDefault,
-  parameter int JacobianFrac = pst_pkg::JacobianFracDefault,
+  `PST_JACOBIAN_PARAMS,
   localparam int JW = JacobianInt + JacobianFrac
 ) (
   input  logic [3*JW-1:0] e_i,     // one column: element k at [k*JW +: JW]

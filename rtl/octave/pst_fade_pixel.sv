@@ -8,15 +8,15 @@
 //   JacobianInt, JacobianFrac  the Jacobian's format (j_i: dsdx then dsdy, 3 elements each).
 //   LenRegs, LgRegs            registers after the lengths, after their lg (0 or 1 each).
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_fade_pixel #(
-  parameter int JacobianInt  = pst_pkg::JacobianIntDefault,
-  parameter int JacobianFrac = pst_pkg::JacobianFracDefault,
+  `PST_JACOBIAN_PARAMS,
   parameter int LenRegs      = 0,
   parameter int LgRegs       = 0,
   localparam int JW  = JacobianInt + JacobianFrac,
-  localparam int LgW = $clog2((JW + 1) << pst_pkg::FadeLgFrac) + 1   // pst_fade_lg's lg_o
+  localparam int LgW = pst_pkg::fade_lg_width(JW)   // pst_fade_lg's lg_o
 ) (
   input  logic            clk_i,
   input  logic            rst_ni,

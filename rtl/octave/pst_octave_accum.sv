@@ -10,15 +10,11 @@
 //   FInt, FFrac           f format (q, fterm_i, f_o).
 //   GradInt, GradFrac     grad f component format (gradq_i, gterm_i, grad_o).
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_octave_accum #(
-  parameter int Octaves    = pst_pkg::OctavesDefault,
-  parameter int NoiseUnits = pst_pkg::NoiseUnitsDefault,
-  parameter int FInt       = pst_pkg::FIntDefault,
-  parameter int FFrac      = pst_pkg::FFracDefault,
-  parameter int GradInt    = pst_pkg::GradIntDefault,
-  parameter int GradFrac   = pst_pkg::GradFracDefault,
+  `PST_ACCUM_PARAMS,
   localparam int FW        = FInt + FFrac,
   localparam int GW        = GradInt + GradFrac,
   localparam int AccGuard  = $clog2(Octaves + 1) + 1,

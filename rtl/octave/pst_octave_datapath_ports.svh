@@ -2,9 +2,17 @@
 // pst_octave_serial), declared once: `PST_OCTAVE_DATAPATH_PORTS is the whole ( ... ) list, and
 // `PST_OCTAVE_DATAPATH_CONNECT the one connection list pst_octave_stage instantiates either
 // with (its signals named as the ports, the datapath's outputs nz_*, fterm, gterm, acc_*, q_e,
-// gradq_e, pr_* as below). The including module declares the localparams the widths use: CW,
-// MW, OW, AW, GMW, QW, FW, GW, LF, NW, NGW, LTW, TB, PPB, FB, LMW, OctBits, SLW (the subband
-// unit's weights of a lane: max(1, NoiseSubbandOrientations) * FadeBits).
+// gradq_e, pr_* as below). `PST_OCTAVE_DATAPATH_WIDTHS, last in the datapath's #( ... ) after
+// its parameters (`PST_OCTAVE_PARAMS, `PST_LANE_PARAMS, NoiseSubbandOrientations), declares the
+// widths the ports use: CW, MW, OW, AW, GMW, QW, FW, GW, JW (the formats), LF, NW, NGW (the
+// noise unit's), LTW, TB, PPB, FB, LMW, OctBits, SLW (the subband unit's weights of a lane:
+// max(1, NoiseSubbandOrientations) * FadeBits).
+// A macro, not packed structs: the port widths follow the profile's parameters (a module's,
+// set per profile by -G or chparam), and a struct port type whose field widths follow module
+// parameters needs `parameter type` (Yosys 0.23: syntax error) or an interface (Yosys 0.23
+// reads `b.f` as an implicitly declared wire and drops the logic); a pst_pkg typedef has one
+// width for every profile (checked 2026-12-07: a pst_pkg struct with localparam widths as a
+// port type is read by Yosys 0.23 and Verilator 5.006 alike).
 //
 // Ports:
 //   valid_i, ready_o, s_i, side_i    [A]: the fragment's texture coordinates and side payload
@@ -21,6 +29,27 @@
 //                                    units' outputs (DebugProbes = 0: zero)
 `ifndef PST_OCTAVE_DATAPATH_PORTS_SVH
 `define PST_OCTAVE_DATAPATH_PORTS_SVH
+
+`define PST_OCTAVE_DATAPATH_WIDTHS \
+  localparam int CW  = CoordInt + CoordFrac, \
+  localparam int MW  = MatrixInt + MatrixFrac, \
+  localparam int OW  = OffsetInt + OffsetFrac, \
+  localparam int AW  = AmplitudeInt + AmplitudeFrac, \
+  localparam int GMW = GradMatrixInt + GradMatrixFrac, \
+  localparam int QW  = QuadricInt + QuadricFrac, \
+  localparam int FW  = FInt + FFrac, \
+  localparam int GW  = GradInt + GradFrac, \
+  localparam int JW  = JacobianInt + JacobianFrac, \
+  localparam int LF  = NoiseLatticeFrac, \
+  localparam int NW  = pst_pkg::NoiseIntBits + NoiseOutFrac, \
+  localparam int NGW = pst_pkg::NoiseGradIntBits + NoiseOutFrac, \
+  localparam int LTW = pst_pkg::LatticeWidth, \
+  localparam int TB  = pst_pkg::TagBits, \
+  localparam int PPB = pst_pkg::ProbePassBits, \
+  localparam int FB  = pst_pkg::FadeBits, \
+  localparam int LMW = pst_pkg::FadeLgBits, \
+  localparam int OctBits = pst_pkg::octave_count_bits(Octaves), \
+  localparam int SLW = ((NoiseSubbandOrientations == 0) ? 1 : NoiseSubbandOrientations) * FB
 
 `define PST_OCTAVE_DATAPATH_PORTS \
   input  logic                       clk_i, \

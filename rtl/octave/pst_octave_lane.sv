@@ -71,11 +71,7 @@ module pst_octave_lane #(
 
   localparam bit Bl = (FilterBandlimit == pst_pkg::FilterBandlimitIsotropic) && TermFade;
 
-  pst_octave_transform #(
-    .CoordInt(CoordInt), .CoordFrac(CoordFrac), .MatrixInt(MatrixInt), .MatrixFrac(MatrixFrac),
-    .OffsetInt(OffsetInt), .OffsetFrac(OffsetFrac), .NoiseLatticeFrac(NoiseLatticeFrac), .Rows(Rows),
-    .Regs(TransformRegs)
-  ) u_transform (
+  pst_octave_transform #(`PST_TRANSFORM_PASS, .Rows(Rows), .Regs(TransformRegs)) u_transform (
     .clk_i, .rst_ni, .en_i, .s_i (s_i), .m_i (m_i), .o_i (o_i), .lat_o (lat_o), .frac_o (frac_o)
   );
 
@@ -88,11 +84,7 @@ module pst_octave_lane #(
     assign unused_fade = ^{bl_i, lgx_i, lgy_i, lgm_i, fade_i};
   end
 
-  pst_octave_term #(
-    .NoiseOutFrac(NoiseOutFrac), .AmplitudeInt(AmplitudeInt), .AmplitudeFrac(AmplitudeFrac),
-    .GradMatrixInt(GradMatrixInt), .GradMatrixFrac(GradMatrixFrac), .FInt(FInt), .FFrac(FFrac),
-    .GradInt(GradInt), .GradFrac(GradFrac), .Rows(Rows), .Bandlimit(Bl)
-  ) u_term (
+  pst_octave_term #(`PST_TERM_PASS, .Rows(Rows), .Bandlimit(Bl)) u_term (
     .n_i (n_i), .g_i (g_i), .a_i (a_i), .gm_i (gm_i), .alpha_i (alpha_i), .fm_i (fm_i), .fterm_o (fterm_o),
     .gterm_o (gterm_o)
   );

@@ -11,11 +11,7 @@
 `default_nettype none
 
 module pst_octave_noise #(
-  parameter int NoiseUnits = pst_pkg::NoiseUnitsDefault,
-  `PST_NOISE_PARAMS,
-  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault,
-  parameter int NoiseOutFrac = pst_pkg::NoiseOutFracDefault,
-  parameter int NoiseSteps = pst_pkg::NoiseStepsDefault, parameter int NoiseRegs = pst_pkg::NoiseRegsDefault,
+  `PST_OCTAVE_NOISE_PARAMS,
   parameter bit DebugProbes = 1'b1,
   localparam int LF  = NoiseLatticeFrac,
   localparam int NW  = pst_pkg::NoiseIntBits + NoiseOutFrac,
@@ -44,9 +40,8 @@ module pst_octave_noise #(
   for (genvar u = 0; u < NoiseUnits; u++) begin : g_unit
     logic unit_valid;
     if (NoiseSubband != pst_pkg::NoiseSubbandNone) begin : g_subband
-      pst_subband #(
-        .NoiseLatticeFrac(NoiseLatticeFrac), .NoiseOutFrac(NoiseOutFrac), .NoiseSteps(NoiseSteps),
-        .NoiseRegs(NoiseRegs), .NoiseSubband(NoiseSubband), .NoiseSubbandOrientations(NoiseSubbandOrientations)
+      pst_subband #(`PST_SUBBAND_PASS, .NoiseSubband(NoiseSubband),
+        .NoiseSubbandOrientations(NoiseSubbandOrientations)
       ) u_noise (
         .clk_i, .rst_ni, .en_i, .valid_i, .step_i, .lat_i (lat_i[u*LTW +: LTW]),
         .frac_i (frac_i[u*3*LF +: 3*LF]), .lam_i (sb_lam_i[u*SLW +: SLW]), .valid_o (unit_valid), .last_o (last_o[u]),
@@ -57,12 +52,7 @@ module pst_octave_noise #(
     end else if (NoiseWorleySearch == pst_pkg::NoiseWorleySearchNone) begin : g_lattice
       logic unused_lam;
       assign unused_lam = ^sb_lam_i[u*SLW +: SLW];
-      pst_noise #(
-        .NoiseInterp(NoiseInterp), .NoiseCorner(NoiseCorner), .NoiseHash(NoiseHash),
-        .NoiseValueFrac(NoiseValueFrac), .NoiseLatticeFrac(NoiseLatticeFrac),
-        .NoiseOutFrac(NoiseOutFrac), .NoiseSteps(NoiseSteps), .NoiseGuardBits(NoiseGuardBits),
-        .NoiseGradFrac(NoiseGradFrac), .NoiseRegs(NoiseRegs)
-      ) u_noise (
+      pst_noise #(`PST_LATTICE_PASS) u_noise (
         .clk_i, .rst_ni, .en_i, .valid_i, .step_i, .lat_i (lat_i[u*LTW +: LTW]),
         .frac_i (frac_i[u*3*LF +: 3*LF]), .valid_o (unit_valid), .last_o (last_o[u]),
         .n_o (n_o[u*NW +: NW]), .grad_o (g_o[u*3*NGW +: 3*NGW])
@@ -72,11 +62,7 @@ module pst_octave_noise #(
     end else begin : g_worley
       logic unused_lam;
       assign unused_lam = ^sb_lam_i[u*SLW +: SLW];
-      pst_worley #(
-        .NoiseLatticeFrac(NoiseLatticeFrac), .NoiseOutFrac(NoiseOutFrac), .NoiseSteps(NoiseSteps),
-        .NoiseGuardBits(NoiseGuardBits), .NoiseRegs(NoiseRegs), .NoiseWorleySearch(NoiseWorleySearch),
-        .NoiseWorleyPoints(NoiseWorleyPoints), .NoiseWorleyOrder(NoiseWorleyOrder)
-      ) u_noise (
+      pst_worley #(`PST_WORLEY_PASS, .NoiseWorleySearch(NoiseWorleySearch)) u_noise (
         .clk_i, .rst_ni, .en_i, .valid_i, .step_i, .lat_i (lat_i[u*LTW +: LTW]),
         .frac_i (frac_i[u*3*LF +: 3*LF]), .coef_i (worley_c_i), .valid_o (unit_valid),
         .last_o (last_o[u]), .n_o (n_o[u*NW +: NW]), .grad_o (g_o[u*3*NGW +: 3*NGW])

@@ -43,25 +43,7 @@ module pst_octave_parallel #(
   parameter int SideW = pst_pkg::TagBits, parameter bit DebugProbes = 1'b1,
   parameter int NoiseSubband = pst_pkg::NoiseSubbandNone,   // the subband unit's plane
   parameter int NoiseSubbandOrientations = 0,               // its filter's orientations K (0: none)
-  localparam int CW  = CoordInt + CoordFrac,
-  localparam int MW  = MatrixInt + MatrixFrac,
-  localparam int OW  = OffsetInt + OffsetFrac,
-  localparam int AW  = AmplitudeInt + AmplitudeFrac,
-  localparam int GMW = GradMatrixInt + GradMatrixFrac,
-  localparam int QW  = QuadricInt + QuadricFrac,
-  localparam int FW  = FInt + FFrac,
-  localparam int GW  = GradInt + GradFrac,
-  localparam int JW  = JacobianInt + JacobianFrac,
-  localparam int LF  = NoiseLatticeFrac,
-  localparam int NW  = pst_pkg::NoiseIntBits + NoiseOutFrac,
-  localparam int NGW = pst_pkg::NoiseGradIntBits + NoiseOutFrac,
-  localparam int LTW = pst_pkg::LatticeWidth,
-  localparam int TB  = pst_pkg::TagBits,
-  localparam int PPB = pst_pkg::ProbePassBits,
-  localparam int FB  = pst_pkg::FadeBits,
-  localparam int LMW = pst_pkg::FadeLgBits,
-  localparam int OctBits = pst_pkg::octave_count_bits(Octaves),
-  localparam int SLW = ((NoiseSubbandOrientations == 0) ? 1 : NoiseSubbandOrientations) * FB
+  `PST_OCTAVE_DATAPATH_WIDTHS
 ) (
   `PST_OCTAVE_DATAPATH_PORTS
 );

@@ -17,12 +17,12 @@
 //   NoiseRegs   the noise unit's pipeline registers (NR above).
 //   CycBits     width of the cycle count.
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_octave_sched #(
   parameter int Passes     = 1,
-  parameter int NoiseSteps = pst_pkg::NoiseStepsDefault,
-  parameter int NoiseRegs  = pst_pkg::NoiseRegsDefault,
+  `PST_NOISE_SCHED_PARAMS,
   parameter int CycBits    = 5,
   localparam int PassBits  = (Passes > 1) ? $clog2(Passes) : 1,
   localparam int SchW      = 3 * PassBits + 10   // $bits of the schedule below

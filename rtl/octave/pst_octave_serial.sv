@@ -24,26 +24,8 @@ module pst_octave_serial #(
   parameter int SideW = pst_pkg::TagBits, parameter bit DebugProbes = 1'b1,
   parameter int NoiseSubband = pst_pkg::NoiseSubbandNone,   // the subband unit's plane
   parameter int NoiseSubbandOrientations = 0,               // its filter's orientations K (0: none)
-  localparam int CW  = CoordInt + CoordFrac,
-  localparam int MW  = MatrixInt + MatrixFrac,
-  localparam int OW  = OffsetInt + OffsetFrac,
-  localparam int AW  = AmplitudeInt + AmplitudeFrac,
-  localparam int GMW = GradMatrixInt + GradMatrixFrac,
-  localparam int QW  = QuadricInt + QuadricFrac,
-  localparam int FW  = FInt + FFrac,
-  localparam int GW  = GradInt + GradFrac,
-  localparam int JW  = JacobianInt + JacobianFrac,
   localparam int LB  = pst_pkg::LatticeBits,
-  localparam int LF  = NoiseLatticeFrac,
-  localparam int NW  = pst_pkg::NoiseIntBits + NoiseOutFrac,
-  localparam int NGW = pst_pkg::NoiseGradIntBits + NoiseOutFrac,
-  localparam int LTW = pst_pkg::LatticeWidth,
-  localparam int TB  = pst_pkg::TagBits,
-  localparam int PPB = pst_pkg::ProbePassBits,
-  localparam int FB  = pst_pkg::FadeBits,
-  localparam int LMW = pst_pkg::FadeLgBits,
-  localparam int OctBits = pst_pkg::octave_count_bits(Octaves),
-  localparam int SLW = ((NoiseSubbandOrientations == 0) ? 1 : NoiseSubbandOrientations) * FB
+  `PST_OCTAVE_DATAPATH_WIDTHS
 ) (
   `PST_OCTAVE_DATAPATH_PORTS
 );
@@ -61,7 +43,7 @@ module pst_octave_serial #(
   localparam int CycMax   = (Cycles < pst_pkg::StepMax + 1) ? pst_pkg::StepMax + 1 : Cycles;
   localparam int CycBits  = (CycMax > 1) ? $clog2(CycMax) : 1;
   localparam bit Bl       = (FilterBandlimit == pst_pkg::FilterBandlimitIsotropic);
-  localparam int LgW      = $clog2((JW + 1) << pst_pkg::FadeLgFrac) + 1;
+  localparam int LgW      = pst_pkg::fade_lg_width(JW);
 
   typedef struct packed {
     logic                noise_on;   // a noise evaluation runs a step
@@ -81,7 +63,7 @@ module pst_octave_serial #(
   logic               advance;     // the fragment moves to its next cycle at this edge
   logic               en;          // advance, or the fragment leaves
   sched_t             sch, sch_next;
-  pst_octave_sched #(.Passes(Passes), .NoiseSteps(NoiseSteps), .NoiseRegs(NoiseRegs), .CycBits(CycBits)) u_sched (
+  pst_octave_sched #(.Passes(Passes), `PST_NOISE_SCHED_PASS, .CycBits(CycBits)) u_sched (
     .clk_i, .rst_ni, .cyc_next_i (cyc_d), .sch_o (sch), .next_o (sch_next));
 
   assign last_cycle = (32'(cyc_q) + 1 >= Cycles) && quad_done;
@@ -100,11 +82,7 @@ module pst_octave_serial #(
   logic [3*GW-1:0] gradq_s;
   assign qstep   = (32'(cyc_q) < pst_pkg::StepMax) ? SB'(cyc_q) : SB'(pst_pkg::StepMax);
   assign qstep_d = (32'(cyc_d) < pst_pkg::StepMax) ? SB'(cyc_d) : SB'(pst_pkg::StepMax);
-  pst_quadric_serial #(
-    .CoordInt(CoordInt), .CoordFrac(CoordFrac), .QuadricInt(QuadricInt),
-    .QuadricFrac(QuadricFrac), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt), .GradFrac(GradFrac),
-    .Regs(MR)
-  ) u_quadric (
+  pst_quadric_serial #(`PST_QUADRIC_PASS, .Regs(MR)) u_quadric (
     .clk_i, .rst_ni, .step_i (qstep), .step_next_i (qstep_d), .adv_i (advance), .done_o (qdone),
     .s_i (s_i), .coef_i (quad_i), .q_o (q_s), .gradq_o (gradq_s)
   );
@@ -118,7 +96,7 @@ module pst_octave_serial #(
   // The pixel's lg edge lengths for the fades (registered, free-running).
   logic [LgW-1:0] lgx, lgy;
   if (Bl) begin : g_fade_px
-    pst_fade_pixel #(.JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac), .LenRegs(1), .LgRegs(1)) u_px (
+    pst_fade_pixel #(`PST_JACOBIAN_PASS, .LenRegs(1), .LgRegs(1)) u_px (
       .clk_i, .rst_ni, .en_i (1'b1), .j_i (side_i[TB +: 6*JW]), .lgx_o (lgx), .lgy_o (lgy));
   end else begin : g_no_fade
     assign lgx = '0;
@@ -135,8 +113,8 @@ module pst_octave_serial #(
   localparam bit Aniso = (NoiseSubband != pst_pkg::NoiseSubbandNone) && (SK != 0);
   logic [2*(Aniso ? SK : 1)*LgW-1:0] sb_lg;
   if (Aniso) begin : g_sb_px
-    pst_subband_pixel #(.JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac), .NoiseSubband(NoiseSubband),
-      .K(SK), .LenRegs(1), .LgRegs(1)) u_sb_px (
+    pst_subband_pixel #(`PST_JACOBIAN_PASS, .NoiseSubband(NoiseSubband), .K(SK), .LenRegs(1), .LgRegs(1)
+    ) u_sb_px (
       .clk_i, .rst_ni, .en_i (1'b1), .j_i (side_i[TB +: 6*JW]), .lg_o (sb_lg));
   end else begin : g_no_sb_px
     assign sb_lg = '0;

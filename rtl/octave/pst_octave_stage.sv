@@ -20,10 +20,7 @@
 `default_nettype none
 
 module pst_octave_stage #(
-  `PST_OCTAVE_PARAMS,
-  `PST_LANE_PARAMS,
-  `PST_NOISE_PARAMS,
-  parameter int Datapath = pst_pkg::DatapathDefault,
+  `PST_OCTAVE_STAGE_PARAMS,
   parameter int SideW = pst_pkg::TagBits,   // side_i: the tag at its low TagBits, the Jacobian above
   parameter bit DebugProbes = 1'b1,
   localparam int CW  = CoordInt + CoordFrac,
@@ -117,18 +114,13 @@ module pst_octave_stage #(
 
   logic [NoiseUnits*LTW-1:0]  pr_lat;
   logic [NoiseUnits*3*LF-1:0] pr_frac;
-  pst_octave_noise #(`PST_NOISE_PASS, .NoiseUnits(NoiseUnits), .NoiseLatticeFrac(NoiseLatticeFrac),
-    .NoiseOutFrac(NoiseOutFrac), .NoiseSteps(NoiseSteps), .NoiseRegs(NoiseRegs), .DebugProbes(DebugProbes)
-  ) u_noise (
+  pst_octave_noise #(`PST_OCTAVE_NOISE_PASS, .DebugProbes(DebugProbes)) u_noise (
     .clk_i, .rst_ni, .en_i (nz_en), .valid_i (nz_valid), .step_i (nz_step), .lat_i (nz_lat),
     .frac_i (nz_frac), .worley_c_i, .sb_lam_i (nz_lam), .last_o (nz_last), .n_o (nz_n), .g_o (nz_g),
     .probe_lat_o (pr_lat), .probe_frac_o (pr_frac)
   );
 
-  pst_octave_accum #(
-    .Octaves(Octaves), .NoiseUnits(NoiseUnits), .FInt(FInt), .FFrac(FFrac), .GradInt(GradInt),
-    .GradFrac(GradFrac)
-  ) u_accum (
+  pst_octave_accum #(`PST_ACCUM_PASS) u_accum (
     .clk_i, .rst_ni, .acc_en_i (acc_en), .acc_first_i (acc_first), .fterm_i (fterm), .gterm_i (gterm),
     .q_i (q_e), .gradq_i (gradq_e), .f_o, .grad_o
   );

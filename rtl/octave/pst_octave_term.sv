@@ -24,18 +24,11 @@
 //                                   GM: the serial datapath, one row per cycle).
 //   Bandlimit                       1: fade by alpha_i (1 + Rows multipliers); 0: alpha_i unused.
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_octave_term #(
-  parameter int NoiseOutFrac   = pst_pkg::NoiseOutFracDefault,
-  parameter int AmplitudeInt   = pst_pkg::AmplitudeIntDefault,
-  parameter int AmplitudeFrac  = pst_pkg::AmplitudeFracDefault,
-  parameter int GradMatrixInt  = pst_pkg::GradMatrixIntDefault,
-  parameter int GradMatrixFrac = pst_pkg::GradMatrixFracDefault,
-  parameter int FInt           = pst_pkg::FIntDefault,
-  parameter int FFrac          = pst_pkg::FFracDefault,
-  parameter int GradInt        = pst_pkg::GradIntDefault,
-  parameter int GradFrac       = pst_pkg::GradFracDefault,
+  `PST_TERM_PARAMS,
   parameter int Rows           = 3,
   parameter bit Bandlimit      = 1'b0,
   // Derived widths (not profile keys).

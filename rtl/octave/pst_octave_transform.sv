@@ -32,16 +32,11 @@
 //   lat_o  Rows x pst_pkg::LatticeBits (12) lattice index (after the +576 offset, mod 4096)
 //   frac_o Rows x NoiseLatticeFrac-bit unsigned fraction
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_octave_transform #(
-  parameter int CoordInt = pst_pkg::CoordIntDefault,
-  parameter int CoordFrac = pst_pkg::CoordFracDefault,
-  parameter int MatrixInt = pst_pkg::MatrixIntDefault,
-  parameter int MatrixFrac = pst_pkg::MatrixFracDefault,
-  parameter int OffsetInt = pst_pkg::OffsetIntDefault,
-  parameter int OffsetFrac = pst_pkg::OffsetFracDefault,
-  parameter int NoiseLatticeFrac = pst_pkg::NoiseLatticeFracDefault,
+  `PST_TRANSFORM_PARAMS,
   parameter int Rows = 3,
   parameter int Regs = 0,
   // Derived widths (do not override).

@@ -25,17 +25,11 @@
 //   GradInt, GradFrac         gradq_o component format.
 //   Regs                      pipeline registers (0..2, above; pst_octave_stage sets them).
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_quadric #(
-  parameter int CoordInt    = pst_pkg::CoordIntDefault,
-  parameter int CoordFrac   = pst_pkg::CoordFracDefault,
-  parameter int QuadricInt  = pst_pkg::QuadricIntDefault,
-  parameter int QuadricFrac = pst_pkg::QuadricFracDefault,
-  parameter int FInt        = pst_pkg::FIntDefault,
-  parameter int FFrac       = pst_pkg::FFracDefault,
-  parameter int GradInt     = pst_pkg::GradIntDefault,
-  parameter int GradFrac    = pst_pkg::GradFracDefault,
+  `PST_QUADRIC_PARAMS,
   parameter int Regs        = 0,
   // Derived widths (not profile keys).
   localparam int CW = CoordInt + CoordFrac,       // one texture coordinate
@@ -101,22 +95,10 @@ module pst_quadric #(
   // Step 3: q = s . w + J << 2 CoordFrac.
   assign qx = p0 + p1 + p2 + (QXW'(cj_q) <<< (2 * CoordFrac));
 
-  pst_floor_sat #(
-    .InWidth (QXW), .InFrac (QuadricFrac + 2 * CoordFrac), .OutWidth (FW), .OutFrac (FFrac)
-  ) u_q_sat (
-    .x_i (qx), .y_o (q_o)
+  // q_o and gradq_o: q and 2 v floored and saturated to their formats.
+  pst_quadric_out #(`PST_QUADRIC_PASS) u_out (
+    .q_i (qx), .v_i ({v2_q, v1_q, v0_q}), .q_o, .gradq_o
   );
-
-  // grad q = 2 v (v << 1, exact), floor to GradFrac, saturate to GW bits.
-  logic [3*VW-1:0] v;   // v_r at [r*VW +: VW]
-  assign v = {v2_q, v1_q, v0_q};
-  for (genvar r = 0; r < 3; r++) begin : g_grad
-    pst_floor_sat #(
-      .InWidth (VW + 1), .InFrac (QuadricFrac + CoordFrac), .OutWidth (GW), .OutFrac (GradFrac)
-    ) u_grad_sat (
-      .x_i ({v[r*VW +: VW], 1'b0}), .y_o (gradq_o[r*GW +: GW])
-    );
-  end
 
   // Assertions
 `ifndef SYNTHESIS

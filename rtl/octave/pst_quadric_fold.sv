@@ -25,17 +25,11 @@
 // three or more beats: the first of them is never used, so the register is always loaded
 // from the coefficients that the used beats see).
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_quadric_fold #(
-  parameter int CoordInt    = pst_pkg::CoordIntDefault,
-  parameter int CoordFrac   = pst_pkg::CoordFracDefault,
-  parameter int QuadricInt  = pst_pkg::QuadricIntDefault,
-  parameter int QuadricFrac = pst_pkg::QuadricFracDefault,
-  parameter int FInt        = pst_pkg::FIntDefault,
-  parameter int FFrac       = pst_pkg::FFracDefault,
-  parameter int GradInt     = pst_pkg::GradIntDefault,
-  parameter int GradFrac    = pst_pkg::GradFracDefault,
+  `PST_QUADRIC_PARAMS,
   parameter int Regs        = 0,
   parameter bit SelReg      = 1'b0,
   // Derived widths (not profile keys).
@@ -152,22 +146,10 @@ module pst_quadric_fold #(
   // Step 3: q = p_0 + p_1 + p_2 + J << 2 CoordFrac (this beat's unit 0 holds row 2).
   logic signed [QXW-1:0] qx;
   assign qx = hp0_q + hp1_q + p0 + (QXW'(cj_q) <<< (2 * CoordFrac));
-  pst_floor_sat #(
-    .InWidth (QXW), .InFrac (QuadricFrac + 2 * CoordFrac), .OutWidth (FW), .OutFrac (FFrac)
-  ) u_q_sat (
-    .x_i (qx), .y_o (q_o)
+  // q_o and gradq_o: q and 2 v floored and saturated to their formats (as pst_quadric).
+  pst_quadric_out #(`PST_QUADRIC_PASS) u_out (
+    .q_i (qx), .v_i ({v0_q, hv1_q, hv0_q}), .q_o, .gradq_o
   );
-
-  // grad q = 2 v (exact), floor to GradFrac, saturate to GW bits.
-  logic [3*VW-1:0] v;
-  assign v = {v0_q, hv1_q, hv0_q};
-  for (genvar r = 0; r < 3; r++) begin : g_grad
-    pst_floor_sat #(
-      .InWidth (VW + 1), .InFrac (QuadricFrac + CoordFrac), .OutWidth (GW), .OutFrac (GradFrac)
-    ) u_grad_sat (
-      .x_i ({v[r*VW +: VW], 1'b0}), .y_o (gradq_o[r*GW +: GW])
-    );
-  end
 
   // Assertions
 `ifndef SYNTHESIS

@@ -32,17 +32,11 @@
 // Parameters: as pst_quadric (CoordInt/Frac, QuadricInt/Frac: multiplier widths and the step
 // count; FInt/Frac, GradInt/Frac: output formats).
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_quadric_serial #(
-  parameter int CoordInt    = pst_pkg::CoordIntDefault,
-  parameter int CoordFrac   = pst_pkg::CoordFracDefault,
-  parameter int QuadricInt  = pst_pkg::QuadricIntDefault,
-  parameter int QuadricFrac = pst_pkg::QuadricFracDefault,
-  parameter int FInt        = pst_pkg::FIntDefault,
-  parameter int FFrac       = pst_pkg::FFracDefault,
-  parameter int GradInt     = pst_pkg::GradIntDefault,
-  parameter int GradFrac    = pst_pkg::GradFracDefault,
+  `PST_QUADRIC_PARAMS,
   parameter int Regs        = 0,
   // Derived widths (not profile keys).
   localparam int CW = CoordInt + CoordFrac,       // one texture coordinate

@@ -15,17 +15,17 @@
 //   K                           orientations, 4 or 8.
 //   LenRegs, LgRegs             0 or 1 registers after the lengths and after the lg.
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_subband_pixel #(
-  parameter int JacobianInt  = pst_pkg::JacobianIntDefault,
-  parameter int JacobianFrac = pst_pkg::JacobianFracDefault,
+  `PST_JACOBIAN_PARAMS,
   parameter int NoiseSubband = pst_pkg::NoiseSubbandXz,
   parameter int K            = 4,
   parameter int LenRegs      = 0,
   parameter int LgRegs       = 0,
   localparam int JW  = JacobianInt + JacobianFrac,
-  localparam int LgW = $clog2((JW + 1) << pst_pkg::FadeLgFrac) + 1   // pst_fade_lg's lg_o
+  localparam int LgW = pst_pkg::fade_lg_width(JW)   // pst_fade_lg's lg_o
 ) (
   input  logic              clk_i,
   input  logic              rst_ni,

@@ -22,24 +22,12 @@
 //   bl_o, fade_o, oct_lgm_o            control.bandlimit, the fade table, lg ||M||_2 (FilterBandlimit)
 //   oct_fm_o                           the octave terms' means a_i mean(n), F format (FilterBandlimit)
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_regs #(
-  parameter int Octaves        = pst_pkg::OctavesDefault,
-  parameter int QuadricInt     = pst_pkg::QuadricIntDefault,
-  parameter int QuadricFrac    = pst_pkg::QuadricFracDefault,
-  parameter int MatrixInt      = pst_pkg::MatrixIntDefault,
-  parameter int MatrixFrac     = pst_pkg::MatrixFracDefault,
-  parameter int OffsetInt      = pst_pkg::OffsetIntDefault,
-  parameter int OffsetFrac     = pst_pkg::OffsetFracDefault,
-  parameter int AmplitudeInt   = pst_pkg::AmplitudeIntDefault,
-  parameter int AmplitudeFrac  = pst_pkg::AmplitudeFracDefault,
-  parameter int GradMatrixInt  = pst_pkg::GradMatrixIntDefault,
-  parameter int GradMatrixFrac = pst_pkg::GradMatrixFracDefault,
+  `PST_REGS_PARAMS,
   parameter bit Worley         = 1'b0,   // the worley unit's coefficient registers exist
-  parameter int FilterBandlimit = pst_pkg::FilterBandlimitDefault,
-  parameter int FInt           = pst_pkg::FIntDefault,
-  parameter int FFrac          = pst_pkg::FFracDefault,
   localparam int FW  = FInt + FFrac,
   localparam int QW  = QuadricInt + QuadricFrac,
   localparam int MW  = MatrixInt + MatrixFrac,

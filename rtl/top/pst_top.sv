@@ -121,11 +121,7 @@ module pst_top #(
   logic [Octaves*(FInt+FFrac)-1:0]        oct_fm;
   logic                          bl;
   logic [pst_pkg::FadeEntries*pst_pkg::FadeBits-1:0] fade;
-  pst_regs #(.Octaves(Octaves), .QuadricInt(QuadricInt), .QuadricFrac(QuadricFrac),
-    .MatrixInt(MatrixInt), .MatrixFrac(MatrixFrac), .OffsetInt(OffsetInt), .OffsetFrac(OffsetFrac),
-    .AmplitudeInt(AmplitudeInt), .AmplitudeFrac(AmplitudeFrac), .GradMatrixInt(GradMatrixInt),
-    .GradMatrixFrac(GradMatrixFrac), .Worley(NoiseWorleySearch != pst_pkg::NoiseWorleySearchNone),
-    .FilterBandlimit(FilterBandlimit), .FInt(FInt), .FFrac(FFrac)
+  pst_regs #(`PST_REGS_PASS, .Worley(NoiseWorleySearch != pst_pkg::NoiseWorleySearchNone)
   ) u_regs (.clk_i, .rst_ni, .we_i (reg_we_i), .addr_i (reg_addr_i), .wdata_i (reg_wdata_i),
     .clamp_o (clamp), .kind_o (kind), .active_o (active), .quad_o (quad), .oct_m_o (oct_m),
     .oct_o_o (oct_o), .oct_a_o (oct_a), .oct_gm_o (oct_gm), .worley_o (worley_c),
@@ -139,8 +135,7 @@ module pst_top #(
   pst_pipe_reg #(.Width($bits(a_d)), .Skid(Skid)) u_reg_a (.clk_i, .rst_ni, .valid_i (frag_valid_i),
     .ready_o (frag_ready_o), .data_i (a_d), .valid_o (a_valid), .ready_i (a_ready), .data_o (a_q));
 
-  pst_octave_stage #(`PST_OCTAVE_PASS, `PST_LANE_PASS, `PST_NOISE_PASS, .Datapath(Datapath),
-    .SideW(6*JW + TB), .DebugProbes(DebugProbes)
+  pst_octave_stage #(`PST_OCTAVE_STAGE_PASS, .SideW(6*JW + TB), .DebugProbes(DebugProbes)
   ) u_octave (.clk_i, .rst_ni, .valid_i (a_valid), .ready_o (a_ready), .s_i (a_q.s),
     .side_i ({a_q.j, a_q.tag}), .valid_o (b_in_valid), .ready_i (b_in_ready), .f_o (b_d.f),
     .grad_o (b_d.grad), .side_o ({b_d.j, b_d.tag}), .busy_o (octave_busy),
@@ -151,9 +146,7 @@ module pst_top #(
     .ready_o (b_in_ready), .data_i (b_d), .valid_o (b_valid), .ready_i (b_ready), .data_o (b_q));
 
   // [B] -> filter width -> [C]
-  pst_width_stage #(.Datapath(Datapath), .FilterNorm(FilterNorm), .GradInt(GradInt),
-    .GradFrac(GradFrac), .JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut),
-    .WidthFrac(WidthFrac), .WidthRegs(WidthRegs), .SideW(3*GW + FW + TB)
+  pst_width_stage #(`PST_WIDTH_STAGE_PASS, .SideW(3*GW + FW + TB)
   ) u_width (.clk_i, .rst_ni, .valid_i (b_valid), .ready_o (b_ready), .grad_i (b_q.grad),
     .j_i (b_q.j), .side_i ({b_q.grad, b_q.f, b_q.tag}), .valid_o (c_in_valid),
     .ready_i (c_in_ready), .w_o (c_d.w), .side_o ({c_d.grad, c_d.f, c_d.tag}), .busy_o (width_busy));
@@ -161,9 +154,7 @@ module pst_top #(
     .ready_o (c_in_ready), .data_i (c_d), .valid_o (c_valid), .ready_i (c_ready), .data_o (c_q));
 
   // [C] -> colour-table filter -> [D] -> out
-  pst_colour_stage #(.Datapath(Datapath), .FInt(FInt), .FFrac(FFrac), .Log2Clut(Log2Clut),
-    .ColourBits(ColourBits), .WidthFrac(WidthFrac), .FilterRecipFrac(FilterRecipFrac),
-    .ColourRegs(ColourRegs), .SideW(WW + 3*GW + FW + TB)
+  pst_colour_stage #(`PST_COLOUR_STAGE_PASS, .SideW(WW + 3*GW + FW + TB)
   ) u_colour (.clk_i, .rst_ni, .we_i (reg_we_i), .addr_i (reg_addr_i), .wdata_i (reg_wdata_i),
     .clamp_i (clamp), .kind_i (kind), .valid_i (c_valid), .ready_o (c_ready), .f_i (c_q.f),
     .w_i (c_q.w), .side_i ({c_q.w, c_q.grad, c_q.f, c_q.tag}), .valid_o (d_in_valid),

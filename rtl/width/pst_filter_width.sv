@@ -38,16 +38,11 @@
 // Steps (Serial): pst_pkg::WidthProducts products, then for the euclidean norm
 // pst_pkg::WidthEuclidSquares squares and NSq root cycles; NSteps in all (16 in reduced).
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_filter_width #(
-  parameter int GradInt      = pst_pkg::GradIntDefault,
-  parameter int GradFrac     = pst_pkg::GradFracDefault,
-  parameter int JacobianInt  = pst_pkg::JacobianIntDefault,
-  parameter int JacobianFrac = pst_pkg::JacobianFracDefault,
-  parameter int Log2Clut     = pst_pkg::Log2ClutDefault,
-  parameter int WidthFrac    = pst_pkg::WidthFracDefault,
-  parameter int FilterNorm   = pst_pkg::FilterNormDefault,
+  `PST_FILTER_WIDTH_PARAMS,
   parameter bit Serial       = 1'b0,
   parameter int Regs         = 0,
   // Derived widths (not profile keys).

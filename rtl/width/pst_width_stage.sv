@@ -10,18 +10,11 @@
 //
 // Parameters: the profile's formats and choices (pst_top's header).
 `include "pst_pkg.sv"
+`include "pst_params.svh"
 `default_nettype none
 
 module pst_width_stage #(
-  parameter int Datapath     = pst_pkg::DatapathDefault,
-  parameter int FilterNorm   = pst_pkg::FilterNormDefault,
-  parameter int GradInt      = pst_pkg::GradIntDefault,
-  parameter int GradFrac     = pst_pkg::GradFracDefault,
-  parameter int JacobianInt  = pst_pkg::JacobianIntDefault,
-  parameter int JacobianFrac = pst_pkg::JacobianFracDefault,
-  parameter int Log2Clut     = pst_pkg::Log2ClutDefault,
-  parameter int WidthFrac    = pst_pkg::WidthFracDefault,
-  parameter int WidthRegs    = pst_pkg::WidthRegsDefault,
+  `PST_WIDTH_STAGE_PARAMS,
   parameter int SideW        = 1,
   localparam int GW = GradInt + GradFrac,
   localparam int JW = JacobianInt + JacobianFrac,
@@ -51,11 +44,7 @@ module pst_width_stage #(
     .clk_i, .rst_ni, .valid_i, .done_i (done), .ready_i, .step_o (step_q), .step_next_o (unused_step_next)
   );
 
-  pst_filter_width #(
-    .GradInt(GradInt), .GradFrac(GradFrac), .JacobianInt(JacobianInt),
-    .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac),
-    .FilterNorm(FilterNorm), .Serial(Serial), .Regs(Regs)
-  ) u_width (
+  pst_filter_width #(`PST_FILTER_WIDTH_PASS, .Serial(Serial), .Regs(Regs)) u_width (
     .clk_i, .rst_ni, .step_i (step_q), .adv_i (valid_i & ~done), .en_i (en), .done_o (done),
     .grad_i, .j_i, .w_o
   );

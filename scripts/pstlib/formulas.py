@@ -8,6 +8,7 @@ SerialRows = 3
 SerialOctaveExtraCycles = 6
 ColourSteps = 4
 WidthProducts = 6
+FadeLgFrac = 4
 WidthEuclidSquares = 2
 
 
@@ -65,6 +66,13 @@ def quadric_cycles(Datapath, QW, CW, OctaveRegs) -> int:
     """Cycles of the quadric in [A]: serial, its steps and the register its result passes before
     the sum."""
     return int((quadric_serial_steps(QW, CW, term_regs(OctaveRegs)) + term_regs(OctaveRegs)) if (Datapath == 1) else 1)
+
+
+def fade_lg_width(JW) -> int:
+    """Bits of pst_fade_lg's lg_o (signed) for JW-bit Jacobian components: lg of a length below
+    2^(JW+1) with FadeLgFrac fraction bits (LgW of the fade and subband pixel units and the
+    datapaths)."""
+    return int(clog2_int(((JW + 1) << FadeLgFrac)) + 1)
 
 
 def width_root_steps(WW) -> int:

@@ -19,7 +19,7 @@ profiles of the basis through their verilated RTL, scoreboarded against the gold
 golden: the golden model alone), the reference's options as --variants. Writes OUT/flyins.md and
 OUT/flyins.json (each split apart: per sequence and option RMS, flicker, the ratio against
 unfiltered and against the reference's exact filter, and the flags below4x, over10, worse_rms),
-OUT/SPLIT/scenes/ and OUT/SPLIT/runs/ (a run whose scene and arguments are unchanged is reused
+OUT/SPLIT/scenes/ and OUT/SPLIT/runs/ (a run whose scene, arguments, pst binary and profile files are unchanged is reused
 unless --fresh); with --record also docs/data/flyins.json, the source of docs/VERIFICATION.md's
 generated fly-in table (scripts/gen_docs.py --write).
 

@@ -16,6 +16,7 @@ beside them (pstlib/docs/handfigures.py):
                                         measured (pstlib/docs/multipass_doc.py)
   docs/POWER.md         power-table     power and energy per pixel per profile (pstlib/docs/power_doc.py)
                         power-flyin     energy per pixel of a fly-in's frames against the still
+                        energy-estimate the design search's energy model against the measured profiles
   docs/VERIFICATION.md  flyins-table    antialiasing on the held-out fly-ins (pstlib/docs/flyins_doc.py)
   docs/data/silicon.json                the silicon summary's clocks per profile, generated whole (read
                                         by `pst atlas`: pstlib/report/silicon_table.py data_json)
@@ -43,6 +44,7 @@ import sys
 from pathlib import Path
 
 from .. import contract, contractgen
+from ..power import estimate
 from ..docs import docgen, flyins_doc, handfigures, multipass_doc, noise_units, power_doc, rtl_modules
 from ..report import silicon_table
 from ..docs.docgen import Section
@@ -129,6 +131,7 @@ SECTIONS = [
     Section("docs/MULTIPASS.md", "multipass-proposals", multipass_doc.proposals_markdown),
     Section("docs/POWER.md", "power-table", power_doc.markdown),
     Section("docs/POWER.md", "power-flyin", power_doc.animation_markdown),
+    Section("docs/POWER.md", "energy-estimate", estimate.markdown),
     Section("docs/VERIFICATION.md", "flyins-table", flyins_doc.markdown),
     docgen.DataFile("docs/data/silicon.json", lambda root: silicon_table.data_json(baseline_profiles(root))),
 ]

@@ -42,7 +42,7 @@ from .. import atomic, kept
 from ..docs import power_doc
 from ..paths import PY, ROOT, profile_path
 from ..power import activity, figures, flow
-from ..synth import flow as synth_flow, liberty
+from ..synth import flow as synth_flow, liberty, memarea
 
 PAPER_SCENES = ("marble", "wood_teapot", "seascape", "zoneplate")
 
@@ -188,6 +188,7 @@ def main(argv=None) -> int:
     rows = {}
     mems = record.get("memories", [])
     rom_area = sum(m["area_um2"] for m in mems if m["kind"] == "ROM")
+    ram_read_area = sum(memarea.ram_read_area_um2(m) for m in mems if m["kind"] != "ROM")
     rams = ", ".join(f"{m['module']}.{m['memory']} ({m['size']} x {m['width']}, {m['read_ports']} read ports)"
                      for m in mems if m["kind"] != "ROM")
     tmp = out / f"{name}.traces"
@@ -200,7 +201,7 @@ def main(argv=None) -> int:
             vcd.unlink()
             pixels = act.changes.get("out_tag_o", 0)
             pw = flow.run(work, act, [str(lib)], areas)
-            row = figures.workload_figures(pw, act.cycles, pixels, rom_area)
+            row = figures.workload_figures(pw, act.cycles, pixels, rom_area, ram_read_area)
             print(f"{wname}: {row['pj_per_pixel'] or 0:,.0f} pJ/pixel, "
                   f"{row['dynamic_w'] * 1e3:.1f} mW dynamic at 100 MHz", flush=True)
             return row
@@ -211,7 +212,7 @@ def main(argv=None) -> int:
             fly[f"frame_{k:04d}"] = dict(measure(f"{a.animate} frame {k}/{a.frames}", anim_scene, k), frame=k,
                                          t=k / (a.frames - 1) if a.frames > 1 else 0.0)
         summary = figures.profile_figures(rows, record)
-        summary["rams_not_modelled"] = rams
+        summary["rams_modelled"] = rams
     except (RuntimeError, ValueError, activity.VcdError) as e:
         print(f"error: {name}: {e}", file=sys.stderr)
         return 1

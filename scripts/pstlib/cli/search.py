@@ -32,7 +32,10 @@ with --paper) at
 logic GE from a per-module synthesis cache (scripts/pstlib/synth/modules.py: a derived module
 is synthesized once per parameter set and source, so a point that changes one format
 re-synthesizes only the modules it reaches; cache in out/search_modules/, shared by searches).
-Points under --synth-floor dB are not synthesized.
+Points under --synth-floor dB are not synthesized. Energy per pixel: an estimate, the measured
+energy density (docs/data/power.json) of the class's start profile times the point's logic GE and
+clocks per pixel (scripts/pstlib/power/estimate.py; its error on the measured profiles is in
+docs/POWER.md), and A x C x E, logic GE x clocks per pixel x nJ per pixel, beside the area.
 
 Outputs in --out: points/NAME.toml, results/NAME.json (atomic; a rerun resumes: stored points
 are not recomputed), points.csv, front.csv, front.md, front.png (area against worst training

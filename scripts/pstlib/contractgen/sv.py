@@ -110,17 +110,36 @@ def sv_checks(c: Contract) -> str:
 
 
 def param_groups(c: Contract) -> list[tuple[str, str, list[str]]]:
-    """(NAME, doc, [parameter]) per [rtl_params] group, then PROFILE (every parameter); a
-    ValueError names a parameter the schema lacks or one two groups share."""
-    known, seen, out = set(c.param_names), {}, []
+    """(NAME, doc, [parameter]) per [rtl_params] group, then PROFILE (every parameter).
+
+    A group is the union of the groups it names (`groups`, each defined above it) and the
+    parameters it lists (`params`), in the order written, each parameter once (at its first
+    place). Groups may overlap: a module takes the one group that is its parameter set, or
+    several disjoint ones. A ValueError names a parameter the schema lacks, a group named before
+    it is defined (or not at all), a group that names neither, or a parameter listed twice in
+    one group's `params` or listed there and also brought by one of its `groups`."""
+    known, defined, out = set(c.param_names), {}, []
     for g, spec in c.raw.get("rtl_params", {}).items():
-        for p in spec["params"]:
+        unknown = set(spec) - {"doc", "groups", "params"}
+        if unknown:
+            raise ValueError(f"rtl_params.{g}: unknown key {sorted(unknown)[0]}")
+        if not spec.get("groups") and not spec.get("params"):
+            raise ValueError(f"rtl_params.{g}: names no groups and no params")
+        members: list[str] = []
+        for sub in spec.get("groups", []):
+            if sub not in defined:
+                raise ValueError(f"rtl_params.{g}: group {sub} is not defined above it")
+            members += [p for p in defined[sub] if p not in members]
+        brought = set(members)
+        for p in spec.get("params", []):
             if p not in known:
                 raise ValueError(f"rtl_params.{g}: {p} is not a profile parameter")
-            if p in seen:
-                raise ValueError(f"rtl_params.{g}: {p} is in rtl_params.{seen[p]} too")
-            seen[p] = g
-        out.append((g.upper(), spec.get("doc", ""), list(spec["params"])))
+            if p in members:
+                where = "its groups bring it" if p in brought else "it is listed twice"
+                raise ValueError(f"rtl_params.{g}: {p}: {where}")
+            members.append(p)
+        defined[g] = members
+        out.append((g.upper(), spec.get("doc", ""), members))
     return out + [("PROFILE", "every profile parameter, in schema order (pst_top; declaration only)",
                    c.param_names)]
 
@@ -130,9 +149,11 @@ def sv_params(c: Contract) -> str:
     (Yosys 0.23 takes no struct parameter, so a group travels as a list)."""
     L = [f"// {HEADER}",
          "// pst_params: the profile's parameter groups (rtl/contract.toml [rtl_params]) as macros, so that",
-         "// a module passing a group on declares it once: `PST_<GROUP>_PARAMS in its #( ... ) declares",
+         "// a module declares its profile parameters once: `PST_<GROUP>_PARAMS in its #( ... ) declares",
          "// `parameter int P = pst_pkg::PDefault` per parameter, `PST_<GROUP>_PASS in an instance's",
          "// #( ... ) passes `.P(P)`; add a comma when more parameters follow. Include after pst_pkg.sv.",
+         "// A group may contain other groups and overlap them: a module takes the one group that is its",
+         "// parameter set (or several disjoint ones), and passes a sub-module's group on whole.",
          "// Read by the Verilator lint and build and by Yosys 0.23 (read_verilog -sv), which takes no",
          "// struct parameter that could otherwise carry a group.",
          "`ifndef PST_PARAMS_SVH", "`define PST_PARAMS_SVH", ""]

@@ -24,10 +24,10 @@ def markdown(root: Path) -> str:
          "report_power at the typical corner, activity from the verilated RTL's traces of the paper scenes and "
          "random validation textures; the method is below). pJ/pixel: mean over the workloads (least - most); "
          "mW at the profile's pre-layout Fmax and at the real-time rate (copies: profiles side by side to reach "
-         "it). Sequential: flip-flops with their clock pins. ROMs: the area model; RAMs (the colour tables) are "
-         "not modelled.", "",
+         "it). Sequential: flip-flops with their clock pins. Memories: the area model of the ROMs and of the RAMs' "
+         "read ports (the method's step 6).", "",
          "| profile | workloads (image size) | pJ/pixel | least - most | Fmax (MHz) | mW at Fmax | mW at real time "
-         "(copies) | leakage mW | sequential | ROMs | top blocks (mW at the SDC clock) |",
+         "(copies) | leakage mW | sequential | memories | top blocks (mW at the SDC clock) |",
          "|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---|"]
     for name, p in d.items():
         s = p["summary"]

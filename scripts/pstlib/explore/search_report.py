@@ -7,6 +7,7 @@ import pathlib
 
 from ..validation import acceptance
 from .. import atomic
+from ..power import estimate
 from .search import pareto
 
 
@@ -30,7 +31,26 @@ def losses(r: dict, start) -> dict:
     return dict(out, valid_loss=v["worst_loss"], valid_loss_scene=v["worst_loss_scene"], valid_pass=v["passed"])
 
 
-COLUMNS = ["class", "name", "cpp", "logic_ge", "train_worst", "train_mean", "valid_worst", "valid_mean",
+def add_energy(rows: list, starts: dict, refs: dict | None = None) -> None:
+    """Each row with a logic area gets energy_pj, the estimated energy per pixel (pstlib.power.estimate:
+    the measured density of its class's start profile, STARTS class -> profile name, else of the
+    measured profile nearest in clocks per pixel), energy_ref (that profile) and ace (area x
+    clocks/pixel x energy, GE x clocks x nJ). Without a power record the fields stay empty."""
+    refs = estimate.references() if refs is None else refs
+    classes = sorted(starts)
+    for r in rows:
+        if r.get("logic_ge") is None or not r.get("cpp"):
+            continue
+        c = next((c for c in classes if r["cpp"] <= c), None)
+        ref = estimate.nearest(refs, r["cpp"], prefer=starts.get(c, ""))
+        if ref is None:
+            continue
+        pj = estimate.estimate_pj(r["logic_ge"], r["cpp"], ref)
+        r.update(energy_pj=round(pj, 1), energy_ref=ref.profile,
+                 ace=round(estimate.figure_of_merit(r["logic_ge"], r["cpp"], pj)))
+
+
+COLUMNS = ["class", "name", "cpp", "logic_ge", "energy_pj", "energy_ref", "ace", "train_worst", "train_mean", "valid_worst", "valid_mean",
            "train_loss", "valid_loss", "valid_loss_scene", "valid_pass", "rtl", "fmax_mhz", "fmax_derated_mhz", "move"]
 
 
@@ -45,6 +65,7 @@ def front_rows(fr: dict, rtl: dict) -> list:
     for c, rows in fr.items():
         for r in rows:
             out.append({"class": c, "name": r["name"], "cpp": r["cpp"], "logic_ge": r["logic_ge"],
+                        "energy_pj": r.get("energy_pj"), "energy_ref": r.get("energy_ref"), "ace": r.get("ace"),
                         "train_worst": r.get("train_worst"), "train_mean": r.get("train_mean"),
                         "valid_worst": r.get("valid_worst"), "valid_mean": r.get("valid_mean"),
                         "train_loss": r.get("train_loss"), "valid_loss": r.get("valid_loss"),
@@ -85,15 +106,21 @@ def markdown(title: str, frows: list, targets: dict, best: dict, stats: dict, ma
                  " of the class's start profile.\n")
     L.append("Loss columns: the largest loss on one scene against the class's start, training / validation, and "
              f"the validation scene that loses most; rule: pass when every validation scene is within {tol:g} dB.\n")
-    L.append("| class | point | clk/px | logic GE | train worst / mean dB | valid worst / mean dB | "
-             "max loss train / valid dB (scene) | rule | RTL | how reached |")
-    L.append("|---:|---|---:|---:|---|---|---|---|---|---|")
+    L.append("Energy: pJ per pixel estimated from the measured density of the reference profile in brackets "
+             "(scripts/pstlib/power/estimate.py; its error on the measured profiles: docs/POWER.md, energy-estimate); "
+             "A x C x E: logic GE x clocks per pixel x nJ per pixel, lower is better.\n")
+    L.append("| class | point | clk/px | logic GE | energy pJ/px (ref) | A x C x E | train worst / mean dB | "
+             "valid worst / mean dB | max loss train / valid dB (scene) | rule | RTL | how reached |")
+    L.append("|---:|---|---:|---:|---:|---:|---|---|---|---|---|---|")
     for r in frows:
         rule = {True: "pass", False: "**FAIL**", None: "-"}[r.get("valid_pass")]
         loss = "-" if r.get("train_loss") is None and r.get("valid_loss") is None else \
             f"{_fmt(r.get('train_loss'))} / {_fmt(r.get('valid_loss'))}" + \
             (f" ({r['valid_loss_scene']})" if r.get("valid_loss_scene") else "")
-        L.append(f"| {r['class']} | `{r['name']}` | {r['cpp']} | {r['logic_ge']:,} | {_fmt(r['train_worst'])} / "
+        energy = "-" if r.get("energy_pj") is None else f"{r['energy_pj']:,.0f} ({r['energy_ref']})"
+        ace = "-" if r.get("ace") is None else f"{r['ace']:,}"
+        L.append(f"| {r['class']} | `{r['name']}` | {r['cpp']} | {r['logic_ge']:,} | {energy} | {ace} | "
+                 f"{_fmt(r['train_worst'])} / "
                  f"{_fmt(r['train_mean'])} | {_fmt(r['valid_worst'])} / {_fmt(r['valid_mean'])} | {loss} | {rule} | "
                  f"{r['rtl'] or '-'} | {r['move'] or ''} |")
     L.append("")

@@ -282,6 +282,7 @@ def run(s: SearchSettings) -> int:
             walks[c] = w
             archive.update(w["archive"])
         rows = [dict(r, name=n, move=p.move, cpp=p.cpp, profile_sha=p.sha) for n, (p, r) in archive.items()]
+        search_report.add_energy(rows, {c: s.start_docs[c][0].stem for c in s.class_list})
         fr = search_report.fronts(rows, s.class_list)
         front_names = sorted({r["name"] for f in fr.values() for r in f})
         # The starts are scored on the validation set too: each front point is judged by the rule
@@ -315,7 +316,8 @@ def report(s: SearchSettings, job: Job, stats: dict, walks: dict, rows: list, by
           "train": len(job.settings["scenes"]["train"]), "valid": len(job.settings["scenes"]["valid"]), "size": s.size}
     frows = search_report.front_rows(fr, rtl)
     search_report.write_csv(s.out / "points.csv", sorted(rows, key=lambda r: (r["cpp"], r.get("logic_ge") or 1e18)),
-                            ["name", "cpp", "logic_ge", "train_worst", "train_mean", "valid_worst", "status", "move"])
+                            ["name", "cpp", "logic_ge", "energy_pj", "energy_ref", "ace", "train_worst", "train_mean",
+                             "valid_worst", "status", "move"])
     search_report.write_csv(s.out / "front.csv", frows, search_report.COLUMNS)
     title = f"Design-space search ({s.size} x {s.size}, seed {s.seed})"
     atomic.write_text(s.out / "front.md", search_report.markdown(title, frows, s.targets, best, st, s.max_losses))

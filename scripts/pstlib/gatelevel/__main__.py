@@ -2,7 +2,11 @@
 
     scripts/gatelevel.py PROFILE [--work DIR] [--out DIR] [--size N] [--random N] [--seed S]
                          [--gap-rate R] [--stall-rate R] [--mutate MODULE] [--jobs N]
-                         [--simulator verilator|iverilog] [--scene FILE]
+                         [--simulator verilator|iverilog] [--scene FILE|all ...]
+
+Two simulators, both run by ctest (label gatelevel): --simulator verilator (compiled, fast enough
+for every scene and 10^5 random fragments) and --simulator iverilog (event-driven, the default
+here: a second opinion on the RTL's own port trace, about 80 times slower).
 
 The netlist is the profile's synthesis (scripts/synth.py --keep, the one the silicon figures
 count), made in OUT/synth/ unless --work names a kept synthesis folder. It is verilated with
@@ -15,15 +19,18 @@ dual); its random regression must fail. Writes OUT/NAME.json and OUT/NAME.md (de
 out/gatelevel). Method: scripts/pstlib/gatelevel/.
 
 --simulator iverilog (the default; pstlib/gatelevel/replay.py): Icarus Verilog runs the netlist
-on the RTL's own port trace of --scene (default scenes/marble.toml) at --size (default 16 here)
-and compares every output with the RTL's, half clock by half clock; the RTL model is the main
-build's (build/pst). --simulator verilator: the verilated netlist through `pst regress` as above;
-Verilator 5.006 mis-evaluates these netlists (docs/VERIFICATION.md), so it fails today.
+on the RTL's own port trace of each --scene (default scenes/marble.toml; `--scene all`: every
+scene of scenes/, those the profile refuses listed as refused) at --size (default 16 here), the
+RTL run with --gap-rate input gaps and --stall-rate output stalls (default 0 here), and compares
+every output with the RTL's, half clock by half clock; --jobs replays at a time; the mutant runs
+on the first scene the profile renders. The RTL model is the main build's (build/pst). --simulator verilator: the verilated netlist through `pst regress` as above
+(its -fno-const-bit-op-tree must follow -O3: rtl/CMakeLists.txt, docs/VERIFICATION.md).
 
 Exit 0 when the netlist matches the golden model bit for bit on every run (and the mutant, if
 any, does not), 1 otherwise, 2 on bad input.
 """
 import argparse
+import concurrent.futures
 import json
 import pathlib
 import subprocess
@@ -51,39 +58,67 @@ def _markdown(doc: dict) -> str:
     return "\n".join(head + rows + verdict) + "\n"
 
 
+def _replay_runs(a) -> list:
+    """(model, scene) pairs of --simulator iverilog: the netlist on every --scene, the mutant on the
+    first only (it has to differ once)."""
+    scenes = []
+    for s in a.scene or [str(ROOT / "scenes" / "marble.toml")]:
+        scenes += sorted((ROOT / "scenes").glob("*.toml")) if s == "all" else [pathlib.Path(s)]
+    return scenes
+
+
 def _replay(a, name: str, work: pathlib.Path, info: dict, out: pathlib.Path, t0: float) -> int:
-    """--simulator iverilog: the netlist (and the mutant) on the RTL's port trace of --scene."""
-    scene, pst = pathlib.Path(a.scene), pathlib.Path(a.pst)
+    """--simulator iverilog: the netlist (and the mutant) on the RTL's port trace of every --scene,
+    --jobs replays at a time (Icarus runs on one core)."""
+    scenes, pst = _replay_runs(a), pathlib.Path(a.pst)
     size = a.size
-    for f, what in ((scene, "--scene"), (pst, "--pst")):
+    for f, what in [(s, "--scene") for s in scenes] + [(pst, "--pst")]:
         if not f.exists():
             print(f"error: {what} {f}: no such file", file=sys.stderr)
             return 2
     doc = {"profile": name, "simulator": "iverilog", "netlist": str(work / "netlist.v"), "memories": info["memories"],
-           "cells_source": info["cells_source"]}
+           "cells_source": info["cells_source"], "gap_rate": a.gap_rate, "stall_rate": a.stall_rate, "sim_seed": a.seed}
+    todo = [(f"{name}_gl", s) for s in scenes]
+
+    def one(job):
+        model, scene = job
+        print(f"gatelevel: {model} on the RTL's trace of {scene.name} at {size} x {size} (Icarus)", flush=True)
+        try:
+            return replay.run(pst, name, out / "models", model, scene, size, out / f"{model}.{scene.stem}.replay",
+                              gap_rate=a.gap_rate, stall_rate=a.stall_rate, sim_seed=a.seed)
+        except replay.Refused as e:
+            return {"model": model, "scene": str(scene), "refused": str(e)}
+
     try:
-        for model in info["models"]:
-            print(f"gatelevel: {model} on the RTL's trace of {scene.name} at {size} x {size} (Icarus)", flush=True)
-            doc[model] = replay.run(pst, name, out / "models", model, scene, size, out / f"{model}.replay")
+        with concurrent.futures.ThreadPoolExecutor(max_workers=a.jobs) as pool:
+            runs = list(pool.map(one, todo))
+        rendered = [pathlib.Path(r["scene"]) for r in runs if "refused" not in r]
+        if a.mutate and rendered:
+            runs.append(one((f"{name}_glmut", rendered[0])))
     except (replay.ReplayError, subprocess.TimeoutExpired) as e:
         print(f"error: {e}", file=sys.stderr)
         return 1
-    gl = doc[f"{name}_gl"]
-    doc["passed"] = gl["passed"]
+    doc["runs"] = runs
+    gl = [r for r in runs if r["model"] == f"{name}_gl" and "refused" not in r]
+    doc["passed"] = bool(gl) and all(r["passed"] for r in gl)
     if a.mutate:
-        mut = doc[f"{name}_glmut"]
-        doc["mutant"] = {**info["mutant"], "caught": mut["mismatches"] > 0}
+        mut = runs[-1] if runs[-1]["model"] == f"{name}_glmut" else {}
+        doc["mutant"] = {**info["mutant"], "caught": mut.get("mismatches", 0) > 0}
     doc["seconds"] = round(time.time() - t0, 1)
     atomic.write_text(out / f"{name}.json", json.dumps(doc, indent=1) + "\n")
     lines = [f"# Gate-level simulation: {name} (Icarus Verilog, the RTL's port trace)", "",
-             f"Netlist: {doc['netlist']} ({doc['memories']} memories as behavioural models).", "",
+             f"Netlist: {doc['netlist']} ({doc['memories']} memories as behavioural models). Input gaps "
+             f"{a.gap_rate:g}, output stalls {a.stall_rate:g} (seed {a.seed}).", "",
              "| model | scene | size | half clocks | outputs compared | pixels out | mismatches | simulate s |",
              "|---|---|---|---|---|---|---|---|"]
-    for model in info["models"]:
-        r = doc[model]
-        lines.append(f"| {model} | {pathlib.Path(r['scene']).name} | {r['size']} | {r['half_clocks']:,} | "
+    for r in runs:
+        if "refused" in r:
+            lines.append(f"| {r['model']} | {pathlib.Path(r['scene']).name} | {size} | refused by the profile | | | | |")
+            continue
+        lines.append(f"| {r['model']} | {pathlib.Path(r['scene']).name} | {r['size']} | {r['half_clocks']:,} | "
                      f"{r['compared']:,} | {r['outputs_taken']} | {r['mismatches']:,} | {r['seconds']['simulate']} |")
-    lines += ["", f"Verdict: **{'equal to the RTL' if doc['passed'] else 'MISMATCH'}** on every output."]
+    lines += ["", f"Verdict: **{'equal to the RTL' if doc['passed'] else 'MISMATCH'}** on every output of "
+                  f"{len(gl)} scene(s)."]
     if a.mutate:
         lines.append(f"Mutant ({doc['mutant']['module']}, {doc['mutant']['change']}): "
                      f"{'caught' if doc['mutant']['caught'] else 'NOT caught'}.")
@@ -102,16 +137,20 @@ def main(argv=None) -> int:
     ap.add_argument("--size", type=int, default=None, help="image size of the scene runs (default 32; iverilog 16)")
     ap.add_argument("--random", type=int, default=100000, help="random fragments (default 100000; 0: none)")
     ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--gap-rate", type=float, default=0.2)
-    ap.add_argument("--stall-rate", type=float, default=0.2)
+    ap.add_argument("--gap-rate", type=float, default=None, help="input gap rate (default 0.2; iverilog 0)")
+    ap.add_argument("--stall-rate", type=float, default=None, help="output stall rate (default 0.2; iverilog 0)")
     ap.add_argument("--mutate", metavar="MODULE", default="", help="also a mutant of MODULE that must fail")
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--simulator", choices=("iverilog", "verilator"), default="iverilog")
-    ap.add_argument("--scene", default=str(ROOT / "scenes" / "marble.toml"), help="--simulator iverilog: the scene")
+    ap.add_argument("--scene", action="append", help="--simulator iverilog: a scene (repeatable; `all`: scenes/*.toml, "
+                                                       "those the profile refuses listed as such; default scenes/marble.toml)")
     ap.add_argument("--pst", default=str(ROOT / "build" / "pst"), help="--simulator iverilog: the RTL's pst tool")
     a = ap.parse_args(argv)
     if a.size is None:
         a.size = 16 if a.simulator == "iverilog" else 32
+    for k in ("gap_rate", "stall_rate"):
+        if getattr(a, k) is None:
+            setattr(a, k, 0.0 if a.simulator == "iverilog" else 0.2)
     if not 1 <= a.size <= 4096:
         ap.error("--size: must be in [1, 4096]")
     if not 0 <= a.random <= 1 << 32:

@@ -1,10 +1,10 @@
 """Gate-level simulation with Icarus Verilog: the netlist replays the RTL's own port trace.
 
-Why a second simulator: Verilator 5.006 (Debian 12's) mis-evaluates the synthesized netlists
-(docs/VERIFICATION.md "The netlist against the RTL"): reduced's netlist verilated mismatches every
-pixel, even the generic-gate netlist before technology mapping, where Icarus Verilog, an
-event-driven simulator, computes the RTL's outputs. Icarus is far slower (minutes for a 16 x 16
-scene), so this check runs a small scene, not the harness's regressions.
+Why a second simulator: Verilator compiles the netlist into a model whose optimizations decide
+what it computes (Verilator 5.006's bit-op-tree folding mis-evaluates OSU018 XOR trees unless it
+is turned off: docs/VERIFICATION.md "The netlist against the RTL"); Icarus Verilog, an
+event-driven simulator, evaluates the cells one by one. It is far slower (minutes for a 16 x 16
+scene), so this check replays small scenes, not the harness's random regressions.
 
 Steps: the RTL model of PROFILE (the `pst` tool of the main build) renders SCENE with a port
 trace (`pst render --trace`); every input of pst_top at every half clock is written to a stimulus
@@ -116,9 +116,16 @@ def zero_init_cells(cells_v: str) -> str:
     return text
 
 
+class Refused(ReplayError):
+    """The RTL's `pst render` refused the scene for this profile (exit 2: a feature the profile lacks)."""
+
+
 def run(pst: pathlib.Path, profile: str, models: pathlib.Path, model: str, scene: pathlib.Path, size: int,
-        work: pathlib.Path, timeout: int = 3600) -> dict:
-    """The replay of SCENE at SIZE x SIZE; the result as a dict (also WORK/replay.json)."""
+        work: pathlib.Path, timeout: int = 3600, gap_rate: float = 0.0, stall_rate: float = 0.0,
+        sim_seed: int = 1) -> dict:
+    """The replay of SCENE at SIZE x SIZE, the RTL run with GAP_RATE input gaps and STALL_RATE output
+    stalls (seed SIM_SEED: the trace holds them, so the netlist sees the same); the result as a dict
+    (also WORK/replay.json)."""
     for tool in ("iverilog", "vvp", "fst2vcd"):
         if not shutil.which(tool):
             raise ReplayError(f"{tool}: not found (scripts/setup.sh installs iverilog and gtkwave)")
@@ -130,7 +137,10 @@ def run(pst: pathlib.Path, profile: str, models: pathlib.Path, model: str, scene
     t0 = time.time()
     fst = work / "rtl.fst"
     r = subprocess.run([str(pst), "render", str(scene), "--size", str(size), "--profile", profile, "--trace",
-                        str(fst), "-o", str(work / "render"), "-q"], capture_output=True, text=True, cwd=ROOT)
+                        str(fst), "-o", str(work / "render"), "-q", "--gap-rate", str(gap_rate), "--stall-rate",
+                        str(stall_rate), "--sim-seed", str(sim_seed)], capture_output=True, text=True, cwd=ROOT)
+    if r.returncode == 2:
+        raise Refused(f"pst render {scene.name} --profile {profile}: refused ({r.stderr.strip().splitlines()[-1:]})")
     if r.returncode or not fst.exists():
         raise ReplayError(f"pst render --trace: exit {r.returncode}\n{r.stderr[-1500:]}")
     vcd = work / "rtl.vcd"
@@ -163,6 +173,7 @@ def run(pst: pathlib.Path, profile: str, models: pathlib.Path, model: str, scene
         raise ReplayError(f"the netlist ran {len(got)} half clocks of {len(rows)}")
     res = compare(rows, got, outputs)
     res.update({"profile": profile, "model": model, "scene": str(scene), "size": size, "half_clocks": len(rows),
+                "gap_rate": gap_rate, "stall_rate": stall_rate, "sim_seed": sim_seed,
                 "seconds": {"trace": round(t1 - t0, 1), "compile": round(t2 - t1, 1), "simulate": round(t3 - t2, 1)},
                 "simulator": subprocess.run(["iverilog", "-V"], capture_output=True, text=True).stdout.splitlines()[0]})
     atomic.write_text(work / "replay.json", json.dumps(res, indent=1) + "\n")

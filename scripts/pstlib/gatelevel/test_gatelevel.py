@@ -209,3 +209,14 @@ def test_replay_zero_init_needs_the_udp_modules():
         pass
     else:
         raise AssertionError("no flip-flop model accepted")
+
+
+def test_replay_scenes_all_and_default():
+    """--scene all: every scene of scenes/ in name order; none given: marble alone."""
+    import argparse
+    from pstlib.gatelevel.__main__ import _replay_runs
+    from pstlib.paths import ROOT
+    every = _replay_runs(argparse.Namespace(scene=["all"]))
+    assert every == sorted((ROOT / "scenes").glob("*.toml")) and len(every) > 5
+    assert _replay_runs(argparse.Namespace(scene=None)) == [ROOT / "scenes" / "marble.toml"]
+    assert _replay_runs(argparse.Namespace(scene=["x.toml", "all"]))[0].name == "x.toml"

@@ -6,13 +6,16 @@ import math
 REALTIME_MPIXEL_S = 36.9     # the paper's real-time rate (the silicon table's, pstlib.synth)
 
 
-def workload_figures(pw, cycles: int, pixels: int, rom_area_um2: float) -> dict:
-    """One workload: watts at the SDC clock (logic, the ROMs' model), energy per pixel (pJ).
-    ROM_AREA_UM2: the ROM read ports' cell area (built from the same cells as the logic)."""
+def workload_figures(pw, cycles: int, pixels: int, rom_area_um2: float, ram_read_area_um2: float = 0.0) -> dict:
+    """One workload: watts at the SDC clock (logic, the memories' model), energy per pixel (pJ).
+    ROM_AREA_UM2: the ROMs' cell area (built from the same cells as the logic); RAM_READ_AREA_UM2:
+    the RAMs' read multiplexers (memarea.ram_read_area_um2), both at the logic's dynamic density."""
     t = pw.groups["Total"]
     comb = pw.groups["Combinational"]
     density = (comb[0] + comb[1]) / pw.comb_area_um2 if pw.comb_area_um2 else 0.0   # W/um^2 dynamic
-    mem_dyn = rom_area_um2 * density
+    rom_dyn = rom_area_um2 * density
+    ram_dyn = ram_read_area_um2 * density
+    mem_dyn = rom_dyn + ram_dyn
     window_s = cycles * pw.period_ns * 1e-9
     dyn = t[0] + t[1] + mem_dyn
     leak = t[2]
@@ -21,7 +24,7 @@ def workload_figures(pw, cycles: int, pixels: int, rom_area_um2: float) -> dict:
         "clocks_per_pixel": cycles / pixels if pixels else None,
         "at_sdc_clock_mhz": 1e3 / pw.period_ns,
         "internal_w": t[0], "switching_w": t[1], "leakage_w": leak,
-        "memory_model_w": mem_dyn,
+        "memory_model_w": mem_dyn, "rom_model_w": rom_dyn, "ram_model_w": ram_dyn,
         "dynamic_w": dyn,
         "sequential_w": pw.groups["Sequential"][3], "combinational_w": comb[3],
         "pj_per_pixel": (dyn + leak) * window_s / pixels * 1e12 if pixels else None,
@@ -57,6 +60,8 @@ def profile_figures(rows: dict, record: dict) -> dict:
         "clocks_per_pixel": cpp,
         "leakage_mw": leak * 1e3,
         "memory_model_share": mean("memory_model_w") / (dyn + leak) if dyn + leak else 0.0,
+        "ram_model_share": mean("ram_model_w") / (dyn + leak) if dyn + leak and all("ram_model_w" in r for r in ok.values())
+        else 0.0,
         "sequential_share": mean("sequential_w") / (dyn + leak) if dyn + leak else 0.0,
     }
     # Real time: the rate needs 36.9 M x clocks/pixel clocks per second; a profile whose Fmax is
@@ -90,13 +95,13 @@ def markdown(name: str, summary: dict, rows: dict, method: str) -> str:
              f"cop{'y' if s.get('realtime_copies') == 1 else 'ies'}) | {f(s.get('mw_at_realtime'))} mW |",
              f"| leakage | {f(s['leakage_mw'], 3)} mW |",
              f"| sequential share (flops, their clock pins) | {100 * s['sequential_share']:.0f} % |",
-             f"| ROMs' share (area model) | {100 * s['memory_model_share']:.0f} % |",
-             f"| RAMs (SRAM macros, not modelled) | {s.get('rams_not_modelled') or 'none'} |",
+             f"| memories' share (area model: ROMs and the RAMs' read ports) | {100 * s['memory_model_share']:.0f} % |",
+             f"| of which the RAMs' read ports | {100 * s.get('ram_model_share', 0.0):.0f} % ({s.get('rams_modelled') or 'none'}) |",
              "", f"Per block, mW at {f(s['sdc_clock_mhz'], 0)} MHz (mean over the workloads):", "",
              "| block | mW |", "|---|---:|"]
     lines += [f"| {b} | {f(w, 2)} |" for b, w in s["blocks_mw_at_sdc_clock"].items()]
     lines += ["", f"Per workload, at {f(s['sdc_clock_mhz'], 0)} MHz:", "",
-              "| workload | cycles | pixels | clocks/pixel | internal mW | switching mW | leakage mW | ROM mW | pJ/pixel |",
+              "| workload | cycles | pixels | clocks/pixel | internal mW | switching mW | leakage mW | memories mW | pJ/pixel |",
               "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
     for k, r in rows.items():
         lines.append(f"| {k} | {r['cycles']} | {r['pixels']} | {f(r['clocks_per_pixel'], 2)} | "

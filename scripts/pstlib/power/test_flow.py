@@ -80,3 +80,22 @@ def test_energy_per_pixel_and_real_time():
     # 36.9 Mpixel/s x 10 clocks = 369 MHz: two copies at 200 MHz
     assert s["realtime_copies"] == 2
     assert s["mw_at_realtime"] == pytest.approx((0.05 / 100e6 * 10 * 36.9e6 + 2e-6) * 1e3)
+
+
+def test_ram_read_ports_modelled_like_roms():
+    from pstlib.synth import memarea
+    pw = flow.Power(groups={"Sequential": (0.01, 0.0, 0.0, 0.01), "Combinational": (0.02, 0.01, 0.0, 0.03),
+                            "Total": (0.03, 0.01, 0.0, 0.04)},
+                    blocks={"x": (0.03, 0.01, 0.0, 0.04)}, comb_area_um2=3e4, traced_bits=1, missing_bits=0,
+                    port_driven_cells=1, cells=2, period_ns=10.0)
+    ram = {"instances": 2, "size": 256, "width": 32, "read_ports": 3}
+    area = memarea.ram_read_area_um2(ram)
+    # the read multiplexers only: bits x ports x the per-bit-port area, every instance; no storage
+    assert area == pytest.approx(2 * 256 * 32 * 3 * memarea.FLOP_RAM_UM2_PER_BIT_PORT)
+    assert area < 2 * memarea.ram_model(dict(ram, abits=8))["area_um2"]
+    row = figures.workload_figures(pw, cycles=1000, pixels=100, rom_area_um2=1e4, ram_read_area_um2=2e4)
+    assert row["rom_model_w"] == pytest.approx(0.01)
+    assert row["ram_model_w"] == pytest.approx(0.02)
+    assert row["memory_model_w"] == pytest.approx(0.03)
+    s = figures.profile_figures({"w": row}, {"clocks_per_pixel": 10, "fmax_mhz": 200.0})
+    assert s["ram_model_share"] == pytest.approx(0.02 / 0.07)

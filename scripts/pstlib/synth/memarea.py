@@ -39,6 +39,13 @@ def ram_model(mem: dict) -> dict:
             "delay_ns": round(mem["abits"] * RAM_NS_PER_ADDRESS_BIT, 3)}
 
 
+def ram_read_area_um2(entry: dict) -> float:
+    """The read ports' share of a RAM record entry's area as the RTL builds it (every instance):
+    the read multiplexers, FLOP_RAM_UM2_PER_BIT_PORT per bit and port, without the storage flops.
+    The power flow's RAM model (pstlib/power/flow.py, step 4)."""
+    return entry["instances"] * entry["size"] * entry["width"] * entry["read_ports"] * FLOP_RAM_UM2_PER_BIT_PORT
+
+
 def _param(block: str, key: str) -> str:
     m = re.search(rf"parameter \\{key} (\S+)", block)
     if not m:

@@ -28,6 +28,7 @@ Flags (findings, not errors; issue 44 part 2):
   filter's;
 - `worse_rms`: a hardware option's RMS against the truth is above unfiltered's."""
 import concurrent.futures
+import functools
 import hashlib
 import json
 import math
@@ -35,6 +36,7 @@ import pathlib
 import time
 
 from .. import atomic, procs
+from ..paths import ROOT, profile_path
 from ..figures import flicker
 from . import flyins
 
@@ -193,9 +195,35 @@ def _digest(text: str, cmd: list) -> str:
     return hashlib.sha256((text + "\0" + "\0".join(cmd[1:])).encode()).hexdigest()
 
 
+@functools.lru_cache(maxsize=16)
+def _file_sha(path: str, mtime_ns: int, size: int) -> str:
+    """A file's SHA-256 (cached per path, modification time and size: the pst binary is hashed once)."""
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def inputs_key(pst, profiles) -> str:
+    """What a run's result depends on besides the scene and the arguments: the pst binary (its
+    golden model and verilated RTL) and the text of each PROFILES file (a changed profile or RTL
+    must not reuse a stale run)."""
+    parts = []
+    files = []
+    for p in profiles:
+        f = profile_path(p)
+        files.append(f if f.exists() else ROOT / "sim" / "test_profiles" / f"{p}.toml")
+    for f in [pathlib.Path(pst)] + files:
+        st = f.stat() if f.exists() else None
+        parts.append(f"{f.name}:{_file_sha(str(f), st.st_mtime_ns, st.st_size) if st else 'missing'}")
+    return "\0".join(parts)
+
+
 def run_sequence(pst, scene: pathlib.Path, feats: dict, out: pathlib.Path, truth: int, model: str, threads: int,
                  fresh: bool = False) -> dict:
-    """Runs (or reuses: same scene text and arguments) every run of one sequence; {run: doc}.
+    """Runs (or reuses: same scene text, arguments, pst binary and profile files) every run of one
+    sequence; {run: doc}.
     RuntimeError naming the command on a failed run."""
     docs = {}
     text = scene.read_text()
@@ -203,7 +231,7 @@ def run_sequence(pst, scene: pathlib.Path, feats: dict, out: pathlib.Path, truth
         rdir = out / run
         cmd = animate_cmd(pst, scene, rdir, kind, bl, profs, variants, feats["frames"], feats["size"], truth, model,
                           threads)
-        key = _digest(text, [c if c != str(rdir) else "OUT" for c in cmd])
+        key = _digest(text + "\0" + inputs_key(pst, profs), [c if c != str(rdir) else "OUT" for c in cmd])
         stamp = rdir / "run.sha256"
         if not fresh and stamp.is_file() and stamp.read_text().strip() == key and (rdir / "flicker.json").is_file():
             docs[run] = flicker.load(rdir)
