@@ -16,7 +16,7 @@ def test_the_checked_in_table_renders_every_unit():
     assert "- (no fly-in of this basis)" in md
     assert "1.31x; best in hardware 1.93x (the isotropic fade, reduced_bandlimit's RTL; its still 0.0441)" in md
     assert "| 4.22x |" in md
-    assert "(`full_subband_k8`) | 270,730 | 347,632 (3,145,728) | 843,875 / 1,063,526 | 106.5 MHz | 3 |" in md
+    assert "(`full_subband_k8`) | 270,730 | 347,632 (3,145,728) | 843,913 / 1,063,526 | 106.5 MHz | 3 |" in md
 
 
 def test_a_missing_field_names_the_file_and_field(tmp_path):
