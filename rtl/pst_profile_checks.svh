@@ -69,8 +69,8 @@ initial begin
     else $fatal(1, "noise.lattice_frac: must be more than 3 (SubbandTileLog2 - SubbandPeriodLog2) with a subband unit (noise.subband): the bilinear weights are the bits below the tile pixel");
   assert (NoiseSubbandOrientations == 0 || NoiseSubband != pst_pkg::NoiseSubbandNone)
     else $fatal(1, "noise.subband_orientations: must be 0 without a subband unit (noise.subband = none)");
-  assert (NoiseSubbandOrientations == 0 || ( FilterBandlimit == pst_pkg::FilterBandlimitIsotropic && Datapath == pst_pkg::DatapathSerial ))
-    else $fatal(1, "noise.subband_orientations: 4 or 8 needs filter.bandlimit = isotropic (its weights' table and lg ||M||) and pipeline.datapath = serial");
+  assert (NoiseSubbandOrientations == 0 || FilterBandlimit == pst_pkg::FilterBandlimitIsotropic)
+    else $fatal(1, "noise.subband_orientations: 4 or 8 needs filter.bandlimit = isotropic (its weights' table and lg ||M||)");
   assert (NoiseSubband == pst_pkg::NoiseSubbandNone || NoiseGradFrac >= NoiseOutFrac + NoiseGuardBits)
     else $fatal(1, "noise.grad_frac: must be at least noise.out_frac + noise.guard_bits with a subband unit (noise.subband): it has no derivative lanes to floor");
   assert (NoiseInterp != pst_pkg::NoiseInterpQuintic || NoiseLatticeFrac >= 2)

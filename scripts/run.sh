@@ -68,7 +68,7 @@ for name in seascape fire marble planet wood_teapot wood_torus moonrise planet_s
   v="$VARIANTS"; hw=(--profile full --profile full_2clk --profile full_1clk --profile reduced)
   case "$name" in *subband*) v="$VARIANTS,sat+anisotropic"; hw=() ;; esac
   [ "$name" = seascape_subband_hw ] && hw=(--profile reduced_subband)
-  [ "$name" = seascape_subband ] && hw=(--profile reduced_subband_k8)
+  [ "$name" = seascape_subband ] && hw=(--profile reduced_subband_k8 --profile full_subband_k8)
   ./build/pst animate "scenes/$name.toml" --frames 16 --size 48 --truth 8 --variants "$v" "${hw[@]}" --no-video \
     -o "out/fidelity/anim/$name" -q -j2 || rc=1
   seqs+=("out/fidelity/anim/$name")

@@ -106,7 +106,7 @@ struct ProfileParams {
     // h(|c_i . J_x| ||M||) h(|c_i . J_y| ||M||) (c_i the orientation's direction, J the Jacobian's
     // columns on the plane, h the fade table: exp(-sigma^2 pi^2 nu^2 / 2)) when control.bandlimit
     // is set, n = sum_i lambda_i n_i; needs the fade unit's table and lg ||M|| (filter.bandlimit =
-    // isotropic; the term is not faded) and the serial datapath
+    // isotropic; the term is not faded); either datapath
     int noiseSubbandOrientations = 0;
     // [filter]
     // |grad_x f|: euclid (sqrt), max + min / 2, |gx| + |gy|
@@ -396,8 +396,8 @@ inline constexpr Constraint kConstraints[] = {
      [](const int* v) { return v[NoiseSubband] == 0 || v[NoiseLatticeFrac] > 3; }},
     {"noise.subband_orientations", "must be 0 without a subband unit (noise.subband = none)",
      [](const int* v) { return v[NoiseSubbandOrientations] == 0 || v[NoiseSubband] != 0; }},
-    {"noise.subband_orientations", "4 or 8 needs filter.bandlimit = isotropic (its weights' table and lg ||M||) and pipeline.datapath = serial",
-     [](const int* v) { return v[NoiseSubbandOrientations] == 0 || ( v[FilterBandlimit] == 1 && v[Datapath] == 1 ); }},
+    {"noise.subband_orientations", "4 or 8 needs filter.bandlimit = isotropic (its weights' table and lg ||M||)",
+     [](const int* v) { return v[NoiseSubbandOrientations] == 0 || v[FilterBandlimit] == 1; }},
     {"noise.grad_frac", "must be at least noise.out_frac + noise.guard_bits with a subband unit (noise.subband): it has no derivative lanes to floor",
      [](const int* v) { return v[NoiseSubband] == 0 || v[NoiseGradFrac] >= v[NoiseOutFrac] + v[NoiseGuardBits]; }},
     {"noise.lattice_frac", "must be at least 2 with interp quintic (its derivative 30 u^2 (1 - u)^2 must stay below 4, pst_noise_weight)",

@@ -13,6 +13,9 @@
 //   Rows             3: whole matrices; 1: one row per use (m_i, o_i, gm_i that row's).
 //   TransformRegs    0, 1: the register inside the transform (pst_octave_transform Regs).
 //   FilterBandlimit  isotropic: the fade (alpha_o from the table); off: alpha_o = 1.0.
+//   TermFade         0: no fade even with FilterBandlimit (the subband unit's anisotropic filter
+//                    takes the fade unit's table for its weights and leaves the term whole): alpha_o
+//                    = 1.0 and the term unfaded, neither built.
 //   LgW              width of lgx_i, lgy_i (pst_fade_lg's lg_o).
 //   <Format>Int/Frac the profile's number formats (pst_top's header).
 `include "pst_pkg.sv"
@@ -23,6 +26,7 @@ module pst_octave_lane #(
   parameter int Rows = 3,
   parameter int TransformRegs = 0,
   parameter int LgW = 9,
+  parameter bit TermFade = 1'b1,
   `PST_LANE_PARAMS,
   localparam int CW  = CoordInt + CoordFrac,
   localparam int MW  = MatrixInt + MatrixFrac,
@@ -65,7 +69,7 @@ module pst_octave_lane #(
   output logic [Rows*GW-1:0]      gterm_o
 );
 
-  localparam bit Bl = (FilterBandlimit == pst_pkg::FilterBandlimitIsotropic);
+  localparam bit Bl = (FilterBandlimit == pst_pkg::FilterBandlimitIsotropic) && TermFade;
 
   pst_octave_transform #(`PST_TRANSFORM_PASS, .Rows(Rows), .Regs(TransformRegs)) u_transform (
     .clk_i, .rst_ni, .en_i, .s_i (s_i), .m_i (m_i), .o_i (o_i), .lat_o (lat_o), .frac_o (frac_o)

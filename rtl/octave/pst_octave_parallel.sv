@@ -6,7 +6,8 @@
 // Lat = TR + XR + NoiseRegs + MR registers, which carries side_i (the tag and
 // Jacobian) beside it; [A] is released at the last beat's issue. Per lane (pst_octave_lane):
 //   issue     octave transform of the beat's pass            -> TR + XR registers (OctaveRegs 3: TR
-//             between its products and their sum; >= 2: XR after it)
+//             between its products and their sum; >= 2: XR after it, two with the subband filter
+//             and OctaveRegs 3)
 //   noise     the noise units (outside, pst_octave_noise)     -> NoiseRegs registers
 //   term      octave term, zero unless the lane's octave is active -> MR registers (OctaveRegs >= 1)
 // The quadric (pst_quadric, folded over the last two beats when a fragment has two or more:
@@ -20,6 +21,15 @@
 // lg (F2, pst_fade_pixel), the rest after the lanes' fades (F3); fewer registers leave the
 // chain combinational.
 //
+// The subband unit's anisotropic filter (noise.subband_orientations K = 4, 8): the weights
+// lambda_i of a beat reach the noise units with its lattice point, so their chain is spread
+// over the TR + XR registers between the issue and the noise units (OctaveRegs 3 puts a second
+// register after the transform, XR = 2, for it): the pixel's lengths along the K orientations
+// and their lg (pst_subband_pixel, shared by the lanes; a register after the lengths when TR + XR
+// = 3, SL0, one after the lg when >= 2, SL1), then per lane the K weights from its octave's
+// lg ||M|| and the fade table (pst_octave_fade per orientation), registered (SL2 = 1 when TR + XR
+// >= 1). The term is then not faded (the lanes' TermFade = 0).
+//
 // Parameters: pst_octave_stage's (the profile's formats and registers); DebugProbes = 0 ties
 // the pr_* outputs to zero.
 `include "pst_pkg.sv"
@@ -31,7 +41,8 @@ module pst_octave_parallel #(
   `PST_OCTAVE_PARAMS,
   `PST_LANE_PARAMS,
   parameter int SideW = pst_pkg::TagBits, parameter bit DebugProbes = 1'b1,
-  parameter int NoiseSubbandOrientations = 0,   // the width of nz_lam_o (the weights: all 1.0 here)
+  parameter int NoiseSubband = pst_pkg::NoiseSubbandNone,   // the subband unit's plane
+  parameter int NoiseSubbandOrientations = 0,               // its filter's orientations K (0: none)
   `PST_OCTAVE_DATAPATH_WIDTHS
 ) (
   `PST_OCTAVE_DATAPATH_PORTS
@@ -39,8 +50,11 @@ module pst_octave_parallel #(
 
   localparam int Passes   = pst_pkg::octave_passes(Octaves, NoiseUnits);
   localparam int PassBits = (Passes > 1) ? $clog2(Passes) : 1;
+  localparam int SK       = NoiseSubbandOrientations;
+  localparam bit Aniso    = (NoiseSubband != pst_pkg::NoiseSubbandNone) && (SK != 0);
   localparam int TR       = (OctaveRegs >= 3) ? 1 : 0;   // inside the transform (products | sum)
-  localparam int XR       = (OctaveRegs >= 2) ? 1 : 0;   // after the transform
+  // after the transform; with the subband filter and OctaveRegs 3 two (the weights' chain: three)
+  localparam int XR       = ((OctaveRegs >= 2) ? 1 : 0) + ((Aniso && OctaveRegs >= 3) ? 1 : 0);
   localparam int NR       = NoiseRegs;                    // inside the noise units
   localparam int MR       = pst_pkg::term_regs(OctaveRegs);   // after the term
   localparam int Lat      = TR + XR + NR + MR;
@@ -53,6 +67,10 @@ module pst_octave_parallel #(
   localparam int F1       = (FL >= 3) ? 1 : 0;
   localparam int F2       = (FL >= 2) ? 1 : 0;
   localparam int F3       = FL - F1 - F2;
+  localparam bit BlTerm   = Bl && !Aniso;                // the term's fade
+  localparam int SL0      = (TR + XR >= 3) ? 1 : 0;      // the weights' chain: after the lengths
+  localparam int SL1      = (TR + XR >= 2) ? 1 : 0;      // after the lg
+  localparam int SL2      = TR + XR - SL0 - SL1;         // after the lanes' weights
 
   typedef struct packed {
     logic                valid;
@@ -167,12 +185,24 @@ module pst_octave_parallel #(
 
   // The pixel's lg edge lengths for the fades (F1 + F2 registers after the issue).
   logic [LgW-1:0] lgx, lgy;
-  if (Bl) begin : g_fade_px
+  if (BlTerm) begin : g_fade_px
     pst_fade_pixel #(.JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac), .LenRegs(F1), .LgRegs(F2)) u_px (
       .clk_i, .rst_ni, .en_i (en), .j_i (side_i[TB +: 6*JW]), .lgx_o (lgx), .lgy_o (lgy));
   end else begin : g_no_fade
     assign lgx = '0;
     assign lgy = '0;
+  end
+
+  // The pixel's lg edges along the subband unit's K orientations (SL1 registers after the issue).
+  logic [2*(Aniso ? SK : 1)*LgW-1:0] sb_lg;
+  if (Aniso) begin : g_sb_px
+    pst_subband_pixel #(.JacobianInt(JacobianInt), .JacobianFrac(JacobianFrac), .NoiseSubband(NoiseSubband),
+      .K(SK), .LenRegs(SL0), .LgRegs(SL1)) u_sb_px (
+      .clk_i, .rst_ni, .en_i (en), .j_i (side_i[TB +: 6*JW]), .lg_o (sb_lg));
+  end else begin : g_no_sb_px
+    assign sb_lg = '0;
+    logic unused_sb_lg;
+    assign unused_sb_lg = ^sb_lg;
   end
 
   for (genvar u = 0; u < NoiseUnits; u++) begin : g_lane
@@ -218,7 +248,7 @@ module pst_octave_parallel #(
     logic [FB-1:0]   alpha_2, alpha_n;
     logic [FW-1:0]   fterm;
     logic [3*GW-1:0] gterm;
-    pst_octave_lane #(.Rows(3), .TransformRegs(TR), .LgW(LgW), `PST_LANE_PASS
+    pst_octave_lane #(.Rows(3), .TransformRegs(TR), .LgW(LgW), .TermFade(BlTerm), `PST_LANE_PASS
     ) u_lane (
       .clk_i, .rst_ni, .en_i (en),
       .s_i (s_i), .m_i (m_sel), .o_i (o_sel), .lat_o (lat_f), .frac_o (frac_f),
@@ -231,18 +261,34 @@ module pst_octave_parallel #(
       .q_o ({nz_lat_o[u*LTW +: LTW], nz_frac_o[u*3*LF +: 3*LF]}));
     // The octave's lg ||M|| carried with the pixel's lg (F1 + F2), its fade delayed beside the
     // noise unit to the term (F3).
-    pst_delay #(.Width(LMW), .Depth(Bl ? F1 + F2 : 0)) u_lgm (
+    pst_delay #(.Width(LMW), .Depth(BlTerm ? F1 + F2 : 0)) u_lgm (
       .clk_i, .rst_ni, .en_i (en), .d_i (lgm_sel), .q_o (lgm_2));
-    pst_delay #(.Width(FB), .Depth(Bl ? F3 : 0)) u_alpha (
+    pst_delay #(.Width(FB), .Depth(BlTerm ? F3 : 0)) u_alpha (
       .clk_i, .rst_ni, .en_i (en), .d_i (alpha_2), .q_o (alpha_n));
+
+    // The subband unit's weights of the beat's octave: its lg ||M|| carried with the pixel's lg
+    // (SL0 + SL1), the K weights registered (SL2), so that they meet the beat at the noise unit.
+    if (Aniso) begin : g_sb_lam
+      logic [LMW-1:0] lgm_s;
+      logic [SLW-1:0] lam_d;
+      pst_delay #(.Width(LMW), .Depth(SL0 + SL1)) u_sb_lgm (
+        .clk_i, .rst_ni, .en_i (en), .d_i (lgm_sel), .q_o (lgm_s));
+      for (genvar i = 0; i < SK; i++) begin : g_dir
+        pst_octave_fade #(.LgW(LgW)) u_lam (
+          .en_i (bl_i), .lgx_i (sb_lg[i*LgW +: LgW]), .lgy_i (sb_lg[(SK + i)*LgW +: LgW]), .lgm_i (lgm_s),
+          .table_i (fade_i), .alpha_o (lam_d[i*FB +: FB]));
+      end
+      pst_delay #(.Width(SLW), .Depth(SL2)) u_sb_lam (
+        .clk_i, .rst_ni, .en_i (en), .d_i (lam_d), .q_o (nz_lam_o[u*SLW +: SLW]));
+    end else begin : g_no_sb_lam
+      // No filter: the weights are 1.0.
+      for (genvar i = 0; i < SLW / FB; i++) begin : g_one
+        assign nz_lam_o[u*SLW + i*FB +: FB] = FB'(1 << pst_pkg::FadeFrac);
+      end
+    end
     pst_delay #(.Width(FW + 3*GW), .Depth(MR)) u_m (
       .clk_i, .rst_ni, .en_i (en), .d_i ((lane_on && nlast_n) ? {gterm, fterm} : '0),
       .q_o ({gterm_o[u*3*GW +: 3*GW], fterm_o[u*FW +: FW]}));
-  end
-
-  // No subband filter on the parallel datapath (rtl/contract.toml): the weights are 1.0.
-  for (genvar k = 0; k < NoiseUnits * SLW / FB; k++) begin : g_lam
-    assign nz_lam_o[k*FB +: FB] = FB'(1 << pst_pkg::FadeFrac);
   end
 
   assign acc_en_o    = en & beat_e.valid;

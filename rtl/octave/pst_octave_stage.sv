@@ -99,7 +99,7 @@ module pst_octave_stage #(
   logic [PPB-1:0]              pr_pass;
   logic [TB-1:0]               pr_tag, pr_q_tag;
 
-  // The subband unit's weights (noise.subband_orientations; the serial datapath forms them).
+  // The subband unit's weights (noise.subband_orientations; either datapath forms them).
   localparam int SLW = ((NoiseSubbandOrientations == 0) ? 1 : NoiseSubbandOrientations) * FB;
   logic [NoiseUnits*SLW-1:0] nz_lam;
   if (Serial) begin : g_serial
@@ -108,7 +108,7 @@ module pst_octave_stage #(
     ) u_datapath (`PST_OCTAVE_DATAPATH_CONNECT);
   end else begin : g_parallel
     pst_octave_parallel #(`PST_OCTAVE_PASS, `PST_LANE_PASS, .SideW(SideW), .DebugProbes(DebugProbes),
-      .NoiseSubbandOrientations(NoiseSubbandOrientations)
+      .NoiseSubband(NoiseSubband), .NoiseSubbandOrientations(NoiseSubbandOrientations)
     ) u_datapath (`PST_OCTAVE_DATAPATH_CONNECT);
   end
 

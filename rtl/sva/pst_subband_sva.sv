@@ -1,9 +1,9 @@
 // pst_subband_sva: checker of pst_subband (the subband unit): steps in range and in order
 // (pst_noise_steps_sva, as pst_noise), and the value sum V inside the bilinear bound:
 // |V| <= 2^VBE (a convex combination of the corners' values, each at most K 2^(VB-1) with
-// weights of at most 1.0; pst_subband's VBE). Cover points: each step entering; the tile's
-// wrap-around (a corner at the tile's last pixel in both axes, so that its neighbours are at
-// pixel 0). The token at the output: pst_noise_out_sva.
+// weights of at most 1.0; pst_subband's VBE) when the token beside the sums (tok_s) is valid.
+// Cover points: each step entering; the tile's wrap-around (a corner at the tile's last pixel in
+// both axes, so that its neighbours are at pixel 0). The token at the output: pst_noise_out_sva.
 `include "sva/pst_assert.svh"
 `default_nettype none
 
@@ -22,7 +22,7 @@ module pst_subband_sva #(
   input logic [TL-1:0]   x0,
   input logic [TL-1:0]   x1,
   input logic [SUMW-1:0] sum_out,
-  input logic [3:0]      tok_b
+  input logic [3:0]      tok_s
 );
   // Steps in range and in order, a cover point per step.
   pst_noise_steps_sva #(.NoiseSteps(NoiseSteps)) u_steps (.*);
@@ -35,9 +35,9 @@ module pst_subband_sva #(
   assign v_bounded = (v <= $signed(VW'(1) <<< VBE)) && (v >= -($signed(VW'(1) <<< VBE)));
 
   logic unused_bits;
-  assign unused_bits = ^{sum_out[SUMW-1:VW], tok_b[2:0]};
+  assign unused_bits = ^{sum_out[SUMW-1:VW], tok_s[2:0]};
 
-  `PST_ASSERT(ValueBounded, tok_b[3] |-> v_bounded)
+  `PST_ASSERT(ValueBounded, tok_s[3] |-> v_bounded)
   `PST_COVER(TileWrap, en_i && valid_i && x0 == '1 && x1 == '1)
 endmodule
 

@@ -21,6 +21,10 @@
 //                                          pixel (x, y)
 //   OUTDIR/subband_k<K>.memh, K = 4, 8     4^SubbandTileLog2 words of K SubbandValueBits: oriented
 //                                          tile t at [t SubbandValueBits +: SubbandValueBits]
+//   OUTDIR/subband_k<K>_b<B>.memh, B = 0..3  the same tiles in four banks by the pixel's row and
+//                                          column parity, B = 2 (y mod 2) + (x mod 2): word
+//                                          (y / 2) 2^(SubbandTileLog2 - 1) + x / 2 (the subband
+//                                          unit reading its four corners in one step)
 // Each file is written to a temporary name and renamed, so a reader never sees half a file.
 #include <cmath>
 #include <cstdint>
@@ -157,20 +161,31 @@ int main(int argc, char** argv) {
         ok = ok && writeMemh(dir, "subband.memh", pst::kSubbandRomWords, (vb + 3) / 4, [&](int i) {
             return uint32_t(pst::subbandRomWord(0, 0, i)) & uint32_t((uint64_t(1) << vb) - 1);
         });
+        auto line = [&](int K, int a) {
+            std::string l;
+            for (int t = K - 1; t >= 0; --t) {
+                char hex[8];
+                std::snprintf(hex, sizeof hex, "%0*x", (vb + 3) / 4,
+                              unsigned(pst::subbandRomWord(K, t, a) & ((int64_t(1) << vb) - 1)));
+                l += hex;
+            }
+            return l;
+        };
+        const int tl = pst::contract::kSubbandTileLog2;
         for (int K : {4, 8}) {
             const std::string path = dir + "/subband_k" + std::to_string(K) + ".memh";
             std::ofstream out(path + ".tmp", std::ios::trunc);
-            for (int a = 0; a < pst::kSubbandRomWords; ++a) {
-                std::string line;
-                for (int t = K - 1; t >= 0; --t) {
-                    char hex[8];
-                    std::snprintf(hex, sizeof hex, "%0*x", (vb + 3) / 4,
-                                  unsigned(pst::subbandRomWord(K, t, a) & ((int64_t(1) << vb) - 1)));
-                    line += hex;
-                }
-                out << line << "\n";
-            }
+            for (int a = 0; a < pst::kSubbandRomWords; ++a) out << line(K, a) << "\n";
             ok = closeAndRename(out, path, ok);
+            for (int b = 0; b < 4; ++b) {
+                const std::string bpath = dir + "/subband_k" + std::to_string(K) + "_b" + std::to_string(b) + ".memh";
+                std::ofstream bout(bpath + ".tmp", std::ios::trunc);
+                for (int a = 0; a < pst::kSubbandRomWords / 4; ++a) {
+                    const int y = 2 * (a >> (tl - 1)) + (b >> 1), x = 2 * (a & ((1 << (tl - 1)) - 1)) + (b & 1);
+                    bout << line(K, (y << tl) + x) << "\n";
+                }
+                ok = closeAndRename(bout, bpath, ok);
+            }
         }
     }
     return ok ? 0 : 1;

@@ -44,14 +44,14 @@ HW_FILTERS = ["mip", "mip_linear", "sat"]
 HW_NONE = "none"
 # The hardware profiles of each basis and the bandlimit each computes (sim/test_profiles/; full,
 # reduced: rtl/configs/, the default build's verilated named profiles; parallel_bandlimit is full's
-# formats with the fade unit). A profile with the fade unit renders bandlimit off as its base
-# profile, bit for bit.
+# formats with the fade unit, full_subband_k8 full with the subband unit's filter). A profile with
+# the fade unit renders bandlimit off as its base profile, bit for bit.
 HW_PROFILES = {
     "rayshade": [("full", "off"), ("reduced", "off"), ("parallel_bandlimit", "isotropic"),
                  ("reduced_bandlimit", "isotropic")],
     "perlin2002": [("reduced_perlin2002", "off")],
     "worley": [("reduced_worley", "off")],
-    "subband": [("reduced_subband", "off"), ("reduced_subband_k8", "anisotropic")],
+    "subband": [("reduced_subband", "off"), ("reduced_subband_k8", "anisotropic"), ("full_subband_k8", "anisotropic")],
 }
 REF_EXACT = {"rayshade": "sat+isotropic", "perlin2002": "sat", "worley": "sat", "subband": "sat+anisotropic"}
 REF_VARIANTS = {

@@ -35,7 +35,7 @@ bool runsScene(const Profile& p, const Scene& scene) {
 std::string basisScene(const Profile& p) {
     return p.noise.basis == NoiseBasis::Perlin2002 ? "perlin2002"
            : p.noise.basis == NoiseBasis::Worley   ? "worley"
-           : p.noise.basis == NoiseBasis::Subband  ? (p.noiseSubbandOrientations != 0 ? "seascape_subband"
+           : p.noise.basis == NoiseBasis::Subband  ? (p.noiseSubbandOrientations == 8 ? "seascape_subband"
                                                                                         : "seascape_subband_hw")
                                                    : "marble";
 }
