@@ -24,18 +24,20 @@ def markdown(root: Path) -> str:
          "report_power at the typical corner, activity from the verilated RTL's traces of the paper scenes and "
          "random validation textures; the method is below). pJ/pixel: mean over the workloads (least - most); "
          "mW at the profile's pre-layout Fmax and at the real-time rate (copies: profiles side by side to reach "
-         "it). Sequential: flip-flops with their clock pins. Memories: the area model of the ROMs and of the RAMs' "
-         "read ports (the method's step 6).", "",
+         "it). Sequential: flip-flops with their clock pins. Memories: the area model of the ROMs and, where the "
+         "record says so (RAM reads modelled: yes), of the RAMs' read ports (the method's step 6; a record "
+         "measured before that model has the ROMs alone).", "",
          "| profile | workloads (image size) | pJ/pixel | least - most | Fmax (MHz) | mW at Fmax | mW at real time "
-         "(copies) | leakage mW | sequential | memories | top blocks (mW at the SDC clock) |",
-         "|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---|"]
+         "(copies) | leakage mW | sequential | memories | RAM reads modelled | top blocks (mW at the SDC clock) |",
+         "|---|---:|---:|---|---:|---:|---:|---:|---:|---:|---|---|"]
     for name, p in d.items():
         s = p["summary"]
         blocks = ", ".join(f"{b} {_f(w)}" for b, w in list(s["blocks_mw_at_sdc_clock"].items())[:3])
         L.append(f"| {name} | {s['workloads']} ({p['window'].get('size', '-')}) | {_f(s['pj_per_pixel'], 0)} | {_f(s['pj_per_pixel_min'], 0)} - "
                  f"{_f(s['pj_per_pixel_max'], 0)} | {_f(s['fmax_mhz'])} | {_f(s['mw_at_fmax'])} | "
                  f"{_f(s.get('mw_at_realtime'))} ({s.get('realtime_copies', '-')}) | {_f(s['leakage_mw'], 3)} | "
-                 f"{100 * s['sequential_share']:.0f} % | {100 * s['memory_model_share']:.0f} % | {blocks} |")
+                 f"{100 * s['sequential_share']:.0f} % | {100 * s['memory_model_share']:.0f} % | "
+                 f"{'yes' if 'rams_modelled' in s else 'no'} | {blocks} |")
     L.append("")
     L.append("Per workload (pJ/pixel):")
     L.append("")

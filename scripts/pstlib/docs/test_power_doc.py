@@ -27,8 +27,13 @@ def test_record_merges_profiles_and_the_table_reads_them(tmp_path):
     assert list(d["profiles"]) == ["full", "reduced"]
     assert d["profiles"]["reduced"]["workloads"] == {"marble": 110.0, "random/valid_000": 112.0}
     md = power_doc.markdown(tmp_path)
-    assert "| reduced | 2 (3) | 110 | 109 - 111 | 100.0 | 50.0 | 120.0 (2) | 0.001 | 50 % | 25 % | a 3.0, b 2.0, c 1.0 |" in md
+    assert "| reduced | 2 (3) | 110 | 109 - 111 | 100.0 | 50.0 | 120.0 (2) | 0.001 | 50 % | 25 % | no | a 3.0, b 2.0, c 1.0 |" in md
     assert "| full | 200 | 202 |" in md
+    # a record measured with the RAMs' read-port model says so
+    d2 = doc("reduced", 110.0)
+    d2["summary"]["rams_modelled"] = "m.clut_q (256 x 32, 3 read ports)"
+    power_doc.record(tmp_path, d2)
+    assert "| 25 % | yes | a 3.0" in power_doc.markdown(tmp_path)
 
 
 def test_a_missing_record_is_an_error(tmp_path):
