@@ -4,6 +4,7 @@ per block, and the memories' share from the stated model (flow.py, step 4)."""
 import math
 
 REALTIME_MPIXEL_S = 36.9     # the paper's real-time rate (the silicon table's, pstlib.synth)
+RAM_READS = " and the RAMs' read ports"
 
 
 def workload_figures(pw, cycles: int, pixels: int, rom_area_um2: float, ram_read_area_um2: float = 0.0) -> dict:
@@ -95,8 +96,11 @@ def markdown(name: str, summary: dict, rows: dict, method: str) -> str:
              f"cop{'y' if s.get('realtime_copies') == 1 else 'ies'}) | {f(s.get('mw_at_realtime'))} mW |",
              f"| leakage | {f(s['leakage_mw'], 3)} mW |",
              f"| sequential share (flops, their clock pins) | {100 * s['sequential_share']:.0f} % |",
-             f"| memories' share (area model: ROMs and the RAMs' read ports) | {100 * s['memory_model_share']:.0f} % |",
-             f"| of which the RAMs' read ports | {100 * s.get('ram_model_share', 0.0):.0f} % ({s.get('rams_modelled') or 'none'}) |",
+             f"| memories' share (area model: the ROMs{RAM_READS if 'rams_modelled' in s else ''}) | "
+             f"{100 * s['memory_model_share']:.0f} % |",
+             (f"| of which the RAMs' read ports | {100 * s.get('ram_model_share', 0.0):.0f} % ({s['rams_modelled']}) |"
+              if "rams_modelled" in s else
+              f"| RAMs (not modelled; --ram-reads models their read ports) | {s.get('rams_not_modelled') or 'none'} |"),
              "", f"Per block, mW at {f(s['sdc_clock_mhz'], 0)} MHz (mean over the workloads):", "",
              "| block | mW |", "|---|---:|"]
     lines += [f"| {b} | {f(w, 2)} |" for b, w in s["blocks_mw_at_sdc_clock"].items()]

@@ -20,8 +20,9 @@ Steps (scripts/power.py runs them; docs/POWER.md tells the method and its limits
    its read ports' cell area (the synthesis record's, built from the same OSU018 cells) times
    the dynamic power density (W per um^2) this run measures on the design's own combinational
    cells: a stated first-order model, not a memory compiler's figure. The RAMs (the colour
-   table, its MIP and SAT copies) likewise by their read multiplexers' area
-   (memarea.ram_read_area_um2); their storage, written only while idle, is not counted.
+   table, its MIP and SAT copies) likewise by their read multiplexers' area with --ram-reads
+   (memarea.ram_read_area_um2; their storage, written only while idle, is not counted);
+   without it they are listed as not modelled.
 5. The clock network: pre-layout, the clock is ideal; the flops' clock-pin internal power is in
    the sequential group; clock-tree buffers are not (no clock tree before layout).
 """

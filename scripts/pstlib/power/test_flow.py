@@ -99,3 +99,10 @@ def test_ram_read_ports_modelled_like_roms():
     assert row["memory_model_w"] == pytest.approx(0.03)
     s = figures.profile_figures({"w": row}, {"clocks_per_pixel": 10, "fmax_mhz": 200.0})
     assert s["ram_model_share"] == pytest.approx(0.02 / 0.07)
+    # the profile's page says which: the RAMs' read ports modelled (--ram-reads) or listed as not
+    s["rams_modelled"] = "m.ram (256 x 32, 3 read ports)"
+    md = figures.markdown("p", s, {"w": row}, "method")
+    assert "of which the RAMs' read ports | 29 % (m.ram" in md and "ROMs and the RAMs' read ports" in md
+    del s["rams_modelled"]
+    s["rams_not_modelled"] = "m.ram (256 x 32, 3 read ports)"
+    assert "RAMs (not modelled; --ram-reads models their read ports) | m.ram" in figures.markdown("p", s, {"w": row}, "m")
