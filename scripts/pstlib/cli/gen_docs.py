@@ -47,6 +47,7 @@ from .. import contract, contractgen
 from ..power import estimate
 from ..docs import docgen, flyins_doc, handfigures, multipass_doc, noise_units, power_doc, rtl_modules
 from ..report import silicon_table
+from ..synth import report as synth_report
 from ..docs.docgen import Section
 from ..paths import ROOT
 
@@ -63,7 +64,8 @@ def baseline_profiles(root: Path) -> list:
         raise docgen.DocError(f"{BASELINE}: {e}")
     derate = json.loads((root / DERATE).read_text()) if (root / DERATE).exists() else None
     power = power_doc.load(root)["profiles"] if (root / power_doc.SOURCE).exists() else {}
-    return [silicon_table.with_power(silicon_table.from_baseline(n, base[n], derate, _record(root, n)),
+    return [silicon_table.with_power(silicon_table.from_baseline(n, base[n], synth_report.derate_for(derate, n),
+                                                                 _record(root, n)),
                                      (power.get(n) or {}).get("summary"))
             for n in silicon_table.PROFILES if n in base]
 
@@ -84,32 +86,43 @@ def synth_profiles(folder: Path) -> list:
 
 
 def derate_markdown(root: Path) -> str:
-    """The routed blocks' post-route / pre-layout Fmax ratios (layout_derate.json)."""
+    """The routed profiles' blocks and their post-route / pre-layout Fmax ratios (layout_derate.json)."""
     p = root / DERATE
     if not p.exists():
         return "No place and route recorded (scripts/synth/layout_derate.json is absent).\n"
-    d = json.loads(p.read_text())
-    L = [f"| block of {d['profile']} | post-route / pre-layout Fmax |", "|---|---:|"]
-    for b, r in d.get("block_ratios", {}).items():
-        mark = "**" if b == d.get("worst_ratio_block") else ""
-        L.append(f"| `{b}` | {mark}{r:.3f}{mark} |")
-    for b in d.get("not_routed", []):
-        L.append(f"| `{b}` | not routed |")
-    L.append("")
-    why = d.get("ratio_source") or "the worst routed block's"
-    L.append(f"Derate applied to every pre-layout Fmax: **{d['ratio']:.3f}** ({why}). "
-             f"Slowest routed block: `{d['slowest_block']}`, {d['slowest_block_pre_layout_fmax_mhz']:.1f} MHz "
-             f"pre-layout, {d['post_route_fmax_mhz']:.1f} MHz post-route.")
-    if d.get("assembled_fmax_mhz"):
-        cp = d["assembled_critical_path"]
-        pre = d.get("assembled_blocks_without_layout") or []
+    entries = synth_report.derate_entries(json.loads(p.read_text()))
+    L = []
+    for name, d in entries.items():
+        what = "critical blocks" if d.get("critical_blocks_only") else "blocks"
+        L += [f"**{name}**: {len(d.get('block_ratios', {}))} {what} placed and routed (`{d.get('command', 'scripts/pnr.py ' + name)}`; "
+              f"{d['source']}).", "",
+              f"| block of {name} | post-route / pre-layout Fmax |", "|---|---:|"]
+        for b, r in d.get("block_ratios", {}).items():
+            mark = "**" if b == d.get("worst_ratio_block") else ""
+            L.append(f"| `{b}` | {mark}{r:.3f}{mark} |")
+        if not d.get("critical_blocks_only"):
+            for b in d.get("not_routed", []):
+                L.append(f"| `{b}` | not routed |")
         L.append("")
-        L.append(f"The chip assembled from its routed blocks (every block's routed netlist and SPEF under its "
-                 f"instance, the clock propagated through each block's own buffers, no wire between blocks"
-                 + (f"; without layout: {', '.join(f'`{b}`' for b in pre)}" if pre else "")
-                 + f"): **{d['assembled_fmax_mhz']:.1f} MHz** post-route, critical path `{cp['from']}` -> "
-                 f"`{cp['to']}` ({cp['arrival_ns']:.2f} ns, {cp['cells']} cells, slack {cp['slack_ns']:+.3f} ns "
-                 f"at 10 ns).")
+        why = d.get("ratio_source") or "the worst routed block's"
+        L.append(f"Derate of {name}: **{d['ratio']:.3f}** ({why}). "
+                 f"Slowest routed block: `{d['slowest_block']}`, {d['slowest_block_pre_layout_fmax_mhz']:.1f} MHz "
+                 f"pre-layout, {d['post_route_fmax_mhz']:.1f} MHz post-route.")
+        if d.get("assembled_fmax_mhz"):
+            cp = d["assembled_critical_path"]
+            pre = d.get("assembled_blocks_without_layout") or []
+            L.append("")
+            L.append(f"The chip assembled from its routed blocks (every block's routed netlist and SPEF under its "
+                     f"instance, the clock propagated through each block's own buffers, no wire between blocks"
+                     + (f"; without layout: {', '.join(f'`{b}`' for b in pre)}" if pre else "")
+                     + f"): **{d['assembled_fmax_mhz']:.1f} MHz** post-route, critical path `{cp['from']}` -> "
+                     f"`{cp['to']}` ({cp['arrival_ns']:.2f} ns, {cp['cells']} cells, slack {cp['slack_ns']:+.3f} ns "
+                     f"at 10 ns).")
+        L.append("")
+    if entries:
+        worst = min(entries.values(), key=lambda e: e["ratio"])
+        L.append(f"A profile not routed itself is derated by the worst routed ratio, **{worst['ratio']:.3f}** "
+                 f"({worst['profile']}'s).")
     return "\n".join(L) + "\n"
 
 

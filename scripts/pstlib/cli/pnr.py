@@ -1,7 +1,7 @@
 """Place and route of one hardware profile, block by block, with Debian's qflow (OSU 0.18 µm).
 
-    scripts/pnr.py PROFILE [--out DIR] [--jobs N] [--limit CELLS] [--block NAME ...] [--resume]
-                           [--update-derate]
+    scripts/pnr.py PROFILE [--out DIR] [--jobs N] [--limit CELLS] [--group NAME=PATH[+PATH...] ...]
+                           [--block NAME ...] [--blocks-only] [--resume] [--update-derate]
 
 Writes DIR/PROFILE.json and DIR/PROFILE.md (default DIR: out/pnr) and, per block,
 DIR/PROFILE/BLOCK.{def,gds,spef,png}; the qflow projects stay in DIR/PROFILE/work/. Exit 2
@@ -58,12 +58,24 @@ def main(argv=None) -> int:
                          "scripts/synth/layout_derate.json (every synthesis then reports its Fmax derated by it)")
     ap.add_argument("--resume", action="store_true",
                     help="keep the synthesis netlist and the qflow steps a previous run finished")
+    ap.add_argument("--group", action="append", default=[], metavar="NAME=PATH[+PATH...]",
+                    help="a block NAME made of these instance paths, before the cut (repeatable): a "
+                         "critical path from one instance's registers into another's then lies inside one block")
+    ap.add_argument("--blocks-only", action="store_true",
+                    help="place, route and time the blocks only: no whole-chip assembly, no blifFanout check "
+                         "of the whole profile (hours for full)")
     args = ap.parse_args(argv)
+    try:
+        groups = dict(partition.parse_group(g) for g in args.group)
+    except ValueError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 2
     if args.jobs < 1 or args.limit < 100:
         print("error: --jobs must be >= 1 and --limit >= 100", file=sys.stderr)
         return 2
     opts = flow.Options(out=pathlib.Path(args.out), rom_dir=pathlib.Path(args.rom_dir), jobs=args.jobs,
-                        limit=args.limit, only=tuple(args.block), resume=args.resume)
+                        limit=args.limit, only=tuple(args.block), resume=args.resume,
+                        groups=groups, whole=not args.blocks_only)
     profile = profile_path(args.profile)
     try:
         result, rc = synth_flow.run_command(lambda: flow.place_and_route(profile, opts), profile,

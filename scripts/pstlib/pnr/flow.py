@@ -28,10 +28,13 @@ class Options:
     limit: int = partition.LIMIT
     only: tuple = ()          # block names to run (all when empty)
     resume: bool = False      # keep the synthesis and the finished qflow steps of a previous run
+    groups: dict = dataclasses.field(default_factory=dict)   # named blocks: name -> instance paths
+    whole: bool = True        # also time the whole chip (assembly) and check the fanout step (buffering)
 
 
-def cut(work: pathlib.Path, netlist: pathlib.Path, libs: list, top: str, limit: int) -> dict:
-    """Block name -> its mapped netlist WORK/blocks/blk_NAME.v (and the cell counts)."""
+def cut(work: pathlib.Path, netlist: pathlib.Path, libs: list, top: str, limit: int, groups: dict = None) -> dict:
+    """Block name -> its mapped netlist WORK/blocks/blk_NAME.v (and the cell counts). GROUPS
+    (name -> instance paths) are blocks made first of several instances (partition.claim)."""
     blocks_dir = work / "blocks"
     blocks_dir.mkdir(parents=True, exist_ok=True)
     run_yosys(partition.list_script(libs, netlist, top, blocks_dir / "cells.txt"), blocks_dir, "list")
@@ -39,8 +42,13 @@ def cut(work: pathlib.Path, netlist: pathlib.Path, libs: list, top: str, limit: 
     cells = [c.split("/", 1)[1] for c in raw]
     # The memory stand-ins (one per read bit, 393 in reduced) are in this list and so in the
     # cell counts the cut is chosen by; the split script leaves them out of every block by type.
+    named, cells = partition.claim(cells, groups or {})
     paths = partition.choose(cells, limit)
     parts = partition.assign(cells, paths)
+    clash = set(named) & set(parts)
+    if clash:
+        raise ValueError(f"--group {sorted(clash)[0]}: the cut already has a block of that name")
+    parts.update(named)
     sel = {}
     for name, members in parts.items():
         f = blocks_dir / f"{name}.sel"
@@ -48,6 +56,7 @@ def cut(work: pathlib.Path, netlist: pathlib.Path, libs: list, top: str, limit: 
         sel[name] = f
     run_yosys(partition.split_script(libs, netlist, top, sel, blocks_dir, STANDIN), blocks_dir, "split")
     by_path = {partition.block_name(p): p for p in paths}
+    by_path.update({name: "+".join(ps) for name, ps in (groups or {}).items()})
     return {name: {"netlist": blocks_dir / f"blk_{name}.v", "instance": by_path.get(name, "(top glue)"),
                    "cells_synth": len(members)} for name, members in parts.items()}
 
@@ -134,10 +143,13 @@ def place_and_route(profile, opts: Options) -> dict:
     t_synth = time.time() - t0
     lib = liberty.osu018_lib()
     swork = work / "synth" / f"{name}.work"
-    blocks = cut(work, swork / "netlist.v", [lib, swork / "standin.lib"], "pst_top",
-                 opts.limit)
-    buf = buffering.compare(work / "buffering", swork / "netlist_sta.v", [lib, swork / "standin.lib"], "pst_top",
-                            synth["fmax_mhz"])
+    try:
+        blocks = cut(work, swork / "netlist.v", [lib, swork / "standin.lib"], "pst_top",
+                     opts.limit, opts.groups)
+    except ValueError as e:
+        raise synth_flow.InputError(str(e)) from None
+    buf = (buffering.compare(work / "buffering", swork / "netlist_sta.v", [lib, swork / "standin.lib"], "pst_top",
+                             synth["fmax_mhz"]) if opts.whole else {"skipped": "--blocks-only"})
     # Largest blocks first: with N jobs the long ones overlap instead of finishing last.
     todo = sorted((k for k in blocks if not opts.only or k in opts.only), key=lambda k: -blocks[k]["cells_synth"])
     unknown = set(opts.only) - set(blocks)
@@ -160,8 +172,10 @@ def place_and_route(profile, opts: Options) -> dict:
     t_asm = time.time()
     routed = {r["block"]: (work / "qflow" / r["block"] / "sta.v", work / "qflow" / r["block"] / f"blk_{r['block']}.spef")
               for r in recs}
-    unrouted = {k: buffered_netlist(k, blocks[k], work, lib) for k in blocks if k not in routed}
     try:
+        if not opts.whole:
+            raise RuntimeError("not timed (--blocks-only)")
+        unrouted = {k: buffered_netlist(k, blocks[k], work, lib) for k in blocks if k not in routed}
         assembled = assembly.time_design(work / "assembly", work / "blocks" / partition.ASSEMBLY_BLIF, routed,
                                          unrouted, [lib, swork / "standin.lib"], SDC)
     except (RuntimeError, ValueError, OSError) as e:
@@ -172,6 +186,10 @@ def place_and_route(profile, opts: Options) -> dict:
     result["buffering"] = buf
     result["failed_blocks"] = failed
     result["skipped_blocks"] = sorted(set(blocks) - set(todo))      # left out with --block
+    result["groups"] = opts.groups
+    result["command"] = " ".join(["scripts/pnr.py", name, *(f"--group {k}={'+'.join(v)}" for k, v in opts.groups.items()),
+                                  *(f"--block {b}" for b in opts.only), *([] if opts.whole else ["--blocks-only"]),
+                                  *([f"--limit {opts.limit}"] if opts.limit != partition.LIMIT else [])])
     (out.parent / f"{name}.json").write_text(json.dumps(result, indent=2) + "\n")
     (out.parent / f"{name}.md").write_text(report.markdown(result))
     return result

@@ -85,6 +85,38 @@ def assign(cells: list, blocks: list) -> dict:
     return dict(out)
 
 
+def parse_group(spec: str) -> tuple:
+    """'NAME=PATH[+PATH...]' (scripts/pnr.py --group) -> (NAME, [PATH, ...]); ValueError when malformed."""
+    name, sep, rest = spec.partition("=")
+    paths = [p.strip() for p in rest.split("+") if p.strip()]
+    if not sep or not paths or not re.fullmatch(r"[A-Za-z][A-Za-z0-9_]*", name) or name == "top":
+        raise ValueError(f"--group {spec!r}: expected NAME=PATH[+PATH...] with NAME a file-safe name other than top")
+    return name, paths
+
+
+def claim(cells: list, groups: dict) -> tuple:
+    """(name -> its cells, the cells left) for named blocks GROUPS (name -> instance paths): a
+    block of several instances, so that a critical path from one instance's registers into
+    another's lies inside one block (a path crossing a block's edge is timed on the SDC's pin
+    budgets instead). A cell goes to the first group with a path it lies under; ValueError for a
+    path with no cell."""
+    out = {name: [] for name in groups}
+    left = []
+    flat = [(name, p) for name, paths in groups.items() for p in paths]
+    used = set()
+    for c in cells:
+        hit = next(((name, p) for name, p in flat if c.startswith(p + ".")), None)
+        if hit:
+            out[hit[0]].append(c)
+            used.add(hit)
+        else:
+            left.append(c)
+    empty = [p for name, p in flat if (name, p) not in used]
+    if empty:
+        raise ValueError(f"--group: no cell under {empty[0]!r}")
+    return out, left
+
+
 def list_script(libs: list, netlist, top: str, out) -> str:
     """Yosys: the design flattened, its cell names (`top/name` lines) into OUT."""
     return "\n".join([*(f"read_liberty -lib {lib}" for lib in libs), f"read_verilog {netlist}",

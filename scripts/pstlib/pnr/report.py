@@ -118,7 +118,9 @@ def markdown(r: dict) -> str:
           *([f"| fanout step: synthesis' hand buffers vs blifFanout, whole design pre-layout | "
               f"{r['buffering']['fmax_mhz_hand_fanout']} vs {r['buffering']['fmax_mhz_blif_fanout']} MHz "
               f"({r['buffering']['blif_fanout_buffers']:,} buffers; "
-              f"{'within' if r['buffering']['within_2_percent'] else 'NOT within'} 2 %) |"] if "buffering" in r else []),
+              f"{'within' if r['buffering']['within_2_percent'] else 'NOT within'} 2 %) |"]
+            if "fmax_mhz_blif_fanout" in r.get("buffering", {}) else []),
+          *([f"| command | `{r['command']}` |"] if r.get("command") else []),
           f"| time | synthesis {r['seconds']['synthesis']:.0f} s, all {r['seconds']['total'] / 60:.1f} min |", "",
           "| block | instance | cells | FF | die um | util (placed at) | wire mm | DRC | LVS | Fmax pre | Fmax post | ratio | "
           "reg-reg post | hold ns | worst path (post) | pin to cell um (median) | place + route min |",
@@ -160,4 +162,13 @@ def write_derate(r: dict, path) -> None:
         doc.update({"assembled_fmax_mhz": a["fmax_mhz"], "assembled_critical_path": a["critical_path"],
                     "assembled_hold_slack_ns": a["hold_slack_ns"],
                     "assembled_blocks_without_layout": a["blocks_without_layout"]})
-    pathlib.Path(path).write_text(json.dumps(doc, indent=2) + "\n")
+    # Routed only in part by choice (--block): its critical blocks; its clock after layout is then
+    # its pre-layout Fmax derated by their worst ratio, not the slowest routed block's Fmax.
+    doc["critical_blocks_only"] = bool(r.get("skipped_blocks"))
+    if r.get("command"):
+        doc["command"] = r["command"]
+    path = pathlib.Path(path)
+    old = json.loads(path.read_text()) if path.exists() else {}
+    profiles = dict(old.get("profiles") or {})
+    profiles[r["profile"]] = doc
+    path.write_text(json.dumps({"profiles": dict(sorted(profiles.items()))}, indent=2) + "\n")

@@ -37,3 +37,35 @@ def test_every_cell_in_exactly_one_block():
 
 def test_block_name():
     assert partition.block_name("u_octave.g_noise[0].g_lattice.u_noise") == "u_octave_g_noise_0_g_lattice_u_noise"
+
+
+def test_groups_claim_their_cells_first():
+    cells = names({"u_a": 10, "u_a.u_r": 4, "u_b": 30, "u_b.u_l3": 8, "": 2})
+    name, paths = partition.parse_group("crit=u_a.u_r+u_b.u_l3")
+    assert name == "crit" and paths == ["u_a.u_r", "u_b.u_l3"]
+    got, left = partition.claim(cells, {name: paths})
+    assert len(got["crit"]) == 12 and len(left) == len(cells) - 12
+    assert not any(c.startswith(("u_a.u_r.", "u_b.u_l3.")) for c in left)
+
+
+def test_bad_groups_are_refused():
+    import pytest
+    for spec in ("crit", "crit=", "top=u_a", "1x=u_a", "a-b=u_a"):
+        with pytest.raises(ValueError):
+            partition.parse_group(spec)
+    with pytest.raises(ValueError, match="u_nope"):
+        partition.claim(names({"u_a": 3}), {"g": ["u_a", "u_nope"]})
+
+
+def test_write_derate_keeps_the_other_profiles(tmp_path):
+    import json
+    from pstlib.pnr import report
+    f = tmp_path / "layout_derate.json"
+    f.write_text(json.dumps({"profiles": {"reduced": {"profile": "reduced", "ratio": 0.904}}}))
+    blk = {"block": "noise_l3", "fmax_ratio": 0.95, "sta": {"pre_layout": {"fmax_mhz": 120.0}}}
+    r = {"profile": "full", "fmax_ratio_post_over_pre": 0.95, "blocks": [blk], "post_route_slowest_block": "noise_l3",
+         "post_route_fmax_mhz": 114.0, "method": "qflow", "skipped_blocks": ["top"], "command": "scripts/pnr.py full"}
+    report.write_derate(r, f)
+    d = json.loads(f.read_text())["profiles"]
+    assert d["reduced"]["ratio"] == 0.904
+    assert d["full"]["ratio"] == 0.95 and d["full"]["critical_blocks_only"] and d["full"]["blocks"] == ["noise_l3"]

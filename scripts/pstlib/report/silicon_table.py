@@ -36,17 +36,35 @@ def _worst_stage(paths: dict):
     return f"{stage}, {paths[stage]:.2f} ns"
 
 
+def clock_source(name: str, derate) -> str:
+    """Where profile NAME's clock after layout comes from (DERATE: the layout_derate.json entry
+    it is derated by, pstlib/synth/report.py derate_for, or None)."""
+    if not derate:
+        return "pre-layout only (nothing routed)"
+    n = len(derate.get("blocks") or [])
+    if derate["profile"] != name:
+        return f"not routed: x {derate['ratio']:.3f}, the worst routed ratio ({derate['profile']}'s {n} blocks)"
+    if derate.get("critical_blocks_only"):
+        return f"its own {n} critical blocks routed: x {derate['ratio']:.3f}, their worst ratio"
+    return f"its {n} blocks routed" + (", assembled" if derate.get("assembled_fmax_mhz") else "")
+
+
 def from_baseline(name: str, b: dict, derate, record=None) -> dict:
-    """A profile of scripts/synth/baseline.json (DERATE: layout_derate.json or None; RECORD: the
-    profile's synthesis record, scripts/synth/records/NAME.json, for its derated Fmax, or None)."""
+    """A profile of scripts/synth/baseline.json (DERATE: the layout_derate.json entry it is
+    derated by, pstlib/synth/report.py derate_for, or None; RECORD: the profile's synthesis
+    record, scripts/synth/records/NAME.json, for its derated Fmax, or None). Its clock after
+    layout is post-route where the profile itself was routed whole (every block it chose to
+    run), else its derated Fmax."""
+    whole = bool(derate and derate["profile"] == name and not derate.get("critical_blocks_only"))
     return {"profile": name, "logic_ge": b["logic_ge"], "memory_ge": b["memory_ge"], "total_ge": b["total_ge"],
             "flip_flops": b["flip_flops"], "fmax_mhz": b.get("fmax_mhz"),
             "signoff_sdc": b.get("fmax_setup_uncertainty_ns") is not None,
             "post_route_mhz": ((derate.get("assembled_fmax_mhz") or derate["post_route_fmax_mhz"])
-                               if derate and derate["profile"] == name else None),
-            "post_route_assembled": bool(derate and derate["profile"] == name and derate.get("assembled_fmax_mhz")),
-            "post_route_partial": bool(derate and derate["profile"] == name and derate.get("not_routed")),
+                               if whole else None),
+            "post_route_assembled": bool(whole and derate.get("assembled_fmax_mhz")),
+            "post_route_partial": bool(whole and derate.get("not_routed")),
             "derate": derate["ratio"] if derate else None, "fmax_derated_mhz": (record or {}).get("fmax_derated_mhz"),
+            "clock_source": clock_source(name, derate),
             "clocks_per_pixel": b["clocks_per_pixel"], "worst_psnr": _worst_psnr(b.get("psnr_db")),
             "worst_path": _worst_stage(b.get("stage_path_ns")), "paper_gates": PAPER_GATES.get(name),
             "block_ge": b.get("block_ge") or {}, "stage_path_ns": b.get("stage_path_ns") or {}}
@@ -134,6 +152,8 @@ def rows(profiles: list) -> list:
         ["Fmax post-route, or pre-layout x derate", *col(lambda p: "-" if not layout_clock(p)[0] else
                                                          f"{layout_clock(p)[0]:.1f} MHz ({layout_clock(p)[1]}"
                                                          + (f" x {p['derate']:.3f})" if layout_clock(p)[1] == "derated" else ")"))],
+        *([["clock after layout from", *col(lambda p: p.get("clock_source") or "-")]]
+          if any(p.get("clock_source") for p in profiles) else []),
         ["clocks per pixel", *col(lambda p: num(p["clocks_per_pixel"]))],
         ["Mpixel/s at that clock", *col(lambda p: "-" if not (layout_clock(p)[0] and p["clocks_per_pixel"]) else
                                         f"{layout_clock(p)[0] / p['clocks_per_pixel']:.2f}")],

@@ -77,3 +77,28 @@ def test_stages_in_pipeline_order_worst_in_bold():
     lines = silicon_table.stages_markdown([a]).splitlines()
     assert lines[2:] == ["| [A] input register | 4.00 |", "| octave stage [A] -> [B] | **9.25** |",
                          "| filter width [B] -> [C] | 8.50 |", "| clk | 3.00 |"]
+
+
+def test_each_profile_is_derated_by_its_own_routed_blocks_else_the_worst_routed_ratio():
+    from pstlib.synth import report as synth_report
+    red = {"profile": "reduced", "ratio": 0.904, "post_route_fmax_mhz": 103.9, "blocks": ["a", "b"],
+           "assembled_fmax_mhz": 105.1}
+    full = {"profile": "full", "ratio": 0.93, "post_route_fmax_mhz": 120.0, "blocks": ["c", "d", "e"],
+            "critical_blocks_only": True}
+    doc = {"profiles": {"reduced": red, "full": full}}
+    assert synth_report.derate_for(doc, "full") is full
+    assert synth_report.derate_for(doc, "reduced") is red
+    assert synth_report.derate_for(doc, "balanced") is red          # the worst ratio of the routed
+    assert synth_report.derate_for(None, "full") is None
+    base = {"logic_ge": 1000, "memory_ge": 500, "total_ge": 1500, "flip_flops": 10, "fmax_mhz": 121.8,
+            "clocks_per_pixel": 3}
+    # full routed in part (its critical blocks): derated by their ratio, never the slowest block's Fmax
+    p = silicon_table.from_baseline("full", base, full, {"fmax_derated_mhz": 113.3})
+    assert silicon_table.layout_clock(p) == (113.3, "derated")
+    assert p["clock_source"] == "its own 3 critical blocks routed: x 0.930, their worst ratio"
+    q = silicon_table.from_baseline("balanced", base, red, {"fmax_derated_mhz": 110.1})
+    assert q["clock_source"].startswith("not routed: x 0.904") and "reduced's 2 blocks" in q["clock_source"]
+    r = silicon_table.from_baseline("reduced", base, red)
+    assert silicon_table.layout_clock(r) == (105.1, "post-route, blocks assembled")
+    rows = {row[0]: row[1:] for row in silicon_table.rows([p, q, r])}
+    assert rows["clock after layout from"][2] == "its 2 blocks routed, assembled"

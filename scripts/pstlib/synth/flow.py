@@ -12,7 +12,7 @@ import time
 
 from .. import contract
 from ..paths import CONFIGS, ROOT
-from . import blocks, fanout, liberty, memarea, memories, report, sta
+from . import blocks, fanout, liberty, memarea, memories, record, report, sta
 from .tools import (ABC_CONSTR, OLD_LIB, SDC, map_lines, parse_stat_json, read_lines, run_sta, run_yosys)
 
 
@@ -151,10 +151,20 @@ def synthesize(profile, opts: Options) -> dict:
             tmp = out / f"{name}.work"
             tmp.mkdir(exist_ok=True)
         (tmp / "abc.constr").write_text(ABC_CONSTR)
-        if opts.reuse and (tmp / "netlist.v").exists():
+        # A kept netlist is reused only while every input it was made from is unchanged
+        # (record.netlist_stale); its digest is written once Yosys has finished.
+        changed = record.netlist_stale(tmp, profile, opts.rom_dir) if opts.keep else ["not kept"]
+        if opts.reuse and (tmp / "netlist.v").exists() and not changed:
             times["yosys"] = 0.0
         else:
+            if opts.reuse and (tmp / "netlist.v").exists():
+                print(f"{tmp}: kept netlist out of date ({'; '.join(changed[:3])}"
+                      f"{'; ...' if len(changed) > 3 else ''}): synthesizing again", file=sys.stderr)
+            made_from = record.netlist_inputs(profile, opts.rom_dir)
+            (tmp / record.NETLIST_DIGEST).unlink(missing_ok=True)
             times["yosys"] = run_yosys(yosys_script(prof, opts.rom_dir, lib, tmp, old_basis), tmp, "synth", opts.yosys)
+            if opts.keep:
+                (tmp / record.NETLIST_DIGEST).write_text(json.dumps(made_from, indent=1, sort_keys=True) + "\n")
         stat = parse_stat_json((tmp / "stat.json").read_text())
         ltp_text = (tmp / "ltp.txt").read_text()
         mems = memarea.parse_memories((tmp / "mem.txt").read_text())

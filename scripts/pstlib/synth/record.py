@@ -11,6 +11,7 @@ the figures against the baseline. When an input changed, `scripts/check_baseline
 synthesized again and the baseline rewritten (`--update` or `--add`), which also rewrites the
 record."""
 import hashlib
+import json
 import pathlib
 import shutil
 
@@ -41,6 +42,31 @@ def inputs(rom_dir=None) -> dict:
     if lib is not None:
         out[f"lib/{pathlib.Path(lib).name}"] = hashlib.sha256(pathlib.Path(lib).read_bytes()).hexdigest()
     return out
+
+
+# Inputs that change the figures but not the netlist (the derate only scales the reported Fmax).
+NOT_NETLIST = ("scripts/synth/layout_derate.json",)
+NETLIST_DIGEST = "inputs.json"     # in a kept synthesis folder (scripts/synth.py --keep)
+
+
+def netlist_inputs(profile, rom_dir) -> dict:
+    """{path: SHA-256} of what a kept netlist was made from: INPUTS less NOT_NETLIST, the ROM
+    images, the cell library and the profile file itself (a test profile lives outside INPUTS)."""
+    out = {k: v for k, v in inputs(rom_dir).items() if k not in NOT_NETLIST}
+    prof = pathlib.Path(profile).resolve()
+    key = prof.relative_to(ROOT).as_posix() if prof.is_relative_to(ROOT) else str(prof)
+    out[f"profile/{key}"] = hashlib.sha256(digest.content(prof)).hexdigest()
+    return out
+
+
+def netlist_stale(work, profile, rom_dir) -> list:
+    """Why the kept synthesis folder WORK no longer stands for PROFILE in the current tree (the
+    inputs that changed since its netlist was made); ["no input digest"] for a folder kept
+    before the digest existed; [] when it stands."""
+    f = pathlib.Path(work) / NETLIST_DIGEST
+    if not f.exists():
+        return [f"no input digest ({NETLIST_DIGEST})"]
+    return digest.stale(json.loads(f.read_text()), netlist_inputs(profile, rom_dir))
 
 
 def stale(base: dict, rom_dir=None) -> list:

@@ -58,14 +58,41 @@ def fanout_summary(per_module: dict, a: dict, cell_area: float, ge: float) -> di
 
 FMAX_BASIS = "pre-layout"
 FMAX_LABEL = "pre-layout (typical corner, no wire load)"
-# The post-route / pre-layout Fmax ratio of the routed reduced profile (scripts/pnr.py reduced
-# --update-derate writes it): every profile's pre-layout Fmax is also given derated by it.
+# The post-route / pre-layout Fmax ratios of the routed profiles (scripts/pnr.py PROFILE
+# --update-derate writes PROFILE's entry): every profile's pre-layout Fmax is also given derated,
+# by its own ratio where it was routed, else by the worst ratio of those that were.
 DERATE_FILE = SDC.parent / "layout_derate.json"
 
 
-def layout_derate():
-    """{ratio, source, ...} of the last routed profile, or None when none was routed."""
-    return json.loads(DERATE_FILE.read_text()) if DERATE_FILE.exists() else None
+def derate_entries(doc) -> dict:
+    """Profile -> its entry of a layout_derate.json document ({} for None)."""
+    if not doc:
+        return {}
+    return doc.get("profiles") or {}
+
+
+def derate_for(doc, name: str):
+    """The entry PROFILE's Fmax is derated by: its own when it was routed, else the routed
+    profile with the worst ratio (the conservative choice); None when nothing was routed. The
+    entry's "profile" names where it comes from."""
+    entries = derate_entries(doc)
+    if name in entries:
+        return entries[name]
+    return min(entries.values(), key=lambda e: e["ratio"]) if entries else None
+
+
+def derate_label(entry: dict, name: str) -> str:
+    """Where profile NAME's derate comes from, in words."""
+    if entry["profile"] == name:
+        which = "its critical blocks" if entry.get("critical_blocks_only") else "its blocks"
+        return f"worst post-route / pre-layout of {which} placed and routed ({len(entry.get('blocks', []))})"
+    return (f"not routed itself: the worst post-route / pre-layout ratio of the routed profiles, "
+            f"{entry['profile']}'s blocks")
+
+
+def layout_derate(name: str):
+    """derate_for(scripts/synth/layout_derate.json, NAME)."""
+    return derate_for(json.loads(DERATE_FILE.read_text()) if DERATE_FILE.exists() else None, name)
 
 
 def timing_result(reports: dict, sta_out: str, name=lambda p: p) -> dict:
@@ -184,7 +211,7 @@ def assemble(name, profile, prof, a, a_old, ge, old_ge, memories, timing, times,
         res["fmax_mhz"] = timing["fmax_mhz"]
         res["fmax_basis"] = FMAX_BASIS
         res["fmax_label"] = FMAX_LABEL
-        d = layout_derate()
+        d = layout_derate(res["profile"])
         if d:
             res["fmax_derated_mhz"] = round(timing["fmax_mhz"] * d["ratio"], 1)
             res["fmax_derate"] = d
@@ -237,8 +264,8 @@ def markdown(r: dict) -> str:
         c = tm["constraints"]
         md += [f"| Fmax (OpenSTA), {FMAX_LABEL} | {t['fmax_mhz']:.1f} MHz (worst setup slack {tm['wns_ns']:+.2f} ns at "
                f"{tm['period_ns']:g} ns, clock uncertainty {c['setup_uncertainty_ns']:g} ns) |",
-               *([f"| Fmax derated by {r['fmax_derate']['ratio']:.3f} (post-route / pre-layout of the routed "
-                  f"{r['fmax_derate']['profile']} profile, {r['fmax_derate']['source']}) | {r['fmax_derated_mhz']:.1f} MHz: "
+               *([f"| Fmax derated by {r['fmax_derate']['ratio']:.3f} ({derate_label(r['fmax_derate'], r['profile'])}, "
+                  f"{r['fmax_derate']['source']}) | {r['fmax_derated_mhz']:.1f} MHz: "
                   f"{t['mpixel_s_derated']:.2f} Mpixel/s ({'meets' if t['meets_realtime_derated'] else 'misses'} "
                   f"{t['realtime_mpixel_s']:.1f}) |"] if r.get("fmax_derated_mhz") else []),
                f"| hold (worst slack, clock uncertainty {c['hold_uncertainty_ns']:g} ns) | {tm['hold']['wns_ns']:+.3f} ns, "
