@@ -15,9 +15,10 @@ import time
 from ..paths import ROOT
 from ..synth import flow as synth_flow, liberty, sta as synth_sta
 from ..synth.tools import SDC, run_sta, run_yosys
-from . import assembly, blif, buffering, layout, partition, pins, qflow, report, spef, timing
+from . import assembly, blif, buffering, layout, lec, partition, pins, qflow, report, spef, timing
 
 STANDIN = "PST_MEMRD*"    # the memory read stand-ins: macros, outside every block
+LEC_TIMEOUT = 1800.0      # seconds ABC may take on one block's routed netlist
 
 
 @dataclasses.dataclass
@@ -94,6 +95,13 @@ def run_block(name: str, info: dict, work: pathlib.Path, lib: pathlib.Path, out:
     sta = {"pre_layout": timing.combine(runs["pre_layout"], runs["pre_layout"]),
            "post_route": timing.combine(runs["post_route"], runs["post_route_pins"])}
     times["extract_and_sta"] = round(time.time() - t0, 1)
+    # The routed netlist against the block as cut (pstlib/pnr/lec.py), and a mutant of it.
+    t0 = time.time()
+    gold_v = p.path / "gold.v"
+    gold_v.write_text(blif.to_verilog(info["netlist"].with_suffix(".blif").read_text()))
+    equiv = {"routed": lec.check(lib, gold_v, sta_v, module, p.path / "lec", LEC_TIMEOUT),
+             "mutant": lec.check(lib, gold_v, sta_v, module, p.path / "lec", LEC_TIMEOUT, mutate=True)}
+    times["lec"] = round(time.time() - t0, 1)
     fig = layout.def_figures((p.layout / f"{module}.def").read_text(),
                              layout.lef_sizes(qflow.LEF.read_text()))
     png = out / f"{name}.png"
@@ -107,7 +115,7 @@ def run_block(name: str, info: dict, work: pathlib.Path, lib: pathlib.Path, out:
             "initial_density": density,
             "pin_hints": json.loads(hinted.read_text()) if hinted.exists() else None,
             "median_pin_to_cell_um": round(pins.pin_distance_um((p.layout / f"{module}.def").read_text()), 1),
-            "sta": sta, "fmax_ratio": round(sta["post_route"]["fmax_mhz"] / sta["pre_layout"]["fmax_mhz"], 3),
+            "lec": equiv, "sta": sta, "fmax_ratio": round(sta["post_route"]["fmax_mhz"] / sta["pre_layout"]["fmax_mhz"], 3),
             "seconds": times, "png": png.name}
 
 

@@ -37,6 +37,9 @@ def assemble(name: str, synth: dict, blocks: list, synth_seconds: float, seconds
         "wirelength_mm": round(sum(b["wirelength_mm"] for b in blocks), 1),
         "drc_errors": sum(b["drc_errors"] for b in blocks),
         "lvs_match": all(b["lvs_match"] for b in blocks),
+        # The routed netlists against the blocks as cut (pstlib/pnr/lec.py), each with its mutant.
+        "lec_proven": sum((b.get("lec") or {}).get("routed", {}).get("result") == "proven" for b in blocks),
+        "lec_mutants_caught": sum((b.get("lec") or {}).get("mutant", {}).get("result") == "differs" for b in blocks),
         "post_route_fmax_mhz": post["sta"]["post_route"]["fmax_mhz"],
         "post_route_slowest_block": post["block"],
         "post_route_critical_path": post["sta"]["post_route"]["critical_path"],
@@ -73,6 +76,14 @@ def _pins(b: dict) -> str:
     return f"{d:.0f}" + (f" (pins from cells; was {tries[0]['median_pin_to_cell_um_before']:.0f})" if tries else "")
 
 
+def _lec(b: dict) -> str:
+    """A block's routed-netlist equivalence, in the table: "proven (differs)", or "-" when not run."""
+    e = b.get("lec")
+    if not e:
+        return "-"
+    return f"{e['routed']['result']} ({e['mutant']['result']})"
+
+
 def _assembled_rows(a) -> list:
     """The whole chip timed from its blocks (pstlib/pnr/assembly.py)."""
     if not a:
@@ -107,6 +118,9 @@ def markdown(r: dict) -> str:
           f"| cells / flip-flops | {r['cells']:,} / {r['flip_flops']:,} |",
           f"| routed wire | {r['wirelength_mm']:,.1f} mm |",
           f"| DRC errors / LVS | {r['drc_errors']} / {'match' if r['lvs_match'] else 'MISMATCH'} |",
+          *([f"| routed netlist = block as cut (Yosys miter, ABC dprove) / its mutant caught | "
+             f"{r['lec_proven']} of {r['block_count']} proven / {r['lec_mutants_caught']} of {r['block_count']} |"]
+            if "lec_proven" in r else []),
           f"| post-route Fmax (slowest block path, each block alone with 2 ns pin budgets) | {r['post_route_fmax_mhz']:.1f} MHz in `{r['post_route_slowest_block']}` "
           f"({'meets' if r['meets_target'] else 'misses'} {r['target_mhz']:.0f} MHz) |",
           f"| worst hold slack / max-transition / max-capacitance violations | {r['hold_slack_ns']:+.3f} ns / "
@@ -123,8 +137,8 @@ def markdown(r: dict) -> str:
           *([f"| command | `{r['command']}` |"] if r.get("command") else []),
           f"| time | synthesis {r['seconds']['synthesis']:.0f} s, all {r['seconds']['total'] / 60:.1f} min |", "",
           "| block | instance | cells | FF | die um | util (placed at) | wire mm | DRC | LVS | Fmax pre | Fmax post | ratio | "
-          "reg-reg post | hold ns | worst path (post) | pin to cell um (median) | place + route min |",
-          "|---|---|---:|---:|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---|---:|---:|"]
+          "reg-reg post | hold ns | worst path (post) | pin to cell um (median) | place + route min | routed = cut (mutant) |",
+          "|---|---|---:|---:|---|---:|---:|---:|---|---:|---:|---:|---:|---:|---|---:|---:|---|"]
     for b in r["blocks"]:
         pre, post = b["sta"]["pre_layout"], b["sta"]["post_route"]
         cp = post["critical_path"]
@@ -134,10 +148,10 @@ def markdown(r: dict) -> str:
                   f"{b['drc_errors']}{_repaired(b)} | {'match' if b['lvs_match'] else 'MISMATCH'} | {pre['fmax_mhz']:.1f} | "
                   f"{post['fmax_mhz']:.1f} | {b['fmax_ratio']:.3f} | {post['reg2reg']['fmax_mhz']:.1f} | "
                   f"{post['hold_slack_ns']:+.3f} | `{cp['from']}` -> `{cp['to']}` ({cp['arrival_ns']:.2f} ns, "
-                  f"{cp['cells']} cells) | {_pins(b)} | {(s['place'] + s['route']) / 60:.1f} |")
+                  f"{cp['cells']} cells) | {_pins(b)} | {(s['place'] + s['route']) / 60:.1f} | {_lec(b)} |")
     for name, f in r.get("failed_blocks", {}).items():
         md.append(f"| {name} | `{f['instance']}` | ({f['cells_synth']:,} cells synthesized) | - | - | - | - | - | - | - | "
-                  f"- | - | - | - | not finished: {f['error']} | - | - |")
+                  f"- | - | - | - | not finished: {f['error']} | - | - | - |")
     md.append("")
     md += [f"![{b['block']}]({r['profile']}/{b['png']})" for b in r["blocks"]]
     return "\n".join(md) + "\n"

@@ -1,5 +1,5 @@
 """One small block through the whole per-block flow (qflow place and route, DRC, LVS, GDS,
-SPEF, OpenSTA before and after layout, PNG): skipped where qflow is not installed
+SPEF, OpenSTA before and after layout, PNG, the routed netlist's equivalence): skipped where qflow is not installed
 (scripts/setup.sh --pnr); about a minute here."""
 import shutil
 import subprocess
@@ -27,7 +27,8 @@ def test_small_block(tmp_path):
     netlist = tmp_path / "blk_small.v"
     subprocess.run(["yosys", "-q", "-p", f"read_verilog {tmp_path / 'small.v'}; synth -top small; "
                     f"dfflibmap -liberty {lib}; abc -liberty {lib}; opt_clean; rename small blk_small; "
-                    f"write_verilog -noattr {netlist}"], check=True, timeout=120)
+                    f"write_verilog -noattr {netlist}; write_blif -buf BUFX2 A Y -gates {netlist.with_suffix('.blif')}"],
+                   check=True, timeout=120)
     out = tmp_path / "out"
     out.mkdir()
     rec = flow.run_block("small", {"netlist": netlist, "instance": "small", "cells_synth": 0}, tmp_path / "work",
@@ -38,6 +39,9 @@ def test_small_block(tmp_path):
     assert pre["fmax_mhz"] > 0 and post["fmax_mhz"] > 0
     # Pin paths are timed on the ideal clock before and after routing: the wires only add delay.
     assert post["pin"]["slack_ns"] < pre["pin"]["slack_ns"]
+    # The routed netlist is proven equal to the block as cut; one swapped cell is caught.
+    assert rec["lec"]["routed"]["result"] == "proven", rec["lec"]
+    assert rec["lec"]["mutant"]["result"] == "differs", rec["lec"]
     spef = (out / "small.spef").read_text()
     assert spef.count("*D_NET") > 20 and "*RES" in spef
     for ext in ("def", "gds", "png"):
