@@ -80,7 +80,10 @@ def main(argv=None) -> int:
     ap.add_argument("--mem-cache", default=str(ROOT / "out" / "synth" / "memories"),
                     help="cache of the stand-alone memory syntheses (by content)")
     ap.add_argument("--keep", action="store_true", help="keep the netlists and tool logs in DIR/NAME.work/")
-    ap.add_argument("--reuse", action="store_true", help=argparse.SUPPRESS)   # development: skip Yosys if kept
+    ap.add_argument("--reuse", action="store_true",
+                    help="with --keep: skip Yosys when DIR/NAME.work holds a netlist made from the current inputs "
+                         "(the RTL, profile, flow, library and ROM digests in NAME.work/inputs.json); "
+                         "synthesize again otherwise, naming what changed")
     ap.add_argument("--quiet", action="store_true")
     args = ap.parse_args(argv)
     opts = flow.Options(out=pathlib.Path(args.out), rom_dir=pathlib.Path(args.rom_dir),

@@ -8,6 +8,7 @@ buffered by blifFanout instead of the synthesis' fanout step, timed (buffering.p
 """
 import concurrent.futures
 import dataclasses
+import hashlib
 import json
 import pathlib
 import time
@@ -33,11 +34,29 @@ class Options:
     whole: bool = True        # also time the whole chip (assembly) and check the fanout step (buffering)
 
 
-def cut(work: pathlib.Path, netlist: pathlib.Path, libs: list, top: str, limit: int, groups: dict = None) -> dict:
+def _digest(path: pathlib.Path) -> str:
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for chunk in iter(lambda: f.read(1 << 20), b""):
+            h.update(chunk)
+    return h.hexdigest()
+
+
+def cut(work: pathlib.Path, netlist: pathlib.Path, libs: list, top: str, limit: int, groups: dict = None,
+        resume: bool = False) -> dict:
     """Block name -> its mapped netlist WORK/blocks/blk_NAME.v (and the cell counts). GROUPS
-    (name -> instance paths) are blocks made first of several instances (partition.claim)."""
+    (name -> instance paths) are blocks made first of several instances (partition.claim). With
+    RESUME, a cut of the same netlist (by content) is reused (WORK/blocks/cut.json: Yosys takes
+    some 10 minutes to list and split full's 773k cells)."""
     blocks_dir = work / "blocks"
     blocks_dir.mkdir(parents=True, exist_ok=True)
+    key = {"netlist": _digest(netlist), "limit": limit, "groups": groups or {}}
+    done = blocks_dir / "cut.json"
+    if resume and done.exists():
+        prev = json.loads(done.read_text())
+        if prev["key"] == key and all(pathlib.Path(b["netlist"]).exists() for b in prev["blocks"].values()):
+            return {k: {**b, "netlist": pathlib.Path(b["netlist"])} for k, b in prev["blocks"].items()}
+    done.unlink(missing_ok=True)
     run_yosys(partition.list_script(libs, netlist, top, blocks_dir / "cells.txt"), blocks_dir, "list")
     raw = [l.strip() for l in (blocks_dir / "cells.txt").read_text().splitlines() if l.strip()]
     cells = [c.split("/", 1)[1] for c in raw]
@@ -58,8 +77,11 @@ def cut(work: pathlib.Path, netlist: pathlib.Path, libs: list, top: str, limit: 
     run_yosys(partition.split_script(libs, netlist, top, sel, blocks_dir, STANDIN), blocks_dir, "split")
     by_path = {partition.block_name(p): p for p in paths}
     by_path.update({name: "+".join(ps) for name, ps in (groups or {}).items()})
-    return {name: {"netlist": blocks_dir / f"blk_{name}.v", "instance": by_path.get(name, "(top glue)"),
-                   "cells_synth": len(members)} for name, members in parts.items()}
+    blocks = {name: {"netlist": blocks_dir / f"blk_{name}.v", "instance": by_path.get(name, "(top glue)"),
+                     "cells_synth": len(members)} for name, members in parts.items()}
+    done.write_text(json.dumps({"key": key, "blocks": {k: {**b, "netlist": str(b["netlist"])} for k, b in blocks.items()}},
+                               indent=1) + "\n")
+    return blocks
 
 
 def run_block(name: str, info: dict, work: pathlib.Path, lib: pathlib.Path, out: pathlib.Path,
@@ -153,7 +175,7 @@ def place_and_route(profile, opts: Options) -> dict:
     swork = work / "synth" / f"{name}.work"
     try:
         blocks = cut(work, swork / "netlist.v", [lib, swork / "standin.lib"], "pst_top",
-                     opts.limit, opts.groups)
+                     opts.limit, opts.groups, opts.resume)
     except ValueError as e:
         raise synth_flow.InputError(str(e)) from None
     buf = (buffering.compare(work / "buffering", swork / "netlist_sta.v", [lib, swork / "standin.lib"], "pst_top",
