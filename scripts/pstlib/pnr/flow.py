@@ -43,21 +43,29 @@ def _digest(path: pathlib.Path) -> str:
 
 
 def cut(work: pathlib.Path, netlist: pathlib.Path, libs: list, top: str, limit: int, groups: dict = None,
-        resume: bool = False) -> dict:
+        resume: bool = False, only: tuple = ()) -> dict:
     """Block name -> its mapped netlist WORK/blocks/blk_NAME.v (and the cell counts). GROUPS
-    (name -> instance paths) are blocks made first of several instances (partition.claim). With
-    RESUME, a cut of the same netlist (by content) is reused (WORK/blocks/cut.json: Yosys takes
-    some 10 minutes to list and split full's 773k cells)."""
+    (name -> instance paths) are blocks made first of several instances (partition.claim). ONLY:
+    the blocks whose netlists are written (all when empty; then also the top level that connects
+    them, for the assembly): Yosys splitting all of full's 773k cells at once needs over 22 GB.
+    With RESUME, the cell list and the cut of the same netlist (by content) are reused
+    (WORK/blocks/cut.json: listing full takes Yosys some 5 minutes)."""
     blocks_dir = work / "blocks"
     blocks_dir.mkdir(parents=True, exist_ok=True)
-    key = {"netlist": _digest(netlist), "limit": limit, "groups": groups or {}}
+    key = {"netlist": _digest(netlist), "limit": limit, "groups": groups or {}, "only": sorted(only)}
     done = blocks_dir / "cut.json"
+    listed = blocks_dir / "cells.key"
     if resume and done.exists():
         prev = json.loads(done.read_text())
-        if prev["key"] == key and all(pathlib.Path(b["netlist"]).exists() for b in prev["blocks"].values()):
+        if prev["key"] == key and all(pathlib.Path(b["netlist"]).exists() for b in prev["blocks"].values()
+                                      if not only or b["name"] in only):
             return {k: {**b, "netlist": pathlib.Path(b["netlist"])} for k, b in prev["blocks"].items()}
     done.unlink(missing_ok=True)
-    run_yosys(partition.list_script(libs, netlist, top, blocks_dir / "cells.txt"), blocks_dir, "list")
+    if not (resume and listed.exists() and listed.read_text().strip() == key["netlist"]
+            and (blocks_dir / "cells.txt").exists()):
+        listed.unlink(missing_ok=True)
+        run_yosys(partition.list_script(libs, netlist, top, blocks_dir / "cells.txt"), blocks_dir, "list")
+        listed.write_text(key["netlist"] + "\n")
     raw = [l.strip() for l in (blocks_dir / "cells.txt").read_text().splitlines() if l.strip()]
     cells = [c.split("/", 1)[1] for c in raw]
     # The memory stand-ins (one per read bit, 393 in reduced) are in this list and so in the
@@ -74,10 +82,14 @@ def cut(work: pathlib.Path, netlist: pathlib.Path, libs: list, top: str, limit: 
         f = blocks_dir / f"{name}.sel"
         f.write_text("".join(f"{top}/{c}\n" for c in members))
         sel[name] = f
-    run_yosys(partition.split_script(libs, netlist, top, sel, blocks_dir, STANDIN), blocks_dir, "split")
+    unknown = set(only) - set(sel)
+    if unknown:
+        raise ValueError(f"--block {sorted(unknown)}: no such block (blocks: {', '.join(sorted(sel))})")
+    run_yosys(partition.split_script(libs, netlist, top, {k: v for k, v in sel.items() if not only or k in only},
+                                     blocks_dir, STANDIN, assembly=not only), blocks_dir, "split")
     by_path = {partition.block_name(p): p for p in paths}
     by_path.update({name: "+".join(ps) for name, ps in (groups or {}).items()})
-    blocks = {name: {"netlist": blocks_dir / f"blk_{name}.v", "instance": by_path.get(name, "(top glue)"),
+    blocks = {name: {"name": name, "netlist": blocks_dir / f"blk_{name}.v", "instance": by_path.get(name, "(top glue)"),
                      "cells_synth": len(members)} for name, members in parts.items()}
     done.write_text(json.dumps({"key": key, "blocks": {k: {**b, "netlist": str(b["netlist"])} for k, b in blocks.items()}},
                                indent=1) + "\n")
@@ -175,7 +187,7 @@ def place_and_route(profile, opts: Options) -> dict:
     swork = work / "synth" / f"{name}.work"
     try:
         blocks = cut(work, swork / "netlist.v", [lib, swork / "standin.lib"], "pst_top",
-                     opts.limit, opts.groups, opts.resume)
+                     opts.limit, opts.groups, opts.resume, opts.only if not opts.whole else ())
     except ValueError as e:
         raise synth_flow.InputError(str(e)) from None
     buf = (buffering.compare(work / "buffering", swork / "netlist_sta.v", [lib, swork / "standin.lib"], "pst_top",

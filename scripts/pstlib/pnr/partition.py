@@ -123,7 +123,8 @@ def list_script(libs: list, netlist, top: str, out) -> str:
                       f"hierarchy -top {top}", "flatten", f"tee -q -o {out} select -list t:*", ""])
 
 
-def split_script(libs: list, netlist, top: str, selections: dict, outdir, keep_types: str) -> str:
+def split_script(libs: list, netlist, top: str, selections: dict, outdir, keep_types: str,
+                 assembly: bool = True) -> str:
     """Yosys: the flattened design's blocks (name -> a `select -read` file of `top/cell` lines)
     each moved into a module blk_NAME (`submod`: nets crossing its edge become ports) and
     written alone to OUTDIR/blk_NAME.v (and .blif, its pre-layout netlist for the assembled
@@ -135,6 +136,16 @@ def split_script(libs: list, netlist, top: str, selections: dict, outdir, keep_t
     for name, sel in selections.items():
         lines += [f"select -read {sel}", f"select -set s_{name} % t:{keep_types} %d", "select -clear"]
     lines += [f"submod -name blk_{name} @s_{name}" for name in selections]
+    if not assembly:
+        # A few blocks of a large design: only their modules kept (the whole flattened design
+        # saved and loaded per block, as below, needs over 22 GB for full).
+        lines += [f"design -copy-to pst_blocks {' '.join(f'blk_{n}' for n in selections)}"]
+        for name in selections:
+            lines += ["design -reset", *(f"read_liberty -lib {lib}" for lib in libs),
+                      f"design -copy-from pst_blocks -as blk_{name} blk_{name}", f"hierarchy -top blk_{name}",
+                      f"write_verilog -noattr {outdir}/blk_{name}.v",
+                      f"write_blif -buf BUFX2 A Y -gates {outdir}/blk_{name}.blif"]
+        return "\n".join(lines) + "\n"
     lines += ["design -save split"]
     for name in selections:
         lines += ["design -load split", f"hierarchy -top blk_{name}",

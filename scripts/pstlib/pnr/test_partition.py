@@ -69,3 +69,12 @@ def test_write_derate_keeps_the_other_profiles(tmp_path):
     d = json.loads(f.read_text())["profiles"]
     assert d["reduced"]["ratio"] == 0.904
     assert d["full"]["ratio"] == 0.95 and d["full"]["critical_blocks_only"] and d["full"]["blocks"] == ["noise_l3"]
+
+
+def test_split_of_a_few_blocks_keeps_only_their_modules():
+    full = partition.split_script(["osu.lib"], "n.v", "pst_top", {"a": "a.sel", "b": "b.sel"}, "out", "PST_MEMRD*")
+    few = partition.split_script(["osu.lib"], "n.v", "pst_top", {"a": "a.sel"}, "out", "PST_MEMRD*", assembly=False)
+    assert "design -save split" in full and partition.ASSEMBLY_BLIF in full
+    # a few blocks: the flattened design is never saved whole; only the blocks' modules are copied
+    assert "design -save split" not in few and partition.ASSEMBLY_BLIF not in few
+    assert "design -copy-to pst_blocks blk_a" in few and "write_verilog -noattr out/blk_a.v" in few
