@@ -78,3 +78,22 @@ def test_split_of_a_few_blocks_keeps_only_their_modules():
     # a few blocks: the flattened design is never saved whole; only the blocks' modules are copied
     assert "design -save split" not in few and partition.ASSEMBLY_BLIF not in few
     assert "design -copy-to pst_blocks blk_a" in few and "write_verilog -noattr out/blk_a.v" in few
+
+
+def test_block_ratio_is_the_worse_of_its_critical_path_and_its_register_paths():
+    from pstlib.pnr import flow
+    sta = {"pre_layout": {"fmax_mhz": 116.0, "reg2reg": {"fmax_mhz": 126.7}},
+           "post_route": {"fmax_mhz": 113.0, "reg2reg": {"fmax_mhz": 116.2}}}
+    r = flow.ratios(sta)
+    # the pin path (2 ns budgets) is critical before layout: its ratio (0.974) hides the wires'
+    assert r == {"fmax_ratio": 0.917, "fmax_ratio_combined": 0.974, "fmax_ratio_reg2reg": 0.917}
+
+
+def test_block_sdc_drops_commands_on_ports_the_block_lacks():
+    from pstlib.pnr import timing
+    sdc = "create_clock -period 10 [get_ports clk_i]\nset_false_path -from [get_ports rst_ni]\nset_input_delay 2 [all_inputs]\n"
+    got = timing.block_sdc(sdc, {"clk_i", "a_0_"})
+    assert "create_clock -period 10 [get_ports clk_i]\n" in got
+    assert "# not a port of this block: set_false_path" in got and "\nset_false_path" not in got
+    assert timing.block_sdc(sdc, {"clk_i", "rst_ni"}) == sdc
+    assert timing.netlist_ports("module blk_x (clk_i, a_0_, y);\ninput clk_i;\n") == {"clk_i", "a_0_", "y"}

@@ -16,6 +16,7 @@ Fmax (each run) = 1 / (period - worst slack) over both kinds of path. Max transi
 against the SDC limit, max capacitance the synthesis' check against the liberty's per-pin
 limits (pstlib/synth/sta.cap_check_tcl).
 """
+import pathlib
 import re
 
 from ..synth import liberty, sta as synth_sta
@@ -39,14 +40,41 @@ def report_lines(out: str) -> list:
             f"report_check_types -max_transition -all_violators -digits 3 >> {out}.transition"]
 
 
+_PORTS = re.compile(r"\[get_ports\s+([^\]\s]+)\s*\]")
+
+
+def block_sdc(sdc_text: str, ports: set) -> str:
+    """The chip's SDC for a block: a command naming a port the block does not have (a block
+    without the reset rst_ni: `set_false_path -from [get_ports rst_ni]`) is dropped, which
+    OpenSTA would otherwise fail on; wildcards are left to OpenSTA."""
+    out = []
+    for line in sdc_text.splitlines(keepends=True):
+        named = [n for n in _PORTS.findall(line) if not any(c in n for c in "*?$")]
+        if any(n not in ports for n in named):
+            out.append("# not a port of this block: " + line)
+        else:
+            out.append(line)
+    return "".join(out)
+
+
+def netlist_ports(verilog: str) -> set:
+    """The ports of a structural netlist's first module (`module NAME (a, b, ...);`)."""
+    m = re.search(r"^\s*module\s+\S+\s*\(([^)]*)\)\s*;", verilog, re.M)
+    return {p.strip() for p in m.group(1).split(",") if p.strip()} if m else set()
+
+
 def script(lib, netlist, top: str, sdc, spef, out: str, propagated: bool) -> str:
     """Tcl writing OUT.reg2reg, OUT.in (from the data inputs), OUT.out (to the outputs), OUT.hold
     and OUT.transition; the capacitance check on stdout. PROPAGATED: the clock through its
-    buffers (post-route, register-to-register)."""
+    buffers (post-route, register-to-register). The SDC is the block's (block_sdc), written
+    beside OUT."""
     lib_text = open(lib).read()
     limits = liberty.max_capacitance(lib_text)
-    drive = synth_sta.sdc_driving_cell(open(sdc).read())
-    lines = [f"read_liberty {lib}", f"read_verilog {netlist}", f"link_design {top}", f"read_sdc {sdc}"]
+    sdc_text = open(sdc).read()
+    drive = synth_sta.sdc_driving_cell(sdc_text)
+    own = pathlib.Path(f"{out}.sdc")
+    own.write_text(block_sdc(sdc_text, netlist_ports(pathlib.Path(netlist).read_text())))
+    lines = [f"read_liberty {lib}", f"read_verilog {netlist}", f"link_design {top}", f"read_sdc {own}"]
     if spef:
         lines.append(f"read_spef {spef}")
     if propagated:
