@@ -25,6 +25,7 @@ def _logical_lines(text: str):
         buf = ""
 
 
+OUTPUT_PINS = ("Y", "Q", "YC", "YS")     # the OSU018 cells' output pins
 CONSTANTS = (["$true"], ["$false"], ["$undef"])   # Yosys's constant drivers (.names with no input)
 
 
@@ -65,6 +66,14 @@ def to_verilog(blif_text: str) -> str:
     """Structural Verilog of the BLIF's one model (.inputs, .outputs, .gate lines); pins on
     Yosys's constant drivers are left unconnected."""
     model, ins, outs, gates, _ = read_model(blif_text, "a mapped netlist")
+    # A port in both lists is how Yosys's write_blif writes an inout (submod makes one of a net
+    # driven inside a block and read outside it): an output where a cell of the block drives it,
+    # else an input (a Verilog module cannot name one port twice; OpenSTA then fails).
+    both = set(ins) & set(outs)
+    if both:
+        driven = {net for _, pins in gates for pin, net in pins if pin in OUTPUT_PINS}
+        ins = [n for n in ins if n not in both or n not in driven]
+        outs = [n for n in outs if n not in both or n in driven]
     names = {}
 
     def name(n):

@@ -40,3 +40,17 @@ def test_constant_pins_left_unconnected():
 def test_logic_in_a_mapped_netlist_is_an_error():
     with pytest.raises(ValueError, match="not expected"):
         blif.to_verilog(".model m\n.inputs a\n.outputs y\n.names a y\n1 1\n.end\n")
+
+
+def test_an_inout_port_is_an_output_where_a_cell_drives_it():
+    text = """.model blk
+.inputs clk a n_in
+.outputs y a n_in
+.gate INVX1 A=a Y=y
+.gate BUFX2 A=clk Y=n_in
+.end
+"""
+    v = blif.to_verilog(text)
+    head = v.splitlines()[0]
+    assert head == "module blk (clk, a, y, n_in);"
+    assert "input a;" in v and "output n_in;" in v and "output a;" not in v and "input n_in;" not in v
