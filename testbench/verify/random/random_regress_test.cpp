@@ -119,7 +119,7 @@ TEST(RandomRegress, FragmentsAndGoldenOutputsReachTheCorners) {
 // varies), and the golden W is min(W, wcap): a minified pixel's W is the cap, a magnified one's
 // unchanged. A profile without the unit refuses the texture and ignores the register.
 TEST(RandomRegress, WidthCapThroughDriverAndGolden) {
-    const Profile p = loadNamedProfile("sim/test_profiles/reduced_worley.toml", sourceDir());
+    const Profile p = loadNamedProfile(sourceDir() + "/sim/test_profiles/reduced_worley.toml", sourceDir());
     ASSERT_TRUE(p.widthCap());
     const int64_t wmax = fx::maxUnsigned(p.widthBits());
     Texture tex;
