@@ -84,8 +84,7 @@ bool parseVariant(const std::string& spec, FilterVariant* out, std::string* why)
         return false;
     }
     if (plus != std::string::npos && !parseBandlimit(body.substr(plus + 1), &v.bandlimit)) {
-        *why = "'" + body.substr(plus + 1) + "' is not a bandlimit (off, footprint, isotropic, anisotropic) "
-               "(spelling: KIND[+BANDLIMIT][+cap])";
+        *why = "'" + body.substr(plus + 1) + "' is not a bandlimit (off, footprint, isotropic, anisotropic)";
         return false;
     }
     *out = v;
