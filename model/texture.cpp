@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <mutex>
 #include <sstream>
@@ -286,6 +287,25 @@ double bandlimitedWidth(const Texture& tex, const glm::dvec3& gradS, const glm::
     return widen ? std::sqrt(w * w + 12.0 * fadedSd * fadedSd) : w;
 }
 
+bool quadricVaries(const Quadric& q) {
+    return q.A != 0 || q.B != 0 || q.C != 0 || q.D != 0 || q.E != 0 || q.F != 0 || q.G != 0 || q.H != 0 || q.I != 0;
+}
+
+double widthCapOf(const Texture& tex, int octaves) {
+    if (quadricVaries(tex.quadric)) return std::numeric_limits<double>::infinity();
+    const size_t n = octaves < 0 ? tex.octaves.size() : std::min(tex.octaves.size(), size_t(octaves));
+    double a2 = 0;
+    for (size_t i = 0; i < n; ++i) a2 += tex.octaves[i].amplitude * tex.octaves[i].amplitude;
+    return std::sqrt(12.0 * a2) * noiseMoments(tex.noise).sd;
+}
+
+void capWidth(const Texture& tex, double* w, glm::dvec2* wxy) {
+    const double cap = widthCapOf(tex);
+    if (!(*w > cap)) return;
+    if (wxy) *wxy *= cap / *w;
+    *w = cap;
+}
+
 double filterWidth(const glm::dvec3& gradS, const glm::dvec3& dsdx, const glm::dvec3& dsdy,
                    GradNorm norm) {
     // grad_x f = (grad_s f)^T ds/dx (section 3.2), then its norm.
@@ -329,7 +349,8 @@ TextureSample shade(const Texture& tex, const glm::dvec3& s, const glm::dvec3& d
                                           : evalF(tex, s, &r.gradS);
     r.filterWidth = tex.bandlimit != Bandlimit::Off ? bandlimitedWidth(tex, r.gradS, dsdx, dsdy, sd)
                                                     : filterWidth(r.gradS, dsdx, dsdy, tex.norm);
-    const glm::dvec2 wxy = bandlimitedFootprint(tex, footprintWidths(r.gradS, dsdx, dsdy), sd);
+    glm::dvec2 wxy = bandlimitedFootprint(tex, footprintWidths(r.gradS, dsdx, dsdy), sd);
+    if (tex.widthCap) capWidth(tex, &r.filterWidth, &wxy);  // issue 44 part 2
     r.rgba = filterColour(tex.clut, r.f, r.filterWidth, wxy, filter);  // eq. 9
     return r;
 }

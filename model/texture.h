@@ -91,6 +91,10 @@ struct Texture {
     std::string clutInterpSource;
     // "FILE:LINE: FIELD" of bandlimit when the scene gives it (set by the scene parser), the same.
     std::string bandlimitSource;
+    // The filter-width cap (issue 44 part 2; scene key width_cap, `--width-cap`, variant "+cap"):
+    // w = min(w, widthCap(tex)) in shade(), as the hardware's filter.width_cap unit does.
+    bool widthCap = false;
+    std::string widthCapSource;   // "FILE:LINE: FIELD" when the scene gave it
 };
 
 // The per-fragment result of the texture pipeline.
@@ -148,6 +152,21 @@ bool bandlimitWidens(const Texture& tex);
 // when bandlimitWidens.
 double bandlimitedWidth(const Texture& tex, const glm::dvec3& gradS, const glm::dvec3& dsdx,
                         const glm::dvec3& dsdy, double fadedSd);
+
+// The filter-width cap (issue 44 part 2), colour-index units: the width of the box whose variance
+// is the noise's whole variance, sqrt(12 sum_{i < octaves} a_i^2) sd(n) (sd of the basis over
+// space, noiseMoments; the octaves taken as independent), the most f can spread inside any pixel
+// when f is the noise alone: a box wider than that reaches past the values f takes (eq. 9's
+// linear f is wrong there). Infinite (no cap) when the quadric is not constant (any of A..I
+// non-zero): q's spread in a pixel is |grad q . J| (exact for the linear terms) and grows with
+// the footprint without bound, so no per-texture constant bounds f's spread (capping would cut
+// q's own, exactly known, width and alias its rings). octaves < 0: every octave of the texture.
+double widthCapOf(const Texture& tex, int octaves = -1);
+// Whether q(s) varies over space (a coefficient A..I is not 0).
+bool quadricVaries(const Quadric& q);
+// The cap applied: *w = min(*w, widthCapOf(tex)), the footprint's two widths *wxy (if given)
+// scaled by the same factor.
+void capWidth(const Texture& tex, double* w, glm::dvec2* wxy = nullptr);
 
 // The filter width from grad_s f and the Jacobian columns dsdx, dsdy.
 double filterWidth(const glm::dvec3& gradS, const glm::dvec3& dsdx, const glm::dvec3& dsdy,

@@ -330,6 +330,58 @@ TEST(Texture, FootprintBandlimit) {
     EXPECT_NEAR(octaveFootprint(o, opt, s, far, dy, nullptr, nullptr), m.mean + wf * (v - m.mean), 1e-12);
 }
 
+// The filter-width cap (issue 44 part 2): sqrt(12 sum a_i^2) sd(n) on noise alone (every octave, or
+// the first `octaves`), none (infinite) once any of A..I is non-zero (J alone is a constant);
+// shade() and capWidth() take w down to it and scale the footprint's two widths by as much.
+TEST(Texture, WidthCap) {
+    NoiseOptions opt;
+    Texture tex = testTexture(opt);
+    EXPECT_TRUE(quadricVaries(tex.quadric));
+    EXPECT_TRUE(std::isinf(widthCapOf(tex)));
+    const double sd = noiseMoments(opt).sd;
+    ASSERT_GT(sd, 0.1);
+    ASSERT_LT(sd, 0.5);
+    tex.quadric = Quadric();
+    tex.quadric.J = 0.7;   // a constant: no spread
+    EXPECT_FALSE(quadricVaries(tex.quadric));
+    double a2 = 0;
+    for (const Octave& o : tex.octaves) a2 += o.amplitude * o.amplitude;
+    EXPECT_NEAR(widthCapOf(tex), std::sqrt(12 * a2) * sd, 1e-12);
+    const double a0 = tex.octaves[0].amplitude;
+    EXPECT_NEAR(widthCapOf(tex, 1), std::sqrt(12.0) * std::abs(a0) * sd, 1e-12);
+    EXPECT_EQ(widthCapOf(tex, 0), 0.0);
+    for (double Quadric::*c : {&Quadric::A, &Quadric::B, &Quadric::C, &Quadric::D, &Quadric::E, &Quadric::F,
+                               &Quadric::G, &Quadric::H, &Quadric::I}) {
+        Texture t2 = tex;
+        t2.quadric.*c = 1e-3;
+        EXPECT_TRUE(std::isinf(widthCapOf(t2)));
+    }
+    // capWidth: below the cap nothing moves; above, w is the cap and wxy scales by cap / w.
+    const double cap = widthCapOf(tex);
+    double w = 0.5 * cap;
+    glm::dvec2 wxy(0.3 * cap, 0.4 * cap);
+    capWidth(tex, &w, &wxy);
+    EXPECT_EQ(w, 0.5 * cap);
+    EXPECT_EQ(wxy.x, 0.3 * cap);
+    w = 4 * cap;
+    wxy = glm::dvec2(2.4 * cap, 3.2 * cap);
+    capWidth(tex, &w, &wxy);
+    EXPECT_DOUBLE_EQ(w, cap);
+    EXPECT_DOUBLE_EQ(wxy.x, 0.6 * cap);
+    EXPECT_DOUBLE_EQ(wxy.y, 0.8 * cap);
+    // shade(): the capped width where the gradient's is wider (a minified pixel), the same elsewhere.
+    Texture capped = tex;
+    capped.widthCap = true;
+    const glm::dvec3 s(0.3, 0.2, 0.1);
+    for (double scale : {1e-4, 1.0, 100.0}) {
+        const glm::dvec3 dx(scale, 0, 0), dy(0, scale, 0);
+        const TextureSample a = shade(tex, s, dx, dy), b = shade(capped, s, dx, dy);
+        EXPECT_EQ(b.f, a.f);
+        EXPECT_DOUBLE_EQ(b.filterWidth, std::min(a.filterWidth, cap));
+    }
+    EXPECT_GT(shade(tex, s, glm::dvec3(100, 0, 0), glm::dvec3(0, 100, 0)).filterWidth, cap);
+}
+
 TEST(Texture, GradNormNamesRoundTrip) {
     for (GradNorm v : {GradNorm::Euclid, GradNorm::MaxHalfMin, GradNorm::L1}) {
         GradNorm r;

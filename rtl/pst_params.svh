@@ -333,7 +333,7 @@
   .NoiseUnits(NoiseUnits)
 
 // REGS: pst_regs: the octave count, bandlimit and the formats of the registers (Q, M_i, o_i, a_i,
-// M_i^T, the term means in f's).
+// M_i^T, the term means in f's), the width cap and W's format (its register).
 `define PST_REGS_PARAMS \
   parameter int Octaves = pst_pkg::OctavesDefault, \
   parameter int QuadricInt = pst_pkg::QuadricIntDefault, \
@@ -348,13 +348,17 @@
   parameter int GradMatrixFrac = pst_pkg::GradMatrixFracDefault, \
   parameter int FilterBandlimit = pst_pkg::FilterBandlimitDefault, \
   parameter int FInt = pst_pkg::FIntDefault, \
-  parameter int FFrac = pst_pkg::FFracDefault
+  parameter int FFrac = pst_pkg::FFracDefault, \
+  parameter int FilterWidthCap = pst_pkg::FilterWidthCapDefault, \
+  parameter int Log2Clut = pst_pkg::Log2ClutDefault, \
+  parameter int WidthFrac = pst_pkg::WidthFracDefault
 `define PST_REGS_PASS \
   .Octaves(Octaves), .QuadricInt(QuadricInt), .QuadricFrac(QuadricFrac), \
   .MatrixInt(MatrixInt), .MatrixFrac(MatrixFrac), .OffsetInt(OffsetInt), \
   .OffsetFrac(OffsetFrac), .AmplitudeInt(AmplitudeInt), .AmplitudeFrac(AmplitudeFrac), \
   .GradMatrixInt(GradMatrixInt), .GradMatrixFrac(GradMatrixFrac), \
-  .FilterBandlimit(FilterBandlimit), .FInt(FInt), .FFrac(FFrac)
+  .FilterBandlimit(FilterBandlimit), .FInt(FInt), .FFrac(FFrac), \
+  .FilterWidthCap(FilterWidthCap), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac)
 
 // FILTER_WIDTH: pst_filter_width: the formats of grad f and the Jacobian, the table size, W's
 // fraction, the norm.
@@ -381,11 +385,13 @@
   parameter int WidthFrac = pst_pkg::WidthFracDefault, \
   parameter int FilterNorm = pst_pkg::FilterNormDefault, \
   parameter int Datapath = pst_pkg::DatapathDefault, \
-  parameter int WidthRegs = pst_pkg::WidthRegsDefault
+  parameter int WidthRegs = pst_pkg::WidthRegsDefault, \
+  parameter int FilterWidthCap = pst_pkg::FilterWidthCapDefault
 `define PST_WIDTH_STAGE_PASS \
   .GradInt(GradInt), .GradFrac(GradFrac), .JacobianInt(JacobianInt), \
   .JacobianFrac(JacobianFrac), .Log2Clut(Log2Clut), .WidthFrac(WidthFrac), \
-  .FilterNorm(FilterNorm), .Datapath(Datapath), .WidthRegs(WidthRegs)
+  .FilterNorm(FilterNorm), .Datapath(Datapath), .WidthRegs(WidthRegs), \
+  .FilterWidthCap(FilterWidthCap)
 
 // CLUT_CHANNEL: pst_clut_channel: the table size, colour bits, W's fraction and the reciprocal's.
 `define PST_CLUT_CHANNEL_PARAMS \
@@ -453,6 +459,7 @@
   parameter int FilterNorm = pst_pkg::FilterNormDefault, \
   parameter int FilterRecipFrac = pst_pkg::FilterRecipFracDefault, \
   parameter int FilterBandlimit = pst_pkg::FilterBandlimitDefault, \
+  parameter int FilterWidthCap = pst_pkg::FilterWidthCapDefault, \
   parameter int CoordInt = pst_pkg::CoordIntDefault, \
   parameter int CoordFrac = pst_pkg::CoordFracDefault, \
   parameter int JacobianInt = pst_pkg::JacobianIntDefault, \

@@ -45,6 +45,9 @@ package pst_pkg;
   // filter.bandlimit: bandlimited octaves (beyond the paper): isotropic builds the fade unit (pst_octave_fade: per octave alpha = h(lg ||M|| + lg |dsdx|) h(lg ||M|| + lg |dsdy|) from a driver-written table, fading the octave term toward its mean (register fm) and its gradient toward 0; enabled per texture by control.bandlimit); off builds none
   localparam int FilterBandlimitOff = 0;
   localparam int FilterBandlimitIsotropic = 1;
+  // filter.width_cap: filter-width cap (issue 44 part 2, beyond the paper): on builds the register wcap and a minimum after the filter width, W = min(W, wcap); the driver writes wcap = sqrt(12 sum_i a_i^2 sd(n)^2) N, the width of the box whose variance is the noise's whole variance, on a texture with width_cap and no non-constant quadric term, else the largest W (no cap); off builds neither
+  localparam int FilterWidthCapOff = 0;
+  localparam int FilterWidthCapOn = 1;
 
   // Profile ranges (model/golden/profile.cpp and scripts/pstlib/contract.py check them).
   localparam int OctavesMin = 1;
@@ -113,6 +116,7 @@ package pst_pkg;
   localparam int FilterNormDefault = FilterNormEuclid;
   localparam int FilterRecipFracDefault = 18;
   localparam int FilterBandlimitDefault = FilterBandlimitOff;
+  localparam int FilterWidthCapDefault = FilterWidthCapOff;
   localparam int CoordIntDefault = 12;
   localparam int CoordFracDefault = 20;
   localparam int JacobianIntDefault = 8;
@@ -147,6 +151,8 @@ package pst_pkg;
   localparam int RegControlBandlimitWidth = 1;
   // 0x0001: active octaves (0..Octaves)
   localparam logic [15:0] RegActive = 16'h0001;
+  // 0x0002: filter-width cap (filter.width_cap profiles): W = min(W, wcap), unsigned in W's format (w_width bits, WidthFrac fraction bits); all ones: no cap
+  localparam logic [15:0] RegWcap = 16'h0002;
   // 0x0010 + k: quadric coefficient k = 0..9 (A..J), Quadric format
   localparam logic [15:0] RegQuadric = 16'h0010;
   localparam int RegQuadricCount = 10;

@@ -28,6 +28,7 @@ initial begin
   assert (FilterNorm >= 0 && FilterNorm < 3) else $fatal(1, "filter.norm: unknown value");
   assert (FilterRecipFrac >= 4 && FilterRecipFrac <= 24) else $fatal(1, "filter.recip_frac: must be in [4, 24]");
   assert (FilterBandlimit >= 0 && FilterBandlimit < 2) else $fatal(1, "filter.bandlimit: unknown value");
+  assert (FilterWidthCap >= 0 && FilterWidthCap < 2) else $fatal(1, "filter.width_cap: unknown value");
   assert (CoordInt >= 1 && CoordInt <= 62 && CoordFrac >= 0 && CoordFrac <= 62 && CoordInt + CoordFrac <= 40)
     else $fatal(1, "formats.coord: int in [1, 62], frac in [0, 62], int + frac <= 40");
   assert (JacobianInt >= 1 && JacobianInt <= 62 && JacobianFrac >= 0 && JacobianFrac <= 62 && JacobianInt + JacobianFrac <= 40)

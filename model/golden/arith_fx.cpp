@@ -195,4 +195,8 @@ int64_t filterWidthFx(const Profile& p, const int64_t grad[3], const int64_t j[6
     return std::min(w, wmax);
 }
 
+int64_t widthCapFx(const Profile& p, int64_t w, int64_t wcap) {
+    return std::min(w, int64_t(fx::wrapUnsigned(uint64_t(wcap), p.widthBits())));
+}
+
 }  // namespace pst

@@ -66,6 +66,10 @@ int64_t accumulateGrad(const Profile& p, int64_t gradq, const std::vector<int64_
 //   W = min(norm, WMax): unsigned, contract::w_int_bits(Log2Clut) integer bits, WidthFrac fraction bits.
 int64_t filterWidthFx(const Profile& p, const int64_t grad[3], const int64_t j[6]);
 
+// The width cap (filter.width_cap profiles, rtl/width/pst_width_stage.sv): min(w, wcap), wcap the
+// register's low contract::w_width bits (unsigned, W's format; all ones: no cap).
+int64_t widthCapFx(const Profile& p, int64_t w, int64_t wcap);
+
 // floor(sqrt(x)) by the digit-by-digit (restoring) method of rtl/common/pst_isqrt.sv, two input bits
 // per step from the top. x < 2^126.
 uint64_t isqrtFx(unsigned __int128 x);

@@ -396,6 +396,19 @@ namespace {
 // table holds h at its entry's centre (1/8 from any lg nu in it, and from the range's ends for
 // the clamped ones): the entry is h at some lg nu within E of the reference's (clamped) one, rounded to 1/2^FadeFrac; alpha = the product
 // floored, clamped to 1.
+// The width cap (filter.width_cap): min(W, wcap) with wcap's low w_width bits (all ones: no cap).
+TEST(ArithFx, WidthCapIsTheMinimum) {
+    const Profile p = load("reduced");
+    const int64_t wmax = fx::maxUnsigned(p.widthBits());
+    for (int64_t w : {int64_t(0), int64_t(1), int64_t(77), wmax - 1, wmax}) {
+        EXPECT_EQ(widthCapFx(p, w, wmax), w);
+        EXPECT_EQ(widthCapFx(p, w, -1), w);   // the reset value: all ones
+        EXPECT_EQ(widthCapFx(p, w, 0), 0);
+        EXPECT_EQ(widthCapFx(p, w, 40), std::min<int64_t>(w, 40));
+        EXPECT_EQ(widthCapFx(p, w, (int64_t(1) << p.widthBits()) + 40), std::min<int64_t>(w, 40));  // high bits dropped
+    }
+}
+
 TEST(ArithFx, FadeWithinBoundOfReferenceIsotropic) {
     namespace c = contract;
     const double one = double(1 << c::kFadeFrac);

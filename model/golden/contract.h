@@ -20,6 +20,7 @@ enum class NoiseWorleySearch : int { None, Octant, Cube27 };  // noise.worley_se
 enum class NoiseSubband : int { None, Xy, Xz, Yz };  // noise.subband
 enum class GradNorm : int { Euclid, MaxHalfMin, L1 };  // filter.norm
 enum class FilterBandlimit : int { Off, Isotropic };  // filter.bandlimit
+enum class FilterWidthCap : int { Off, On };  // filter.width_cap
 
 // A signed two's-complement format: `intBits` integer bits including the sign, `fracBits`
 // fraction bits; value = integer / 2^fracBits.
@@ -118,6 +119,12 @@ struct ProfileParams {
     // fading the octave term toward its mean (register fm) and its gradient toward 0; enabled per
     // texture by control.bandlimit); off builds none
     FilterBandlimit filterBandlimit = FilterBandlimit::Off;
+    // filter-width cap (issue 44 part 2, beyond the paper): on builds the register wcap and a
+    // minimum after the filter width, W = min(W, wcap); the driver writes wcap = sqrt(12 sum_i
+    // a_i^2 sd(n)^2) N, the width of the box whose variance is the noise's whole variance, on a
+    // texture with width_cap and no non-constant quadric term, else the largest W (no cap); off
+    // builds neither
+    FilterWidthCap filterWidthCap = FilterWidthCap::Off;
     // [formats]
     // s, t, r
     FixedFormat coord = {12, 20};
@@ -173,6 +180,7 @@ enum Param : int {
     FilterNorm,
     FilterRecipFrac,
     FilterBandlimit,
+    FilterWidthCap,
     CoordInt,
     CoordFrac,
     JacobianInt,
@@ -204,6 +212,7 @@ inline constexpr const char* kNoiseWorleySearchNames[] = {"none", "octant", "cub
 inline constexpr const char* kNoiseSubbandNames[] = {"none", "xy", "xz", "yz"};
 inline constexpr const char* kFilterNormNames[] = {"euclid", "max_half_min", "l1"};
 inline constexpr const char* kFilterBandlimitNames[] = {"off", "isotropic"};
+inline constexpr const char* kFilterWidthCapNames[] = {"off", "on"};
 
 // A profile enum's name ("?" out of range) and its value by name (false: unknown name).
 constexpr const char* name(::pst::Datapath v) {
@@ -294,6 +303,17 @@ constexpr bool fromName(std::string_view s, ::pst::FilterBandlimit* out) {
         }
     return false;
 }
+constexpr const char* name(::pst::FilterWidthCap v) {
+    return int(v) >= 0 && int(v) < 2 ? kFilterWidthCapNames[int(v)] : "?";
+}
+constexpr bool fromName(std::string_view s, ::pst::FilterWidthCap* out) {
+    for (int i = 0; i < 2; ++i)
+        if (s == kFilterWidthCapNames[i]) {
+            *out = ::pst::FilterWidthCap(i);
+            return true;
+        }
+    return false;
+}
 
 enum class KeyKind { Range, Values, Enum, Format };
 struct KeySpec {
@@ -355,6 +375,7 @@ inline constexpr KeySpec kSchema[] = {
     {"filter", "norm", KeyKind::Enum, FilterNorm, 0, 2, {}, 3, kFilterNormNames, 0},
     {"filter", "recip_frac", KeyKind::Range, FilterRecipFrac, 4, 24, {}, 0, nullptr, 0},
     {"filter", "bandlimit", KeyKind::Enum, FilterBandlimit, 0, 1, {}, 2, kFilterBandlimitNames, 0},
+    {"filter", "width_cap", KeyKind::Enum, FilterWidthCap, 0, 1, {}, 2, kFilterWidthCapNames, 0},
     {"formats", "coord", KeyKind::Format, CoordInt, 0, 0, {}, 0, nullptr, 40},
     {"formats", "jacobian", KeyKind::Format, JacobianInt, 0, 0, {}, 0, nullptr, 40},
     {"formats", "matrix", KeyKind::Format, MatrixInt, 0, 0, {}, 0, nullptr, 32},
@@ -425,6 +446,8 @@ inline constexpr int kRegControlKindLsb = 1, kRegControlKindWidth = 2;
 inline constexpr int kRegControlBandlimitLsb = 3, kRegControlBandlimitWidth = 1;
 // 0x0001: active octaves (0..Octaves)
 inline constexpr uint16_t kRegActive = 0x0001;
+// 0x0002: filter-width cap (filter.width_cap profiles): W = min(W, wcap), unsigned in W's format (w_width bits, WidthFrac fraction bits); all ones: no cap
+inline constexpr uint16_t kRegWcap = 0x0002;
 // 0x0010 + k: quadric coefficient k = 0..9 (A..J), Quadric format
 inline constexpr uint16_t kRegQuadric = 0x0010;
 inline constexpr int kRegQuadricCount = 10;
@@ -517,6 +540,7 @@ inline constexpr const char* kParamNames[kNumParams] = {
     "FilterNorm",
     "FilterRecipFrac",
     "FilterBandlimit",
+    "FilterWidthCap",
     "CoordInt",
     "CoordFrac",
     "JacobianInt",
@@ -567,6 +591,7 @@ constexpr int paramValue(const ProfileParams& p, Param k) {
         case FilterNorm: return int(p.filterNorm);
         case FilterRecipFrac: return p.filterRecipFrac;
         case FilterBandlimit: return int(p.filterBandlimit);
+        case FilterWidthCap: return int(p.filterWidthCap);
         case CoordInt: return p.coord.intBits;
         case CoordFrac: return p.coord.fracBits;
         case JacobianInt: return p.jacobian.intBits;
@@ -618,6 +643,7 @@ constexpr void setParam(ProfileParams& p, Param k, int v) {
         case FilterNorm: p.filterNorm = ::pst::GradNorm(v); break;
         case FilterRecipFrac: p.filterRecipFrac = v; break;
         case FilterBandlimit: p.filterBandlimit = ::pst::FilterBandlimit(v); break;
+        case FilterWidthCap: p.filterWidthCap = ::pst::FilterWidthCap(v); break;
         case CoordInt: p.coord.intBits = v; break;
         case CoordFrac: p.coord.fracBits = v; break;
         case JacobianInt: p.jacobian.intBits = v; break;

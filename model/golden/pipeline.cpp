@@ -28,7 +28,7 @@ GoldenPipeline::GoldenPipeline(const Profile& profile)
     : profile_(profile), oct_(profile.octaves), clut_(std::make_unique<ClutFilterFx>(profile)) {}
 GoldenPipeline::~GoldenPipeline() = default;
 GoldenPipeline::GoldenPipeline(const GoldenPipeline& o)
-    : profile_(o.profile_), fault_(o.fault_), ctrl_(o.ctrl_), active_(o.active_), oct_(o.oct_),
+    : profile_(o.profile_), fault_(o.fault_), ctrl_(o.ctrl_), active_(o.active_), wcap_(o.wcap_), oct_(o.oct_),
       clut_(std::make_unique<ClutFilterFx>(*o.clut_)) {
     std::copy(std::begin(o.quad_), std::end(o.quad_), quad_);
     std::copy(std::begin(o.worley_), std::end(o.worley_), worley_);
@@ -49,6 +49,8 @@ void GoldenPipeline::write(uint16_t addr, uint32_t data) {
         if (!p.bandlimit()) ctrl_ &= ~(1u << c::kRegControlBandlimitLsb);  // no fade unit: the bit is not kept
     } else if (addr == c::kRegActive) {
         active_ = int(fx::wrapUnsigned(data, c::octave_count_bits(p.octaves)));  // as many bits as the RTL
+    } else if (addr == c::kRegWcap) {
+        if (p.widthCap()) wcap_ = int64_t(fx::wrapUnsigned(data, p.widthBits()));  // W's format
     } else if (addr >= c::kRegQuadric && addr < c::kRegQuadric + c::kRegQuadricCount) {
         quad_[addr - c::kRegQuadric] = fx::wrapSigned(data, p.quadric.width());
     } else if (addr >= c::kRegWorley && addr < c::kRegWorley + c::kRegWorleyCount) {
@@ -127,6 +129,8 @@ PixelFx GoldenPipeline::eval(const FragmentFx& fr, UnitTrace* trace) const {
 
     // Unit 5: filter width.
     t.w = filterWidthFx(p, t.grad, fr.j);
+    // The width cap (filter.width_cap): W = min(W, wcap), after the norm (pst_width_stage).
+    if (p.widthCap()) t.w = widthCapFx(p, t.w, wcap_);
     if (fault_ == Unit::FilterWidth) t.w = int64_t(fx::wrapUnsigned(t.w + 1, p.widthBits()));
 
     // Unit 6: colour-table filter.

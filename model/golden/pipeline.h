@@ -84,6 +84,7 @@ private:
                 gm[contract::kRegOctaveGmCount] = {}, lgm = 0, fm = 0;
     };
     int64_t fade_[contract::kFadeEntries] = {};  // the fade table (filter.bandlimit profiles)
+    int64_t wcap_ = -1;  // the filter-width cap (filter.width_cap profiles; -1: reset, all ones)
     std::vector<Octave> oct_;
     std::unique_ptr<ClutFilterFx> clut_;
 };

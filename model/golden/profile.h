@@ -43,6 +43,8 @@ struct Profile : ProfileParams {
     int widthBits() const { return contract::w_width(log2Clut, widthFrac); }
     // filter.bandlimit = "isotropic": the fade unit (pst_octave_fade) is built.
     bool bandlimit() const { return filterBandlimit == FilterBandlimit::Isotropic; }
+    // filter.width_cap = "on": the width cap (register wcap, the minimum in pst_width_stage) is built.
+    bool widthCap() const { return filterWidthCap == FilterWidthCap::On; }
 };
 
 // "" when a and b describe the same hardware (every key equal), else the first key that

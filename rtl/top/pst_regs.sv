@@ -12,6 +12,10 @@
 //                                    WorleyCoefInt.WorleyCoefFrac) are held (else worley_o is 0).
 //   FilterBandlimit                  FilterBandlimitIsotropic: the fade table and the octaves' lg ||M||
 //                                    registers and control.bandlimit are kept; otherwise none (zeros).
+//   FilterWidthCap, Log2Clut, WidthFrac
+//                                    FilterWidthCapOn: the width cap register wcap (W's format,
+//                                    w_width(Log2Clut, WidthFrac) bits) is kept; otherwise none
+//                                    (wcap_o all ones: no cap).
 //
 // Outputs (flat vectors; octave i's block at [i*W +: W], element k of a block at [k*E +: E]):
 //   clamp_o, kind_o    control: wrap mode (1 clamp) and filter kind
@@ -21,6 +25,7 @@
 //   worley_o           C_0..C_3 of the worley unit
 //   bl_o, fade_o, oct_lgm_o            control.bandlimit, the fade table, lg ||M||_2 (FilterBandlimit)
 //   oct_fm_o                           the octave terms' means a_i mean(n), F format (FilterBandlimit)
+//   wcap_o                             the filter-width cap, W's format (FilterWidthCap)
 `include "pst_pkg.sv"
 `include "pst_params.svh"
 `default_nettype none
@@ -46,7 +51,8 @@ module pst_regs #(
   localparam int WCW = pst_pkg::WorleyCoefInt + pst_pkg::WorleyCoefFrac,
   localparam int FB  = pst_pkg::FadeBits,
   localparam int FE  = pst_pkg::FadeEntries,
-  localparam int LMW = pst_pkg::FadeLgBits
+  localparam int LMW = pst_pkg::FadeLgBits,
+  localparam int WW  = pst_pkg::w_width(Log2Clut, WidthFrac)   // W's format (the width cap)
 ) (
   input  logic                       clk_i,
   input  logic                       rst_ni,
@@ -65,7 +71,8 @@ module pst_regs #(
   output logic                       bl_o,
   output logic [FE*FB-1:0]           fade_o,
   output logic [Octaves*LMW-1:0]     oct_lgm_o,
-  output logic [Octaves*FW-1:0]      oct_fm_o
+  output logic [Octaves*FW-1:0]      oct_fm_o,
+  output logic [WW-1:0]              wcap_o
 );
 
   localparam int CB = pst_pkg::RegControlBits;
@@ -138,6 +145,16 @@ module pst_regs #(
     assign oct_fm_o  = '0;
     logic unused_bl;
     assign unused_bl = ctrl_q[pst_pkg::RegControlBandlimitLsb];
+  end
+
+  // The filter-width cap (reset to all ones: no cap until the driver writes one).
+  if (FilterWidthCap == pst_pkg::FilterWidthCapOn) begin : g_wcap
+    always_ff @(posedge clk_i or negedge rst_ni) begin
+      if (!rst_ni) wcap_o <= {WW{1'b1}};
+      else if (we_i && addr_i == pst_pkg::RegWcap) wcap_o <= wdata_i[WW-1:0];
+    end
+  end else begin : g_no_wcap
+    assign wcap_o = {WW{1'b1}};
   end
 
   // Assertions

@@ -121,12 +121,15 @@ module pst_top #(
   logic [Octaves*(FInt+FFrac)-1:0]        oct_fm;
   logic                          bl;
   logic [pst_pkg::FadeEntries*pst_pkg::FadeBits-1:0] fade;
+  // FilterWidthCap on: the filter-width cap, W = min(W, wcap) (register wcap in pst_regs, the
+  // minimum in pst_width_stage); off: none (wcap all ones, unused).
+  logic [WW-1:0]                 wcap;
   pst_regs #(`PST_REGS_PASS, .Worley(NoiseWorleySearch != pst_pkg::NoiseWorleySearchNone)
   ) u_regs (.clk_i, .rst_ni, .we_i (reg_we_i), .addr_i (reg_addr_i), .wdata_i (reg_wdata_i),
     .clamp_o (clamp), .kind_o (kind), .active_o (active), .quad_o (quad), .oct_m_o (oct_m),
     .oct_o_o (oct_o), .oct_a_o (oct_a), .oct_gm_o (oct_gm), .worley_o (worley_c),
     .bl_o (bl), .fade_o (fade),
-    .oct_lgm_o (oct_lgm), .oct_fm_o (oct_fm));
+    .oct_lgm_o (oct_lgm), .oct_fm_o (oct_fm), .wcap_o (wcap));
 
   // [A] fragment -> octave stage -> [B]
   assign a_d.tag = frag_tag_i;
@@ -149,7 +152,7 @@ module pst_top #(
   pst_width_stage #(`PST_WIDTH_STAGE_PASS, .SideW(3*GW + FW + TB)
   ) u_width (.clk_i, .rst_ni, .valid_i (b_valid), .ready_o (b_ready), .grad_i (b_q.grad),
     .j_i (b_q.j), .side_i ({b_q.grad, b_q.f, b_q.tag}), .valid_o (c_in_valid),
-    .ready_i (c_in_ready), .w_o (c_d.w), .side_o ({c_d.grad, c_d.f, c_d.tag}), .busy_o (width_busy));
+    .ready_i (c_in_ready), .wcap_i (wcap), .w_o (c_d.w), .side_o ({c_d.grad, c_d.f, c_d.tag}), .busy_o (width_busy));
   pst_pipe_reg #(.Width($bits(c_d)), .Skid(Skid)) u_reg_c (.clk_i, .rst_ni, .valid_i (c_in_valid),
     .ready_o (c_in_ready), .data_i (c_d), .valid_o (c_valid), .ready_i (c_ready), .data_o (c_q));
 

@@ -8,6 +8,10 @@
 // it; valid_o, side_o come WidthRegs cycles later, and the pipeline stalls while [C] refuses
 // its end (busy_o: a fragment is in the registers).
 //
+// Width cap (FilterWidthCap = on, the profile's filter.width_cap): w_o = min(W, wcap_i), one
+// comparator and multiplexer after pst_filter_width's last step (docs/HARDWARE.md unit 5);
+// wcap_i is a register (pst_regs), steady while fragments flow. Off: w_o = W, wcap_i unused.
+//
 // Parameters: the profile's formats and choices (pst_top's header).
 `include "pst_pkg.sv"
 `include "pst_params.svh"
@@ -29,6 +33,7 @@ module pst_width_stage #(
   input  logic [SideW-1:0] side_i,   // carried to side_o with the fragment
   output logic            valid_o,
   input  logic            ready_i,
+  input  logic [WW-1:0]   wcap_i,   // the width cap (FilterWidthCap on; register wcap)
   output logic [WW-1:0]   w_o,
   output logic [SideW-1:0] side_o,
   output logic            busy_o
@@ -44,10 +49,19 @@ module pst_width_stage #(
     .clk_i, .rst_ni, .valid_i, .done_i (done), .ready_i, .step_o (step_q), .step_next_o (unused_step_next)
   );
 
+  logic [WW-1:0] w;   // W = |grad_x f| N, before the cap
   pst_filter_width #(`PST_FILTER_WIDTH_PASS, .Serial(Serial), .Regs(Regs)) u_width (
     .clk_i, .rst_ni, .step_i (step_q), .adv_i (valid_i & ~done), .en_i (en), .done_o (done),
-    .grad_i, .j_i, .w_o
+    .grad_i, .j_i, .w_o (w)
   );
+
+  if (FilterWidthCap == pst_pkg::FilterWidthCapOn) begin : g_cap
+    assign w_o = (w > wcap_i) ? wcap_i : w;
+  end else begin : g_no_cap
+    assign w_o = w;
+    logic unused_wcap;
+    assign unused_wcap = ^wcap_i;
+  end
 
   logic en;   // the pipeline advances (Regs > 0)
   logic unused_move;

@@ -40,7 +40,8 @@ def test_parameters_of_reduced():
     assert p["NoiseWorleySearch"] == 0 and p["NoiseWorleyPoints"] == 4 and p["NoiseWorleyOrder"] == 2
     assert p["NoiseSubband"] == 0 and p["NoiseSubbandOrientations"] == 0   # no subband unit
     assert p["NoiseGradFrac"] == 10   # out_frac 8 + guard_bits 2: every node bit
-    assert len(p) == 45
+    assert p["FilterWidthCap"] == 0   # no width cap
+    assert len(p) == 46
 
 
 def test_enum_tables():

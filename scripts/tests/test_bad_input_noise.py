@@ -185,3 +185,47 @@ def test_44_what_the_rule_does_not_cover_renders(tmp_path, noise, prof, filt, in
                   "-o", out, "-q")
     assert rc == 0, err
     assert out.is_dir() and any(out.iterdir())
+
+
+# 44 part 2, the filter-width cap (docs/HARDWARE.md unit 5; model/texture.h widthCapOf): the scene key
+# width_cap ("on" / "off") and --width-cap; a profile without the unit (filter.width_cap = "off")
+# refuses a texture that asks for it, naming the scene's line; a bad value is refused; a profile
+# with the unit renders it.
+def cap_scene(tmp, value):
+    s = subband_scene(tmp, '{ basis = "rayshade" }')
+    s.write_text(s.read_text().replace('filter = "sat"\n', f'filter = "sat"\nwidth_cap = "{value}"\n'))
+    return s
+
+
+def test_44_width_cap_bad_value(tmp_path):
+    s = cap_scene(tmp_path, "yes")
+    out = tmp_path / "out"
+    refused(["render", s, "--size", 8, "-o", out, "-q"],
+            re.escape(str(s)) + r":\d+: textures\.t\.width_cap: unknown value 'yes' \(expected on or off\)", [out])
+    rc, err = pst("render", scene(tmp_path), "--width-cap", "yes", "--size", 8, "-o", out, "-q")
+    assert rc == 2 and "--width-cap: yes not in {on,off}" in err and not out.exists(), err
+    refused(["render", scene(tmp_path), "--variants", "sat+cup", "--size", 8, "-o", out, "-q"],
+            r"--variants: 'cup' is not a bandlimit", [out])
+
+
+def test_44_width_cap_needs_the_unit(tmp_path):
+    s = cap_scene(tmp_path, "on")
+    out = tmp_path / "out"
+    refused(["render", s, "--profile", "reduced", "--model", "golden", "--size", 8, "-o", out, "-q"],
+            re.escape(str(s)) + r":\d+: textures\.t\.width_cap: profile 'reduced' has no width-cap unit "
+            r"\(filter\.width_cap = \"off\"\)", [out])
+    refused(["render", scene(tmp_path), "--width-cap", "on", "--profile", "reduced", "--model", "golden",
+             "--size", 8, "-o", out, "-q"],
+            r"texture 't': width_cap: profile 'reduced' has no width-cap unit", [out])
+
+
+def test_44_width_cap_renders_on_its_unit(tmp_path):
+    out = tmp_path / "out"
+    rc, err = pst("render", cap_scene(tmp_path, "on"), "--profile",
+                  ROOT / "sim" / "test_profiles" / "reduced_bandlimit.toml", "--model", "golden", "--size", 8,
+                  "-o", out, "-q")
+    assert rc == 0, err
+    assert out.is_dir() and any(out.iterdir())
+    rc, err = pst("render", scene(tmp_path), "--variants", "sat+cap,sat+isotropic+cap", "--size", 8,
+                  "-o", tmp_path / "ref", "-q")
+    assert rc == 0, err

@@ -11,6 +11,10 @@ does against the truth; shown, not judged). The run of `sat` without bandlimit a
 reference's options (`--variants`, REF_VARIANTS). The hardware option of profile P is column
 `P:KIND[+B]`; the reference's exact form of each option is the same run's `filtered` stream
 (reference model, double), column `ref:KIND[+B]`.
+The filter-width cap (issue 44 part 2, docs/HARDWARE.md unit 5): per bandlimit group, the profiles
+with the unit (filter.width_cap = "on" in their file) also run `sat` with `--width-cap on`, column
+`P:sat[+B]+cap` beside `ref:sat[+B]+cap` (that run's reference stream); the reference's `sat+cap`
+is also a variant of the plain `sat` run (REF_VARIANTS), for the bases whose profiles lack the unit.
 
 Figures (pstlib.figures.flicker): RMS = mean over frames of the RMS against the truth; flicker = RMS
 over frames of the temporal RMS error against the truth's own frame-to-frame change; "x" =
@@ -34,6 +38,7 @@ import json
 import math
 import pathlib
 import time
+import tomllib
 
 from .. import atomic, procs
 from ..paths import ROOT, profile_path
@@ -55,11 +60,13 @@ HW_PROFILES = {
 }
 REF_EXACT = {"rayshade": "sat+isotropic", "perlin2002": "sat", "worley": "sat", "subband": "sat+anisotropic"}
 REF_VARIANTS = {
-    "rayshade": ["mip", "mip_linear", "sat+footprint", "sat+isotropic"],
-    "perlin2002": ["mip", "mip_linear", "sat+footprint", "sat+isotropic"],
-    "worley": ["mip", "mip_linear", "sat+footprint", "sat+isotropic"],
-    "subband": ["mip", "mip_linear", "sat+footprint", "sat+isotropic", "sat+anisotropic"],
+    "rayshade": ["mip", "mip_linear", "sat+footprint", "sat+isotropic", "sat+cap"],
+    "perlin2002": ["mip", "mip_linear", "sat+footprint", "sat+isotropic", "sat+cap"],
+    "worley": ["mip", "mip_linear", "sat+footprint", "sat+isotropic", "sat+cap"],
+    "subband": ["mip", "mip_linear", "sat+footprint", "sat+isotropic", "sat+anisotropic", "sat+cap"],
 }
+# The filter-width cap's run suffix (`--width-cap on`; the hardware's filter.width_cap unit).
+CAP = "+cap"
 GOAL_RATIO = 4.0
 # Below this unfiltered flicker a sequence has little aliasing to remove (e.g. a grazing flight
 # whose ground is all far off): its ratios are marked "quiet" in the table (not a flag).
@@ -85,6 +92,18 @@ def option_name(kind: str, bandlimit: str) -> str:
     return kind if bandlimit == "off" else f"{kind}+{bandlimit}"
 
 
+def _profile_file(p) -> pathlib.Path:
+    f = profile_path(p)
+    return f if f.exists() else ROOT / "sim" / "test_profiles" / f"{p}.toml"
+
+
+@functools.lru_cache(maxsize=64)
+def has_width_cap(profile: str) -> bool:
+    """Whether PROFILE's file builds the filter-width cap (filter.width_cap = "on")."""
+    f = _profile_file(profile)
+    return f.exists() and tomllib.loads(f.read_text()).get("filter", {}).get("width_cap") == "on"
+
+
 def runs_of(basis: str, interp: str = "step") -> list:
     """[(run name, filter kind, bandlimit, [profiles], [reference variants])] of a sequence (colour
     map INTERP): a profile whose option is refused (refused()) is left out; a run left without a
@@ -101,6 +120,11 @@ def runs_of(basis: str, interp: str = "step") -> list:
             kept = [] if refused(basis, kind, bl, interp) else profs
             if kept or var:
                 out.append((option_name(kind, bl), kind, bl, kept, var))
+    # The width cap: sat again with --width-cap on, the group's profiles that have the unit.
+    for bl, profs in groups.items():
+        capped = [p for p in profs if has_width_cap(p)]
+        if capped:
+            out.append((option_name("sat", bl) + CAP, "sat", bl, capped, []))
     return out
 
 
@@ -113,9 +137,11 @@ def refused_options(basis: str, interp: str) -> list:
             if refused(basis, kind, bl, interp)]
 
 
-def animate_cmd(pst, scene, out, kind, bl, profs, variants, frames, size, truth, model, threads):
+def animate_cmd(pst, scene, out, kind, bl, profs, variants, frames, size, truth, model, threads, cap=False):
     cmd = [pst, "animate", scene, "--frames", frames, "--size", size, "--truth", truth, "--no-video", "-q",
            "-j", threads, "-o", out, "--filter", kind, "--bandlimit", bl]
+    if cap:
+        cmd += ["--width-cap", "on"]
     for p in profs:
         cmd += ["--profile", p]
     if profs:
@@ -210,10 +236,7 @@ def inputs_key(pst, profiles) -> str:
     golden model and verilated RTL) and the text of each PROFILES file (a changed profile or RTL
     must not reuse a stale run)."""
     parts = []
-    files = []
-    for p in profiles:
-        f = profile_path(p)
-        files.append(f if f.exists() else ROOT / "sim" / "test_profiles" / f"{p}.toml")
+    files = [_profile_file(p) for p in profiles]
     for f in [pathlib.Path(pst)] + files:
         st = f.stat() if f.exists() else None
         parts.append(f"{f.name}:{_file_sha(str(f), st.st_mtime_ns, st.st_size) if st else 'missing'}")
@@ -230,7 +253,7 @@ def run_sequence(pst, scene: pathlib.Path, feats: dict, out: pathlib.Path, truth
     for run, kind, bl, profs, variants in runs_of(feats["basis"], feats.get("interp", "step")):
         rdir = out / run
         cmd = animate_cmd(pst, scene, rdir, kind, bl, profs, variants, feats["frames"], feats["size"], truth, model,
-                          threads)
+                          threads, cap=run.endswith(CAP))
         key = _digest(text + "\0" + inputs_key(pst, profs), [c if c != str(rdir) else "OUT" for c in cmd])
         stamp = rdir / "run.sha256"
         if not fresh and stamp.is_file() and stamp.read_text().strip() == key and (rdir / "flicker.json").is_file():

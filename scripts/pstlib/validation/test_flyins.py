@@ -113,6 +113,27 @@ def test_runs_cover_every_hardware_option_once():
     assert cmd[:3] == ["pst", "animate", "s.toml"] and "--profile" in cmd and cmd[cmd.index("--model") + 1] == "golden"
 
 
+def test_width_cap_runs_on_the_profiles_with_the_unit():
+    # issue 44 part 2: sat with --width-cap on, per bandlimit group, the profiles whose file has
+    # filter.width_cap = "on"; the reference's sat+cap rides the plain sat run as a variant
+    assert flyin_table.has_width_cap("reduced_worley") and not flyin_table.has_width_cap("full")
+    for basis in flyins.BASES:
+        runs = flyin_table.runs_of(basis)
+        cap = [r for r in runs if r[0].endswith(flyin_table.CAP)]
+        assert all(kind == "sat" and ps and all(flyin_table.has_width_cap(x) for x in ps) and not v
+                   for _, kind, _, ps, v in cap)
+        with_unit = {p for p, _ in flyin_table.HW_PROFILES[basis] if flyin_table.has_width_cap(p)}
+        assert {x for r in cap for x in r[3]} == with_unit
+        assert "sat+cap" in flyin_table.REF_VARIANTS[basis]
+    assert [r[0] for r in flyin_table.runs_of("worley") if r[0].endswith("+cap")] == ["sat+cap"]
+    assert [r[0] for r in flyin_table.runs_of("rayshade") if r[0].endswith("+cap")] == ["sat+isotropic+cap"]
+    cmd = flyin_table.animate_cmd("pst", "s.toml", "o", "sat", "off", ["reduced_worley"], [], 16, 48, 8, "golden", 2,
+                                  cap=True)
+    assert cmd[cmd.index("--width-cap") + 1] == "on"
+    assert "--width-cap" not in flyin_table.animate_cmd("pst", "s.toml", "o", "sat", "off", ["reduced_worley"], [],
+                                                        16, 48, 8, "golden", 2)
+
+
 def test_refused_options_left_out_of_the_runs_and_listed():
     # the MIP map on a ramp: refused on worley, subband without its filter; not on rayshade, perlin2002,
     # a step map, or the subband unit's anisotropic filter

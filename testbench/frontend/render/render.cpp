@@ -50,7 +50,7 @@ inline double unit(uint64_t h) { return double(h >> 11) * (1.0 / 900719925474099
 // The filtered colour of one fragment with the texture's filter kind and bandlimit replaced;
 // f and gradS are the plain texture's (evalF). *w: the filter width used (entries / N).
 glm::dvec4 shadeFiltered(const Texture& tex, const Fragment& fr, double f, glm::dvec3 gradS, FilterKind kind,
-                         Bandlimit bandlimit, double* w) {
+                         Bandlimit bandlimit, bool widthCap, double* w) {
     double fb = f, sd = 0;  // bandlimited octaves: only the filtered image
     Texture const* t = &tex;
     Texture copy;
@@ -62,7 +62,9 @@ glm::dvec4 shadeFiltered(const Texture& tex, const Fragment& fr, double f, glm::
     if (bandlimit != Bandlimit::Off) fb = evalFBandlimited(*t, fr.s, fr.dsdx, fr.dsdy, &gradS, &sd);
     *w = bandlimit != Bandlimit::Off ? bandlimitedWidth(*t, gradS, fr.dsdx, fr.dsdy, sd)
                                      : filterWidth(gradS, fr.dsdx, fr.dsdy, tex.norm);
-    return filterColour(tex.clut, fb, *w, bandlimitedFootprint(*t, footprintWidths(gradS, fr.dsdx, fr.dsdy), sd), kind);
+    glm::dvec2 wxy = bandlimitedFootprint(*t, footprintWidths(gradS, fr.dsdx, fr.dsdy), sd);
+    if (widthCap) capWidth(tex, w, &wxy);
+    return filterColour(tex.clut, fb, *w, wxy, kind);
 }
 
 }  // namespace
@@ -70,14 +72,19 @@ glm::dvec4 shadeFiltered(const Texture& tex, const Fragment& fr, double f, glm::
 bool parseVariant(const std::string& spec, FilterVariant* out, std::string* why) {
     FilterVariant v;
     v.name = spec;
-    const size_t plus = spec.find('+');
-    const std::string kind = spec.substr(0, plus);
+    std::string body = spec;
+    if (body.size() > 4 && body.compare(body.size() - 4, 4, "+cap") == 0) {
+        v.widthCap = true;   // the filter-width cap (issue 44 part 2)
+        body.resize(body.size() - 4);
+    }
+    const size_t plus = body.find('+');
+    const std::string kind = body.substr(0, plus);
     if (!parseFilterKind(kind, &v.filter)) {
         *why = "'" + kind + "' is not a filter kind (none, mip, mip_linear, sat, box, trapezoid)";
         return false;
     }
-    if (plus != std::string::npos && !parseBandlimit(spec.substr(plus + 1), &v.bandlimit)) {
-        *why = "'" + spec.substr(plus + 1) + "' is not a bandlimit (off, footprint, isotropic, anisotropic)";
+    if (plus != std::string::npos && !parseBandlimit(body.substr(plus + 1), &v.bandlimit)) {
+        *why = "'" + body.substr(plus + 1) + "' is not a bandlimit (off, footprint, isotropic, anisotropic)";
         return false;
     }
     *out = v;
@@ -147,10 +154,11 @@ RenderResult render(const Scene& scene, const RenderOptions& opt) {
                 glm::dvec3 gradS;
                 const double f = evalF(tex, fr.s, &gradS);
                 double w = 0, wv = 0;
-                over(res.filtered.pixel(x, y), shadeFiltered(tex, fr, f, gradS, tex.filter, tex.bandlimit, &w));
+                over(res.filtered.pixel(x, y), shadeFiltered(tex, fr, f, gradS, tex.filter, tex.bandlimit, tex.widthCap, &w));
                 for (size_t v = 0; v < opt.variants.size(); ++v)
                     over(res.variants[v].pixel(x, y),
-                         shadeFiltered(tex, fr, f, gradS, opt.variants[v].filter, opt.variants[v].bandlimit, &wv));
+                         shadeFiltered(tex, fr, f, gradS, opt.variants[v].filter, opt.variants[v].bandlimit,
+                                       opt.variants[v].widthCap, &wv));
                 over(res.unfiltered.pixel(x, y), tex.clut.sample(f));
                 if (l == 0) res.filterWidth.pixel(x, y)[0] = float(w * tex.clut.size());
                 ++n;

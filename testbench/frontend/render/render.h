@@ -27,12 +27,14 @@ struct Image {
 };
 
 // A filter option applied to every texture of a scene (the ground-truth comparison of filters):
-// the filter kind and the bandlimited octaves. Spelled "KIND" or "KIND+BANDLIMIT" (parseVariant),
-// e.g. "sat", "trapezoid", "sat+footprint", "trapezoid+isotropic".
+// the filter kind, the bandlimited octaves and the filter-width cap. Spelled "KIND[+BANDLIMIT][+cap]"
+// (parseVariant), e.g. "sat", "trapezoid", "sat+footprint", "trapezoid+isotropic", "sat+cap",
+// "sat+isotropic+cap".
 struct FilterVariant {
     std::string name;
     FilterKind filter = FilterKind::Sat;
     Bandlimit bandlimit = Bandlimit::Off;
+    bool widthCap = false;   // w = min(w, widthCapOf(texture)) (issue 44 part 2)
 };
 // false (and *why set) for a malformed spelling.
 bool parseVariant(const std::string& spec, FilterVariant* out, std::string* why);

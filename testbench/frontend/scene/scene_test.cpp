@@ -258,6 +258,21 @@ TEST(Scene, Bandlimit) {
     expectError(bad, {"bad.toml:9: textures.t.bandlimit: unknown value 'on' (expected off, footprint, isotropic or anisotropic)"});
 }
 
+TEST(Scene, WidthCap) {
+    std::string text = kMinimal;
+    EXPECT_FALSE(parseScene(text, "min.toml").textures[0].widthCap);
+    text.insert(text.find("colormap ="), "width_cap = \"on\"\n");
+    const Scene sc = parseScene(text, "min.toml");
+    EXPECT_TRUE(sc.textures[0].widthCap);
+    EXPECT_EQ(sc.textures[0].widthCapSource, "min.toml:9: textures.t.width_cap");
+    std::string bad = kMinimal;
+    bad.insert(bad.find("colormap ="), "width_cap = true\n");
+    expectError(bad, {"bad.toml:9: textures.t.width_cap"});
+    bad = kMinimal;
+    bad.insert(bad.find("colormap ="), "width_cap = \"yes\"\n");
+    expectError(bad, {"bad.toml:9: textures.t.width_cap: unknown value 'yes' (expected on or off)"});
+}
+
 TEST(Scene, TextureBlockFile) {
     const std::string text = R"(
 quadric = { A = 50.0, E = 50.0 }

@@ -10,6 +10,15 @@
 
 namespace pst::scene_detail {
 
+namespace {
+// "on" / "off" (a texture's width_cap).
+bool parseOnOff(const std::string& s, bool* out) {
+    if (s != "on" && s != "off") return false;
+    *out = s == "on";
+    return true;
+}
+}  // namespace
+
 // --- Colour map: a ramp of keys [position, r, g, b(, a)] sampled into N entries ----------
 ColorMap parseColorMap(const Ctx& c, const toml::table& t, const std::string& path) {
     checkKeys(c, t, path, {"size", "wrap", "interp", "ramp"});
@@ -55,7 +64,7 @@ ColorMap parseColorMap(const Ctx& c, const toml::table& t, const std::string& pa
 
 // --- Texture block (eq. 1): quadric, octaves, noise variant, filter, colour map -----------
 Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string& path) {
-    checkKeys(c, t, path, {"quadric", "octaves", "noise", "filter", "norm", "colormap", "bandlimit"});
+    checkKeys(c, t, path, {"quadric", "octaves", "noise", "filter", "norm", "colormap", "bandlimit", "width_cap"});
     Texture tex;
     if (const toml::node* qn = find(t, "quadric")) {
         const std::string qp = join(path, "quadric");
@@ -162,6 +171,9 @@ Texture parseTextureTable(const Ctx& c, const toml::table& t, const std::string&
     if (std::string why = bandlimitUnsupported(tex, tex.bandlimit); !why.empty())
         c.fail(find(t, "bandlimit"), join(path, "bandlimit"), why);
     if (const toml::node* bn = find(t, "bandlimit")) tex.bandlimitSource = c.at(bn, join(path, "bandlimit"));
+    // The filter-width cap (issue 44 part 2): "on" or "off" (model/texture.h widthCapOf).
+    tex.widthCap = getEnum(c, t, path, "width_cap", tex.widthCap, parseOnOff, "on or off");
+    if (const toml::node* wn = find(t, "width_cap")) tex.widthCapSource = c.at(wn, join(path, "width_cap"));
     tex.filter = getEnum(c, t, path, "filter", tex.filter, parseFilterKind, "none, mip, mip_linear, sat, box or trapezoid");
     tex.norm = getEnum(c, t, path, "norm", tex.norm, parseGradNorm, "euclid, max_half_min or l1");
     tex.clut = parseColorMap(c, requireTable(c, t, path, "colormap"), join(path, "colormap"));

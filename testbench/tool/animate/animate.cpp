@@ -93,6 +93,10 @@ int runAnimate(const AnimateArgs& a) {
                     throw InputError("--bandlimit: " + a.bandlimit + ": texture '" + t.name + "': " + why);
             }
             if (!a.filter.empty()) parseFilterKind(a.filter, &t.filter);
+            if (!a.widthCap.empty()) {
+                t.widthCap = a.widthCap == "on";
+                t.widthCapSource.clear();
+            }
         }
     };
     Scene still = loadScene(a.scene, a.size, a.size);
@@ -202,6 +206,7 @@ int runAnimate(const AnimateArgs& a) {
     j["scene"] = a.scene;
     j["title"] = still.title;
     j["bandlimit"] = a.bandlimit;
+    j["width_cap"] = a.widthCap;
     j["filter"] = a.filter;
     j["frames"] = frames;
     j["fps"] = fps;

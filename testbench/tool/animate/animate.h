@@ -25,6 +25,7 @@ struct AnimateArgs {
     bool video = true;
     std::string bandlimit;       // "": as the scene says; else every texture's (parseBandlimit)
     std::string filter;          // "": as the scene says; else every texture's filter kind
+    std::string widthCap;        // "": as the scene says; "on" / "off": every texture's width cap
     std::vector<FilterVariant> variants;  // extra reference streams (named by the variant)
     std::vector<std::string> profiles;
     std::string model = "rtl";   // rtl | golden

@@ -24,7 +24,7 @@ Command registerAnimate(CLI::App& app) {
     animate->add_option("-o,--out", an->outDir, "Output folder (default out/anim/<scene name>)");
     animate->add_option("-j,--threads", an->threads, "Threads (0: all cores)")->check(CLI::Range(0, 256));
     animate->add_flag("--no-video", flags->first, "PNG frames and flicker.json only");
-    addTextureOverrideOptions(animate, an->bandlimit, an->filter);
+    addTextureOverrideOptions(animate, an->bandlimit, an->filter, an->widthCap);
     animate->add_option("--variants", *variants, "Also a reference stream per KIND[+BANDLIMIT] (every texture's filter "
                         "and bandlimit replaced), with its flicker")
         ->delimiter(',');

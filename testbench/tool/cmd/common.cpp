@@ -44,13 +44,17 @@ void addProfileOptions(CLI::App* sc, std::vector<std::string>& profiles, std::st
     sc->add_option("--model", model, "Hardware model for --profile: rtl or golden")->check(CLI::IsMember({"rtl", "golden"}));
 }
 
-void addTextureOverrideOptions(CLI::App* sc, std::string& bandlimit, std::string& filter) {
+void addTextureOverrideOptions(CLI::App* sc, std::string& bandlimit, std::string& filter, std::string& widthCap) {
     sc->add_option("--bandlimit", bandlimit, "Every texture's bandlimited octaves: off, footprint, isotropic or "
                    "anisotropic (scenes/README.md; default: as the scene says)")
         ->check(CLI::IsMember(kBandlimitNames));
     sc->add_option("--filter", filter, "Every texture's filter kind: none, mip, mip_linear, sat, box or trapezoid "
                    "(default: as the scene says)")
         ->check(CLI::IsMember(kFilterNames));
+    sc->add_option("--width-cap", widthCap, "Every texture's filter-width cap: on or off (w <= sqrt(12 sum a_i^2) sd(n), "
+                   "none with a non-constant quadric; docs/HARDWARE.md unit 5; a --profile needs filter.width_cap = "
+                   "\"on\"; default: as the scene says)")
+        ->check(CLI::IsMember(std::vector<std::string>{"on", "off"}));
 }
 
 bool checkTraceOptions(const CLI::App* sc, const std::string& trace, const std::vector<std::string>& profiles,
@@ -107,8 +111,13 @@ std::vector<FilterVariant> parseVariants(const std::vector<std::string>& specs) 
     return out;
 }
 
-void overrideTextures(Scene& scene, const std::string& bandlimit, const std::string& filter) {
+void overrideTextures(Scene& scene, const std::string& bandlimit, const std::string& filter,
+                      const std::string& widthCap) {
     for (auto& t : scene.textures) {
+        if (!widthCap.empty()) {
+            t.widthCap = widthCap == "on";
+            t.widthCapSource.clear();   // the option's, not the scene line's
+        }
         if (!bandlimit.empty()) {
             parseBandlimit(bandlimit, &t.bandlimit);
             t.bandlimitSource.clear();   // the value is the option's, not the scene line's

@@ -65,8 +65,8 @@ extern const CLI::Validator kFinite;
 // --profile and --model (rtl or golden): the hardware model(s) a command also runs; `what` begins
 // --profile's help.
 void addProfileOptions(CLI::App* sc, std::vector<std::string>& profiles, std::string& model, const std::string& what);
-// --bandlimit and --filter: every texture's, overriding the scene's (overrideTextures).
-void addTextureOverrideOptions(CLI::App* sc, std::string& bandlimit, std::string& filter);
+// --bandlimit, --filter and --width-cap: every texture's, overriding the scene's (overrideTextures).
+void addTextureOverrideOptions(CLI::App* sc, std::string& bandlimit, std::string& filter, std::string& widthCap);
 // --trace and the options of its window (`window`: --trace-start, --trace-end, ...): the waves are
 // the RTL's, so they need --profile and --model rtl, and the window needs --trace FILE. Returns
 // whether any of them was given.
@@ -78,7 +78,8 @@ void checkTraceWindow(const SimOptions& sim);
 std::vector<FilterVariant> parseVariants(const std::vector<std::string>& specs);
 // --bandlimit and --filter: every texture of the scene gets them (a bandlimit a texture cannot
 // take is refused).
-void overrideTextures(Scene& scene, const std::string& bandlimit, const std::string& filter);
+void overrideTextures(Scene& scene, const std::string& bandlimit, const std::string& filter,
+                      const std::string& widthCap = "");
 // Every variant's bandlimit must suit every texture of the scene.
 void checkVariants(const Scene& scene, const std::vector<FilterVariant>& variants);
 

@@ -19,13 +19,14 @@ struct RenderArgs {
     bool quiet = false;
     std::string bandlimit;    // every texture's bandlimit (parseBandlimit's names)
     std::string filter;       // every texture's filter kind (parseFilterKind's names)
+    std::string widthCap;     // every texture's width cap ("on" / "off")
     std::vector<std::string> variants;  // extra filtered images (parseVariant's spellings)
 };
 
 int runHardwareRender(const RenderArgs& a, const HwArgs& hw) {
     const int w = a.size ? a.size : a.width, h = a.size ? a.size : a.height;
     Scene scene = loadScene(a.scene, w, h);
-    overrideTextures(scene, a.bandlimit, a.filter);
+    overrideTextures(scene, a.bandlimit, a.filter, a.widthCap);
     const std::string stem = fs::path(a.scene).stem().string();
     int rc = 0;
     std::vector<std::string> pageArgs;
@@ -87,7 +88,7 @@ int runHardwareRender(const RenderArgs& a, const HwArgs& hw) {
 int runRender(const RenderArgs& a) {
     const int w = a.size ? a.size : a.width, h = a.size ? a.size : a.height;
     Scene scene = loadScene(a.scene, w, h);
-    overrideTextures(scene, a.bandlimit, a.filter);
+    overrideTextures(scene, a.bandlimit, a.filter, a.widthCap);
     const std::string stem = fs::path(a.scene).stem().string();
     const fs::path dir = a.outDir.empty() ? fs::path("out") / stem : fs::path(a.outDir);
 
@@ -166,7 +167,7 @@ Command registerRender(CLI::App& app) {
     render->add_option("--seed", ra->seed, "Jitter seed of the ground truth");
     render->add_option("-j,--threads", ra->threads, "Threads (0: all cores)")->check(CLI::Range(0, 256));
     render->add_flag("-q,--quiet", ra->quiet, "No progress on stderr");
-    addTextureOverrideOptions(render, ra->bandlimit, ra->filter);
+    addTextureOverrideOptions(render, ra->bandlimit, ra->filter, ra->widthCap);
     render->add_option("--variants", ra->variants, "Also the filtered image with every texture's filter (and bandlimit) "
                        "replaced, per KIND[+BANDLIMIT] (e.g. trapezoid sat+footprint), compared with the truth (reference only)")
         ->delimiter(',');

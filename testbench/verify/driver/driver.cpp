@@ -164,6 +164,10 @@ std::string hardwareUnsupported(const Profile& p, const Texture& tex) {
             return where + "weights: the subband unit of " + prof + " computes the heuristic weights";
     }
     if (std::string why = refusedFilter(p, tex); !why.empty()) return why;
+    if (tex.widthCap && !p.widthCap())
+        return (tex.widthCapSource.empty() ? "texture '" + tex.name + "': width_cap" : tex.widthCapSource) +
+               ": profile '" + p.name + "' has no width-cap unit (filter.width_cap = \"off\"); use a profile with "
+               "filter.width_cap = \"on\" (e.g. sim/test_profiles/reduced_worley.toml) or render it without --profile";
     if (tex.clut.size() != p.clutSize())
         return (tex.clutSource.empty() ? "texture '" + tex.name + "': colormap.size" : tex.clutSource) + ": " +
                std::to_string(tex.clut.size()) + " entries; profile '" + p.name + "' has a " +
@@ -221,6 +225,15 @@ TextureProgram programTexture(const Profile& p, const Texture& tex) {
                                                 ? subbandWeightEntry(tex.noise, k)
                                                 : fadeTableEntry(tex.noise, k))});
 
+    // The filter-width cap (issue 44 part 2; docs/HARDWARE.md unit 5).
+    if (p.widthCap()) {
+        const int64_t wcap = widthCapRegister(p, tex, prog.activeOctaves);
+        prog.writes.push_back({contract::kRegWcap, word(wcap)});
+        if (tex.widthCap && wcap == fx::maxUnsigned(p.widthBits()))
+            notes << "width cap: none (" << (quadricVaries(tex.quadric) ? "the quadric varies" : "beyond W's range")
+                  << "); ";
+    }
+
     // The worley unit's coefficients C_k (n = sum C_k F_k).
     if (p.noise.basis == NoiseBasis::Worley)
         for (int k = 0; k < contract::kRegWorleyCount; ++k)
@@ -242,6 +255,14 @@ TextureProgram programTexture(const Profile& p, const Texture& tex) {
     if (tex.norm != p.filterNorm) notes << "|grad| by " << toString(p.filterNorm) << "; ";
     prog.notes = notes.str();
     return prog;
+}
+
+int64_t widthCapRegister(const Profile& p, const Texture& tex, int octaves) {
+    const int64_t wmax = fx::maxUnsigned(p.widthBits());
+    if (!tex.widthCap) return wmax;
+    const double cap = widthCapOf(tex, octaves) * double(p.clutSize()) * std::exp2(p.widthFrac);
+    if (!(cap < double(wmax))) return wmax;   // infinite (a varying quadric) or beyond W's range
+    return int64_t(std::floor(cap));
 }
 
 FragmentFx quantizeFragment(const Profile& p, uint32_t tag, const glm::dvec3& s, const glm::dvec3& dsdx,

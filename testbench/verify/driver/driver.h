@@ -63,6 +63,11 @@ int64_t fadeTableEntry(const NoiseOptions& noise, int k);
 constexpr double kSubbandWeightOffset = 0.3125;
 int64_t subbandWeightEntry(const NoiseOptions& noise, int k);
 
+// The width cap register (filter.width_cap profiles, register wcap): widthCapOf(tex, octaves) N in
+// W's format, floor(cap N 2^WidthFrac) saturated to the largest W (all ones: no cap); all ones
+// also when the texture has no width_cap or its quadric varies (widthCapOf infinite).
+int64_t widthCapRegister(const Profile& p, const Texture& tex, int octaves);
+
 FragmentFx quantizeFragment(const Profile& p, uint32_t tag, const glm::dvec3& s,
                             const glm::dvec3& dsdx, const glm::dvec3& dsdy);
 

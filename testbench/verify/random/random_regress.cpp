@@ -143,6 +143,9 @@ Texture randomTexture(RandomStream& r, const Profile& p) {
     t.filter = kinds[r.range(0, 4)];
     // Bandlimited octaves on a profile with the fade unit (other profiles draw nothing more).
     if (p.bandlimit()) t.bandlimit = r.chance(0.7) ? Bandlimit::Isotropic : Bandlimit::Off;
+    // The width cap on a profile with its unit (other profiles draw nothing more); with a random
+    // quadric it is mostly none (the quadric varies): the regression also writes arbitrary caps.
+    if (p.widthCap()) t.widthCap = r.chance(0.7);
     // A subband unit with its anisotropic filter: its weights instead, of a random sigma.
     if (p.noise.basis == NoiseBasis::Subband && p.noiseSubbandOrientations != 0) {
         if (t.bandlimit == Bandlimit::Isotropic) t.bandlimit = Bandlimit::Anisotropic;
@@ -272,6 +275,14 @@ RandomRegressResult runRandomRegress(const Profile& p, const std::string& rtlNam
                                                    contract::kRegOctaveFm),
                                           uint32_t(uint64_t(v) & 0xffffffffu)});
                     }
+                // Width cap: sometimes an arbitrary cap (0, small, any W, all ones).
+                if (p.widthCap() && r.chance(0.5)) {
+                    const int64_t wmax = fx::maxUnsigned(p.widthBits());
+                    const double u = r.uniform();
+                    const int64_t v = u < 0.1 ? 0 : u < 0.2 ? wmax : u < 0.6 ? int64_t(r.range(0, 1 << (p.widthFrac + 3)))
+                                                                           : int64_t(r.range(0, wmax));
+                    writes.push_back({contract::kRegWcap, uint32_t(v)});
+                }
             } else {
                 writes = {controlWrite(tex, int(r.range(0, 3)))};
             }

@@ -10,7 +10,9 @@
 
 #include "driver.h"
 #include "fixed.h"
+#include "input_error.h"
 #include "rtl_model.h"
+#include "source_dir.h"
 
 namespace pst {
 namespace {
@@ -109,6 +111,87 @@ TEST(RandomRegress, FragmentsAndGoldenOutputsReachTheCorners) {
         EXPECT_GT(wZero, 200);
         EXPECT_GT(wMid, 1000);
     }
+}
+
+// The width cap (issue 44 part 2) end to end through the driver and the golden model: on a profile
+// with the unit (filter.width_cap = "on") the driver writes wcap = floor(widthCapOf N 2^WidthFrac)
+// for a noise-only texture that asks for it (all ones when it does not, or when its quadric
+// varies), and the golden W is min(W, wcap): a minified pixel's W is the cap, a magnified one's
+// unchanged. A profile without the unit refuses the texture and ignores the register.
+TEST(RandomRegress, WidthCapThroughDriverAndGolden) {
+    const Profile p = loadNamedProfile(sourceDir() + "/sim/test_profiles/reduced_worley.toml", sourceDir());
+    ASSERT_TRUE(p.widthCap());
+    const int64_t wmax = fx::maxUnsigned(p.widthBits());
+    Texture tex;
+    tex.name = "t";
+    tex.noise = p.noise;
+    tex.noise.coef = {1.0, 0.0, 0.0, 0.0};
+    tex.clut = ColorMap(std::vector<glm::dvec4>(size_t(p.clutSize()), glm::dvec4(0.5)), WrapMode::Mod);
+    tex.filter = FilterKind::Sat;
+    for (double a : {0.5, 0.25}) {
+        Octave o;
+        o.amplitude = a;
+        o.M = glm::dmat3(3.0);
+        tex.octaves.push_back(o);
+    }
+    auto wcapOf = [&](const Texture& t) {
+        int64_t v = -2;
+        for (const auto& [addr, d] : programTexture(p, t).writes)
+            if (addr == contract::kRegWcap) v = int64_t(d);
+        return v;
+    };
+    EXPECT_EQ(wcapOf(tex), wmax);   // width_cap off: all ones
+    tex.widthCap = true;
+    const double capF = widthCapOf(tex);
+    const int64_t wcap = int64_t(std::floor(capF * p.clutSize() * std::exp2(p.widthFrac)));
+    EXPECT_GT(wcap, 0);
+    EXPECT_LT(wcap, wmax);
+    EXPECT_EQ(wcapOf(tex), wcap);
+    EXPECT_EQ(widthCapRegister(p, tex, 2), wcap);
+    EXPECT_LT(widthCapRegister(p, tex, 1), wcap);   // the octaves the hardware holds
+    Texture quad = tex;
+    quad.quadric.D = 0.5;   // a varying quadric: no cap
+    EXPECT_EQ(wcapOf(quad), wmax);
+    EXPECT_NE(programTexture(p, quad).notes.find("width cap: none (the quadric varies)"), std::string::npos);
+
+    GoldenPipeline capped(p), open(p);
+    for (const auto& [addr, d] : programTexture(p, tex).writes) capped.write(addr, d);
+    Texture off = tex;
+    off.widthCap = false;
+    for (const auto& [addr, d] : programTexture(p, off).writes) open.write(addr, d);
+    bool clipped = false, kept = false;
+    for (int k = 0; k < 200; ++k) {
+        const double scale = std::exp2(-12.0 + 0.1 * k);   // magnified to minified
+        const glm::dvec3 s(0.37 + 0.01 * k, 0.21, 0.13);
+        const FragmentFx f = quantizeFragment(p, uint32_t(k), s, glm::dvec3(scale, 0.3 * scale, 0),
+                                              glm::dvec3(0, scale, 0.2 * scale));
+        const PixelFx a = open.eval(f), b = capped.eval(f);
+        EXPECT_EQ(b.w, std::min(a.w, wcap));
+        EXPECT_EQ(b.f, a.f);
+        clipped = clipped || a.w > wcap;
+        kept = kept || (a.w > 0 && a.w < wcap);
+    }
+    EXPECT_TRUE(clipped);
+    EXPECT_TRUE(kept);
+
+    // Without the unit: refused, and the register is not kept.
+    const Profile r = loadNamedProfile("reduced", sourceDir());
+    ASSERT_FALSE(r.widthCap());
+    Texture rt = tex;
+    rt.noise = r.noise;
+    EXPECT_THROW(programTexture(r, rt), InputError);
+    EXPECT_NE(hardwareUnsupported(r, rt).find("has no width-cap unit"), std::string::npos);
+    rt.widthCap = false;
+    GoldenPipeline g(r), h(r);
+    for (const auto& [addr, d] : programTexture(r, rt).writes) {
+        EXPECT_NE(addr, contract::kRegWcap);
+        g.write(addr, d);
+        h.write(addr, d);
+    }
+    h.write(contract::kRegWcap, 3);
+    const FragmentFx f = quantizeFragment(r, 1, glm::dvec3(0.3), glm::dvec3(100, 0, 0), glm::dvec3(0, 100, 0));
+    EXPECT_EQ(g.eval(f).w, h.eval(f).w);
+    EXPECT_GT(h.eval(f).w, 3);
 }
 
 TEST(RandomRegress, SegmentStartsAreConsistent) {
