@@ -22,7 +22,9 @@ import re
 from .. import netlist as netlist_reader
 
 _MODULE = re.compile(r"^module\s+(\\\S+|[A-Za-z_][\w$]*)\s*\(")
-_CELL = re.compile(r"^\s+(\\\S+|[A-Za-z_][\w$]*)\s+(\\\S+|[A-Za-z_][\w$]*)\s*\($")
+# A cell instance's first line: Yosys writes `  TYPE NAME (` and the pins below it,
+# pstlib/pnr/blif.py `TYPE NAME ( .A(x), ... );` on one line.
+_CELL = re.compile(r"^\s*(\\\S+|[A-Za-z_][\w$]*)\s+(\\\S+|[A-Za-z_][\w$]*)\s*\(")
 
 SEQ_CELLS = ("DFFPOSX1", "DFFNEGX1", "DFFSR", "LATCH")
 MEM_CELLS = ("PST_MEMRD", "PST_MEMWR")
@@ -107,7 +109,7 @@ def mutate(netlist: str, module: str) -> tuple:
             continue
         if not inside:
             continue
-        c = _CELL.match(line.rstrip("\n"))
+        c = _CELL.match(line)
         if c and c.group(1) in DUALS:
             lines[i] = line.replace(c.group(1), DUALS[c.group(1)], 1)
             return "".join(lines), f"{c.group(2)}: {c.group(1)} -> {DUALS[c.group(1)]}"

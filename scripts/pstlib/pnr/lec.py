@@ -9,10 +9,9 @@ functions.
 sides (`write_aiger -zinit`) and ABC's `dprove` decides the sequential miter (pstlib/lec/prove.py):
 the cell names differ between the two netlists (qflow renames every instance), so registers are
 matched by ABC's signal correspondence, not by name. A mutant (one two-input cell of the routed
-netlist swapped for its dual, `mutant`) must come out "differs".
+netlist swapped for its dual, pstlib/lec/miter.py `mutate`) must come out "differs".
 """
 import pathlib
-import re
 import time
 
 from ..lec import miter, prove
@@ -20,22 +19,6 @@ from ..synth.tools import run_yosys
 
 GOLD = "pst_lec_gold"
 GATE = "pst_lec_gate"
-
-
-_GATE_LINE = re.compile(r"^(\s*)([A-Za-z_]\w*)(\s+)(\S+)(\s*\()")
-
-
-def mutant(verilog: str) -> tuple:
-    """VERILOG (one instance per line, as pstlib/pnr/blif.py writes it) with its first two-input
-    cell swapped for its dual (pstlib/lec/miter.py DUALS): (text, "INSTANCE: FROM -> TO")."""
-    lines = verilog.splitlines(keepends=True)
-    for i, line in enumerate(lines):
-        m = _GATE_LINE.match(line)
-        if m and m.group(2) in miter.DUALS:
-            to = miter.DUALS[m.group(2)]
-            lines[i] = m.group(1) + to + line[m.end(2):]
-            return "".join(lines), f"{m.group(4)}: {m.group(2)} -> {to}"
-    raise ValueError("no two-input cell to swap")
 
 
 def script(lib, gold, gate, module: str, aig) -> str:
@@ -60,7 +43,7 @@ def check(lib, gold: pathlib.Path, gate: pathlib.Path, module: str, work: pathli
     work.mkdir(parents=True, exist_ok=True)
     mutation = None
     if mutate:
-        text, mutation = mutant(gate.read_text())
+        text, mutation = miter.mutate(gate.read_text(), module)
         gate = work / "routed_mutant.v"
         gate.write_text(text)
     aig = work / ("routed_mutant.aig" if mutate else "routed.aig")
